@@ -1,0 +1,9 @@
+//! Acceleration structures. `accel` knows nothing about shapes: it builds
+//! from bounding boxes and asks the caller, through a closure, to intersect a
+//! primitive by index. Meshes, analytic shapes and implicit surfaces share it.
+
+pub mod aabb;
+pub mod bvh;
+
+pub use aabb::Aabb;
+pub use bvh::Bvh;

@@ -1,0 +1,40 @@
+//! Ideal diffuse reflection, `f = albedo / π`, sampled by cosine weighting
+//! (so the sample weight is exactly the albedo).
+
+use super::{BsdfSample, Bxdf};
+use crate::math::{Rgb, sampling};
+use glam::{Vec2, Vec3A};
+use std::f32::consts::FRAC_1_PI;
+
+#[derive(Clone, Copy, Debug)]
+pub struct Lambert {
+    pub albedo: Rgb,
+}
+
+impl Bxdf for Lambert {
+    fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        if wo.z * wi.z <= 0.0 {
+            return Rgb::ZERO;
+        }
+        self.albedo * FRAC_1_PI
+    }
+
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if wo.z * wi.z <= 0.0 {
+            return 0.0;
+        }
+        sampling::cosine_hemisphere_pdf(wi.z.abs())
+    }
+
+    fn sample(&self, wo: Vec3A, _u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let mut wi = sampling::cosine_hemisphere(u);
+        if wo.z < 0.0 {
+            wi.z = -wi.z;
+        }
+        let pdf = sampling::cosine_hemisphere_pdf(wi.z.abs());
+        if pdf <= 0.0 {
+            return None;
+        }
+        Some(BsdfSample { wi, weight: self.albedo, pdf, delta: false })
+    }
+}

@@ -1,0 +1,33 @@
+//! Small numeric building blocks shared by every stage: colours, rays,
+//! orthonormal frames, sampling warps with their densities and the random
+//! number generator.
+
+pub mod frame;
+pub mod ray;
+pub mod rng;
+pub mod sampling;
+
+pub use frame::Frame;
+pub use ray::Ray;
+pub use rng::Pcg32;
+
+use glam::Vec3A;
+
+/// Linear RGB (Rec.709 primaries), one radiometric quantity per channel.
+///
+/// A plain `Vec3A` so colour arithmetic compiles to the same SIMD as geometry.
+pub type Rgb = Vec3A;
+
+/// Luminance of a linear Rec.709 colour; used for light selection by power
+/// and Russian roulette.
+#[inline]
+pub fn luminance(c: Rgb) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// Offset added to shadow-ray and secondary-ray origins, scaled by the size of
+/// the hit coordinates so it works for both tiny and huge scenes.
+#[inline]
+pub fn ray_epsilon(p: Vec3A) -> f32 {
+    1e-4 * (1.0 + p.abs().max_element())
+}

@@ -1,0 +1,91 @@
+//! Warps from the unit square to common domains, each with its density
+//! (`*_pdf`, with respect to solid angle or area as named). Inputs `u` are
+//! uniform in [0,1)².
+
+use glam::{Vec2, Vec3A};
+use std::f32::consts::{FRAC_1_PI, PI};
+
+/// Shirley–Chiu concentric map: preserves stratification better than polar.
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o.x == 0.0 && o.y == 0.0 {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, std::f32::consts::FRAC_PI_4 * (o.y / o.x))
+    } else {
+        (o.y, std::f32::consts::FRAC_PI_2 - std::f32::consts::FRAC_PI_4 * (o.x / o.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// Malley's method: project the disk onto the hemisphere (+z).
+pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
+    let d = concentric_disk(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3A::new(d.x, d.y, z)
+}
+
+#[inline]
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) * FRAC_1_PI
+}
+
+pub fn uniform_sphere(u: Vec2) -> Vec3A {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+pub const UNIFORM_SPHERE_PDF: f32 = 1.0 / (4.0 * PI);
+
+pub fn uniform_hemisphere(u: Vec2) -> Vec3A {
+    let z = u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+pub const UNIFORM_HEMISPHERE_PDF: f32 = 1.0 / (2.0 * PI);
+
+/// Veach's power heuristic (β = 2) for combining two strategies by MIS.
+#[inline]
+pub fn power_heuristic(f_pdf: f32, g_pdf: f32) -> f32 {
+    let f2 = f_pdf * f_pdf;
+    let g2 = g_pdf * g_pdf;
+    if f2 + g2 == 0.0 { 0.0 } else { f2 / (f2 + g2) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Pcg32;
+
+    #[test]
+    fn cosine_hemisphere_is_normalised_and_upper() {
+        let mut rng = Pcg32::new(1, 2);
+        // E[1/pdf] over the hemisphere equals its solid angle 2π.
+        let n = 200_000;
+        let mut acc = 0.0f64;
+        for _ in 0..n {
+            let w = cosine_hemisphere(rng.next_vec2());
+            assert!(w.z >= 0.0 && (w.length() - 1.0).abs() < 1e-4);
+            let pdf = cosine_hemisphere_pdf(w.z);
+            if pdf > 1e-4 {
+                acc += (w.z as f64) / pdf as f64;
+            }
+        }
+        // ∫ cos dω = π
+        let est = acc / n as f64;
+        assert!((est - PI as f64).abs() < 0.01, "∫cos = {est}");
+    }
+
+    #[test]
+    fn concentric_disk_stays_inside() {
+        let mut rng = Pcg32::new(3, 4);
+        for _ in 0..10_000 {
+            assert!(concentric_disk(rng.next_vec2()).length() <= 1.0 + 1e-6);
+        }
+    }
+}

@@ -1,0 +1,2 @@
+//! The scene pipeline: read → parse → validate → build.
+pub mod problem;
