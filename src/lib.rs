@@ -2,9 +2,17 @@
 //!
 //! The pipeline is read → parse → validate → build → render; each stage is
 //! its own module under [`scene`], and the renderer only ever sees the runtime
-//! scene.
+//! [`scene::Scene`].
 
 pub mod accel;
+pub mod camera;
+pub mod cli;
+pub mod diagnostic;
+pub mod geometry;
+pub mod imageio;
+pub mod integrators;
+pub mod lights;
 pub mod materials;
 pub mod math;
+pub mod render;
 pub mod scene;

@@ -13,7 +13,9 @@ pub struct Bvh {
 impl Bvh {
     /// Builds over `bounds[i]` for primitive `i`.
     pub fn build(bounds: &[Aabb]) -> Self {
-        Self { bounds: bounds.to_vec() }
+        Self {
+            bounds: bounds.to_vec(),
+        }
     }
 
     /// Closest hit. `hit(prim, ray, t_max)` returns the primitive's hit
@@ -38,7 +40,28 @@ impl Bvh {
     }
 
     /// Any hit below `t_max` (shadow rays): stops at the first one.
-    pub fn occluded(&self, ray: &Ray, t_max: f32, mut hit: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
+    pub fn occluded(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        mut hit: impl FnMut(u32, &Ray, f32) -> bool,
+    ) -> bool {
         (0..self.bounds.len() as u32).any(|i| hit(i, ray, t_max))
+    }
+}
+
+/// Placeholder statistics (replaced with the SAH build).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BvhStats {
+    pub nodes: usize,
+    pub leaves: usize,
+    pub max_depth: usize,
+    pub sah_cost: f32,
+    pub bytes: usize,
+}
+
+impl Bvh {
+    pub fn stats(&self) -> BvhStats {
+        BvhStats::default()
     }
 }

@@ -35,6 +35,11 @@ impl Bxdf for Lambert {
         if pdf <= 0.0 {
             return None;
         }
-        Some(BsdfSample { wi, weight: self.albedo, pdf, delta: false })
+        Some(BsdfSample {
+            wi,
+            weight: self.albedo,
+            pdf,
+            delta: false,
+        })
     }
 }

@@ -85,7 +85,9 @@ impl Bxdf for Bsdf {
 /// A material as the scene describes it, with textured parameters.
 #[derive(Clone, Debug)]
 pub enum Material {
-    Lambert { albedo: ColorTex },
+    Lambert {
+        albedo: ColorTex,
+    },
     /// The surface of an area light: black and non-reflecting, as in the
     /// Mitsuba references.
     Emitter,

@@ -14,7 +14,10 @@ const MULT: u64 = 6364136223846793005;
 
 impl Pcg32 {
     pub fn new(seed: u64, stream: u64) -> Self {
-        let mut r = Self { state: 0, inc: (stream << 1) | 1 };
+        let mut r = Self {
+            state: 0,
+            inc: (stream << 1) | 1,
+        };
         r.next_u32();
         r.state = r.state.wrapping_add(seed);
         r.next_u32();
@@ -25,7 +28,10 @@ impl Pcg32 {
     /// the sample index and the scene seed.
     pub fn for_sample(x: u32, y: u32, sample: u32, seed: u64) -> Self {
         let pixel = ((y as u64) << 32) | x as u64;
-        Self::new(mix64(pixel ^ mix64(seed)), mix64(sample as u64 ^ 0x9e37_79b9_7f4a_7c15))
+        Self::new(
+            mix64(pixel ^ mix64(seed)),
+            mix64(sample as u64 ^ 0x9e37_79b9_7f4a_7c15),
+        )
     }
 
     #[inline]

@@ -1,2 +1,14 @@
-//! The scene pipeline: read → parse → validate → build.
+//! The scene pipeline: read → parse ([`desc`]) → [`validate`] → [`build`] →
+//! runtime [`Scene`]. [`load`] runs them all and turns each stage's problems
+//! into located diagnostics.
+
+pub mod build;
+pub mod desc;
+pub mod load;
 pub mod problem;
+pub mod runtime;
+pub mod spans;
+pub mod validate;
+
+pub use load::{LoadError, Loaded, Overrides, load, load_str, load_with};
+pub use runtime::{Film, Scene};

@@ -1,0 +1,140 @@
+//! Located, human-readable problems with a scene file, rendered the way
+//! compilers do (file:line:col, the offending line, a caret, the fix).
+
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnostic {
+    pub file: PathBuf,
+    /// Byte range in the file, when the problem could be located.
+    pub span: Option<Range<usize>>,
+    /// 1-based; 0 when unknown.
+    pub line: usize,
+    /// 1-based, in characters; 0 when unknown.
+    pub column: usize,
+    /// Path inside the scene (`objects[3].material`), for semantic problems.
+    pub path: Option<String>,
+    pub message: String,
+    pub help: Option<String>,
+}
+
+impl Diagnostic {
+    /// Locates `span` in `source` to fill line and column.
+    pub fn new(file: &Path, source: &str, span: Option<Range<usize>>, message: String) -> Self {
+        let (line, column) = span.as_ref().map_or((0, 0), |s| line_col(source, s.start));
+        Self {
+            file: file.to_path_buf(),
+            span,
+            line,
+            column,
+            path: None,
+            message,
+            help: None,
+        }
+    }
+
+    pub fn location(&self) -> String {
+        if self.line == 0 {
+            self.file.display().to_string()
+        } else {
+            format!("{}:{}:{}", self.file.display(), self.line, self.column)
+        }
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: error: ", self.location())?;
+        if let Some(p) = &self.path {
+            write!(f, "{p}: ")?;
+        }
+        write!(f, "{}", self.message)?;
+        if let Some(h) = &self.help {
+            write!(f, "\n  help: {h}")?;
+        }
+        Ok(())
+    }
+}
+
+/// 1-based line and character column of byte `offset`.
+pub fn line_col(source: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(source.len());
+    let before = &source[..source.floor_char_boundary(offset)];
+    let line = 1 + before.matches('\n').count();
+    let col = 1 + before.rsplit('\n').next().map_or(0, |l| l.chars().count());
+    (line, col)
+}
+
+/// Byte offset of a 1-based line and character column.
+pub fn offset_of(source: &str, line: usize, col: usize) -> usize {
+    let mut off = 0;
+    for (i, l) in source.split_inclusive('\n').enumerate() {
+        if i + 1 == line {
+            return off
+                + l.char_indices()
+                    .nth(col.saturating_sub(1))
+                    .map_or(l.trim_end_matches('\n').len(), |(b, _)| b);
+        }
+        off += l.len();
+    }
+    source.len()
+}
+
+/// Every problem found in one attempt to load a scene, with the sources they
+/// point into so they can be rendered with context.
+#[derive(Clone, Debug, Default)]
+pub struct Report {
+    pub diagnostics: Vec<Diagnostic>,
+    pub sources: Vec<(PathBuf, String)>,
+}
+
+impl Report {
+    /// Renders every diagnostic with the source line and a caret (colour only
+    /// when asked: terminals yes, files and pipes no).
+    pub fn render(&self, color: bool) -> String {
+        use ariadne::{Config, IndexType, Label, ReportKind, Source};
+        let mut out = Vec::new();
+        for d in &self.diagnostics {
+            let src = self
+                .sources
+                .iter()
+                .find(|(p, _)| *p == d.file)
+                .map(|(_, s)| s.as_str());
+            let (Some(src), Some(span)) = (src, d.span.clone()) else {
+                out.extend_from_slice(format!("{d}\n").as_bytes());
+                continue;
+            };
+            let name = d.file.display().to_string();
+            let span =
+                span.start.min(src.len())..span.end.min(src.len()).max(span.start.min(src.len()));
+            let msg = match &d.path {
+                Some(p) => format!("{p}: {}", d.message),
+                None => d.message.clone(),
+            };
+            let mut b = ariadne::Report::build(ReportKind::Error, (name.clone(), span.clone()))
+                .with_config(
+                    Config::default()
+                        .with_color(color)
+                        .with_index_type(IndexType::Byte),
+                )
+                .with_message(&msg)
+                .with_label(Label::new((name.clone(), span)).with_message(&d.message));
+            if let Some(h) = &d.help {
+                b = b.with_help(h);
+            }
+            let _ = b.finish().write((name, Source::from(src)), &mut out);
+        }
+        String::from_utf8_lossy(&out).into_owned()
+    }
+}
+
+impl fmt::Display for Report {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for d in &self.diagnostics {
+            writeln!(f, "{d}")?;
+        }
+        Ok(())
+    }
+}

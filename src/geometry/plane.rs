@@ -1,0 +1,39 @@
+//! Infinite plane. Unbounded, so it is tested outside the BVH.
+
+use super::{Hit, NO_LIGHT};
+use crate::math::{Frame, Ray};
+use glam::{Vec2, Vec3A};
+
+#[derive(Clone, Copy, Debug)]
+pub struct Plane {
+    pub point: Vec3A,
+    pub normal: Vec3A,
+    pub material: u32,
+}
+
+impl Plane {
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let denom = self.normal.dot(ray.d);
+        if denom.abs() < 1e-12 {
+            return None;
+        }
+        let t = (self.point - ray.o).dot(self.normal) / denom;
+        (t > 1e-5 && t < t_max).then_some(t)
+    }
+
+    pub fn hit(&self, p: Vec3A, t: f32) -> Hit {
+        // UVs: coordinates in the plane's own frame, one unit per scene unit.
+        let f = Frame::from_normal(self.normal);
+        let d = p - self.point;
+        Hit {
+            t,
+            p,
+            ng: self.normal,
+            ns: self.normal,
+            uv: Vec2::new(d.dot(f.s), d.dot(f.t)),
+            material: self.material,
+            light: NO_LIGHT,
+        }
+    }
+}

@@ -1,0 +1,76 @@
+//! Parallelogram `corner + s·u + t·v`, s,t ∈ [0,1]; also the shape of area
+//! lights.
+
+use super::Hit;
+use crate::accel::Aabb;
+use crate::math::Ray;
+use glam::{Vec2, Vec3A};
+
+#[derive(Clone, Copy, Debug)]
+pub struct Quad {
+    pub corner: Vec3A,
+    pub u: Vec3A,
+    pub v: Vec3A,
+    /// `normalize(u × v)`.
+    pub n: Vec3A,
+    pub material: u32,
+    /// Area light index or `NO_LIGHT`.
+    pub light: u32,
+}
+
+impl Quad {
+    pub fn new(corner: Vec3A, u: Vec3A, v: Vec3A, material: u32, light: u32) -> Self {
+        Self {
+            corner,
+            u,
+            v,
+            n: u.cross(v).normalize(),
+            material,
+            light,
+        }
+    }
+
+    pub fn area(&self) -> f32 {
+        self.u.cross(self.v).length()
+    }
+
+    /// Plane hit, then the (s, t) coordinates from the edge vectors.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(f32, Vec2)> {
+        let denom = self.n.dot(ray.d);
+        if denom.abs() < 1e-12 {
+            return None;
+        }
+        let t = (self.corner - ray.o).dot(self.n) / denom;
+        if !(t > 1e-5 && t < t_max) {
+            return None;
+        }
+        let d = ray.at(t) - self.corner;
+        // Solve d = s·u + t·v with the dual basis of (u, v) in the plane.
+        let uxv = self.u.cross(self.v);
+        let inv = 1.0 / uxv.length_squared();
+        let s = d.cross(self.v).dot(uxv) * inv;
+        let r = self.u.cross(d).dot(uxv) * inv;
+        ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r)).then_some((t, Vec2::new(s, r)))
+    }
+
+    pub fn hit(&self, ray: &Ray, t: f32) -> Hit {
+        let uv = self
+            .intersect(ray, f32::INFINITY)
+            .map_or(Vec2::ZERO, |(_, uv)| uv);
+        Hit {
+            t,
+            p: ray.at(t),
+            ng: self.n,
+            ns: self.n,
+            uv,
+            material: self.material,
+            light: self.light,
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        let c = self.corner;
+        Aabb::from_points(&[c, c + self.u, c + self.v, c + self.u + self.v])
+    }
+}

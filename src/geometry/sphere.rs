@@ -1,0 +1,74 @@
+//! Analytic sphere.
+
+use super::{Hit, NO_LIGHT};
+use crate::accel::Aabb;
+use crate::math::Ray;
+use glam::{Vec2, Vec3A};
+use std::f32::consts::PI;
+
+#[derive(Clone, Copy, Debug)]
+pub struct Sphere {
+    pub center: Vec3A,
+    pub radius: f32,
+    pub material: u32,
+}
+
+impl Sphere {
+    /// Nearest root of |o + t d − c|² = r² in (ε, t_max). Uses the
+    /// numerically stable form of the quadratic (pbrt-v4 §6.8.5 style: the
+    /// discriminant from the vector between the ray and the centre's
+    /// projection avoids cancellation for distant spheres).
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+        let oc = ray.o - self.center;
+        let a = ray.d.length_squared();
+        let b = oc.dot(ray.d);
+        // Distance² from centre to the ray's line, computed without cancellation.
+        let l = oc - (b / a) * ray.d;
+        let disc = self.radius * self.radius - l.length_squared();
+        if disc < 0.0 {
+            return None;
+        }
+        let q = -b - b.signum() * (a * disc).sqrt();
+        let (t0, t1) = {
+            let x = q / a;
+            let y = if q != 0.0 {
+                (oc.length_squared() - self.radius * self.radius) / q
+            } else {
+                x
+            };
+            (x.min(y), x.max(y))
+        };
+        let eps = 1e-4 * self.radius.max(1e-3);
+        if t0 > eps && t0 < t_max {
+            Some(t0)
+        } else if t1 > eps && t1 < t_max {
+            Some(t1)
+        } else {
+            None
+        }
+    }
+
+    pub fn hit(&self, p: Vec3A, t: f32) -> Hit {
+        let n = ((p - self.center) / self.radius).normalize();
+        // Spherical coordinates with y up: u around the axis, v from the bottom.
+        let u = 0.5 + n.z.atan2(n.x) / (2.0 * PI);
+        let v = n.y.clamp(-1.0, 1.0).acos() / PI;
+        Hit {
+            t,
+            p: self.center + n * self.radius,
+            ng: n,
+            ns: n,
+            uv: Vec2::new(u, 1.0 - v),
+            material: self.material,
+            light: NO_LIGHT,
+        }
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb {
+            min: self.center - Vec3A::splat(self.radius),
+            max: self.center + Vec3A::splat(self.radius),
+        }
+    }
+}

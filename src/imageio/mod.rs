@@ -1,0 +1,111 @@
+//! Images in and out: a linear float RGB buffer, read from PNG/EXR/PFM,
+//! written to PNG (sRGB, 8-bit) or EXR (linear float) atomically, and
+//! compared by metrics.
+
+pub mod metrics;
+pub mod read;
+pub mod write;
+
+pub use metrics::{Comparison, compare};
+pub use read::read_image;
+pub use write::write_image;
+
+use crate::math::Rgb;
+
+/// Linear RGB pixels, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<Rgb>,
+}
+
+impl Image {
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![Rgb::ZERO; (width * height) as usize],
+        }
+    }
+
+    #[inline]
+    pub fn get(&self, x: u32, y: u32) -> Rgb {
+        self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// Box-filtered downsampling by an integer factor: with a box pixel
+    /// filter this is the same integral as rendering at the lower size.
+    pub fn downsample(&self, factor: u32) -> Image {
+        let (w, h) = (self.width / factor, self.height / factor);
+        let mut out = Image::new(w, h);
+        let norm = 1.0 / (factor * factor) as f32;
+        for y in 0..h {
+            for x in 0..w {
+                let mut s = Rgb::ZERO;
+                for dy in 0..factor {
+                    for dx in 0..factor {
+                        s += self.get(x * factor + dx, y * factor + dy);
+                    }
+                }
+                out.pixels[(y * w + x) as usize] = s * norm;
+            }
+        }
+        out
+    }
+}
+
+/// sRGB transfer function (IEC 61966-2-1), linear → encoded.
+#[inline]
+pub fn srgb_encode(x: f32) -> f32 {
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// sRGB transfer function, encoded → linear.
+#[inline]
+pub fn srgb_decode(x: f32) -> f32 {
+    if x <= 0.040_45 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ImageError {
+    #[error("cannot read image {path}: {reason}")]
+    Read {
+        path: std::path::PathBuf,
+        reason: String,
+    },
+    #[error("cannot write image {path}: {reason}")]
+    Write {
+        path: std::path::PathBuf,
+        reason: String,
+    },
+    #[error("unsupported image extension for {path} (use .png or .exr{pfm})", pfm = if *.reading { ", .pfm" } else { "" })]
+    Extension {
+        path: std::path::PathBuf,
+        reading: bool,
+    },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_round_trips_and_hits_known_points() {
+        assert_eq!(srgb_encode(0.0), 0.0);
+        assert!((srgb_encode(1.0) - 1.0).abs() < 1e-6);
+        assert!((srgb_decode(0.5) - 0.214).abs() < 1e-3);
+        for i in 0..=100 {
+            let x = i as f32 / 100.0;
+            assert!((srgb_decode(srgb_encode(x)) - x).abs() < 1e-5);
+        }
+    }
+}

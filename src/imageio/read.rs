@@ -1,0 +1,142 @@
+//! Reading PNG (sRGB-decoded to linear), EXR and PFM (linear).
+
+use super::{Image, ImageError, srgb_decode};
+use crate::math::Rgb;
+use std::path::Path;
+
+pub fn read_image(path: &Path) -> Result<Image, ImageError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let err = |reason: String| ImageError::Read {
+        path: path.to_path_buf(),
+        reason,
+    };
+    match ext.as_str() {
+        "pfm" => {
+            let bytes = std::fs::read(path).map_err(|e| err(e.to_string()))?;
+            read_pfm(&bytes).map_err(err)
+        }
+        "png" => {
+            let img = image::open(path).map_err(|e| err(e.to_string()))?.to_rgb8();
+            let pixels = img
+                .pixels()
+                .map(|p| {
+                    Rgb::new(
+                        srgb_decode(p[0] as f32 / 255.0),
+                        srgb_decode(p[1] as f32 / 255.0),
+                        srgb_decode(p[2] as f32 / 255.0),
+                    )
+                })
+                .collect();
+            Ok(Image {
+                width: img.width(),
+                height: img.height(),
+                pixels,
+            })
+        }
+        "exr" => {
+            let img = image::open(path)
+                .map_err(|e| err(e.to_string()))?
+                .to_rgb32f();
+            let pixels = img.pixels().map(|p| Rgb::new(p[0], p[1], p[2])).collect();
+            Ok(Image {
+                width: img.width(),
+                height: img.height(),
+                pixels,
+            })
+        }
+        _ => Err(ImageError::Extension {
+            path: path.to_path_buf(),
+            reading: true,
+        }),
+    }
+}
+
+/// Portable float map: `PF` (RGB) or `Pf` (grey), size, scale (negative =
+/// little endian), then rows **bottom first**.
+pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
+    let mut fields = Vec::new();
+    let mut i = 0;
+    while fields.len() < 4 {
+        while i < bytes.len() && bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        let start = i;
+        while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        if start == i {
+            return Err("truncated PFM header".into());
+        }
+        fields.push(String::from_utf8_lossy(&bytes[start..i]).to_string());
+    }
+    i += 1; // the single whitespace byte ending the header
+    let channels = match fields[0].as_str() {
+        "PF" => 3,
+        "Pf" => 1,
+        other => return Err(format!("not a PFM file (magic `{other}`)")),
+    };
+    let parse = |s: &str| {
+        s.parse::<f64>()
+            .map_err(|_| format!("bad PFM header field `{s}`"))
+    };
+    let (w, h, scale) = (
+        parse(&fields[1])? as u32,
+        parse(&fields[2])? as u32,
+        parse(&fields[3])?,
+    );
+    let n = (w as usize) * (h as usize) * channels;
+    let data = bytes.get(i..i + 4 * n).ok_or("truncated PFM data")?;
+    let mut img = Image::new(w, h);
+    let value = |k: usize| {
+        let b = [
+            data[4 * k],
+            data[4 * k + 1],
+            data[4 * k + 2],
+            data[4 * k + 3],
+        ];
+        if scale < 0.0 {
+            f32::from_le_bytes(b)
+        } else {
+            f32::from_be_bytes(b)
+        }
+    };
+    for px in 0..(w * h) as usize {
+        let (x, row) = (px as u32 % w, px as u32 / w);
+        let k = px * channels;
+        let v = if channels == 3 {
+            Rgb::new(value(k), value(k + 1), value(k + 2))
+        } else {
+            Rgb::splat(value(k))
+        };
+        img.pixels[((h - 1 - row) * w + x) as usize] = v;
+    }
+    Ok(img)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pfm_reads_bottom_row_first() {
+        let mut bytes = b"PF\n1 2\n-1.0\n".to_vec();
+        for v in [1.0f32, 2.0, 3.0, 4.0, 5.0, 6.0] {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+        let img = read_pfm(&bytes).expect("valid pfm");
+        assert_eq!(
+            img.get(0, 1),
+            Rgb::new(1.0, 2.0, 3.0),
+            "first stored row is the bottom"
+        );
+        assert_eq!(img.get(0, 0), Rgb::new(4.0, 5.0, 6.0));
+        assert!(
+            read_pfm(b"PF\n1 2\n-1.0\n\x00").is_err(),
+            "truncated data is an error"
+        );
+    }
+}

@@ -1,0 +1,79 @@
+//! Writing images atomically: encode into a temporary file in the target's
+//! folder, then rename over the target, so a viewer never sees half an image
+//! and a failed write leaves the previous file untouched.
+
+use super::{Image, ImageError, srgb_encode};
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let err = |reason: String| ImageError::Write {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let format = match ext.as_str() {
+        "png" => image::ImageFormat::Png,
+        "exr" => image::ImageFormat::OpenExr,
+        _ => {
+            return Err(ImageError::Extension {
+                path: path.to_path_buf(),
+                reading: false,
+            });
+        }
+    };
+    let dynimg = match format {
+        image::ImageFormat::Png => {
+            let bytes = img
+                .pixels
+                .iter()
+                .flat_map(|p| {
+                    p.to_array()
+                        .map(|c| (srgb_encode(c.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8)
+                })
+                .collect();
+            image::DynamicImage::ImageRgb8(
+                image::RgbImage::from_raw(img.width, img.height, bytes)
+                    .ok_or_else(|| err("size mismatch".into()))?,
+            )
+        }
+        _ => {
+            let floats = img.pixels.iter().flat_map(|p| p.to_array()).collect();
+            image::DynamicImage::ImageRgb32F(
+                image::Rgb32FImage::from_raw(img.width, img.height, floats)
+                    .ok_or_else(|| err("size mismatch".into()))?,
+            )
+        }
+    };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| err(e.to_string()))?;
+    let tmp = tempfile::Builder::new()
+        .prefix(".ronray-")
+        .suffix(&format!(".{ext}.tmp"))
+        .tempfile_in(dir)
+        .map_err(|e| err(e.to_string()))?;
+    {
+        let mut w = BufWriter::new(tmp.as_file());
+        dynimg
+            .write_to(&mut w, format)
+            .map_err(|e| err(e.to_string()))?;
+        w.flush().map_err(|e| err(e.to_string()))?;
+    }
+    // tempfile creates 0600 files; an image is a normal, readable file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let _ = tmp
+            .as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644));
+    }
+    tmp.persist(path).map_err(|e| err(e.error.to_string()))?;
+    Ok(())
+}

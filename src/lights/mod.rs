@@ -1,0 +1,50 @@
+//! Light sources. Units: point lights give radiant intensity in W/sr, area
+//! lights emitted radiance in W/(m²·sr), both per linear-RGB channel.
+
+pub mod point;
+pub mod quad;
+
+pub use point::PointLight;
+pub use quad::QuadLight;
+
+use crate::math::Rgb;
+use glam::{Vec2, Vec3A};
+
+#[derive(Clone, Copy, Debug)]
+pub enum Light {
+    Point(PointLight),
+    Quad(QuadLight),
+}
+
+/// Light arriving at a shading point from one sampled point of a light.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Unit direction from the shading point toward the light.
+    pub wi: Vec3A,
+    /// Distance to the sampled point (the shadow ray's extent).
+    pub dist: f32,
+    /// Incident radiance (area lights) or irradiance-like `I/r²` (delta
+    /// lights), to be divided by `pdf`.
+    pub li: Rgb,
+    /// Solid-angle density of `wi`; 1 for delta lights.
+    pub pdf: f32,
+    pub delta: bool,
+}
+
+impl Light {
+    #[inline]
+    pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+        match self {
+            Light::Point(l) => l.sample(p),
+            Light::Quad(l) => l.sample(p, u),
+        }
+    }
+
+    /// Total emitted power in W per channel.
+    pub fn power(&self) -> Rgb {
+        match self {
+            Light::Point(l) => l.power(),
+            Light::Quad(l) => l.power(),
+        }
+    }
+}

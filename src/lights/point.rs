@@ -1,0 +1,36 @@
+//! Isotropic point light.
+
+use super::LightSample;
+use crate::math::Rgb;
+use glam::Vec3A;
+use std::f32::consts::PI;
+
+#[derive(Clone, Copy, Debug)]
+pub struct PointLight {
+    pub position: Vec3A,
+    /// Radiant intensity, W/sr.
+    pub intensity: Rgb,
+}
+
+impl PointLight {
+    pub fn sample(&self, p: Vec3A) -> Option<LightSample> {
+        let d = self.position - p;
+        let dist2 = d.length_squared();
+        if dist2 == 0.0 {
+            return None;
+        }
+        let dist = dist2.sqrt();
+        Some(LightSample {
+            wi: d / dist,
+            dist,
+            li: self.intensity / dist2,
+            pdf: 1.0,
+            delta: true,
+        })
+    }
+
+    /// Φ = 4π I.
+    pub fn power(&self) -> Rgb {
+        4.0 * PI * self.intensity
+    }
+}

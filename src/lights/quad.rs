@@ -1,0 +1,78 @@
+//! One-sided parallelogram area light.
+
+use super::LightSample;
+use crate::math::Rgb;
+use glam::{Vec2, Vec3A};
+use std::f32::consts::PI;
+
+#[derive(Clone, Copy, Debug)]
+pub struct QuadLight {
+    pub corner: Vec3A,
+    pub u: Vec3A,
+    pub v: Vec3A,
+    /// Emitting side: `normalize(u × v)`.
+    pub n: Vec3A,
+    pub area: f32,
+    /// Emitted radiance, W/(m²·sr).
+    pub radiance: Rgb,
+}
+
+impl QuadLight {
+    pub fn new(corner: Vec3A, u: Vec3A, v: Vec3A, radiance: Rgb) -> Self {
+        let c = u.cross(v);
+        Self {
+            corner,
+            u,
+            v,
+            n: c.normalize(),
+            area: c.length(),
+            radiance,
+        }
+    }
+
+    /// Radiance leaving the light toward direction `w` (from the light).
+    #[inline]
+    pub fn emitted(&self, w: Vec3A) -> Rgb {
+        if self.n.dot(w) > 0.0 {
+            self.radiance
+        } else {
+            Rgb::ZERO
+        }
+    }
+
+    /// Uniform by area, converted to solid angle: pdf = d² / (cos θl · A).
+    pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+        let q = self.corner + u.x * self.u + u.y * self.v;
+        let d = q - p;
+        let dist2 = d.length_squared();
+        let dist = dist2.sqrt();
+        let wi = d / dist;
+        let cos_l = -wi.dot(self.n);
+        if cos_l <= 0.0 || dist2 == 0.0 {
+            return None;
+        }
+        Some(LightSample {
+            wi,
+            dist,
+            li: self.radiance,
+            pdf: dist2 / (cos_l * self.area),
+            delta: false,
+        })
+    }
+
+    /// Solid-angle density of hitting this light at distance `dist` along
+    /// `wi` (for MIS); matches [`QuadLight::sample`].
+    pub fn pdf(&self, wi: Vec3A, dist: f32) -> f32 {
+        let cos_l = -wi.dot(self.n);
+        if cos_l <= 0.0 {
+            0.0
+        } else {
+            dist * dist / (cos_l * self.area)
+        }
+    }
+
+    /// Φ = π A L for a one-sided Lambertian emitter.
+    pub fn power(&self) -> Rgb {
+        PI * self.area * self.radiance
+    }
+}

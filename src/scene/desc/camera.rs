@@ -1,0 +1,93 @@
+//! Camera, film and integrator settings.
+
+use super::V3;
+use serde::{Deserialize, Serialize};
+
+/// A perspective camera looking from `eye` toward `target`.
+/// Image x runs along `normalize(forward × up)` (to the right), image row 0 is
+/// at the top.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDesc {
+    pub eye: V3,
+    pub target: V3,
+    #[serde(default = "default_up")]
+    pub up: V3,
+    /// Full vertical field of view, in degrees, in (0, 180).
+    pub fov_y_degrees: f32,
+    /// Thin-lens aperture radius in scene units; 0 is a pinhole.
+    #[serde(default)]
+    pub aperture_radius: f32,
+    /// Distance from `eye` to the plane in focus; defaults to |target − eye|.
+    #[serde(default)]
+    pub focus_distance: Option<f32>,
+}
+
+fn default_up() -> V3 {
+    [0.0, 1.0, 0.0]
+}
+
+/// Image size, sampling and output.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FilmDesc {
+    #[serde(default = "default_width")]
+    pub width: u32,
+    #[serde(default = "default_height")]
+    pub height: u32,
+    /// Samples per pixel.
+    #[serde(default = "default_spp")]
+    pub spp: u32,
+    /// Seed of every random stream: same seed, same image.
+    #[serde(default)]
+    pub seed: u64,
+    /// Default output path (relative to the scene file); `.png` or `.exr`.
+    /// Defaults to the scene's file name with `.png`.
+    #[serde(default)]
+    pub output: Option<String>,
+}
+
+fn default_width() -> u32 {
+    512
+}
+fn default_height() -> u32 {
+    512
+}
+fn default_spp() -> u32 {
+    16
+}
+
+impl Default for FilmDesc {
+    fn default() -> Self {
+        Self {
+            width: default_width(),
+            height: default_height(),
+            spp: default_spp(),
+            seed: 0,
+            output: None,
+        }
+    }
+}
+
+/// How light transport is estimated.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub enum IntegratorDesc {
+    /// Emission plus one bounce of light: hard shadows from point lights,
+    /// soft shadows from area lights with `light_samples` shadow rays per
+    /// area light per camera sample.
+    Direct {
+        #[serde(default = "one")]
+        light_samples: u32,
+    },
+}
+
+fn one() -> u32 {
+    1
+}
+
+impl Default for IntegratorDesc {
+    fn default() -> Self {
+        IntegratorDesc::Direct { light_samples: 1 }
+    }
+}

@@ -1,0 +1,218 @@
+//! Reading a scene file through every stage, turning each stage's problems
+//! into located diagnostics.
+
+use super::build::{BuildStats, build};
+use super::desc::SceneDesc;
+use super::problem::{Problem, suggest};
+use super::runtime::Scene;
+use super::spans::Spans;
+use super::validate::validate;
+use crate::diagnostic::{Diagnostic, Report, offset_of};
+use std::path::{Path, PathBuf};
+
+/// A scene ready to render, with what produced it.
+pub struct Loaded {
+    pub scene: Scene,
+    pub desc: SceneDesc,
+    pub stats: BuildStats,
+    /// Every file the scene depends on (itself, meshes…), for watch mode.
+    pub files: Vec<PathBuf>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum LoadError {
+    #[error("cannot read scene file {}: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{} in {}", plural(.0.diagnostics.len()), .0.diagnostics.first().map(|d| d.file.display().to_string()).unwrap_or_default())]
+    Invalid(Report),
+}
+
+fn plural(n: usize) -> String {
+    if n == 1 {
+        "1 error".into()
+    } else {
+        format!("{n} errors")
+    }
+}
+
+impl LoadError {
+    pub fn report(&self) -> Option<&Report> {
+        match self {
+            LoadError::Invalid(r) => Some(r),
+            LoadError::Io { .. } => None,
+        }
+    }
+}
+
+/// Command-line settings that replace the scene file's, checked by the
+/// same validation.
+#[derive(Clone, Debug, Default)]
+pub struct Overrides {
+    pub spp: Option<u32>,
+    pub size: Option<(u32, u32)>,
+    pub seed: Option<u64>,
+}
+
+impl Overrides {
+    pub fn apply(&self, desc: &mut SceneDesc) {
+        if let Some(spp) = self.spp {
+            desc.film.spp = spp;
+        }
+        if let Some((w, h)) = self.size {
+            desc.film.width = w;
+            desc.film.height = h;
+        }
+        if let Some(seed) = self.seed {
+            desc.film.seed = seed;
+        }
+    }
+}
+
+/// Reads, parses, validates and builds `path`.
+pub fn load(path: &Path) -> Result<Loaded, LoadError> {
+    load_with(path, &Overrides::default())
+}
+
+/// As [`load`], with command-line overrides.
+pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Loaded, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    load_str(path, &text, overrides)
+}
+
+/// As [`load_with`], with the file's text already read (tests, watch mode).
+pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded, LoadError> {
+    let mut desc = parse(path, text).map_err(LoadError::Invalid)?;
+    overrides.apply(&mut desc);
+    let base = path.parent().unwrap_or(Path::new("."));
+    let problems = validate(&desc);
+    if !problems.is_empty() {
+        return Err(LoadError::Invalid(located(path, text, &problems)));
+    }
+    let (scene, stats) =
+        build(&desc, base).map_err(|p| LoadError::Invalid(located(path, text, &p)))?;
+    let mut files = vec![path.to_path_buf()];
+    for o in &desc.objects {
+        if let super::desc::ObjectDesc::Mesh { file, .. } = o {
+            files.push(base.join(file));
+        }
+    }
+    Ok(Loaded {
+        scene,
+        desc,
+        stats,
+        files,
+    })
+}
+
+/// RON text → [`SceneDesc`]; a syntax or type error becomes one diagnostic at
+/// the position ron reports, with a suggestion for misspelled names.
+pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
+    let opts = ron::Options::default();
+    opts.from_str::<SceneDesc>(text).map_err(|e| {
+        let start = offset_of(text, e.span.start.line, e.span.start.col);
+        let mut end = offset_of(text, e.span.end.line, e.span.end.col).max(start);
+        if end == start {
+            end = (start + 1).min(text.len());
+        }
+        let (message, help) = describe(&e.code);
+        let mut d = Diagnostic::new(path, text, Some(start..end), message);
+        d.help = help;
+        Report {
+            diagnostics: vec![d],
+            sources: vec![(path.to_path_buf(), text.to_string())],
+        }
+    })
+}
+
+/// Semantic problems → diagnostics located through the RON text.
+pub fn located(path: &Path, text: &str, problems: &[Problem]) -> Report {
+    let spans = Spans::scan(text);
+    let diagnostics = problems
+        .iter()
+        .map(|p| {
+            let mut d = Diagnostic::new(path, text, spans.find(&p.path), p.message.clone());
+            d.path = Some(p.path.clone());
+            d.help = p.help.clone();
+            d
+        })
+        .collect();
+    Report {
+        diagnostics,
+        sources: vec![(path.to_path_buf(), text.to_string())],
+    }
+}
+
+fn describe(e: &ron::Error) -> (String, Option<String>) {
+    use ron::Error as E;
+    let list = |xs: &[&str]| {
+        xs.iter()
+            .map(|x| format!("`{x}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match e {
+        E::NoSuchStructField {
+            expected,
+            found,
+            outer,
+        } => {
+            let within = outer
+                .as_ref()
+                .map(|o| format!(" in `{o}`"))
+                .unwrap_or_default();
+            let help = match suggest(found, expected.iter().copied()) {
+                Some(s) => format!("did you mean `{s}`? (expected one of {})", list(expected)),
+                None => format!("expected one of {}", list(expected)),
+            };
+            (format!("unknown field `{found}`{within}"), Some(help))
+        }
+        E::NoSuchEnumVariant {
+            expected,
+            found,
+            outer,
+        } => {
+            let within = outer
+                .as_ref()
+                .map(|o| format!(" for `{o}`"))
+                .unwrap_or_default();
+            let help = match suggest(found, expected.iter().copied()) {
+                Some(s) => format!("did you mean `{s}`? (expected one of {})", list(expected)),
+                None => format!("expected one of {}", list(expected)),
+            };
+            (format!("unknown variant `{found}`{within}"), Some(help))
+        }
+        E::MissingStructField { field, outer } => {
+            let within = outer
+                .as_ref()
+                .map(|o| format!(" in `{o}`"))
+                .unwrap_or_default();
+            (
+                format!("missing field `{field}`{within}"),
+                Some(format!("add `{field}: ...`")),
+            )
+        }
+        E::DuplicateStructField { field, .. } => (
+            format!("field `{field}` is given twice"),
+            Some("keep one of them".into()),
+        ),
+        E::ExpectedComma => (
+            "expected `,`".into(),
+            Some("separate fields and elements with commas".into()),
+        ),
+        E::Eof => (
+            "unexpected end of file".into(),
+            Some("a bracket or parenthesis is probably not closed".into()),
+        ),
+        E::ExpectedDifferentLength { expected, found } => (
+            format!("expected {expected}, found {found} elements"),
+            Some("vectors and colours are written `(x, y, z)`".into()),
+        ),
+        other => (other.to_string(), None),
+    }
+}
