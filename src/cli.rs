@@ -138,12 +138,7 @@ pub fn output_path(scene_path: &Path, cli: Option<PathBuf>, from_scene: &Path) -
         })
 }
 
-fn cmd_render(
-    path: &Path,
-    output: Option<PathBuf>,
-    settings: &RenderSettings,
-    show_stats: bool,
-) -> ExitCode {
+fn cmd_render(path: &Path, output: Option<PathBuf>, settings: &RenderSettings, show_stats: bool) -> ExitCode {
     let loaded = match load_with(path, &settings.overrides()) {
         Ok(l) => l,
         Err(e) => {
@@ -211,7 +206,7 @@ fn cmd_validate(paths: &[PathBuf]) -> ExitCode {
             Err(e) => {
                 failed += 1;
                 print_load_error(&e);
-                eprintln!("{}: {e}", p.display());
+                eprintln!("error: {e}");
             }
         }
     }

@@ -107,8 +107,7 @@ impl Report {
                 continue;
             };
             let name = d.file.display().to_string();
-            let span =
-                span.start.min(src.len())..span.end.min(src.len()).max(span.start.min(src.len()));
+            let span = span.start.min(src.len())..span.end.min(src.len()).max(span.start.min(src.len()));
             let msg = match &d.path {
                 Some(p) => format!("{p}: {}", d.message),
                 None => d.message.clone(),

@@ -55,11 +55,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> (Image, RenderStats) {
 
 /// As [`render`], but gives up early (returning `cancelled: true`) once
 /// `cancel` is set; tiles already started finish first.
-pub fn render_cancellable(
-    scene: &Scene,
-    opts: &RenderOptions,
-    cancel: &AtomicBool,
-) -> (Image, RenderStats) {
+pub fn render_cancellable(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBool) -> (Image, RenderStats) {
     let start = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.threads.unwrap_or(0))
@@ -78,11 +74,7 @@ pub fn render_cancellable(
     (image, stats)
 }
 
-fn render_tiles(
-    scene: &Scene,
-    opts: &RenderOptions,
-    cancel: &AtomicBool,
-) -> (Image, Counters, u64) {
+fn render_tiles(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBool) -> (Image, Counters, u64) {
     let film = scene.film;
     let (w, h) = (film.width, film.height);
     let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
@@ -90,9 +82,9 @@ fn render_tiles(
         .collect();
     let bar = if opts.progress {
         let bar = indicatif::ProgressBar::new(tiles.len() as u64);
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "{spinner} rendering [{bar:40}] {percent}% eta {eta}",
-        ) {
+        if let Ok(style) =
+            indicatif::ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}% eta {eta}")
+        {
             bar.set_style(style.progress_chars("=> "));
         }
         bar
@@ -117,10 +109,8 @@ fn render_tiles(
                     for s in s0..s0 + spp {
                         let mut rng = Pcg32::for_sample(x, y, s, film.seed);
                         let jitter = rng.next_vec2();
-                        let film_pos = Vec2::new(
-                            (x as f32 + jitter.x) / w as f32,
-                            (y as f32 + jitter.y) / h as f32,
-                        );
+                        let film_pos =
+                            Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
                         let ray = scene.camera.ray(film_pos, aspect, rng.next_vec2());
                         sum += scene.integrator.li(scene, &ray, &mut rng, &mut counters);
                     }

@@ -29,23 +29,16 @@ impl Bvh {
         let mut best = None;
         let mut t_best = t_max;
         for i in 0..self.bounds.len() as u32 {
-            if let Some(t) = hit(i, ray, t_best) {
-                if t < t_best {
-                    t_best = t;
-                    best = Some((i, t));
-                }
+            if let Some(t) = hit(i, ray, t_best).filter(|&t| t < t_best) {
+                t_best = t;
+                best = Some((i, t));
             }
         }
         best
     }
 
     /// Any hit below `t_max` (shadow rays): stops at the first one.
-    pub fn occluded(
-        &self,
-        ray: &Ray,
-        t_max: f32,
-        mut hit: impl FnMut(u32, &Ray, f32) -> bool,
-    ) -> bool {
+    pub fn occluded(&self, ray: &Ray, t_max: f32, mut hit: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
         (0..self.bounds.len() as u32).any(|i| hit(i, ray, t_max))
     }
 }

@@ -56,9 +56,9 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.intersect(ray, t_max),
             Shape::Quad(q) => q.intersect(ray, t_max).map(|(t, _)| t),
-            Shape::Triangle { mesh, tri } => meshes[*mesh as usize]
-                .intersect(*tri, ray, t_max)
-                .map(|(t, _)| t),
+            Shape::Triangle { mesh, tri } => {
+                meshes[*mesh as usize].intersect(*tri, ray, t_max).map(|(t, _)| t)
+            }
             Shape::Plane(p) => p.intersect(ray, t_max),
         }
     }

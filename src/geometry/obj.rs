@@ -25,18 +25,12 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         let mm = &m.mesh;
         let base = mesh.positions.len() as u32;
         let nv = mm.positions.len() / 3;
-        mesh.positions.extend(
-            mm.positions
-                .chunks_exact(3)
-                .map(|p| Vec3A::new(p[0], p[1], p[2])),
-        );
+        mesh.positions
+            .extend(mm.positions.chunks_exact(3).map(|p| Vec3A::new(p[0], p[1], p[2])));
         any_normals &= mm.normals.len() == mm.positions.len();
         any_uvs &= mm.texcoords.len() / 2 == nv;
-        mesh.normals.extend(
-            mm.normals
-                .chunks_exact(3)
-                .map(|n| Vec3A::new(n[0], n[1], n[2])),
-        );
+        mesh.normals
+            .extend(mm.normals.chunks_exact(3).map(|n| Vec3A::new(n[0], n[1], n[2])));
         mesh.uvs
             .extend(mm.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
         for (k, tri) in mm.indices.chunks_exact(3).enumerate() {
@@ -49,8 +43,7 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
                     bad as usize + 1
                 ));
             }
-            mesh.indices
-                .push([base + tri[0], base + tri[1], base + tri[2]]);
+            mesh.indices.push([base + tri[0], base + tri[1], base + tri[2]]);
         }
     }
     if !any_normals {

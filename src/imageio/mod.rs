@@ -88,10 +88,7 @@ pub enum ImageError {
         reason: String,
     },
     #[error("unsupported image extension for {path} (use .png or .exr{pfm})", pfm = if *.reading { ", .pfm" } else { "" })]
-    Extension {
-        path: std::path::PathBuf,
-        reading: bool,
-    },
+    Extension { path: std::path::PathBuf, reading: bool },
 }
 
 #[cfg(test)]

@@ -38,9 +38,7 @@ pub fn read_image(path: &Path) -> Result<Image, ImageError> {
             })
         }
         "exr" => {
-            let img = image::open(path)
-                .map_err(|e| err(e.to_string()))?
-                .to_rgb32f();
+            let img = image::open(path).map_err(|e| err(e.to_string()))?.to_rgb32f();
             let pixels = img.pixels().map(|p| Rgb::new(p[0], p[1], p[2])).collect();
             Ok(Image {
                 width: img.width(),
@@ -92,12 +90,7 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
     let data = bytes.get(i..i + 4 * n).ok_or("truncated PFM data")?;
     let mut img = Image::new(w, h);
     let value = |k: usize| {
-        let b = [
-            data[4 * k],
-            data[4 * k + 1],
-            data[4 * k + 2],
-            data[4 * k + 3],
-        ];
+        let b = [data[4 * k], data[4 * k + 1], data[4 * k + 2], data[4 * k + 3]];
         if scale < 0.0 {
             f32::from_le_bytes(b)
         } else {

@@ -61,9 +61,7 @@ pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
         .map_err(|e| err(e.to_string()))?;
     {
         let mut w = BufWriter::new(tmp.as_file());
-        dynimg
-            .write_to(&mut w, format)
-            .map_err(|e| err(e.to_string()))?;
+        dynimg.write_to(&mut w, format).map_err(|e| err(e.to_string()))?;
         w.flush().map_err(|e| err(e.to_string()))?;
     }
     // tempfile creates 0600 files; an image is a normal, readable file.

@@ -47,10 +47,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
     let mut unbounded = Vec::new();
     for l in &desc.lights {
         match l {
-            LightDesc::Point {
-                position,
-                intensity,
-            } => lights.push(Light::Point(PointLight {
+            LightDesc::Point { position, intensity } => lights.push(Light::Point(PointLight {
                 position: (*position).into(),
                 intensity: (*intensity).into(),
             })),
@@ -74,11 +71,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
                 half_v,
                 radiance,
             } => {
-                let (c, u, v) = (
-                    Vec3A::from(*center),
-                    Vec3A::from(*half_u),
-                    Vec3A::from(*half_v),
-                );
+                let (c, u, v) = (Vec3A::from(*center), Vec3A::from(*half_u), Vec3A::from(*half_v));
                 push_quad_light(
                     &mut lights,
                     &mut shapes,
@@ -108,9 +101,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
                     material,
                 }));
             }
-            ObjectDesc::Plane {
-                point: p, normal, ..
-            } => {
+            ObjectDesc::Plane { point: p, normal, .. } => {
                 let n = m
                     .inverse()
                     .transpose()
@@ -169,15 +160,13 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
                         let id = meshes.len() as u32;
                         triangles += mesh.triangle_count();
                         shapes.extend(
-                            (0..mesh.triangle_count() as u32)
-                                .map(|tri| Shape::Triangle { mesh: id, tri }),
+                            (0..mesh.triangle_count() as u32).map(|tri| Shape::Triangle { mesh: id, tri }),
                         );
                         meshes.push(mesh);
                     }
                     Err(msg) => {
                         let help = if path.exists() {
-                            "check that the file is a Wavefront OBJ with `v` and `f` lines"
-                                .to_string()
+                            "check that the file is a Wavefront OBJ with `v` and `f` lines".to_string()
                         } else {
                             format!(
                                 "no file at {} (paths are relative to the scene file's folder)",
@@ -310,8 +299,6 @@ mod tests {
             (r.transform_vector3(Vec3::X) - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-6,
             "right-handed about y"
         );
-        assert!(
-            is_similarity(&r) && !is_similarity(&compose(&[TransformDesc::Scale([1.0, 2.0, 1.0])]))
-        );
+        assert!(is_similarity(&r) && !is_similarity(&compose(&[TransformDesc::Scale([1.0, 2.0, 1.0])])));
     }
 }

@@ -22,10 +22,7 @@ pub struct Loaded {
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
     #[error("cannot read scene file {}: {source}", path.display())]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Io { path: PathBuf, source: std::io::Error },
     #[error("{} in {}", plural(.0.diagnostics.len()), .0.diagnostics.first().map(|d| d.file.display().to_string()).unwrap_or_default())]
     Invalid(Report),
 }
@@ -94,8 +91,7 @@ pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded
     if !problems.is_empty() {
         return Err(LoadError::Invalid(located(path, text, &problems)));
     }
-    let (scene, stats) =
-        build(&desc, base).map_err(|p| LoadError::Invalid(located(path, text, &p)))?;
+    let (scene, stats) = build(&desc, base).map_err(|p| LoadError::Invalid(located(path, text, &p)))?;
     let mut files = vec![path.to_path_buf()];
     for o in &desc.objects {
         if let super::desc::ObjectDesc::Mesh { file, .. } = o {
@@ -150,22 +146,14 @@ pub fn located(path: &Path, text: &str, problems: &[Problem]) -> Report {
 
 fn describe(e: &ron::Error) -> (String, Option<String>) {
     use ron::Error as E;
-    let list = |xs: &[&str]| {
-        xs.iter()
-            .map(|x| format!("`{x}`"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let list = |xs: &[&str]| xs.iter().map(|x| format!("`{x}`")).collect::<Vec<_>>().join(", ");
     match e {
         E::NoSuchStructField {
             expected,
             found,
             outer,
         } => {
-            let within = outer
-                .as_ref()
-                .map(|o| format!(" in `{o}`"))
-                .unwrap_or_default();
+            let within = outer.as_ref().map(|o| format!(" in `{o}`")).unwrap_or_default();
             let help = match suggest(found, expected.iter().copied()) {
                 Some(s) => format!("did you mean `{s}`? (expected one of {})", list(expected)),
                 None => format!("expected one of {}", list(expected)),
@@ -177,10 +165,7 @@ fn describe(e: &ron::Error) -> (String, Option<String>) {
             found,
             outer,
         } => {
-            let within = outer
-                .as_ref()
-                .map(|o| format!(" for `{o}`"))
-                .unwrap_or_default();
+            let within = outer.as_ref().map(|o| format!(" for `{o}`")).unwrap_or_default();
             let help = match suggest(found, expected.iter().copied()) {
                 Some(s) => format!("did you mean `{s}`? (expected one of {})", list(expected)),
                 None => format!("expected one of {}", list(expected)),
@@ -188,10 +173,7 @@ fn describe(e: &ron::Error) -> (String, Option<String>) {
             (format!("unknown variant `{found}`{within}"), Some(help))
         }
         E::MissingStructField { field, outer } => {
-            let within = outer
-                .as_ref()
-                .map(|o| format!(" in `{o}`"))
-                .unwrap_or_default();
+            let within = outer.as_ref().map(|o| format!(" in `{o}`")).unwrap_or_default();
             (
                 format!("missing field `{field}`{within}"),
                 Some(format!("add `{field}: ...`")),

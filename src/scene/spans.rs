@@ -155,10 +155,7 @@ fn tokenize(src: &str) -> Vec<(Tok, Range<usize>)> {
                     i += 1;
                 }
                 let text = &src[start..i];
-                let ident = text
-                    .chars()
-                    .next()
-                    .is_some_and(|c| c.is_alphabetic() || c == '_');
+                let ident = text.chars().next().is_some_and(|c| c.is_alphabetic() || c == '_');
                 out.push((
                     Tok::Atom {
                         ident,
@@ -235,11 +232,9 @@ impl Scanner {
                 }
                 _ => {}
             }
-            let keyed =
-                matches!(self.peek(0), Some(Tok::Atom { .. })) && self.peek(1) == Some(&Tok::Colon);
+            let keyed = matches!(self.peek(0), Some(Tok::Atom { .. })) && self.peek(1) == Some(&Tok::Colon);
             if keyed && close != ']' {
-                let Some((Tok::Atom { text, .. }, key_span)) = self.toks.get(self.pos).cloned()
-                else {
+                let Some((Tok::Atom { text, .. }, key_span)) = self.toks.get(self.pos).cloned() else {
                     return;
                 };
                 let child = join(path, &text);

@@ -16,9 +16,7 @@ pub const MAX_SPP: u32 = 1 << 20;
 pub const MAX_LIGHT_SAMPLES: u32 = 4096;
 
 pub fn validate(scene: &SceneDesc) -> Vec<Problem> {
-    let mut v = Checker {
-        problems: Vec::new(),
-    };
+    let mut v = Checker { problems: Vec::new() };
     v.camera(&scene.camera);
     v.film(&scene.film);
     v.integrator(&scene.integrator);
@@ -33,15 +31,10 @@ pub fn validate(scene: &SceneDesc) -> Vec<Problem> {
         v.object(&path, o);
         let name = o.material();
         if !scene.materials.contains_key(name) {
-            let mut p = Problem::new(
-                format!("{path}.material"),
-                format!("unknown material `{name}`"),
-            );
+            let mut p = Problem::new(format!("{path}.material"), format!("unknown material `{name}`"));
             p = match suggest(name, scene.materials.keys().map(String::as_str)) {
                 Some(s) => p.help(format!("did you mean `{s}`?")),
-                None if scene.materials.is_empty() => {
-                    p.help("define it under `materials: { ... }`")
-                }
+                None if scene.materials.is_empty() => p.help("define it under `materials: { ... }`"),
                 None => p.help(format!(
                     "the materials defined are: {}",
                     scene
@@ -126,12 +119,7 @@ impl Checker {
                     "`target` equals `eye`: the camera has no view direction",
                     "move `target` away from `eye`",
                 );
-            } else if view
-                .normalize()
-                .cross(Vec3::from(c.up).normalize())
-                .length()
-                < 1e-4
-            {
+            } else if view.normalize().cross(Vec3::from(c.up).normalize()).length() < 1e-4 {
                 self.push(
                     "camera.up",
                     format!(
@@ -215,18 +203,13 @@ impl Checker {
 
     fn material(&mut self, path: &str, m: &MaterialDesc) {
         match m {
-            MaterialDesc::Lambert { albedo } => {
-                self.color(&format!("{path}.albedo"), albedo, Some(1.0))
-            }
+            MaterialDesc::Lambert { albedo } => self.color(&format!("{path}.albedo"), albedo, Some(1.0)),
         }
     }
 
     fn light(&mut self, path: &str, l: &LightDesc) {
         match l {
-            LightDesc::Point {
-                position,
-                intensity,
-            } => {
+            LightDesc::Point { position, intensity } => {
                 self.finite(&format!("{path}.position"), position);
                 self.color(&format!("{path}.intensity"), intensity, None);
             }
@@ -327,7 +310,7 @@ impl Checker {
                     }
                 }
                 TransformDesc::Scale(s) => {
-                    if self.finite(&tp, s) && s.iter().any(|&x| x == 0.0) {
+                    if self.finite(&tp, s) && s.contains(&0.0) {
                         self.push(
                             &tp,
                             format!("scale {s:?} has a zero factor"),
@@ -337,28 +320,21 @@ impl Checker {
                 }
                 TransformDesc::Matrix(m) => {
                     let flat: Vec<f32> = m.iter().flatten().copied().collect();
-                    if self.finite(&tp, &flat)
-                        && super::build::matrix(m).determinant().abs() < 1e-12
-                    {
-                        self.push(
-                            &tp,
-                            "matrix is singular",
-                            "a transform matrix must be invertible",
-                        );
+                    if self.finite(&tp, &flat) && super::build::matrix(m).determinant().abs() < 1e-12 {
+                        self.push(&tp, "matrix is singular", "a transform matrix must be invertible");
                     }
                 }
             }
         }
-        if let ObjectDesc::Sphere { transform, .. } = o {
-            if !transform.is_empty()
-                && !super::build::is_similarity(&super::build::compose(transform))
-            {
-                self.push(
-                    &format!("{path}.transform"),
-                    "a sphere's transform must keep it round",
-                    "use equal scale factors on all axes (or a Mesh for an ellipsoid)",
-                );
-            }
+        if let ObjectDesc::Sphere { transform, .. } = o
+            && !transform.is_empty()
+            && !super::build::is_similarity(&super::build::compose(transform))
+        {
+            self.push(
+                &format!("{path}.transform"),
+                "a sphere's transform must keep it round",
+                "use equal scale factors on all axes (or a Mesh for an ellipsoid)",
+            );
         }
     }
 }

@@ -1,0 +1,172 @@
+//! The `ronray` binary as a user drives it.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn ronray(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ronray"))
+        .args(args)
+        .output()
+        .expect("ronray binary runs")
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn tempdir() -> tempfile::TempDir {
+    tempfile::tempdir().expect("temp dir")
+}
+
+fn path_str(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+#[test]
+fn render_is_identical_whatever_the_thread_count() {
+    let dir = tempdir();
+    let scene = root().join("scenes/cornell.ron");
+    let (a, b) = (dir.path().join("t1.png"), dir.path().join("t2.exr"));
+    let (c, d) = (dir.path().join("t1.exr"), dir.path().join("t2.png"));
+    for (out, threads) in [(&a, "1"), (&d, "2"), (&c, "1"), (&b, "2")] {
+        let o = ronray(&[
+            "render",
+            path_str(&scene),
+            "-o",
+            path_str(out),
+            "--size",
+            "48x40",
+            "--spp",
+            "4",
+            "--threads",
+            threads,
+        ]);
+        assert!(
+            o.status.success(),
+            "render failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    let read = |p: &Path| std::fs::read(p).expect("output written");
+    assert!(
+        read(&a) == read(&d),
+        "PNG bytes differ between --threads 1 and --threads 2"
+    );
+    assert!(
+        read(&c) == read(&b),
+        "EXR bytes differ between --threads 1 and --threads 2"
+    );
+}
+
+#[test]
+fn invalid_scene_leaves_existing_output_untouched() {
+    let dir = tempdir();
+    let out = dir.path().join("keep.png");
+    std::fs::write(&out, b"previous image bytes").expect("write");
+    let bad = root().join("tests/fixtures/broken/three_mistakes.ron");
+    let o = ronray(&["render", path_str(&bad), "-o", path_str(&out)]);
+    assert_eq!(o.status.code(), Some(1), "an invalid scene must exit with 1");
+    assert_eq!(
+        std::fs::read(&out).expect("still there"),
+        b"previous image bytes",
+        "output was modified"
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("three_mistakes.ron:3:40") && err.contains("nothing was written"),
+        "stderr:\n{err}"
+    );
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+        .expect("dir")
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name() != "keep.png")
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left behind: {leftovers:?}");
+}
+
+#[test]
+fn every_shipped_scene_validates() {
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root().join("scenes"))
+        .expect("scenes/")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    scenes.sort();
+    assert!(scenes.len() >= 2, "expected the shipped scenes, found {scenes:?}");
+    let args: Vec<&str> = std::iter::once("validate")
+        .chain(scenes.iter().map(|p| path_str(p)))
+        .collect();
+    let o = ronray(&args);
+    assert!(
+        o.status.success(),
+        "validate failed:\n{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn validate_reports_failure_with_exit_code() {
+    let bad = root().join("tests/fixtures/broken/unknown_material.ron");
+    let o = ronray(&["validate", path_str(&bad)]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("did you mean `white`?"), "stderr:\n{err}");
+}
+
+#[test]
+fn diff_reports_metrics_and_threshold() {
+    let dir = tempdir();
+    let scene = root().join("scenes/cornell.ron");
+    let (a, b) = (dir.path().join("a.exr"), dir.path().join("b.exr"));
+    for (out, seed) in [(&a, "1"), (&b, "2")] {
+        let o = ronray(&[
+            "render",
+            path_str(&scene),
+            "-o",
+            path_str(out),
+            "--size",
+            "32x32",
+            "--spp",
+            "2",
+            "--seed",
+            seed,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let same = ronray(&["diff", path_str(&a), path_str(&a), "--max-rmse", "0"]);
+    assert!(same.status.success(), "an image equals itself");
+    assert!(String::from_utf8_lossy(&same.stdout).contains("rmse     0.000000"));
+    let heat = dir.path().join("heat.png");
+    let differ = ronray(&[
+        "diff",
+        path_str(&a),
+        path_str(&b),
+        "--max-rmse",
+        "1e-6",
+        "--heatmap",
+        path_str(&heat),
+    ]);
+    assert_eq!(
+        differ.status.code(),
+        Some(1),
+        "different seeds differ: {}",
+        String::from_utf8_lossy(&differ.stdout)
+    );
+    assert!(heat.exists(), "heat map written");
+    let small = dir.path().join("small.png");
+    let o = ronray(&[
+        "render",
+        path_str(&scene),
+        "-o",
+        path_str(&small),
+        "--size",
+        "16x16",
+        "--spp",
+        "1",
+    ]);
+    assert!(o.status.success());
+    let sized = ronray(&["diff", path_str(&a), path_str(&small)]);
+    assert_eq!(sized.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&sized.stderr).contains("sizes differ"));
+}
