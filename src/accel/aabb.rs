@@ -25,7 +25,10 @@ const MIN_DIR: f32 = 1e-30;
 const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 impl Aabb {
-    pub const EMPTY: Aabb = Aabb { min: Vec3A::splat(f32::INFINITY), max: Vec3A::splat(f32::NEG_INFINITY) };
+    pub const EMPTY: Aabb = Aabb {
+        min: Vec3A::splat(f32::INFINITY),
+        max: Vec3A::splat(f32::NEG_INFINITY),
+    };
 
     pub fn from_points(points: &[Vec3A]) -> Self {
         points.iter().fold(Self::EMPTY, |b, &p| b.grow_point(p))
@@ -33,12 +36,18 @@ impl Aabb {
 
     #[inline]
     pub fn grow_point(self, p: Vec3A) -> Self {
-        Self { min: self.min.min(p), max: self.max.max(p) }
+        Self {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
     }
 
     #[inline]
     pub fn union(self, o: Aabb) -> Self {
-        Self { min: self.min.min(o.min), max: self.max.max(o.max) }
+        Self {
+            min: self.min.min(o.min),
+            max: self.max.max(o.max),
+        }
     }
 
     #[inline]
@@ -71,6 +80,20 @@ impl Aabb {
         2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
     }
 
+    /// `self` grown outward by a few ulps (and 1e-20 absolute). Traversal
+    /// tilts zero direction components by `MIN_DIR` (see [`safe_inv_dir`]);
+    /// a ray running exactly along a face would then leave the slab at
+    /// `t = 0`. On the padded box the true face is strictly inside, by at
+    /// least `1e-20 / MIN_DIR = 1e10` in `t`. The BVH stores padded boxes.
+    #[inline]
+    pub fn padded(self) -> Self {
+        let pad = self.min.abs().max(self.max.abs()) * (2.0 * f32::EPSILON) + Vec3A::splat(1e-20);
+        Self {
+            min: self.min - pad,
+            max: self.max + pad,
+        }
+    }
+
     /// Entry distance of the ray `o + t d` into the box for `t` in
     /// `[0, t_max]`, or `None`. `inv_d` must come from [`safe_inv_dir`]; the
     /// test is conservative (see `FAR_SCALE`), so a ray grazing an edge may
@@ -80,7 +103,8 @@ impl Aabb {
         if self.is_empty() {
             return None;
         }
-        let t = slab(self.min, self.max, o, inv_d, t_max);
+        let b = self.padded();
+        let t = slab(b.min, b.max, o, inv_d, t_max);
         (t < f32::INFINITY).then_some(t)
     }
 }
@@ -96,7 +120,8 @@ pub fn safe_inv_dir(d: Vec3A) -> Vec3A {
 /// Kay & Kajiya slab test on a non-empty box: entry distance, or `INFINITY`
 /// for a miss. Min/max per axis rather than a sign select, because SSE2 has
 /// `minps`/`maxps` but no cheap blend; with a finite `inv_d` no lane is NaN.
-/// Also used by the BVH traversal, where node boxes are never empty.
+/// Also used by the BVH traversal, where node boxes are never empty and
+/// already [`Aabb::padded`].
 #[inline(always)]
 pub(crate) fn slab(min: Vec3A, max: Vec3A, o: Vec3A, inv_d: Vec3A, t_max: f32) -> f32 {
     let t0 = (min - o) * inv_d;
@@ -111,19 +136,31 @@ mod tests {
     use super::*;
 
     fn unit() -> Aabb {
-        Aabb { min: Vec3A::ZERO, max: Vec3A::ONE }
+        Aabb {
+            min: Vec3A::ZERO,
+            max: Vec3A::ONE,
+        }
     }
 
     fn hit(b: &Aabb, o: [f32; 3], d: [f32; 3]) -> Option<f32> {
-        b.intersect(Vec3A::from_array(o), safe_inv_dir(Vec3A::from_array(d)), f32::INFINITY)
+        b.intersect(
+            Vec3A::from_array(o),
+            safe_inv_dir(Vec3A::from_array(d)),
+            f32::INFINITY,
+        )
+    }
+
+    /// Entry distances are conservative by a few ulps (`Aabb::padded`).
+    fn near(got: Option<f32>, want: f32) -> bool {
+        got.is_some_and(|t| t <= want && t >= want - 1e-6 * (1.0 + want))
     }
 
     #[test]
     fn aabb_intersect_entry_distance() {
         let t = hit(&unit(), [-1.0, 0.5, 0.5], [1.0, 0.0, 0.0]);
-        assert_eq!(t, Some(1.0), "expected entry at t = 1, got {t:?}");
+        assert!(near(t, 1.0), "expected entry at t = 1, got {t:?}");
         let t = hit(&unit(), [0.5, 0.5, 0.5], [0.0, -1.0, 0.0]);
-        assert_eq!(t, Some(0.0), "origin inside: expected t = 0, got {t:?}");
+        assert!(near(t, 0.0), "origin inside: expected t = 0, got {t:?}");
         let t = hit(&unit(), [-1.0, 0.5, 0.5], [-1.0, 0.0, 0.0]);
         assert_eq!(t, None, "box behind the ray: expected a miss, got {t:?}");
         let t = unit().intersect(Vec3A::new(-1.0, 0.5, 0.5), Vec3A::X, 0.5);
@@ -136,31 +173,52 @@ mod tests {
         // test computes 0 * inf = NaN on x and may cull the box.
         for dx in [0.0, -0.0] {
             let t = hit(&unit(), [0.0, 0.5, -1.0], [dx, 0.0, 1.0]);
-            assert_eq!(t, Some(1.0), "d.x = {dx}: expected entry at t = 1, got {t:?}");
+            assert!(
+                near(t, 1.0),
+                "d.x = {dx}: expected entry at t = 1, got {t:?}"
+            );
             let t = hit(&unit(), [1.0, 1.0, 2.0], [dx, -0.0, -1.0]);
-            assert_eq!(t, Some(1.0), "edge, d.x = {dx}: expected entry at t = 1, got {t:?}");
+            assert!(
+                near(t, 1.0),
+                "edge, d.x = {dx}: expected entry at t = 1, got {t:?}"
+            );
         }
         let t = hit(&unit(), [1.5, 0.5, -1.0], [0.0, 0.0, 1.0]);
-        assert_eq!(t, None, "parallel outside the x slab: expected a miss, got {t:?}");
+        assert_eq!(
+            t, None,
+            "parallel outside the x slab: expected a miss, got {t:?}"
+        );
     }
 
     #[test]
     fn aabb_intersect_flat_and_empty() {
-        let flat = Aabb { min: Vec3A::new(0.0, 0.0, 2.0), max: Vec3A::new(1.0, 1.0, 2.0) };
+        let flat = Aabb {
+            min: Vec3A::new(0.0, 0.0, 2.0),
+            max: Vec3A::new(1.0, 1.0, 2.0),
+        };
         let t = hit(&flat, [0.25, 0.75, 0.0], [0.0, 0.0, 1.0]);
-        assert_eq!(t, Some(2.0), "flat box: expected entry at t = 2, got {t:?}");
+        assert!(near(t, 2.0), "flat box: expected entry at t = 2, got {t:?}");
         let t = hit(&Aabb::EMPTY, [0.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
         assert_eq!(t, None, "empty box: expected a miss, got {t:?}");
         let t = hit(&Aabb::EMPTY, [0.0, 0.0, 0.0], [0.0, 0.0, 1.0]);
-        assert_eq!(t, None, "empty box, axis-parallel ray: expected a miss, got {t:?}");
+        assert_eq!(
+            t, None,
+            "empty box, axis-parallel ray: expected a miss, got {t:?}"
+        );
     }
 
     #[test]
     fn aabb_contains_and_union() {
         let a = unit();
-        let b = Aabb { min: Vec3A::splat(2.0), max: Vec3A::splat(3.0) };
+        let b = Aabb {
+            min: Vec3A::splat(2.0),
+            max: Vec3A::splat(3.0),
+        };
         let u = a.union(b);
-        assert!(u.contains(&a) && u.contains(&b), "union {u:?} should contain {a:?} and {b:?}");
+        assert!(
+            u.contains(&a) && u.contains(&b),
+            "union {u:?} should contain {a:?} and {b:?}"
+        );
         assert!(!a.contains(&b), "{a:?} should not contain {b:?}");
         assert!(!a.contains(&Aabb::EMPTY), "nothing contains the empty box");
         assert_eq!(Aabb::EMPTY.surface_area(), 0.0);

@@ -39,18 +39,32 @@ impl PrimRef {
 
     #[inline(always)]
     fn aabb(&self) -> Aabb {
-        Aabb { min: self.min, max: self.max }
+        Aabb {
+            min: self.min,
+            max: self.max,
+        }
     }
 }
 
 /// Output of the build: depth-first nodes and the reordered primitive ids.
 pub(crate) fn build(bounds: &[Aabb]) -> (Vec<Node>, Vec<u32>) {
-    assert!(bounds.len() <= u32::MAX as usize, "a BVH indexes primitives with u32");
+    assert!(
+        bounds.len() <= u32::MAX as usize,
+        "a BVH indexes primitives with u32"
+    );
     // Empty bounds can never be hit: drop them so no node box is empty.
+    // Padding here makes every node box padded (see `Aabb::padded`).
     let mut refs: Vec<PrimRef> = (0u32..)
         .zip(bounds)
         .filter(|(_, b)| !b.is_empty())
-        .map(|(index, b)| PrimRef { min: b.min, max: b.max, index })
+        .map(|(index, b)| {
+            let b = b.padded();
+            PrimRef {
+                min: b.min,
+                max: b.max,
+                index,
+            }
+        })
         .collect();
     let mut nodes = Vec::new();
     if !refs.is_empty() {
@@ -63,7 +77,9 @@ pub(crate) fn build(bounds: &[Aabb]) -> (Vec<Node>, Vec<u32>) {
 
 /// Bounds of the primitives and of their centroids.
 fn bounds_of(refs: &[PrimRef]) -> (Aabb, Aabb) {
-    refs.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, cb), r| (b.union(r.aabb()), cb.grow_point(r.centroid())))
+    refs.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, cb), r| {
+        (b.union(r.aabb()), cb.grow_point(r.centroid()))
+    })
 }
 
 fn ceil_log2(n: usize) -> u32 {
@@ -82,7 +98,11 @@ fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, depth: u32, ou
     // Depth budget: with no slack left, median splits finish the subtree in
     // exactly ceil(log2 n) levels, so no leaf is deeper than MAX_DEPTH and the
     // traversal stack cannot overflow.
-    let sah = if depth + ceil_log2(n) < MAX_DEPTH { best_split(refs, &cb) } else { None };
+    let sah = if depth + ceil_log2(n) < MAX_DEPTH {
+        best_split(refs, &cb)
+    } else {
+        None
+    };
     if n <= MAX_LEAF {
         let area = b.surface_area();
         let leaf_cost = area * n as f32;
@@ -138,13 +158,18 @@ impl Binner {
     fn new(cb: &Aabb) -> Self {
         let scale = Vec3A::splat(BINS as f32) / cb.extent();
         let ok = scale.is_finite_mask() & cb.extent().cmpgt(Vec3A::ZERO);
-        Self { min: cb.min, scale: Vec3A::select(ok, scale, Vec3A::ZERO) }
+        Self {
+            min: cb.min,
+            scale: Vec3A::select(ok, scale, Vec3A::ZERO),
+        }
     }
 
     /// Saturating: the maximal centroid lands in the last bin.
     #[inline(always)]
     fn bins(&self, c: Vec3A) -> [usize; 3] {
-        let i = ((c - self.min) * self.scale).min(Vec3A::splat((BINS - 1) as f32)).as_uvec3();
+        let i = ((c - self.min) * self.scale)
+            .min(Vec3A::splat((BINS - 1) as f32))
+            .as_uvec3();
         [i.x as usize, i.y as usize, i.z as usize]
     }
 }
@@ -156,7 +181,10 @@ struct Bins {
 }
 
 impl Bins {
-    const EMPTY: Bins = Bins { bounds: [[Aabb::EMPTY; BINS]; 3], counts: [[0; BINS]; 3] };
+    const EMPTY: Bins = Bins {
+        bounds: [[Aabb::EMPTY; BINS]; 3],
+        counts: [[0; BINS]; 3],
+    };
 
     fn fill(mut self, binner: &Binner, refs: &[PrimRef]) -> Self {
         for r in refs {
@@ -207,15 +235,15 @@ fn best_split(refs: &[PrimRef], cb: &Aabb) -> Option<Split> {
             right_cost[i] = acc.surface_area() * count as f32;
         }
         let (mut acc, mut count) = (Aabb::EMPTY, 0u32);
-        for i in 1..BINS {
-            acc = acc.union(bins.bounds[axis][i - 1]);
-            count += bins.counts[axis][i - 1];
+        for (bin, &right) in right_cost.iter().enumerate().skip(1) {
+            acc = acc.union(bins.bounds[axis][bin - 1]);
+            count += bins.counts[axis][bin - 1];
             if count == 0 || count as usize == refs.len() {
                 continue;
             }
-            let cost = acc.surface_area() * count as f32 + right_cost[i];
+            let cost = acc.surface_area() * count as f32 + right;
             if best.is_none_or(|b| cost < b.cost) {
-                best = Some(Split { axis, bin: i, cost });
+                best = Some(Split { axis, bin, cost });
             }
         }
     }
@@ -252,10 +280,18 @@ fn partition(refs: &mut [PrimRef], cb: &Aabb, s: Split) -> Halves {
 /// or the depth budget is spent. Ties broken by index for determinism.
 fn median_split(refs: &mut [PrimRef], cb: &Aabb) -> Halves {
     let e = cb.extent();
-    let axis = if e.x >= e.y && e.x >= e.z { 0 } else if e.y >= e.z { 1 } else { 2 };
+    let axis = if e.x >= e.y && e.x >= e.z {
+        0
+    } else if e.y >= e.z {
+        1
+    } else {
+        2
+    };
     let mid = refs.len() / 2;
     refs.select_nth_unstable_by(mid, |a, b| {
-        a.centroid()[axis].total_cmp(&b.centroid()[axis]).then(a.index.cmp(&b.index))
+        a.centroid()[axis]
+            .total_cmp(&b.centroid()[axis])
+            .then(a.index.cmp(&b.index))
     });
     let (l, r) = refs.split_at(mid);
     let ((lb, lcb), (rb, rcb)) = (bounds_of(l), bounds_of(r));

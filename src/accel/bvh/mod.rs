@@ -52,7 +52,11 @@ impl Bvh {
     /// Builds over `bounds[i]` for primitive `i`.
     pub fn build(bounds: &[Aabb]) -> Self {
         let (nodes, indices) = build::build(bounds);
-        Self { nodes, indices, len: bounds.len() }
+        Self {
+            nodes,
+            indices,
+            len: bounds.len(),
+        }
     }
 
     /// Number of primitives the tree was built over (including any dropped
@@ -65,7 +69,8 @@ impl Bvh {
         self.len == 0
     }
 
-    /// Bounds of every primitive; [`Aabb::EMPTY`] if there are none.
+    /// Bounds of every primitive, grown by a few ulps ([`Aabb::padded`]);
+    /// [`Aabb::EMPTY`] if there are none.
     pub fn bounds(&self) -> Aabb {
         self.nodes.first().map_or(Aabb::EMPTY, Node::bounds)
     }
@@ -84,7 +89,13 @@ impl Bvh {
         // A zero-area root (every primitive a single point) makes all areas
         // equal; count each node as area 1 then.
         let root_area = self.nodes[0].bounds().surface_area();
-        let rel = |n: &Node| if root_area > 0.0 { n.bounds().surface_area() / root_area } else { 1.0 };
+        let rel = |n: &Node| {
+            if root_area > 0.0 {
+                n.bounds().surface_area() / root_area
+            } else {
+                1.0
+            }
+        };
         let mut stack = vec![(0usize, 0u32)];
         while let Some((i, depth)) = stack.pop() {
             let n = &self.nodes[i];

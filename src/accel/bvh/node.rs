@@ -26,12 +26,22 @@ impl Node {
     #[inline]
     pub fn leaf(b: Aabb, first: u32, count: u32) -> Self {
         debug_assert!(count > 0, "a leaf holds at least one primitive");
-        Self { min: b.min.to_array(), offset: first, max: b.max.to_array(), count }
+        Self {
+            min: b.min.to_array(),
+            offset: first,
+            max: b.max.to_array(),
+            count,
+        }
     }
 
     #[inline]
     pub fn interior(b: Aabb, second_child: u32) -> Self {
-        Self { min: b.min.to_array(), offset: second_child, max: b.max.to_array(), count: 0 }
+        Self {
+            min: b.min.to_array(),
+            offset: second_child,
+            max: b.max.to_array(),
+            count: 0,
+        }
     }
 
     #[inline(always)]
@@ -41,13 +51,22 @@ impl Node {
 
     #[inline]
     pub fn bounds(&self) -> Aabb {
-        Aabb { min: Vec3A::from_array(self.min), max: Vec3A::from_array(self.max) }
+        Aabb {
+            min: Vec3A::from_array(self.min),
+            max: Vec3A::from_array(self.max),
+        }
     }
 
     /// Entry distance or `INFINITY`; node boxes are never empty (the build
     /// drops primitives with empty bounds), so the unchecked slab test holds.
     #[inline(always)]
     pub fn hit(&self, o: Vec3A, inv_d: Vec3A, t_max: f32) -> f32 {
-        slab(Vec3A::from_array(self.min), Vec3A::from_array(self.max), o, inv_d, t_max)
+        slab(
+            Vec3A::from_array(self.min),
+            Vec3A::from_array(self.max),
+            o,
+            inv_d,
+            t_max,
+        )
     }
 }

@@ -25,7 +25,7 @@ impl Bvh {
         t_max: f32,
         mut hit: impl FnMut(u32, &Ray, f32) -> Option<f32>,
     ) -> Option<(u32, f32)> {
-        let Some(root) = self.nodes.first() else { return None };
+        let root = self.nodes.first()?;
         let (o, inv_d) = (ray.o, safe_inv_dir(ray.d));
         let mut t_best = t_max;
         let mut best = None;
@@ -40,11 +40,11 @@ impl Bvh {
             if node.is_leaf() {
                 let first = node.offset as usize;
                 for &prim in &self.indices[first..first + node.count as usize] {
-                    if let Some(t) = hit(prim, ray, t_best) {
-                        if t < t_best {
-                            t_best = t;
-                            best = Some((prim, t));
-                        }
+                    if let Some(t) = hit(prim, ray, t_best)
+                        && t < t_best
+                    {
+                        t_best = t;
+                        best = Some((prim, t));
                     }
                 }
             } else {
@@ -88,8 +88,15 @@ impl Bvh {
 
     /// Any hit below `t_max` (shadow rays): stops at the first one.
     #[inline]
-    pub fn occluded(&self, ray: &Ray, t_max: f32, mut hit: impl FnMut(u32, &Ray, f32) -> bool) -> bool {
-        let Some(root) = self.nodes.first() else { return false };
+    pub fn occluded(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        mut hit: impl FnMut(u32, &Ray, f32) -> bool,
+    ) -> bool {
+        let Some(root) = self.nodes.first() else {
+            return false;
+        };
         let (o, inv_d): (Vec3A, Vec3A) = (ray.o, safe_inv_dir(ray.d));
         if root.hit(o, inv_d, t_max) == f32::INFINITY {
             return false;
