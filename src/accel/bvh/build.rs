@@ -48,6 +48,13 @@ impl PrimRef {
 
 /// Output of the build: depth-first nodes and the reordered primitive ids.
 pub(crate) fn build(bounds: &[Aabb]) -> (Vec<Node>, Vec<u32>) {
+    build_with_max_depth(bounds, MAX_DEPTH)
+}
+
+/// Leaves end up no deeper than `max_depth` if it is at least
+/// `ceil(log2 n)`; `MAX_DEPTH` = 64 covers any u32 count. Tests lower it to
+/// exercise the depth budget.
+pub(crate) fn build_with_max_depth(bounds: &[Aabb], max_depth: u32) -> (Vec<Node>, Vec<u32>) {
     assert!(
         bounds.len() <= u32::MAX as usize,
         "a BVH indexes primitives with u32"
@@ -70,7 +77,7 @@ pub(crate) fn build(bounds: &[Aabb]) -> (Vec<Node>, Vec<u32>) {
     if !refs.is_empty() {
         let (b, cb) = bounds_of(&refs);
         nodes.reserve(2 * refs.len().div_ceil(MAX_LEAF));
-        build_rec(&mut refs, 0, b, cb, 0, &mut nodes);
+        build_rec(&mut refs, 0, b, cb, max_depth, &mut nodes);
     }
     (nodes, refs.iter().map(|r| r.index).collect())
 }
@@ -88,7 +95,14 @@ fn ceil_log2(n: usize) -> u32 {
 
 /// Appends the subtree over `refs` (slots `first..` of the index array) to
 /// `out`, root first; offsets are relative to `out`'s start.
-fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, depth: u32, out: &mut Vec<Node>) {
+fn build_rec(
+    refs: &mut [PrimRef],
+    first: u32,
+    b: Aabb,
+    cb: Aabb,
+    budget: u32,
+    out: &mut Vec<Node>,
+) {
     let n = refs.len();
     let me = out.len();
     out.push(Node::leaf(b, first, n as u32));
@@ -96,9 +110,9 @@ fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, depth: u32, ou
         return;
     }
     // Depth budget: with no slack left, median splits finish the subtree in
-    // exactly ceil(log2 n) levels, so no leaf is deeper than MAX_DEPTH and the
+    // exactly ceil(log2 n) levels, so no leaf is deeper than max_depth and the
     // traversal stack cannot overflow.
-    let sah = if depth + ceil_log2(n) < MAX_DEPTH {
+    let sah = if ceil_log2(n) < budget {
         best_split(refs, &cb)
     } else {
         None
@@ -119,8 +133,17 @@ fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, depth: u32, ou
     if n >= PARALLEL_MIN {
         let mut right_nodes = Vec::new();
         rayon::join(
-            || build_rec(left, first, lb, lcb, depth + 1, out),
-            || build_rec(right, second_first, rb, rcb, depth + 1, &mut right_nodes),
+            || build_rec(left, first, lb, lcb, budget.saturating_sub(1), out),
+            || {
+                build_rec(
+                    right,
+                    second_first,
+                    rb,
+                    rcb,
+                    budget.saturating_sub(1),
+                    &mut right_nodes,
+                )
+            },
         );
         let shift = out.len() as u32;
         out[me] = Node::interior(b, shift);
@@ -131,9 +154,9 @@ fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, depth: u32, ou
             node
         }));
     } else {
-        build_rec(left, first, lb, lcb, depth + 1, out);
+        build_rec(left, first, lb, lcb, budget.saturating_sub(1), out);
         out[me] = Node::interior(b, out.len() as u32);
-        build_rec(right, second_first, rb, rcb, depth + 1, out);
+        build_rec(right, second_first, rb, rcb, budget.saturating_sub(1), out);
     }
 }
 
