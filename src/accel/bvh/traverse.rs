@@ -7,8 +7,6 @@
 //! stack is a fixed array of `MAX_DEPTH` entries (the build guarantees no
 //! deeper leaf), so a ray allocates nothing.
 
-use glam::Vec3A;
-
 use super::{Bvh, MAX_DEPTH};
 use crate::accel::aabb::safe_inv_dir;
 use crate::math::Ray;
@@ -97,7 +95,7 @@ impl Bvh {
         let Some(root) = self.nodes.first() else {
             return false;
         };
-        let (o, inv_d): (Vec3A, Vec3A) = (ray.o, safe_inv_dir(ray.d));
+        let (o, inv_d) = (ray.o, safe_inv_dir(ray.d));
         if root.hit(o, inv_d, t_max) == f32::INFINITY {
             return false;
         }
