@@ -6,4 +6,4 @@ pub mod aabb;
 pub mod bvh;
 
 pub use aabb::Aabb;
-pub use bvh::Bvh;
+pub use bvh::{Bvh, BvhStats};

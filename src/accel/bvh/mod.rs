@@ -1,0 +1,114 @@
+//! Bounding volume hierarchy over primitive bounds.
+//!
+//! Built once from one box per primitive ([`Bvh::build`], binned SAH, see
+//! `build.rs`); traversed with a closure that intersects a primitive by its
+//! index in the caller's array (`traverse.rs`). The BVH never sees shapes, so
+//! triangles, analytic shapes and SDF bounds all share it.
+//!
+//! Inputs must be NaN-free. Boxes may be flat (zero thickness on an axis, as
+//! for axis-aligned triangles) or huge; empty boxes ([`Aabb::EMPTY`]) are
+//! dropped because no ray can hit them, so their primitives are never offered
+//! to the closure.
+
+mod build;
+mod node;
+mod traverse;
+
+#[cfg(test)]
+mod tests;
+
+use super::Aabb;
+use node::Node;
+
+/// Deepest leaf the build produces; also the traversal stack size, which is
+/// therefore fixed, on the stack, and never overflows.
+const MAX_DEPTH: u32 = 64;
+
+pub struct Bvh {
+    /// Depth-first; empty iff no primitive has non-empty bounds.
+    nodes: Vec<Node>,
+    /// Caller's primitive indices in leaf order.
+    indices: Vec<u32>,
+    /// Number of primitives given to `build`.
+    len: usize,
+}
+
+/// Size and quality of a built tree.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BvhStats {
+    pub nodes: usize,
+    pub leaves: usize,
+    /// Root has depth 0.
+    pub max_depth: u32,
+    /// Expected cost of a random ray that hits the root (traversal step and
+    /// primitive test both cost 1), areas normalised by the root's; lower is
+    /// better, and comparable across scenes of the same primitive count.
+    pub sah_cost: f32,
+    /// Heap bytes held by the nodes and the index array.
+    pub bytes: usize,
+}
+
+impl Bvh {
+    /// Builds over `bounds[i]` for primitive `i`.
+    pub fn build(bounds: &[Aabb]) -> Self {
+        let (nodes, indices) = build::build(bounds);
+        Self {
+            nodes,
+            indices,
+            len: bounds.len(),
+        }
+    }
+
+    /// Number of primitives the tree was built over (including any dropped
+    /// for empty bounds).
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Bounds of every primitive, grown by a few ulps ([`Aabb::padded`]);
+    /// [`Aabb::EMPTY`] if there are none.
+    pub fn bounds(&self) -> Aabb {
+        self.nodes.first().map_or(Aabb::EMPTY, Node::bounds)
+    }
+
+    pub fn stats(&self) -> BvhStats {
+        let mut s = BvhStats {
+            nodes: self.nodes.len(),
+            leaves: 0,
+            max_depth: 0,
+            sah_cost: 0.0,
+            bytes: self.nodes.len() * size_of::<Node>() + self.indices.len() * size_of::<u32>(),
+        };
+        if self.nodes.is_empty() {
+            return s;
+        }
+        // A zero-area root (every primitive a single point) makes all areas
+        // equal; count each node as area 1 then.
+        let root_area = self.nodes[0].bounds().surface_area();
+        let rel = |n: &Node| {
+            if root_area > 0.0 {
+                n.bounds().surface_area() / root_area
+            } else {
+                1.0
+            }
+        };
+        let mut stack = vec![(0usize, 0u32)];
+        while let Some((i, depth)) = stack.pop() {
+            let n = &self.nodes[i];
+            s.max_depth = s.max_depth.max(depth);
+            if n.is_leaf() {
+                s.leaves += 1;
+                s.sah_cost += rel(n) * n.count as f32;
+            } else {
+                s.sah_cost += build::TRAVERSAL_COST * rel(n);
+                stack.push((i + 1, depth + 1));
+                stack.push((n.offset as usize, depth + 1));
+            }
+        }
+        s
+    }
+}
