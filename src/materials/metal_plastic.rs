@@ -3,13 +3,21 @@
 //! one parameter set spans dielectrics ("plastic", metalness 0) and metals
 //! (metalness 1).
 //!
-//! `f = F·D·G2/(4 cos θo cos θi) + (1 − m)(1 − F)·base/π`, with
-//! `F = Schlick(F0, wo·h)`, `F0 = mix(0.04, base, m)`, GGX `alpha =
-//! roughness²` and height-correlated Smith G2 (see [`super::microfacet`]).
-//! The diffuse base is Lambert, as in glTF: with the dielectric F0 of 0.04
-//! the (1 − F) factor already gives the grazing darkening Oren–Nayar would
-//! add for rough paint, and Lambert keeps it cheap and exactly reciprocal.
-//! Weighting diffuse by (1 − F) keeps the sum ≤ 1 (tested).
+//! `f = F(wo·h)·D·G2/(4 cos θo cos θi) + (1 − m)·(1 − F(cos θo))·(1 − F(cos θi))·base/π`
+//! with Schlick `F`, `F0 = mix(0.04, base, m)`, GGX `alpha = roughness²` and
+//! height-correlated Smith G2 (see [`super::microfacet`]).
+//!
+//! **Deviation from glTF.** glTF weights the diffuse term by `1 − F(wo·h)`.
+//! That is not energy conserving: at θo = 80°, roughness 0.1, white base,
+//! it reflects 1.35 (the specular lobe takes F(80°) ≈ 0.4 of the light,
+//! but the diffuse lobe, integrated over `wi`, mostly sees half vectors
+//! near `wo` where F is small). We use the reciprocal coupling
+//! `(1 − F(cos θo))(1 − F(cos θi))` of Shirley et al. 1997 / Ashikhmin &
+//! Shirley 2000 (<https://doi.org/10.1080/10867651.2000.10487522>): light
+//! enters the diffuse base through the interface once each way. Since the
+//! specular albedo stays below F(cos θo), the sum never exceeds 1.
+//! The diffuse base is Lambert, as in glTF; Oren–Nayar's extra backscatter
+//! is not worth its cost under a coat.
 //!
 //! Sampling: GGX visible normals with probability ∝ luminance of
 //! F(cos θo), else cosine; the pdf is the mixture's.
@@ -62,7 +70,12 @@ impl Bxdf for MetalPlastic {
         };
         let f = fresnel::schlick(self.f0, wo.dot(wm));
         let spec = self.ggx.d(wm) * self.ggx.g2(wo, wi) / (4.0 * wo.z * wi.z);
-        f * spec + (Rgb::ONE - f) * self.diffuse * FRAC_1_PI
+        let (f_o, f_i) = (
+            fresnel::schlick(self.f0, wo.z),
+            fresnel::schlick(self.f0, wi.z),
+        );
+        let diffuse = (Rgb::ONE - f_o) * (Rgb::ONE - f_i) * self.diffuse * FRAC_1_PI;
+        f * spec + diffuse
     }
 
     fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {

@@ -50,28 +50,26 @@ impl Microfacet {
 
     /// Microfacet normal density per unit projected area, ∫ D cos θm dωm = 1.
     pub fn d(&self, wm: Vec3A) -> f32 {
-        let cos2 = wm.z * wm.z;
         if wm.z <= 0.0 {
             return 0.0;
         }
+        // sin² from x, y: 1 − cos² cancels catastrophically near the pole,
+        // where narrow lobes live.
+        let (cos2, sin2) = (wm.z * wm.z, wm.x * wm.x + wm.y * wm.y);
         let a2 = self.alpha * self.alpha;
         match self.distribution {
-            // α² / (π (cos²θ (α² − 1) + 1)²): no tan, stable at the pole.
+            // α² / (π (sin²θ + α² cos²θ)²): no tan, finite at the horizon.
             Distribution::Ggx => {
-                let t = cos2 * (a2 - 1.0) + 1.0;
+                let t = sin2 + a2 * cos2;
                 a2 / (PI * t * t)
             }
-            Distribution::Beckmann => {
-                let tan2 = (1.0 - cos2).max(0.0) / cos2;
-                (-tan2 / a2).exp() / (PI * a2 * cos2 * cos2)
-            }
+            Distribution::Beckmann => (-sin2 / (cos2 * a2)).exp() / (PI * a2 * cos2 * cos2),
         }
     }
 
     /// Smith Λ(w): G1 = 1/(1 + Λ).
     pub fn lambda(&self, w: Vec3A) -> f32 {
-        let cos2 = w.z * w.z;
-        let sin2 = (1.0 - cos2).max(0.0);
+        let (cos2, sin2) = (w.z * w.z, w.x * w.x + w.y * w.y);
         if sin2 == 0.0 {
             return 0.0;
         }

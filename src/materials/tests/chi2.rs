@@ -37,7 +37,11 @@ fn dir(theta: f64, phi: f64) -> Vec3A {
 }
 
 /// ∫∫ pdf sinθ dθ dφ over one cell by composite Simpson with `n` intervals.
+/// The cell is shrunk by a relative 1e-5 so edge nodes see the pdf's limit
+/// from inside: at θ = 90° the pdf jumps, and f32 cos(π/2) is not 0.
 fn simpson(pdf: &dyn Fn(Vec3A) -> f32, t0: f64, t1: f64, p0: f64, p1: f64, n: usize) -> f64 {
+    const INSET: f64 = 1e-5;
+    let (t0, t1) = (t0 + INSET * (t1 - t0), t1 - INSET * (t1 - t0));
     let (ht, hp) = ((t1 - t0) / n as f64, (p1 - p0) / n as f64);
     let w = |i: usize| {
         if i == 0 || i == n {
@@ -57,7 +61,7 @@ fn simpson(pdf: &dyn Fn(Vec3A) -> f32, t0: f64, t1: f64, p0: f64, p1: f64, n: us
         }
         sum += w(i) * t.sin() * row;
     }
-    sum * ht * hp / 9.0
+    sum * ht * hp / 9.0 / (1.0 - 2.0 * INSET)
 }
 
 /// Expected probability of every cell.
@@ -105,6 +109,25 @@ pub fn test(pdf: &dyn Fn(Vec3A) -> f32, hist: &[u64], n: u64) -> Result<(f64, u3
     }
     let accepted: u64 = hist.iter().sum();
     cells.push(((1.0 - total).max(0.0) * n as f64, (n - accepted) as f64));
+    // The worst cells (last = rejected samples), for the failure message.
+    let mut worst: Vec<(f64, usize)> = cells
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| c.0 >= POOL_BELOW)
+        .map(|(i, &(e, o))| ((o - e) * (o - e) / e, i))
+        .collect();
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let worst: Vec<String> = worst
+        .iter()
+        .take(3)
+        .map(|&(_, i)| {
+            let (e, o) = cells[i];
+            match i {
+                i if i == probs.len() => format!("rejected: {o} vs {e:.1}"),
+                i => format!("θ#{} φ#{}: {o} vs {e:.1}", i / PHI_BINS, i % PHI_BINS),
+            }
+        })
+        .collect();
 
     // Pool the smallest cells until the pool expects at least 5.
     cells.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -129,8 +152,9 @@ pub fn test(pdf: &dyn Fn(Vec3A) -> f32, hist: &[u64], n: u64) -> Result<(f64, u3
     let p = gamma_q(dof as f64 / 2.0, stat / 2.0);
     let alpha = 1.0 - (1.0 - SIGNIFICANCE).powf(1.0 / RUNS as f64);
     if p < alpha {
+        let worst = worst.join(", ");
         return Err(format!(
-            "χ² = {stat:.1} with {dof} dof: p = {p:.2e} < {alpha:.2e}"
+            "χ² = {stat:.1}, {dof} dof: p = {p:.2e} < {alpha:.2e}; worst {worst}"
         ));
     }
     Ok((stat, dof as u32, p))
