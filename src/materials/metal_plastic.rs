@@ -130,30 +130,33 @@ mod tests {
     use super::*;
     use crate::materials::tests::{check_all, incidences};
 
-    #[test]
-    fn metal_plastic_chi2_agreement_energy() {
-        for (i, roughness) in [0.1, 0.3, 0.7].into_iter().enumerate() {
+    fn check(metalness: f32, seed: u64) {
+        for roughness in [0.1, 0.3, 0.7] {
+            let b = MetalPlastic::new(Rgb::ONE, roughness, metalness);
             for wo in incidences() {
-                let half_metal = MetalPlastic::new(Rgb::ONE, roughness, 0.5);
                 check_all(
-                    &half_metal,
+                    &b,
                     wo,
-                    &format!("metal-plastic r={roughness}"),
-                    90 + i as u64,
+                    &format!("metal-plastic r={roughness} m={metalness}"),
+                    seed,
                 );
             }
-            // White plastic and white metal: the extremes for energy.
-            for m in [0.0, 1.0] {
-                let white = MetalPlastic::new(Rgb::ONE, roughness, m);
-                for wo in incidences() {
-                    check_all(
-                        &white,
-                        wo,
-                        &format!("metal-plastic r={roughness} m={m}"),
-                        95,
-                    );
-                }
-            }
         }
+    }
+
+    #[test]
+    fn metal_plastic_half_metal_chi2_agreement_energy() {
+        check(0.5, 90);
+    }
+
+    // White plastic and white metal: the extremes for energy.
+    #[test]
+    fn metal_plastic_white_plastic_chi2_agreement_energy() {
+        check(0.0, 91);
+    }
+
+    #[test]
+    fn metal_plastic_white_metal_chi2_agreement_energy() {
+        check(1.0, 92);
     }
 }
