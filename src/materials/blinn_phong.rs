@@ -8,11 +8,14 @@
 //! `D·G·F/(4 cos θo cos θi)` with F = ks and the implicit visibility
 //! `G = cos θo cos θi` (Hoffman, "Background: Physics and Math of Shading",
 //! SIGGRAPH 2013, <https://blog.selfshadow.com/publications/s2013-shading-course/>)
-//! and the cosines cancel: `ks·D/4 = ks·(n+2)/(8π) cos^n θh`. Its
-//! albedo is `ks ∫ D(h) cos θi (wo·h) dωh ≤ ks` since both cosines are ≤ 1,
+//! and the cosines cancel: `ks·D/4 = ks·(n+2)/(8π) cos^n θh`. The albedo
+//! is `ks ∫ D(h) cos θi (wo·h) dωh`; at normal incidence that is
+//! `ks ∫ D cos θh cos 2θh dωh < ks`, and it falls toward grazing (the
+//! energy sweep test checks θo = 0…89° for n = 0…1000),
 //! so, as for [`super::Phong`], `kd + ks ≤ 1` suffices. Giesen's exact factor
 //! (n+2)(n+4)/(8π(2^(−n/2)+n)) (<http://www.farbrausch.de/~fg/stuff/phong.pdf>)
-//! makes normal incidence lossless but can exceed 1 elsewhere.
+//! makes normal incidence exactly lossless; we keep the microfacet-derived
+//! one, whose meaning (a normalised D) carries over to other angles.
 //!
 //! Reciprocal (h is symmetric in wo, wi). Sampled as a mixture of cosine
 //! sampling and half vectors drawn ∝ cos^n θh, reflected: pdf(wi) =
@@ -107,7 +110,7 @@ impl Bxdf for BlinnPhong {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::tests::{check_all, incidences};
+    use crate::materials::tests::{assert_energy_sweep, check_all, incidences};
 
     #[test]
     fn blinn_phong_chi2_agreement_energy() {
@@ -118,6 +121,18 @@ mod tests {
                 let spec = BlinnPhong::new(Rgb::ZERO, Rgb::ONE, n);
                 check_all(&spec, wo, &format!("blinn spec n={n}"), 70 + i as u64);
             }
+        }
+    }
+
+    #[test]
+    fn blinn_phong_energy_sweep() {
+        for n in [0.0, 1.0, 10.0, 100.0, 1000.0] {
+            assert_energy_sweep(
+                &BlinnPhong::new(Rgb::ZERO, Rgb::ONE, n),
+                &format!("blinn n={n}"),
+            );
+            let mixed = BlinnPhong::new(Rgb::splat(0.5), Rgb::splat(0.5), n);
+            assert_energy_sweep(&mixed, &format!("blinn mixed n={n}"));
         }
     }
 }

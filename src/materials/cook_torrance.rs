@@ -83,7 +83,7 @@ impl Bxdf for CookTorrance {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::tests::{check_all, incidences};
+    use crate::materials::tests::{assert_energy_sweep, check_all, incidences};
     use crate::materials::{Distribution, Metal};
 
     fn white(distribution: Distribution, roughness: f32) -> CookTorrance {
@@ -133,5 +133,15 @@ mod tests {
         };
         let e = check_all(&gold, incidences()[0], "gold", 30);
         assert!(e < 1.0);
+    }
+
+    #[test]
+    fn cook_torrance_energy_sweep() {
+        for distribution in [Distribution::Ggx, Distribution::Beckmann] {
+            for roughness in [0.0, 0.1, 0.3, 0.5, 0.7, 1.0] {
+                let b = white(distribution, roughness);
+                assert_energy_sweep(&b, &format!("{distribution:?} r={roughness}"));
+            }
+        }
     }
 }

@@ -14,8 +14,9 @@
 //! near `wo` where F is small). We use the reciprocal coupling
 //! `(1 − F(cos θo))(1 − F(cos θi))` of Shirley et al. 1997 / Ashikhmin &
 //! Shirley 2000 (<https://doi.org/10.1080/10867651.2000.10487522>): light
-//! enters the diffuse base through the interface once each way. Since the
-//! specular albedo stays below F(cos θo), the sum never exceeds 1.
+//! enters the diffuse base through the interface once each way. The
+//! specular albedo stays near or below F(cos θo), so the sum stays ≤ 1;
+//! the energy sweep test checks it over roughness × metalness × θo.
 //! The diffuse base is Lambert, as in glTF; Oren–Nayar's extra backscatter
 //! is not worth its cost under a coat.
 //!
@@ -128,7 +129,7 @@ impl Bxdf for MetalPlastic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::tests::{check_all, incidences};
+    use crate::materials::tests::{assert_energy_sweep, check_all, incidences};
 
     fn check(metalness: f32, seed: u64) {
         for roughness in [0.1, 0.3, 0.7] {
@@ -158,5 +159,15 @@ mod tests {
     #[test]
     fn metal_plastic_white_metal_chi2_agreement_energy() {
         check(1.0, 92);
+    }
+
+    #[test]
+    fn metal_plastic_energy_sweep() {
+        for roughness in [0.0, 0.1, 0.3, 0.5, 0.7, 1.0] {
+            for m in [0.0, 0.5, 1.0] {
+                let b = MetalPlastic::new(Rgb::ONE, roughness, m);
+                assert_energy_sweep(&b, &format!("metal-plastic r={roughness} m={m}"));
+            }
+        }
     }
 }

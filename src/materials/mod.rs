@@ -19,7 +19,7 @@
 //! | file | model | sampling |
 //! |---|---|---|
 //! | `lambert.rs` | ideal diffuse | cosine |
-//! | `oren_nayar.rs` | rough diffuse (qualitative Oren–Nayar) | cosine |
+//! | `oren_nayar.rs` | rough diffuse (Fujii's improved Oren–Nayar) | cosine |
 //! | `phong.rs`, `blinn_phong.rs` | energy-normalised Phong / Blinn–Phong | cosine + lobe mixture |
 //! | `cook_torrance.rs` | microfacet conductor (GGX or Beckmann) | visible normals / D·cos |
 //! | `metal_plastic.rs` | glTF metallic–roughness (Lambert + GGX) | mixture |
@@ -137,15 +137,15 @@ impl Bxdf for Bsdf {
 
 /// A material as the scene describes it, with textured parameters.
 ///
-/// Units: angles in radians, `roughness` ∈ [0, 1] with microfacet
+/// Units: `roughness` ∈ [0, 1] with microfacet
 /// `alpha = roughness²`, `exponent` ≥ 0, `ior` relative to the outside (> 0).
 #[derive(Clone, Debug)]
 pub enum Material {
     Lambert {
         albedo: ColorTex,
     },
-    /// `sigma`: standard deviation of the facet angle, in **radians**
-    /// (scene files say `sigma_degrees`; the loader converts).
+    /// `sigma`: Fujii's **unitless** roughness ≥ 0 (0 = Lambert, useful up
+    /// to 1); not an angle — see [`OrenNayar`] for why.
     OrenNayar {
         albedo: ColorTex,
         sigma: f32,

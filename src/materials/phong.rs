@@ -123,7 +123,7 @@ impl Bxdf for Phong {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::tests::{check_all, incidences};
+    use crate::materials::tests::{assert_energy_sweep, check_all, incidences};
 
     #[test]
     fn phong_chi2_agreement_energy() {
@@ -147,5 +147,14 @@ mod tests {
         let p = Phong::new(Rgb::new(0.8, 0.2, 0.0), Rgb::new(0.8, 0.2, 2.0), 5.0);
         assert_eq!(p.kd + p.ks, Rgb::new(1.0, 0.4, 1.0));
         assert_eq!(p.kd.x, 0.5);
+    }
+
+    #[test]
+    fn phong_energy_sweep() {
+        for n in [0.0, 1.0, 10.0, 100.0, 1000.0] {
+            assert_energy_sweep(&Phong::new(Rgb::ZERO, Rgb::ONE, n), &format!("phong n={n}"));
+            let mixed = Phong::new(Rgb::splat(0.5), Rgb::splat(0.5), n);
+            assert_energy_sweep(&mixed, &format!("phong mixed n={n}"));
+        }
     }
 }
