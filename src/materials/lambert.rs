@@ -40,6 +40,22 @@ impl Bxdf for Lambert {
             weight: self.albedo,
             pdf,
             delta: false,
+            eta: 1.0,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::tests::{check_all, incidences};
+
+    #[test]
+    fn lambert_chi2_agreement_energy() {
+        let white = Lambert { albedo: Rgb::ONE };
+        for wo in incidences() {
+            let e = check_all(&white, wo, "lambert", 1);
+            assert!((0.99..1.01).contains(&e), "albedo 1 must reflect all: got {e}");
+        }
     }
 }

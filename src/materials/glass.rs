@@ -1,0 +1,171 @@
+//! Smooth dielectric boundary (glass, water): Fresnel-weighted choice between
+//! the mirror direction and the refracted one (pbrt-v4 `DielectricBxDF`,
+//! <https://pbr-book.org/4ed/Reflection_Models/Dielectric_BSDF>).
+//!
+//! * **Sides.** The normal points outside: `wo.z > 0` arrives from outside,
+//!   `wo.z < 0` from inside the object. `ior` is η(inside)/η(outside).
+//! * **Sampling.** Reflect with probability F, refract with 1 − F (Snell's
+//!   law); under total internal reflection F = 1. Both lobes are deltas:
+//!   `pdf` is the lobe probability and `eval`/`pdf` of a direction are 0.
+//! * **Radiance scaling.** Radiance is not invariant across a refraction:
+//!   L/η² is. The weight of a refracted *camera* path therefore carries
+//!   `(η_from/η_to)²`, i.e. `1/η²` entering a denser medium, where "from" is
+//!   `wo`'s side (Mitsuba 3 `dielectric`, radiance mode; Veach's thesis
+//!   §5.2). [`BsdfSample::eta`] is `η_to/η_from`, so `weight·eta²` is the
+//!   flux-conserving part. The scaling is undone on the way out, so an
+//!   object seen through does not change brightness.
+//! * **Tint** colours transmitted light only, once per refraction (a cheap
+//!   stand-in for absorption inside); reflection off glass stays white.
+
+use super::{BsdfSample, Bxdf, DielectricFresnel};
+use crate::math::Rgb;
+use glam::{Vec2, Vec3A};
+
+#[derive(Clone, Copy, Debug)]
+pub struct Glass {
+    pub ior: f32,
+    pub tint: Rgb,
+    pub fresnel: DielectricFresnel,
+}
+
+impl Bxdf for Glass {
+    fn eval(&self, _wo: Vec3A, _wi: Vec3A) -> Rgb {
+        Rgb::ZERO
+    }
+
+    fn pdf(&self, _wo: Vec3A, _wi: Vec3A) -> f32 {
+        0.0
+    }
+
+    fn sample(&self, wo: Vec3A, u_lobe: f32, _u: Vec2) -> Option<BsdfSample> {
+        let cos_o = wo.z;
+        if cos_o == 0.0 {
+            return None;
+        }
+        let f = self.fresnel.eval(cos_o, self.ior);
+        let reflection = BsdfSample {
+            wi: Vec3A::new(-wo.x, -wo.y, wo.z),
+            weight: Rgb::ONE,
+            pdf: f,
+            delta: true,
+            eta: 1.0,
+        };
+        if u_lobe < f {
+            return Some(reflection);
+        }
+        // Relative IOR η_to/η_from and the normal on wo's side.
+        let (eta, n) = if cos_o > 0.0 {
+            (self.ior, Vec3A::Z)
+        } else {
+            (1.0 / self.ior, -Vec3A::Z)
+        };
+        let cos_o = cos_o.abs();
+        // Snell: sin²θt = sin²θo / η².
+        let sin2_t = (1.0 - cos_o * cos_o) / (eta * eta);
+        if sin2_t >= 1.0 {
+            // Total internal reflection (F is already 1 here; guard rounding).
+            return Some(BsdfSample {
+                pdf: 1.0,
+                ..reflection
+            });
+        }
+        let cos_t = (1.0 - sin2_t).sqrt();
+        let wi = (-wo / eta + (cos_o / eta - cos_t) * n).normalize();
+        Some(BsdfSample {
+            wi,
+            weight: self.tint / (eta * eta),
+            pdf: 1.0 - f,
+            delta: true,
+            eta,
+        })
+    }
+
+    fn is_delta(&self) -> bool {
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::fresnel;
+    use crate::math::{Pcg32, sampling};
+
+    fn glass(fresnel: DielectricFresnel) -> Glass {
+        Glass {
+            ior: 1.5,
+            tint: Rgb::ONE,
+            fresnel,
+        }
+    }
+
+    #[test]
+    fn glass_obeys_reflection_and_snell() {
+        let g = glass(DielectricFresnel::Exact);
+        let mut rng = Pcg32::new(8, 1);
+        for _ in 0..2000 {
+            let wo = sampling::uniform_sphere(rng.next_vec2());
+            let s = g
+                .sample(wo, rng.next_f32(), rng.next_vec2())
+                .expect("glass always scatters");
+            assert!(s.delta && g.is_delta() && (s.wi.length() - 1.0).abs() < 1e-5);
+            if s.wi.z * wo.z > 0.0 {
+                assert_eq!(
+                    (s.wi.x, s.wi.y, s.wi.z),
+                    (-wo.x, -wo.y, wo.z),
+                    "law of reflection"
+                );
+                continue;
+            }
+            // η sin θ is conserved; the tangent part flips, staying in the plane of incidence.
+            let (eta_o, eta_i) = if wo.z > 0.0 { (1.0, 1.5) } else { (1.5, 1.0) };
+            let sin_o = (1.0 - wo.z * wo.z).sqrt();
+            let sin_i = (1.0 - s.wi.z * s.wi.z).sqrt();
+            assert!(
+                (eta_o * sin_o - eta_i * sin_i).abs() < 1e-4,
+                "Snell: {eta_o}·{sin_o} vs {eta_i}·{sin_i}"
+            );
+            assert!(
+                (wo.x * s.wi.y - wo.y * s.wi.x).abs() < 1e-5,
+                "wi leaves the plane of incidence"
+            );
+            assert!(wo.x * s.wi.x + wo.y * s.wi.y <= 1e-6, "tangent part must flip");
+            assert!((s.eta - eta_i / eta_o).abs() < 1e-6);
+            let want = 1.0 / (s.eta * s.eta);
+            assert!(
+                (s.weight.x - want).abs() < 1e-6,
+                "radiance scaling: {} vs {want}",
+                s.weight.x
+            );
+        }
+    }
+
+    #[test]
+    fn glass_reflects_with_probability_fresnel() {
+        for fr in [DielectricFresnel::Exact, DielectricFresnel::Schlick] {
+            let g = glass(fr);
+            for (i, cos_o) in [0.95f32, 0.5, 0.1, -0.95, -0.8, -0.5].into_iter().enumerate() {
+                let wo = Vec3A::new((1.0 - cos_o * cos_o).sqrt(), 0.0, cos_o);
+                let f = fr.eval(cos_o, 1.5);
+                let mut rng = Pcg32::new(9, i as u64);
+                let n = 200_000;
+                let (mut reflected, mut energy) = (0u32, 0.0f64);
+                for _ in 0..n {
+                    let s = g.sample(wo, rng.next_f32(), rng.next_vec2()).unwrap();
+                    reflected += (s.wi.z * wo.z > 0.0) as u32;
+                    energy += (s.weight.x * s.eta * s.eta) as f64;
+                }
+                let p = reflected as f32 / n as f32;
+                let sigma = (f * (1.0 - f) / n as f32).sqrt();
+                assert!(
+                    (p - f).abs() <= 5.0 * sigma + 1e-6,
+                    "{fr:?} cos {cos_o}: P(reflect) {p}, F {f}"
+                );
+                let e = energy / n as f64;
+                assert!((0.99..=1.01).contains(&e), "{fr:?} cos {cos_o}: R + T = {e}");
+            }
+        }
+        // Beyond the critical angle (41.8°) from inside, always reflect.
+        assert_eq!(fresnel::dielectric(-0.5, 1.5), 1.0);
+    }
+}
