@@ -15,4 +15,5 @@ pub mod lights;
 pub mod materials;
 pub mod math;
 pub mod render;
+pub mod sampler;
 pub mod scene;

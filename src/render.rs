@@ -6,7 +6,8 @@
 
 use crate::imageio::Image;
 use crate::integrators::Counters;
-use crate::math::{Pcg32, Rgb};
+use crate::math::Rgb;
+use crate::sampler::Sampler;
 use crate::scene::Scene;
 use glam::Vec2;
 use rayon::prelude::*;
@@ -107,12 +108,12 @@ fn render_tiles(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBool) -> (Im
                 for x in x0..x1 {
                     let mut sum = Rgb::ZERO;
                     for s in s0..s0 + spp {
-                        let mut rng = Pcg32::for_sample(x, y, s, film.seed);
-                        let jitter = rng.next_vec2();
+                        let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
+                        let jitter = sampler.next_vec2();
                         let film_pos =
                             Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
-                        let ray = scene.camera.ray(film_pos, aspect, rng.next_vec2());
-                        sum += scene.integrator.li(scene, &ray, &mut rng, &mut counters);
+                        let ray = scene.camera.ray(film_pos, aspect, sampler.next_vec2());
+                        sum += scene.integrator.li(scene, &ray, &mut sampler, &mut counters);
                     }
                     px.push(sum / spp as f32);
                 }

@@ -3,6 +3,7 @@
 use glam::Vec3A;
 use ronray::integrators::Counters;
 use ronray::math::{Pcg32, Ray};
+use ronray::sampler::Sampler;
 use ronray::scene::{Overrides, load_str};
 use std::f32::consts::PI;
 use std::path::Path;
@@ -22,8 +23,8 @@ fn mean_li(scene: &ronray::scene::Scene, ray: Ray, n: u32) -> Vec3A {
     let mut sum = Vec3A::ZERO;
     let mut c = Counters::default();
     for i in 0..n {
-        let mut rng = Pcg32::for_sample(0, 0, i, 99);
-        sum += scene.integrator.li(scene, &ray, &mut rng, &mut c);
+        let mut sampler = Sampler::independent(Pcg32::for_sample(0, 0, i, 99));
+        sum += scene.integrator.li(scene, &ray, &mut sampler, &mut c);
     }
     sum / n as f32
 }

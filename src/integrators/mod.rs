@@ -2,18 +2,25 @@
 //! at the camera along one ray.
 
 pub mod direct;
+pub mod path;
+pub mod whitted;
 
 pub use direct::Direct;
+pub use path::Path;
+pub use whitted::Whitted;
 
 use crate::geometry::{Hit, NO_LIGHT};
 use crate::lights::Light;
-use crate::math::{Pcg32, Ray, Rgb, ray_epsilon};
+use crate::math::{Ray, Rgb, ray_epsilon};
+use crate::sampler::Sampler;
 use crate::scene::Scene;
 use glam::Vec3A;
 
 #[derive(Clone, Copy, Debug)]
 pub enum Integrator {
     Direct(Direct),
+    Whitted(Whitted),
+    Path(Path),
 }
 
 /// Per-thread counters, summed for the render summary.
@@ -24,9 +31,11 @@ pub struct Counters {
 
 impl Integrator {
     #[inline]
-    pub fn li(&self, scene: &Scene, ray: &Ray, rng: &mut Pcg32, counters: &mut Counters) -> Rgb {
+    pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
         match self {
-            Integrator::Direct(d) => d.li(scene, ray, rng, counters),
+            Integrator::Direct(d) => d.li(scene, ray, sampler, counters),
+            Integrator::Whitted(w) => w.li(scene, ray, sampler, counters),
+            Integrator::Path(p) => p.li(scene, ray, sampler, counters),
         }
     }
 }
@@ -39,7 +48,7 @@ pub(crate) fn emitted(scene: &Scene, hit: &Hit, ray_dir: Vec3A) -> Rgb {
     }
     match &scene.lights[hit.light as usize] {
         Light::Quad(q) => q.emitted(-ray_dir),
-        Light::Point(_) => Rgb::ZERO,
+        _ => Rgb::ZERO,
     }
 }
 
@@ -48,10 +57,13 @@ pub(crate) fn emitted(scene: &Scene, hit: &Hit, ray_dir: Vec3A) -> Rgb {
 #[inline]
 pub(crate) fn spawn(hit: &Hit, w: Vec3A) -> Ray {
     let off = hit.ng * ray_epsilon(hit.p);
-    let o = if hit.ng.dot(w) >= 0.0 {
-        hit.p + off
-    } else {
-        hit.p - off
-    };
+    let o = if hit.ng.dot(w) >= 0.0 { hit.p + off } else { hit.p - off };
     Ray::new(o, w)
+}
+
+/// Shadow-ray extent toward a point `dist` away from `hit.p`, stopping just
+/// short of the light's own surface.
+#[inline]
+pub(crate) fn shadow_extent(hit: &Hit, shadow: &Ray, dist: f32) -> f32 {
+    (dist - (shadow.o - hit.p).length()) * (1.0 - 1e-4)
 }

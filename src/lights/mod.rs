@@ -1,11 +1,15 @@
-//! Light sources. Units: point lights give radiant intensity in W/sr, area
-//! lights emitted radiance in W/(m²·sr), both per linear-RGB channel.
+//! Light sources. Units: point and spot lights give radiant intensity in
+//! W/sr, area lights emitted radiance in W/(m²·sr), per linear-RGB channel.
 
 pub mod point;
+pub mod power;
 pub mod quad;
+pub mod spot;
 
 pub use point::PointLight;
+pub use power::LightPicker;
 pub use quad::QuadLight;
+pub use spot::SpotLight;
 
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
@@ -13,6 +17,7 @@ use glam::{Vec2, Vec3A};
 #[derive(Clone, Copy, Debug)]
 pub enum Light {
     Point(PointLight),
+    Spot(SpotLight),
     Quad(QuadLight),
 }
 
@@ -23,8 +28,8 @@ pub struct LightSample {
     pub wi: Vec3A,
     /// Distance to the sampled point (the shadow ray's extent).
     pub dist: f32,
-    /// Incident radiance (area lights) or irradiance-like `I/r²` (delta
-    /// lights), to be divided by `pdf`.
+    /// Incident radiance (area lights) or `I/r²` (delta lights), to be
+    /// divided by `pdf`.
     pub li: Rgb,
     /// Solid-angle density of `wi`; 1 for delta lights.
     pub pdf: f32,
@@ -36,6 +41,7 @@ impl Light {
     pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
         match self {
             Light::Point(l) => l.sample(p),
+            Light::Spot(l) => l.sample(p),
             Light::Quad(l) => l.sample(p, u),
         }
     }
@@ -44,7 +50,12 @@ impl Light {
     pub fn power(&self) -> Rgb {
         match self {
             Light::Point(l) => l.power(),
+            Light::Spot(l) => l.power(),
             Light::Quad(l) => l.power(),
         }
+    }
+
+    pub fn is_delta(&self) -> bool {
+        !matches!(self, Light::Quad(_))
     }
 }

@@ -2,26 +2,28 @@
 //! loaded and transformed, the BVH is built. Problems found here (a missing
 //! OBJ) are reported like validation problems.
 
-use super::desc::{IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, TransformDesc};
+use super::desc::{IntegratorDesc, LightSelectionDesc, SamplerDesc, LightDesc, ObjectDesc, SceneDesc, TransformDesc};
 use super::problem::Problem;
 use super::runtime::{Film, Scene};
 use crate::accel::Bvh;
 use crate::camera::Camera;
 use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere, obj};
-use crate::integrators::{Direct, Integrator};
-use crate::lights::{Light, PointLight, QuadLight};
-use crate::materials::{ColorTex, Material};
+use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
+use crate::lights::{Light, LightPicker, PointLight, QuadLight, SpotLight};
+use crate::materials::Material;
+use crate::sampler::SamplerKind;
 use glam::{Mat4, Vec3, Vec3A};
-use std::collections::HashMap;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 /// What building cost, for `--stats` and the render summary.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct BuildStats {
     pub bvh_time: Duration,
     pub load_time: Duration,
     pub triangles: usize,
+    /// Texture files read while building (watch mode re-reads on change).
+    pub texture_files: Vec<std::path::PathBuf>,
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
@@ -29,58 +31,38 @@ pub struct BuildStats {
 pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<Problem>> {
     let t0 = Instant::now();
     let mut problems = Vec::new();
-    let mut materials = Vec::new();
-    let mut index = HashMap::new();
-    for (name, m) in &desc.materials {
-        index.insert(name.as_str(), materials.len() as u32);
-        materials.push(match m {
-            MaterialDesc::Lambert { albedo } => Material::Lambert {
-                albedo: ColorTex::Const((*albedo).into()),
-            },
-        });
-    }
+    let super::build_material::Materials { mut materials, textures, index, files: texture_files } =
+        super::build_material::build_materials(&desc.materials, base)?;
     let emitter = materials.len() as u32;
     materials.push(Material::Emitter);
 
     let mut lights = Vec::new();
     let mut shapes = Vec::new();
     let mut unbounded = Vec::new();
-    for l in &desc.lights {
+    for (i, l) in desc.lights.iter().enumerate() {
+        // An area light's surface is black unless the scene gives it a material.
+        let surface = |m: &Option<String>| m.as_ref().and_then(|n| index.get(n).copied()).unwrap_or(emitter);
+        let _ = i;
         match l {
-            LightDesc::Point { position, intensity } => lights.push(Light::Point(PointLight {
-                position: (*position).into(),
-                intensity: (*intensity).into(),
-            })),
-            LightDesc::Quad {
-                corner,
-                edge_u,
-                edge_v,
-                radiance,
-            } => push_quad_light(
-                &mut lights,
-                &mut shapes,
-                emitter,
-                (*corner).into(),
-                (*edge_u).into(),
-                (*edge_v).into(),
-                (*radiance).into(),
-            ),
-            LightDesc::Rect {
-                center,
-                half_u,
-                half_v,
-                radiance,
-            } => {
+            LightDesc::Point { position, intensity } => lights
+                .push(Light::Point(PointLight { position: (*position).into(), intensity: (*intensity).into() })),
+            LightDesc::Spot { position, direction, intensity, cone_degrees, falloff_degrees } => {
+                lights.push(Light::Spot(SpotLight::new(
+                    (*position).into(),
+                    (*direction).into(),
+                    (*intensity).into(),
+                    *cone_degrees,
+                    *falloff_degrees,
+                )))
+            }
+            LightDesc::Quad { corner, edge_u, edge_v, radiance, material } => {
+                let q = QuadLight::new((*corner).into(), (*edge_u).into(), (*edge_v).into(), (*radiance).into());
+                push_quad_light(&mut lights, &mut shapes, surface(material), q);
+            }
+            LightDesc::Rect { center, half_u, half_v, radiance, material } => {
                 let (c, u, v) = (Vec3A::from(*center), Vec3A::from(*half_u), Vec3A::from(*half_v));
-                push_quad_light(
-                    &mut lights,
-                    &mut shapes,
-                    emitter,
-                    c - u - v,
-                    2.0 * u,
-                    2.0 * v,
-                    (*radiance).into(),
-                )
+                let q = QuadLight::new(c - u - v, 2.0 * u, 2.0 * v, (*radiance).into());
+                push_quad_light(&mut lights, &mut shapes, surface(material), q);
             }
         }
     }
@@ -199,6 +181,13 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
     }
     let integrator = match desc.integrator {
         IntegratorDesc::Direct { light_samples } => Integrator::Direct(Direct { light_samples }),
+        IntegratorDesc::Whitted { max_depth, light_samples } => {
+            Integrator::Whitted(Whitted { max_depth, light_samples })
+        }
+        IntegratorDesc::Path { max_depth, rr_depth, .. } => Integrator::Path(PathTracer {
+            max_depth: u32::try_from(max_depth).unwrap_or(u32::MAX),
+            rr_depth,
+        }),
     };
     let f = &desc.film;
     let scene = Scene {
@@ -208,11 +197,20 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
             height: f.height,
             spp: f.spp,
             seed: f.seed,
+            sampler: match f.sampler {
+                SamplerDesc::Independent => SamplerKind::Independent,
+                SamplerDesc::Stratified => SamplerKind::Stratified,
+                SamplerDesc::Sobol => SamplerKind::Sobol,
+            },
         },
+        light_picker: LightPicker::new(
+            &lights,
+            matches!(desc.integrator, IntegratorDesc::Path { light_selection: LightSelectionDesc::Uniform, .. }),
+        ),
         output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
         integrator,
         materials,
-        textures: Vec::new(),
+        textures,
         lights,
         shapes,
         bounded,
@@ -221,26 +219,14 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
     };
     Ok((
         scene,
-        BuildStats {
-            bvh_time,
-            load_time,
-            triangles,
-        },
+        BuildStats { bvh_time, load_time, triangles, texture_files },
     ))
 }
 
-fn push_quad_light(
-    lights: &mut Vec<Light>,
-    shapes: &mut Vec<Shape>,
-    emitter: u32,
-    corner: Vec3A,
-    u: Vec3A,
-    v: Vec3A,
-    radiance: Vec3A,
-) {
+fn push_quad_light(lights: &mut Vec<Light>, shapes: &mut Vec<Shape>, material: u32, q: QuadLight) {
     let id = lights.len() as u32;
-    lights.push(Light::Quad(QuadLight::new(corner, u, v, radiance)));
-    shapes.push(Shape::Quad(Quad::new(corner, u, v, emitter, id)));
+    shapes.push(Shape::Quad(Quad::new(q.corner, q.u, q.v, material, id)));
+    lights.push(Light::Quad(q));
 }
 
 /// A 4×4 matrix written as rows.

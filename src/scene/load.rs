@@ -93,6 +93,7 @@ pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded
     }
     let (scene, stats) = build(&desc, base).map_err(|p| LoadError::Invalid(located(path, text, &p)))?;
     let mut files = vec![path.to_path_buf()];
+    files.extend(stats.texture_files.iter().cloned());
     for o in &desc.objects {
         if let super::desc::ObjectDesc::Mesh { file, .. } = o {
             files.push(base.join(file));

@@ -3,6 +3,7 @@
 //! into located diagnostics.
 
 pub mod build;
+pub mod build_material;
 pub mod desc;
 pub mod load;
 pub mod problem;

@@ -5,7 +5,8 @@ use crate::accel::Bvh;
 use crate::camera::Camera;
 use crate::geometry::{Hit, Mesh, Shape};
 use crate::integrators::Integrator;
-use crate::lights::Light;
+use crate::lights::{Light, LightPicker};
+use crate::sampler::SamplerKind;
 use crate::materials::{Material, Texture};
 use crate::math::Ray;
 use std::path::PathBuf;
@@ -17,6 +18,7 @@ pub struct Film {
     pub height: u32,
     pub spp: u32,
     pub seed: u64,
+    pub sampler: SamplerKind,
 }
 
 pub struct Scene {
@@ -29,6 +31,8 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
     pub lights: Vec<Light>,
+    /// Chooses the light for next-event estimation.
+    pub light_picker: LightPicker,
     /// Bounded shapes first (`..bounded`, in the BVH), then unbounded ones
     /// (planes), which every ray tests.
     pub shapes: Vec<Shape>,

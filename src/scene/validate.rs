@@ -1,7 +1,7 @@
 //! Semantic checks on a parsed scene. Returns every problem at once, each
 //! with its path in the scene, so a user fixes a file in one round trip.
 
-use super::desc::{
+use super::desc::{ColorDesc, FresnelDesc, 
     CameraDesc, Color, FilmDesc, IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
     TransformDesc, V3,
 };
@@ -14,6 +14,8 @@ pub const MAX_RESOLUTION: u32 = 16_384;
 pub const MAX_SPP: u32 = 1 << 20;
 /// Largest accepted shadow rays per area light.
 pub const MAX_LIGHT_SAMPLES: u32 = 4096;
+/// Largest accepted Whitted recursion depth.
+pub const MAX_DEPTH: u32 = 64;
 
 pub fn validate(scene: &SceneDesc) -> Vec<Problem> {
     let mut v = Checker { problems: Vec::new() };
@@ -23,8 +25,9 @@ pub fn validate(scene: &SceneDesc) -> Vec<Problem> {
     for (name, m) in &scene.materials {
         v.material(&format!("materials.{name}"), m);
     }
+    let names: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
     for (i, l) in scene.lights.iter().enumerate() {
-        v.light(&format!("lights[{i}]"), l);
+        v.light(&format!("lights[{i}]"), l, &names);
     }
     for (i, o) in scene.objects.iter().enumerate() {
         let path = format!("objects[{i}]");
@@ -188,50 +191,145 @@ impl Checker {
     }
 
     fn integrator(&mut self, i: &IntegratorDesc) {
+        let samples = |v: &mut Self, n: u32| {
+            if n == 0 || n > MAX_LIGHT_SAMPLES {
+                v.push(
+                    "integrator.light_samples",
+                    format!("{n} light samples is outside 1..={MAX_LIGHT_SAMPLES}"),
+                    "use 1–64 shadow rays per area light",
+                );
+            }
+        };
         match i {
-            IntegratorDesc::Direct { light_samples } => {
-                if *light_samples == 0 || *light_samples > MAX_LIGHT_SAMPLES {
+            IntegratorDesc::Direct { light_samples } => samples(self, *light_samples),
+            IntegratorDesc::Whitted { max_depth, light_samples } => {
+                samples(self, *light_samples);
+                if *max_depth > MAX_DEPTH {
+                    self.push("integrator.max_depth", format!("max_depth {max_depth} is above {MAX_DEPTH}"), "a handful of specular bounces is enough; 5 is typical");
+                }
+            }
+            IntegratorDesc::Path { max_depth, .. } => {
+                if *max_depth == 0 || *max_depth < -1 {
                     self.push(
-                        "integrator.light_samples",
-                        format!("{light_samples} light samples is outside 1..={MAX_LIGHT_SAMPLES}"),
-                        "use 1–64 shadow rays per area light",
+                        "integrator.max_depth",
+                        format!("max_depth {max_depth} is neither −1 nor ≥ 1"),
+                        "it counts path segments: 1 = emitters only, 2 = direct lighting, 8 is typical, −1 = unlimited",
                     );
                 }
             }
         }
     }
 
-    fn material(&mut self, path: &str, m: &MaterialDesc) {
-        match m {
-            MaterialDesc::Lambert { albedo } => self.color(&format!("{path}.albedo"), albedo, Some(1.0)),
+    /// A colour parameter: constants are range-checked; textures are
+    /// checked when they are loaded (build).
+    fn color_param(&mut self, path: &str, c: &ColorDesc, upper: Option<f32>) {
+        match c {
+            ColorDesc::Rgb(c) => self.color(path, c, upper),
+            ColorDesc::Image(f) if f.trim().is_empty() => {
+                self.push(path, "empty texture path", "give an image file (PNG, JPEG) relative to the scene file")
+            }
+            ColorDesc::Image(_) => {}
+            ColorDesc::Checker { a, b, scale } => {
+                self.color(&format!("{path}.a"), a, upper);
+                self.color(&format!("{path}.b"), b, upper);
+                if !(*scale > 0.0 && scale.is_finite()) {
+                    self.push(&format!("{path}.scale"), format!("checker scale {scale} must be > 0"), "it is the number of squares per UV unit");
+                }
+            }
         }
     }
 
-    fn light(&mut self, path: &str, l: &LightDesc) {
+    fn range(&mut self, path: &str, x: f32, lo: f32, hi: f32, what: &str, help: &str) {
+        if !(x >= lo && x <= hi) {
+            self.push(path, format!("{what} {x} is outside [{lo}, {hi}]"), help);
+        }
+    }
+
+    fn material(&mut self, path: &str, m: &MaterialDesc) {
+        let p = |f: &str| format!("{path}.{f}");
+        match m {
+            MaterialDesc::Lambert { albedo } => self.color_param(&p("albedo"), albedo, Some(1.0)),
+            MaterialDesc::OrenNayar { albedo, sigma } => {
+                self.color_param(&p("albedo"), albedo, Some(1.0));
+                self.range(&p("sigma"), *sigma, 0.0, 2.0, "sigma", "sigma is a unitless roughness: 0 is Lambert, 1 is very rough");
+            }
+            MaterialDesc::Phong { diffuse, specular, exponent } | MaterialDesc::BlinnPhong { diffuse, specular, exponent } => {
+                self.color_param(&p("diffuse"), diffuse, Some(1.0));
+                self.color_param(&p("specular"), specular, Some(1.0));
+                self.range(&p("exponent"), *exponent, 0.0, 100_000.0, "exponent", "the lobe sharpness: 1 is broad, 1000 is nearly a mirror");
+                if let (ColorDesc::Rgb(d), ColorDesc::Rgb(s)) = (diffuse, specular)
+                    && d.iter().zip(s).any(|(a, b)| a + b > 1.0 + 1e-6)
+                {
+                    self.push(&p("specular"), format!("diffuse {d:?} + specular {s:?} exceeds 1 in a channel"), "keep diffuse + specular ≤ 1 per channel so the surface reflects no more light than it receives");
+                }
+            }
+            MaterialDesc::CookTorrance { roughness, fresnel, .. } => {
+                self.range(&p("roughness"), *roughness, 0.0, 1.0, "roughness", "0 is polished, 1 is very rough (α = roughness²)");
+                match fresnel {
+                    FresnelDesc::Conductor { eta, k } => {
+                        self.color(&p("fresnel.eta"), eta, None);
+                        self.color(&p("fresnel.k"), k, None);
+                        if eta.contains(&0.0) {
+                            self.push(&p("fresnel.eta"), "a conductor's η must be > 0", "use a preset such as `Metal(Gold)`");
+                        }
+                    }
+                    FresnelDesc::Schlick { f0 } => self.color(&p("fresnel.f0"), f0, Some(1.0)),
+                    FresnelDesc::Metal(_) => {}
+                }
+            }
+            MaterialDesc::MetalPlastic { base_color, roughness, metalness } => {
+                self.color_param(&p("base_color"), base_color, Some(1.0));
+                self.range(&p("roughness"), *roughness, 0.0, 1.0, "roughness", "0 is polished, 1 is very rough");
+                self.range(&p("metalness"), *metalness, 0.0, 1.0, "metalness", "0 is plastic, 1 is metal");
+            }
+            MaterialDesc::Mirror { tint } => self.color_param(&p("tint"), tint, Some(1.0)),
+            MaterialDesc::Glass { ior, tint, .. } => {
+                self.color_param(&p("tint"), tint, Some(1.0));
+                if !(*ior > 0.0 && ior.is_finite() && *ior <= 10.0) {
+                    self.push(&p("ior"), format!("index of refraction {ior} is outside (0, 10]"), "glass is about 1.5, water 1.33, diamond 2.42");
+                }
+            }
+        }
+    }
+
+    fn light(&mut self, path: &str, l: &LightDesc, materials: &[&str]) {
+        let p = |f: &str| format!("{path}.{f}");
+        let surface = |v: &mut Self, m: &Option<String>| {
+            if let Some(name) = m.as_deref().filter(|n| !materials.contains(n)) {
+                let mut pr = Problem::new(p("material"), format!("unknown material `{name}`"));
+                if let Some(s) = suggest(name, materials.iter().copied()) {
+                    pr = pr.help(format!("did you mean `{s}`?"));
+                }
+                v.problems.push(pr);
+            }
+        };
         match l {
             LightDesc::Point { position, intensity } => {
-                self.finite(&format!("{path}.position"), position);
-                self.color(&format!("{path}.intensity"), intensity, None);
+                self.finite(&p("position"), position);
+                self.color(&p("intensity"), intensity, None);
             }
-            LightDesc::Quad {
-                corner,
-                edge_u,
-                edge_v,
-                radiance,
-            } => {
-                self.finite(&format!("{path}.corner"), corner);
+            LightDesc::Spot { position, direction, intensity, cone_degrees, falloff_degrees } => {
+                self.finite(&p("position"), position);
+                self.nonzero(&p("direction"), direction, "`direction`");
+                self.color(&p("intensity"), intensity, None);
+                if !(*cone_degrees > 0.0 && *cone_degrees < 180.0) {
+                    self.push(&p("cone_degrees"), format!("cone angle {cone_degrees} is outside (0, 180)"), "the full opening angle of the cone, in degrees");
+                }
+                if !(*falloff_degrees >= 0.0 && *falloff_degrees <= *cone_degrees) {
+                    self.push(&p("falloff_degrees"), format!("falloff {falloff_degrees} is outside [0, cone_degrees = {cone_degrees}]"), "the falloff band is the outer part of the cone");
+                }
+            }
+            LightDesc::Quad { corner, edge_u, edge_v, radiance, material } => {
+                self.finite(&p("corner"), corner);
                 self.parallelogram(path, "edge_u", edge_u, "edge_v", edge_v);
-                self.color(&format!("{path}.radiance"), radiance, None);
+                self.color(&p("radiance"), radiance, None);
+                surface(self, material);
             }
-            LightDesc::Rect {
-                center,
-                half_u,
-                half_v,
-                radiance,
-            } => {
-                self.finite(&format!("{path}.center"), center);
+            LightDesc::Rect { center, half_u, half_v, radiance, material } => {
+                self.finite(&p("center"), center);
                 self.parallelogram(path, "half_u", half_u, "half_v", half_v);
-                self.color(&format!("{path}.radiance"), radiance, None);
+                self.color(&p("radiance"), radiance, None);
+                surface(self, material);
             }
         }
     }

@@ -45,6 +45,21 @@ pub struct FilmDesc {
     /// Defaults to the scene's file name with `.png`.
     #[serde(default)]
     pub output: Option<String>,
+    /// How sample positions are drawn.
+    #[serde(default)]
+    pub sampler: SamplerDesc,
+}
+
+/// Sample generator; all are deterministic per (pixel, sample, seed).
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+pub enum SamplerDesc {
+    /// Uniform random numbers.
+    Independent,
+    /// Jittered strata (per pair of dimensions).
+    Stratified,
+    /// Owen-scrambled Sobol points: lowest error, best at power-of-two spp.
+    #[default]
+    Sobol,
 }
 
 fn default_width() -> u32 {
@@ -65,6 +80,7 @@ impl Default for FilmDesc {
             spp: default_spp(),
             seed: 0,
             output: None,
+            sampler: SamplerDesc::default(),
         }
     }
 }
@@ -80,10 +96,48 @@ pub enum IntegratorDesc {
         #[serde(default = "one")]
         light_samples: u32,
     },
+    /// Direct lighting at diffuse and glossy surfaces, perfect reflection and
+    /// refraction at mirrors and glass, up to `max_depth` specular bounces.
+    Whitted {
+        #[serde(default = "whitted_depth")]
+        max_depth: u32,
+        #[serde(default = "one")]
+        light_samples: u32,
+    },
+    /// Path tracing with next-event estimation and MIS. `max_depth` counts
+    /// path segments as Mitsuba does (2 = direct lighting only); −1 means
+    /// unlimited. Russian roulette starts after `rr_depth` segments.
+    Path {
+        #[serde(default = "path_depth")]
+        max_depth: i32,
+        #[serde(default = "rr_depth")]
+        rr_depth: u32,
+        /// How the light for next-event estimation is chosen.
+        #[serde(default)]
+        light_selection: LightSelectionDesc,
+    },
+}
+
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+pub enum LightSelectionDesc {
+    /// In proportion to emitted power.
+    #[default]
+    Power,
+    /// Every light equally likely.
+    Uniform,
 }
 
 fn one() -> u32 {
     1
+}
+fn whitted_depth() -> u32 {
+    5
+}
+fn path_depth() -> i32 {
+    8
+}
+fn rr_depth() -> u32 {
+    5
 }
 
 impl Default for IntegratorDesc {

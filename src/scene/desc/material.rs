@@ -1,11 +1,90 @@
 //! Materials, referred to by name from objects.
+//!
+//! Colour parameters accept constants or textures (see [`ColorDesc`]).
 
-use super::Color;
+use super::color::ColorDesc;
 use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum MaterialDesc {
-    /// Ideal diffuse: f = albedo/π. Each channel in [0, 1].
-    Lambert { albedo: Color },
+    /// Ideal diffuse: f = albedo/π. Channels in [0, 1].
+    Lambert { albedo: ColorDesc },
+    /// Rough diffuse (Fujii's energy-conserving Oren–Nayar). `sigma` is a
+    /// unitless roughness ≥ 0 (0 = Lambert; useful up to about 1), not an angle.
+    OrenNayar { albedo: ColorDesc, sigma: f32 },
+    /// Energy-normalised (modified) Phong: diffuse/π + specular·(n+2)/(2π)·cosⁿα.
+    Phong { diffuse: ColorDesc, specular: ColorDesc, exponent: f32 },
+    /// Energy-normalised Blinn–Phong: diffuse/π + specular·(n+2)/(8π)·cosⁿθh.
+    BlinnPhong { diffuse: ColorDesc, specular: ColorDesc, exponent: f32 },
+    /// Microfacet reflection (Smith height-correlated masking-shadowing).
+    /// `roughness` ∈ [0, 1], α = roughness².
+    CookTorrance {
+        #[serde(default)]
+        distribution: DistributionDesc,
+        roughness: f32,
+        fresnel: FresnelDesc,
+    },
+    /// The report's metal/plastic: a diffuse base under a GGX coat, mixed by
+    /// `metalness` ∈ [0, 1] as in glTF's metallic–roughness model.
+    MetalPlastic { base_color: ColorDesc, roughness: f32, metalness: f32 },
+    /// Perfect specular reflection.
+    Mirror {
+        #[serde(default = "white")]
+        tint: ColorDesc,
+    },
+    /// Smooth dielectric; `ior` = η inside / η outside (outside is where the
+    /// surface normal points).
+    Glass {
+        #[serde(default = "glass_ior")]
+        ior: f32,
+        #[serde(default = "white")]
+        tint: ColorDesc,
+        #[serde(default)]
+        fresnel: DielectricFresnelDesc,
+    },
+}
+
+fn white() -> ColorDesc {
+    ColorDesc::Rgb([1.0; 3])
+}
+
+fn glass_ior() -> f32 {
+    1.5
+}
+
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+pub enum DistributionDesc {
+    #[default]
+    Ggx,
+    Beckmann,
+}
+
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+pub enum DielectricFresnelDesc {
+    /// The exact Fresnel equations for unpolarised light.
+    #[default]
+    Exact,
+    /// Schlick's approximation.
+    Schlick,
+}
+
+/// Fresnel reflectance of a microfacet surface.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub enum FresnelDesc {
+    /// A conductor with complex IOR η + ik per RGB channel.
+    Conductor { eta: [f32; 3], k: [f32; 3] },
+    /// A named conductor: `Gold`, `Silver`, `Copper` or `Aluminium`.
+    Metal(MetalDesc),
+    /// Schlick's approximation from the reflectance at normal incidence.
+    Schlick { f0: [f32; 3] },
+}
+
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
+pub enum MetalDesc {
+    Gold,
+    Silver,
+    Copper,
+    Aluminium,
 }

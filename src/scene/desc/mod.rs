@@ -18,14 +18,16 @@
 //! ```
 
 mod camera;
+mod color;
 mod light;
 mod material;
 mod object;
 mod transform;
 
-pub use camera::{CameraDesc, FilmDesc, IntegratorDesc};
+pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, SamplerDesc};
 pub use light::LightDesc;
-pub use material::MaterialDesc;
+pub use color::ColorDesc;
+pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
 pub use object::ObjectDesc;
 pub use transform::TransformDesc;
 

@@ -1,0 +1,120 @@
+//! Unidirectional path tracing with next-event estimation and multiple
+//! importance sampling (Veach 1997, ch. 9, power heuristic), as Mitsuba 3's
+//! `path` integrator does, so renders converge to its references.
+//!
+//! Depth follows Mitsuba: `max_depth` counts path **segments** from the
+//! camera — 1 shows emitters only, 2 is direct lighting, 3 adds one indirect
+//! bounce; −1 is unlimited (Russian roulette ends paths). Russian roulette
+//! starts once the path has `rr_depth` segments, continuing with probability
+//! min(0.95, max(β)·η²) (η² undoes the radiance scaling of refraction so
+//! roulette acts on flux).
+//!
+//! Emitters reached by a BSDF sample after a non-delta vertex are weighted
+//! against light sampling; after a delta vertex (or from the camera) they
+//! count fully, since light sampling cannot produce those paths. Each path
+//! therefore counts every emitter exactly once.
+
+use super::{Counters, emitted, shadow_extent, spawn};
+use crate::geometry::NO_LIGHT;
+use crate::lights::{Light, LightPicker};
+use crate::materials::Bxdf;
+use crate::math::sampling::power_heuristic;
+use crate::math::{Frame, Ray, Rgb};
+use crate::sampler::Sampler;
+use crate::scene::Scene;
+
+#[derive(Clone, Copy, Debug)]
+pub struct Path {
+    /// Segments from the camera; `u32::MAX` when unlimited.
+    pub max_depth: u32,
+    pub rr_depth: u32,
+}
+
+impl Path {
+    pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
+        let picker: &LightPicker = &scene.light_picker;
+        let mut l = Rgb::ZERO;
+        let mut beta = Rgb::ONE;
+        let mut eta_scale = 1.0f32;
+        let mut ray = *ray;
+        // Density of the last BSDF sample, and whether it was a delta lobe
+        // (the camera ray counts as one: emitters it sees count fully).
+        let mut prev_pdf = 0.0f32;
+        let mut prev_delta = true;
+        let mut segments = 0u32;
+        loop {
+            counters.rays += 1;
+            let Some(hit) = scene.intersect(&ray, f32::INFINITY) else { break };
+            segments += 1;
+
+            // Emission reached by the previous BSDF sample.
+            if hit.light != NO_LIGHT {
+                let le = emitted(scene, &hit, ray.d);
+                if le != Rgb::ZERO {
+                    let w = if prev_delta {
+                        1.0
+                    } else {
+                        let light_pdf = match &scene.lights[hit.light as usize] {
+                            Light::Quad(q) => picker.pmf(hit.light as usize) * q.pdf(ray.d, hit.t),
+                            _ => 0.0,
+                        };
+                        power_heuristic(prev_pdf, light_pdf)
+                    };
+                    l += beta * le * w;
+                }
+            }
+            if segments >= self.max_depth {
+                break;
+            }
+
+            let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
+            let frame = Frame::from_normal(hit.ns);
+            let wo = frame.to_local(-ray.d);
+
+            // Next-event estimation: one light, picked by power.
+            if !bsdf.is_delta()
+                && let Some((li, pmf)) = picker.pick(sampler.next_f32())
+            {
+                let light = &scene.lights[li];
+                let u = sampler.next_vec2();
+                if let Some(ls) = light.sample(hit.p, u) {
+                    let wi = frame.to_local(ls.wi);
+                    let f = bsdf.eval(wo, wi) * wi.z.abs();
+                    if f != Rgb::ZERO {
+                        let shadow = spawn(&hit, ls.wi);
+                        counters.rays += 1;
+                        if !scene.occluded(&shadow, shadow_extent(&hit, &shadow, ls.dist)) {
+                            let light_pdf = pmf * ls.pdf;
+                            let w = if ls.delta { 1.0 } else { power_heuristic(light_pdf, bsdf.pdf(wo, wi)) };
+                            l += beta * f * ls.li * (w / light_pdf);
+                        }
+                    }
+                }
+            } else if !bsdf.is_delta() {
+                // No lights: keep the sample stream aligned anyway.
+                let _ = sampler.next_vec2();
+            }
+
+            // Continue the path by sampling the BSDF.
+            let Some(bs) = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2()) else { break };
+            beta *= bs.weight;
+            if beta == Rgb::ZERO {
+                break;
+            }
+            eta_scale *= bs.eta * bs.eta;
+            prev_pdf = bs.pdf;
+            prev_delta = bs.delta;
+            ray = spawn(&hit, frame.to_world(bs.wi));
+
+            if segments >= self.rr_depth {
+                let q = (beta.max_element() * eta_scale).min(0.95);
+                if sampler.next_f32() >= q {
+                    break;
+                }
+                beta /= q;
+            }
+        }
+        debug_assert!(l.is_finite(), "non-finite radiance {l}");
+        l
+    }
+}

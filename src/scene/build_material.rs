@@ -1,0 +1,132 @@
+//! Material descriptions → runtime materials, loading image textures once
+//! each (a file used by several materials is decoded once).
+
+use super::desc::{ColorDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
+use super::problem::Problem;
+use crate::materials::{ColorTex, DielectricFresnel, Distribution, Fresnel, Material, Metal, Texture};
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+
+/// The runtime materials (in name order), the textures they use, and the
+/// index of each name.
+pub struct Materials {
+    pub materials: Vec<Material>,
+    pub textures: Vec<Texture>,
+    pub index: HashMap<String, u32>,
+    /// Image files read, for watch mode.
+    pub files: Vec<PathBuf>,
+}
+
+pub fn build_materials(descs: &BTreeMap<String, MaterialDesc>, base: &Path) -> Result<Materials, Vec<Problem>> {
+    let mut b = Builder { base, textures: Vec::new(), by_path: HashMap::new(), problems: Vec::new() };
+    let mut materials = Vec::new();
+    let mut index = HashMap::new();
+    for (name, m) in descs {
+        index.insert(name.clone(), materials.len() as u32);
+        let p = |field: &str| format!("materials.{name}.{field}");
+        let mat = match m {
+            MaterialDesc::Lambert { albedo } => Material::Lambert { albedo: b.color(albedo, &p("albedo")) },
+            MaterialDesc::OrenNayar { albedo, sigma } => {
+                Material::OrenNayar { albedo: b.color(albedo, &p("albedo")), sigma: *sigma }
+            }
+            MaterialDesc::Phong { diffuse, specular, exponent } => Material::Phong {
+                kd: b.color(diffuse, &p("diffuse")),
+                ks: b.color(specular, &p("specular")),
+                exponent: *exponent,
+            },
+            MaterialDesc::BlinnPhong { diffuse, specular, exponent } => Material::BlinnPhong {
+                kd: b.color(diffuse, &p("diffuse")),
+                ks: b.color(specular, &p("specular")),
+                exponent: *exponent,
+            },
+            MaterialDesc::CookTorrance { distribution, roughness, fresnel } => Material::CookTorrance {
+                distribution: match distribution {
+                    DistributionDesc::Ggx => Distribution::Ggx,
+                    DistributionDesc::Beckmann => Distribution::Beckmann,
+                },
+                roughness: *roughness,
+                fresnel: match fresnel {
+                    FresnelDesc::Conductor { eta, k } => Fresnel::Conductor { eta: (*eta).into(), k: (*k).into() },
+                    FresnelDesc::Metal(m) => metal(*m).fresnel(),
+                    FresnelDesc::Schlick { f0 } => Fresnel::Schlick { f0: (*f0).into() },
+                },
+            },
+            MaterialDesc::MetalPlastic { base_color, roughness, metalness } => Material::MetalPlastic {
+                base_color: b.color(base_color, &p("base_color")),
+                roughness: *roughness,
+                metalness: *metalness,
+            },
+            MaterialDesc::Mirror { tint } => Material::Mirror { tint: b.color(tint, &p("tint")) },
+            MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass {
+                ior: *ior,
+                tint: b.color(tint, &p("tint")),
+                fresnel: match fresnel {
+                    DielectricFresnelDesc::Exact => DielectricFresnel::Exact,
+                    DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
+                },
+            },
+        };
+        materials.push(mat);
+    }
+    if !b.problems.is_empty() {
+        return Err(b.problems);
+    }
+    let files = b.by_path.keys().cloned().collect();
+    Ok(Materials { materials, textures: b.textures, index, files })
+}
+
+pub fn metal(m: MetalDesc) -> Metal {
+    match m {
+        MetalDesc::Gold => Metal::Gold,
+        MetalDesc::Silver => Metal::Silver,
+        MetalDesc::Copper => Metal::Copper,
+        MetalDesc::Aluminium => Metal::Aluminium,
+    }
+}
+
+struct Builder<'a> {
+    base: &'a Path,
+    textures: Vec<Texture>,
+    by_path: HashMap<PathBuf, u32>,
+    problems: Vec<Problem>,
+}
+
+impl Builder<'_> {
+    fn color(&mut self, c: &ColorDesc, path: &str) -> ColorTex {
+        match c {
+            ColorDesc::Rgb(c) => ColorTex::Const((*c).into()),
+            ColorDesc::Checker { a, b, scale } => ColorTex::Checker { a: (*a).into(), b: (*b).into(), scale: *scale },
+            ColorDesc::Image(file) => {
+                let full = self.base.join(file);
+                if let Some(&i) = self.by_path.get(&full) {
+                    return ColorTex::Image(i);
+                }
+                match load_texture(&full) {
+                    Ok(t) => {
+                        let i = self.textures.len() as u32;
+                        self.textures.push(t);
+                        self.by_path.insert(full, i);
+                        ColorTex::Image(i)
+                    }
+                    Err(msg) => {
+                        self.problems.push(Problem::new(path, msg).help(format!(
+                            "the path resolves to {} (relative to the scene file's folder)",
+                            full.display()
+                        )));
+                        ColorTex::Const(crate::math::Rgb::ZERO)
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Decodes an 8-bit image as sRGB-encoded colour.
+pub fn load_texture(path: &Path) -> Result<Texture, String> {
+    let img = image::open(path).map_err(|e| match e {
+        image::ImageError::IoError(io) => format!("cannot read texture {}: {io}", path.display()),
+        other => format!("cannot decode texture {}: {other}", path.display()),
+    })?;
+    let rgb = img.to_rgb8();
+    Ok(Texture::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()))
+}

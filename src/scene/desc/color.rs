@@ -1,0 +1,128 @@
+//! Colour parameters: a constant or a texture.
+//!
+//! Written as `(r, g, b)`, a single number for grey, `"file.png"` for an
+//! image texture (sRGB-decoded, repeated, bilinear), `Image(file: "…")`, or
+//! `Checker(a: (r, g, b), b: (r, g, b), scale: s)`.
+//!
+//! RON hands a named struct to self-describing deserialisers without its name,
+//! so the texture kind is recognised by its fields, not by `Image`/`Checker`.
+
+use serde::de::{self, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::fmt;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ColorDesc {
+    Rgb([f32; 3]),
+    /// Image file, relative to the scene file.
+    Image(String),
+    /// Alternating squares of `a` and `b`, `scale` squares per UV unit.
+    Checker { a: [f32; 3], b: [f32; 3], scale: f32 },
+}
+
+impl From<[f32; 3]> for ColorDesc {
+    fn from(c: [f32; 3]) -> Self {
+        ColorDesc::Rgb(c)
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TextureFields {
+    file: Option<String>,
+    a: Option<[f32; 3]>,
+    b: Option<[f32; 3]>,
+    scale: Option<f32>,
+}
+
+const EXPECTED: &str = "a colour `(r, g, b)`, a grey level, an image `\"file.png\"`, `Image(file: \"…\")` or `Checker(a: (…), b: (…), scale: …)`";
+
+impl<'de> Deserialize<'de> for ColorDesc {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = ColorDesc;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str(EXPECTED)
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut s: A) -> Result<ColorDesc, A::Error> {
+                let mut v = [0.0f32; 3];
+                for (i, c) in v.iter_mut().enumerate() {
+                    *c = s.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &"3 channels (r, g, b)"))?;
+                }
+                if s.next_element::<f32>()?.is_some() {
+                    return Err(de::Error::invalid_length(4, &"3 channels (r, g, b)"));
+                }
+                Ok(ColorDesc::Rgb(v))
+            }
+            fn visit_f64<E: de::Error>(self, x: f64) -> Result<ColorDesc, E> {
+                Ok(ColorDesc::Rgb([x as f32; 3]))
+            }
+            fn visit_u64<E: de::Error>(self, x: u64) -> Result<ColorDesc, E> {
+                Ok(ColorDesc::Rgb([x as f32; 3]))
+            }
+            fn visit_i64<E: de::Error>(self, x: i64) -> Result<ColorDesc, E> {
+                Ok(ColorDesc::Rgb([x as f32; 3]))
+            }
+            fn visit_str<E: de::Error>(self, s: &str) -> Result<ColorDesc, E> {
+                Ok(ColorDesc::Image(s.to_string()))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, m: A) -> Result<ColorDesc, A::Error> {
+                let f = TextureFields::deserialize(de::value::MapAccessDeserializer::new(m))?;
+                match f {
+                    TextureFields { file: Some(file), a: None, b: None, scale: None } => Ok(ColorDesc::Image(file)),
+                    TextureFields { file: None, a: Some(a), b: Some(b), scale } => {
+                        Ok(ColorDesc::Checker { a, b, scale: scale.unwrap_or(1.0) })
+                    }
+                    _ => Err(de::Error::custom(format!("expected {EXPECTED}"))),
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl Serialize for ColorDesc {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        match self {
+            ColorDesc::Rgb(c) => c.serialize(s),
+            ColorDesc::Image(f) => f.serialize(s),
+            ColorDesc::Checker { a, b, scale } => {
+                let mut st = s.serialize_struct("Checker", 3)?;
+                st.serialize_field("a", a)?;
+                st.serialize_field("b", b)?;
+                st.serialize_field("scale", scale)?;
+                st.end()
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Deserialize, Debug)]
+    struct M {
+        c: ColorDesc,
+    }
+
+    fn parse(s: &str) -> Result<ColorDesc, ron::error::SpannedError> {
+        ron::from_str::<M>(&format!("(c: {s})")).map(|m| m.c)
+    }
+
+    #[test]
+    fn color_desc_accepts_every_form() {
+        assert_eq!(parse("(0.5, 1, 0)").ok(), Some(ColorDesc::Rgb([0.5, 1.0, 0.0])));
+        assert_eq!(parse("0.25").ok(), Some(ColorDesc::Rgb([0.25; 3])));
+        assert_eq!(parse("\"wood.png\"").ok(), Some(ColorDesc::Image("wood.png".into())));
+        assert_eq!(parse("Image(file: \"wood.png\")").ok(), Some(ColorDesc::Image("wood.png".into())));
+        assert_eq!(
+            parse("Checker(a: (1, 1, 1), b: (0, 0, 0), scale: 4)").ok(),
+            Some(ColorDesc::Checker { a: [1.0; 3], b: [0.0; 3], scale: 4.0 })
+        );
+        assert!(parse("(1, 2)").is_err() && parse("(1, 2, 3, 4)").is_err());
+        assert!(parse("Checker(a: (1, 1, 1), c: (0, 0, 0))").is_err(), "unknown field");
+    }
+}
