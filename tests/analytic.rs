@@ -120,3 +120,97 @@ fn direct_quad_light_irradiance_matches_polygon_formula() {
         );
     }
 }
+
+/// Inside a closed Lambert sphere (albedo ρ = 0.5, radius 1) with a point
+/// light of intensity π at its centre, every wall receives E = π/r² = π
+/// directly: direct lighting sees ρE/π = 0.5; with every bounce the
+/// radiosity is B = ρE/(1 − ρ), so path tracing sees B/π = 1.
+#[test]
+fn closed_sphere_direct_and_path_match_closed_forms() {
+    let text = |integrator: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 0, 0), target: (0, 0, -1), fov_y_degrees: 60),
+            film: (width: 8, height: 8, spp: 1),
+            integrator: {integrator},
+            materials: {{ "half": Lambert(albedo: (0.5, 0.5, 0.5)) }},
+            lights: [Point(position: (0, 0, 0), intensity: (3.14159265, 3.14159265, 3.14159265))],
+            objects: [Sphere(center: (0, 0, 0), radius: 1, material: "half")],
+        )"#
+        )
+    };
+    let ray = Ray::new(Vec3A::ZERO, Vec3A::new(0.3, -0.2, -1.0).normalize());
+    let direct = mean_li(&scene(&text("Direct(light_samples: 1)")), ray, 16);
+    assert!(
+        (direct.x - 0.5).abs() < 0.005,
+        "direct: expected 0.5, got {}",
+        direct.x
+    );
+    let path = mean_li(&scene(&text("Path(max_depth: -1, rr_depth: 5)")), ray, 200_000);
+    assert!((path.x - 1.0).abs() < 0.01, "path: expected 1.0, got {}", path.x);
+    let two = mean_li(&scene(&text("Path(max_depth: 2, rr_depth: 5)")), ray, 16);
+    assert!(
+        (two.x - 0.5).abs() < 0.005,
+        "path max_depth 2 is direct lighting: got {}",
+        two.x
+    );
+}
+
+/// White furnace: inside a closed box whose six walls all emit Le = 1 and
+/// reflect with albedo ρ = 0.5, radiance is Le/(1 − ρ) = 2 everywhere.
+#[test]
+fn furnace_emitting_enclosure_gives_le_over_one_minus_rho() {
+    // Six inward-facing walls of the cube [-1, 1]³ (half_u × half_v points in).
+    let walls = [
+        ("(0, -1, 0)", "(0, 0, 1)", "(1, 0, 0)"),
+        ("(0, 1, 0)", "(1, 0, 0)", "(0, 0, 1)"),
+        ("(-1, 0, 0)", "(0, 1, 0)", "(0, 0, 1)"),
+        ("(1, 0, 0)", "(0, 0, 1)", "(0, 1, 0)"),
+        ("(0, 0, -1)", "(1, 0, 0)", "(0, 1, 0)"),
+        ("(0, 0, 1)", "(0, 1, 0)", "(1, 0, 0)"),
+    ];
+    let lights: Vec<String> = walls
+        .iter()
+        .map(|(c, u, v)| {
+            format!(r#"Rect(center: {c}, half_u: {u}, half_v: {v}, radiance: (1, 1, 1), material: "half")"#)
+        })
+        .collect();
+    let s = scene(&format!(
+        r#"Scene(
+        camera: (eye: (0, 0, 0), target: (0, 0, -1), fov_y_degrees: 60),
+        integrator: Path(max_depth: -1, rr_depth: 5),
+        materials: {{ "half": Lambert(albedo: (0.5, 0.5, 0.5)) }},
+        lights: [{}],
+    )"#,
+        lights.join(", ")
+    ));
+    for d in [Vec3A::new(0.1, 0.2, -1.0), Vec3A::new(0.9, -0.7, 0.2)] {
+        let got = mean_li(&s, Ray::new(Vec3A::new(0.1, 0.0, 0.2), d.normalize()), 100_000);
+        assert!((got.x - 2.0).abs() < 0.02, "expected 2.0, got {}", got.x);
+    }
+}
+
+/// Without mirrors or glass, Whitted shades exactly like direct lighting.
+#[test]
+fn whitted_equals_direct_without_specular_surfaces() {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.ron"))
+        .expect("scene");
+    let render = |integrator: &str| {
+        let t = text.replace("integrator: Path(max_depth: 8, rr_depth: 5)", integrator);
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.ron");
+        let o = Overrides {
+            spp: Some(4),
+            size: Some((32, 32)),
+            seed: Some(5),
+        };
+        let l = load_str(&path, &t, &o).expect("scene loads");
+        ronray::render::render(&l.scene, &Default::default()).0
+    };
+    let direct = render("integrator: Direct(light_samples: 2)");
+    let whitted = render("integrator: Whitted(max_depth: 5, light_samples: 2)");
+    assert!(direct.pixels.iter().any(|p| p.x > 0.0), "the image is not black");
+    assert_eq!(
+        direct, whitted,
+        "Whitted differs from Direct on a purely diffuse scene"
+    );
+}

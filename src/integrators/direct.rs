@@ -25,7 +25,16 @@ impl Direct {
         let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
         let frame = Frame::from_normal(hit.ns);
         let l = emitted(scene, &hit, ray.d)
-            + all_lights(scene, &hit, &bsdf, &frame, frame.to_local(-ray.d), self.light_samples, sampler, counters);
+            + all_lights(
+                scene,
+                &hit,
+                &bsdf,
+                &frame,
+                frame.to_local(-ray.d),
+                self.light_samples,
+                sampler,
+                counters,
+            );
         debug_assert!(l.is_finite(), "non-finite radiance {l}");
         l
     }
@@ -49,10 +58,16 @@ pub(crate) fn all_lights(
         return l;
     }
     for light in &scene.lights {
-        let n = if matches!(light, Light::Quad(_)) { light_samples } else { 1 };
+        let n = if matches!(light, Light::Quad(_)) {
+            light_samples
+        } else {
+            1
+        };
         let mut sum = Rgb::ZERO;
         for _ in 0..n {
-            let Some(ls) = light.sample(hit.p, sampler.next_vec2()) else { continue };
+            let Some(ls) = light.sample(hit.p, sampler.next_vec2()) else {
+                continue;
+            };
             let wi = frame.to_local(ls.wi);
             let f = bsdf.eval(wo, wi);
             if f == Rgb::ZERO {

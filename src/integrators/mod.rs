@@ -57,7 +57,11 @@ pub(crate) fn emitted(scene: &Scene, hit: &Hit, ray_dir: Vec3A) -> Rgb {
 #[inline]
 pub(crate) fn spawn(hit: &Hit, w: Vec3A) -> Ray {
     let off = hit.ng * ray_epsilon(hit.p);
-    let o = if hit.ng.dot(w) >= 0.0 { hit.p + off } else { hit.p - off };
+    let o = if hit.ng.dot(w) >= 0.0 {
+        hit.p + off
+    } else {
+        hit.p - off
+    };
     Ray::new(o, w)
 }
 

@@ -44,7 +44,9 @@ impl Path {
         let mut segments = 0u32;
         loop {
             counters.rays += 1;
-            let Some(hit) = scene.intersect(&ray, f32::INFINITY) else { break };
+            let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+                break;
+            };
             segments += 1;
 
             // Emission reached by the previous BSDF sample.
@@ -85,7 +87,11 @@ impl Path {
                         counters.rays += 1;
                         if !scene.occluded(&shadow, shadow_extent(&hit, &shadow, ls.dist)) {
                             let light_pdf = pmf * ls.pdf;
-                            let w = if ls.delta { 1.0 } else { power_heuristic(light_pdf, bsdf.pdf(wo, wi)) };
+                            let w = if ls.delta {
+                                1.0
+                            } else {
+                                power_heuristic(light_pdf, bsdf.pdf(wo, wi))
+                            };
                             l += beta * f * ls.li * (w / light_pdf);
                         }
                     }
@@ -96,7 +102,9 @@ impl Path {
             }
 
             // Continue the path by sampling the BSDF.
-            let Some(bs) = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2()) else { break };
+            let Some(bs) = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2()) else {
+                break;
+            };
             beta *= bs.weight;
             if beta == Rgb::ZERO {
                 break;

@@ -27,19 +27,33 @@ impl Whitted {
         let mut ray = *ray;
         for depth in 0..=self.max_depth {
             counters.rays += 1;
-            let Some(hit) = scene.intersect(&ray, f32::INFINITY) else { break };
+            let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+                break;
+            };
             let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
             let frame = Frame::from_normal(hit.ns);
             let wo = frame.to_local(-ray.d);
             l += beta * emitted(scene, &hit, ray.d);
             if !bsdf.is_delta() {
-                l += beta * all_lights(scene, &hit, &bsdf, &frame, wo, self.light_samples, sampler, counters);
+                l += beta
+                    * all_lights(
+                        scene,
+                        &hit,
+                        &bsdf,
+                        &frame,
+                        wo,
+                        self.light_samples,
+                        sampler,
+                        counters,
+                    );
                 break;
             }
             if depth == self.max_depth {
                 break;
             }
-            let Some(bs) = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2()) else { break };
+            let Some(bs) = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2()) else {
+                break;
+            };
             beta *= bs.weight;
             ray = spawn(&hit, frame.to_world(bs.wi));
         }

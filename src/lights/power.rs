@@ -16,7 +16,16 @@ impl LightPicker {
     /// By luminance of emitted power; `uniform` ignores power (for
     /// comparison and tests).
     pub fn new(lights: &[Light], uniform: bool) -> Self {
-        let mut w: Vec<f32> = lights.iter().map(|l| if uniform { 1.0 } else { luminance(l.power()).max(0.0) }).collect();
+        let mut w: Vec<f32> = lights
+            .iter()
+            .map(|l| {
+                if uniform {
+                    1.0
+                } else {
+                    luminance(l.power()).max(0.0)
+                }
+            })
+            .collect();
         let total: f32 = w.iter().sum();
         if total <= 0.0 {
             w.iter_mut().for_each(|x| *x = 1.0);
@@ -63,7 +72,12 @@ mod tests {
 
     #[test]
     fn light_picker_follows_power() {
-        let l = |i: f32| Light::Point(PointLight { position: Vec3A::ZERO, intensity: Rgb::splat(i) });
+        let l = |i: f32| {
+            Light::Point(PointLight {
+                position: Vec3A::ZERO,
+                intensity: Rgb::splat(i),
+            })
+        };
         let p = LightPicker::new(&[l(1.0), l(3.0), l(0.0)], false);
         let mut counts = [0u32; 3];
         for k in 0..10_000 {

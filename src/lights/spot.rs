@@ -23,11 +23,23 @@ pub struct SpotLight {
 impl SpotLight {
     /// `cone_degrees` and `falloff_degrees` are full angles; the falloff
     /// band is the outer part of the cone.
-    pub fn new(position: Vec3A, direction: Vec3A, intensity: Rgb, cone_degrees: f32, falloff_degrees: f32) -> Self {
+    pub fn new(
+        position: Vec3A,
+        direction: Vec3A,
+        intensity: Rgb,
+        cone_degrees: f32,
+        falloff_degrees: f32,
+    ) -> Self {
         let cos_total = (0.5 * cone_degrees).to_radians().cos();
         let inner = (cone_degrees - falloff_degrees).max(0.0);
         let cos_falloff = (0.5 * inner).to_radians().cos().max(cos_total);
-        Self { position, direction: direction.normalize(), intensity, cos_total, cos_falloff }
+        Self {
+            position,
+            direction: direction.normalize(),
+            intensity,
+            cos_total,
+            cos_falloff,
+        }
     }
 
     /// Angular falloff: 1 inside the inner cone, smoothstep to 0 at the edge.
@@ -52,7 +64,13 @@ impl SpotLight {
         if f == 0.0 {
             return None;
         }
-        Some(LightSample { wi, dist, li: self.intensity * f / dist2, pdf: 1.0, delta: true })
+        Some(LightSample {
+            wi,
+            dist,
+            li: self.intensity * f / dist2,
+            pdf: 1.0,
+            delta: true,
+        })
     }
 
     /// Φ = I·2π·[(1 − cos θfalloff) + (cos θfalloff − cos θtotal)/2]: the
@@ -78,7 +96,10 @@ mod tests {
         }
         let integral = sum * std::f64::consts::PI / n as f64;
         let closed = s.power().x as f64;
-        assert!((integral - closed).abs() / closed < 1e-3, "quadrature {integral} vs closed form {closed}");
+        assert!(
+            (integral - closed).abs() / closed < 1e-3,
+            "quadrature {integral} vs closed form {closed}"
+        );
     }
 
     #[test]
@@ -89,6 +110,9 @@ mod tests {
         let b = s.sample(Vec3A::new(0.0, 0.0, 0.5)).map(|l| l.li.x);
         let c = s.sample(Vec3A::new(-0.3536, 0.0, 0.3536)).map(|l| l.li.x);
         assert!(a.is_some() && a == b, "{a:?} vs {b:?}");
-        assert!((a.unwrap_or(0.0) - c.unwrap_or(1.0)).abs() < 1e-4, "{a:?} vs {c:?}");
+        assert!(
+            (a.unwrap_or(0.0) - c.unwrap_or(1.0)).abs() < 1e-4,
+            "{a:?} vs {c:?}"
+        );
     }
 }

@@ -41,12 +41,26 @@ pub struct Sampler {
 impl Sampler {
     pub fn new(kind: SamplerKind, x: u32, y: u32, index: u32, spp: u32, seed: u64) -> Self {
         let pixel_hash = mix64(((y as u64) << 32 | x as u64) ^ mix64(seed.wrapping_add(0x5851_f42d)));
-        Self { kind, pixel_hash, index, spp: spp.max(1), dim: 0, rng: Pcg32::for_sample(x, y, index, seed) }
+        Self {
+            kind,
+            pixel_hash,
+            index,
+            spp: spp.max(1),
+            dim: 0,
+            rng: Pcg32::for_sample(x, y, index, seed),
+        }
     }
 
     /// A plain independent sampler (tests, analytic checks).
     pub fn independent(rng: Pcg32) -> Self {
-        Self { kind: SamplerKind::Independent, pixel_hash: 0, index: 0, spp: 1, dim: 0, rng }
+        Self {
+            kind: SamplerKind::Independent,
+            pixel_hash: 0,
+            index: 0,
+            spp: 1,
+            dim: 0,
+            rng,
+        }
     }
 
     #[inline]
@@ -80,7 +94,10 @@ impl Sampler {
                 }
                 let s = permutation_element(self.index, strata, h as u32);
                 let j = self.rng.next_vec2();
-                Vec2::new(((s % nx) as f32 + j.x) / nx as f32, ((s / nx) as f32 + j.y) / ny as f32)
+                Vec2::new(
+                    ((s % nx) as f32 + j.x) / nx as f32,
+                    ((s / nx) as f32 + j.y) / ny as f32,
+                )
             }
             SamplerKind::Sobol => {
                 let h = self.dim_hash();
@@ -172,7 +189,11 @@ mod tests {
             }
             (sq / 200.0).sqrt()
         };
-        let (ind, strat, sob) = (err(SamplerKind::Independent), err(SamplerKind::Stratified), err(SamplerKind::Sobol));
+        let (ind, strat, sob) = (
+            err(SamplerKind::Independent),
+            err(SamplerKind::Stratified),
+            err(SamplerKind::Sobol),
+        );
         assert!(strat < 0.5 * ind, "stratified rmse {strat} vs independent {ind}");
         assert!(sob < 0.5 * ind, "sobol rmse {sob} vs independent {ind}");
     }

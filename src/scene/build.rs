@@ -2,7 +2,9 @@
 //! loaded and transformed, the BVH is built. Problems found here (a missing
 //! OBJ) are reported like validation problems.
 
-use super::desc::{IntegratorDesc, LightSelectionDesc, SamplerDesc, LightDesc, ObjectDesc, SceneDesc, TransformDesc};
+use super::desc::{
+    IntegratorDesc, LightDesc, LightSelectionDesc, ObjectDesc, SamplerDesc, SceneDesc, TransformDesc,
+};
 use super::problem::Problem;
 use super::runtime::{Film, Scene};
 use crate::accel::Bvh;
@@ -31,8 +33,12 @@ pub struct BuildStats {
 pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<Problem>> {
     let t0 = Instant::now();
     let mut problems = Vec::new();
-    let super::build_material::Materials { mut materials, textures, index, files: texture_files } =
-        super::build_material::build_materials(&desc.materials, base)?;
+    let super::build_material::Materials {
+        mut materials,
+        textures,
+        index,
+        files: texture_files,
+    } = super::build_material::build_materials(&desc.materials, base)?;
     let emitter = materials.len() as u32;
     materials.push(Material::Emitter);
 
@@ -44,22 +50,45 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
         let surface = |m: &Option<String>| m.as_ref().and_then(|n| index.get(n).copied()).unwrap_or(emitter);
         let _ = i;
         match l {
-            LightDesc::Point { position, intensity } => lights
-                .push(Light::Point(PointLight { position: (*position).into(), intensity: (*intensity).into() })),
-            LightDesc::Spot { position, direction, intensity, cone_degrees, falloff_degrees } => {
-                lights.push(Light::Spot(SpotLight::new(
-                    (*position).into(),
-                    (*direction).into(),
-                    (*intensity).into(),
-                    *cone_degrees,
-                    *falloff_degrees,
-                )))
-            }
-            LightDesc::Quad { corner, edge_u, edge_v, radiance, material } => {
-                let q = QuadLight::new((*corner).into(), (*edge_u).into(), (*edge_v).into(), (*radiance).into());
+            LightDesc::Point { position, intensity } => lights.push(Light::Point(PointLight {
+                position: (*position).into(),
+                intensity: (*intensity).into(),
+            })),
+            LightDesc::Spot {
+                position,
+                direction,
+                intensity,
+                cone_degrees,
+                falloff_degrees,
+            } => lights.push(Light::Spot(SpotLight::new(
+                (*position).into(),
+                (*direction).into(),
+                (*intensity).into(),
+                *cone_degrees,
+                *falloff_degrees,
+            ))),
+            LightDesc::Quad {
+                corner,
+                edge_u,
+                edge_v,
+                radiance,
+                material,
+            } => {
+                let q = QuadLight::new(
+                    (*corner).into(),
+                    (*edge_u).into(),
+                    (*edge_v).into(),
+                    (*radiance).into(),
+                );
                 push_quad_light(&mut lights, &mut shapes, surface(material), q);
             }
-            LightDesc::Rect { center, half_u, half_v, radiance, material } => {
+            LightDesc::Rect {
+                center,
+                half_u,
+                half_v,
+                radiance,
+                material,
+            } => {
                 let (c, u, v) = (Vec3A::from(*center), Vec3A::from(*half_u), Vec3A::from(*half_v));
                 let q = QuadLight::new(c - u - v, 2.0 * u, 2.0 * v, (*radiance).into());
                 push_quad_light(&mut lights, &mut shapes, surface(material), q);
@@ -181,10 +210,16 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
     }
     let integrator = match desc.integrator {
         IntegratorDesc::Direct { light_samples } => Integrator::Direct(Direct { light_samples }),
-        IntegratorDesc::Whitted { max_depth, light_samples } => {
-            Integrator::Whitted(Whitted { max_depth, light_samples })
-        }
-        IntegratorDesc::Path { max_depth, rr_depth, .. } => Integrator::Path(PathTracer {
+        IntegratorDesc::Whitted {
+            max_depth,
+            light_samples,
+        } => Integrator::Whitted(Whitted {
+            max_depth,
+            light_samples,
+        }),
+        IntegratorDesc::Path {
+            max_depth, rr_depth, ..
+        } => Integrator::Path(PathTracer {
             max_depth: u32::try_from(max_depth).unwrap_or(u32::MAX),
             rr_depth,
         }),
@@ -205,7 +240,13 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
         },
         light_picker: LightPicker::new(
             &lights,
-            matches!(desc.integrator, IntegratorDesc::Path { light_selection: LightSelectionDesc::Uniform, .. }),
+            matches!(
+                desc.integrator,
+                IntegratorDesc::Path {
+                    light_selection: LightSelectionDesc::Uniform,
+                    ..
+                }
+            ),
         ),
         output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
         integrator,
@@ -219,7 +260,12 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
     };
     Ok((
         scene,
-        BuildStats { bvh_time, load_time, triangles, texture_files },
+        BuildStats {
+            bvh_time,
+            load_time,
+            triangles,
+            texture_files,
+        },
     ))
 }
 

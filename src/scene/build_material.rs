@@ -17,46 +17,78 @@ pub struct Materials {
     pub files: Vec<PathBuf>,
 }
 
-pub fn build_materials(descs: &BTreeMap<String, MaterialDesc>, base: &Path) -> Result<Materials, Vec<Problem>> {
-    let mut b = Builder { base, textures: Vec::new(), by_path: HashMap::new(), problems: Vec::new() };
+pub fn build_materials(
+    descs: &BTreeMap<String, MaterialDesc>,
+    base: &Path,
+) -> Result<Materials, Vec<Problem>> {
+    let mut b = Builder {
+        base,
+        textures: Vec::new(),
+        by_path: HashMap::new(),
+        problems: Vec::new(),
+    };
     let mut materials = Vec::new();
     let mut index = HashMap::new();
     for (name, m) in descs {
         index.insert(name.clone(), materials.len() as u32);
         let p = |field: &str| format!("materials.{name}.{field}");
         let mat = match m {
-            MaterialDesc::Lambert { albedo } => Material::Lambert { albedo: b.color(albedo, &p("albedo")) },
-            MaterialDesc::OrenNayar { albedo, sigma } => {
-                Material::OrenNayar { albedo: b.color(albedo, &p("albedo")), sigma: *sigma }
-            }
-            MaterialDesc::Phong { diffuse, specular, exponent } => Material::Phong {
+            MaterialDesc::Lambert { albedo } => Material::Lambert {
+                albedo: b.color(albedo, &p("albedo")),
+            },
+            MaterialDesc::OrenNayar { albedo, sigma } => Material::OrenNayar {
+                albedo: b.color(albedo, &p("albedo")),
+                sigma: *sigma,
+            },
+            MaterialDesc::Phong {
+                diffuse,
+                specular,
+                exponent,
+            } => Material::Phong {
                 kd: b.color(diffuse, &p("diffuse")),
                 ks: b.color(specular, &p("specular")),
                 exponent: *exponent,
             },
-            MaterialDesc::BlinnPhong { diffuse, specular, exponent } => Material::BlinnPhong {
+            MaterialDesc::BlinnPhong {
+                diffuse,
+                specular,
+                exponent,
+            } => Material::BlinnPhong {
                 kd: b.color(diffuse, &p("diffuse")),
                 ks: b.color(specular, &p("specular")),
                 exponent: *exponent,
             },
-            MaterialDesc::CookTorrance { distribution, roughness, fresnel } => Material::CookTorrance {
+            MaterialDesc::CookTorrance {
+                distribution,
+                roughness,
+                fresnel,
+            } => Material::CookTorrance {
                 distribution: match distribution {
                     DistributionDesc::Ggx => Distribution::Ggx,
                     DistributionDesc::Beckmann => Distribution::Beckmann,
                 },
                 roughness: *roughness,
                 fresnel: match fresnel {
-                    FresnelDesc::Conductor { eta, k } => Fresnel::Conductor { eta: (*eta).into(), k: (*k).into() },
+                    FresnelDesc::Conductor { eta, k } => Fresnel::Conductor {
+                        eta: (*eta).into(),
+                        k: (*k).into(),
+                    },
                     FresnelDesc::Metal(m) => metal(*m).fresnel(),
                     FresnelDesc::Schlick { f0 } => Fresnel::Schlick { f0: (*f0).into() },
                 },
             },
-            MaterialDesc::MetalPlastic { base_color, roughness, metalness } => Material::MetalPlastic {
+            MaterialDesc::MetalPlastic {
+                base_color,
+                roughness,
+                metalness,
+            } => Material::MetalPlastic {
                 base_color: b.color(base_color, &p("base_color")),
                 roughness: *roughness,
                 metalness: *metalness,
             },
-            MaterialDesc::Mirror { tint } => Material::Mirror { tint: b.color(tint, &p("tint")) },
+            MaterialDesc::Mirror { tint } => Material::Mirror {
+                tint: b.color(tint, &p("tint")),
+            },
             MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass {
                 ior: *ior,
                 tint: b.color(tint, &p("tint")),
@@ -72,7 +104,12 @@ pub fn build_materials(descs: &BTreeMap<String, MaterialDesc>, base: &Path) -> R
         return Err(b.problems);
     }
     let files = b.by_path.keys().cloned().collect();
-    Ok(Materials { materials, textures: b.textures, index, files })
+    Ok(Materials {
+        materials,
+        textures: b.textures,
+        index,
+        files,
+    })
 }
 
 pub fn metal(m: MetalDesc) -> Metal {
@@ -95,7 +132,11 @@ impl Builder<'_> {
     fn color(&mut self, c: &ColorDesc, path: &str) -> ColorTex {
         match c {
             ColorDesc::Rgb(c) => ColorTex::Const((*c).into()),
-            ColorDesc::Checker { a, b, scale } => ColorTex::Checker { a: (*a).into(), b: (*b).into(), scale: *scale },
+            ColorDesc::Checker { a, b, scale } => ColorTex::Checker {
+                a: (*a).into(),
+                b: (*b).into(),
+                scale: *scale,
+            },
             ColorDesc::Image(file) => {
                 let full = self.base.join(file);
                 if let Some(&i) = self.by_path.get(&full) {

@@ -110,7 +110,8 @@ pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded
 /// RON text → [`SceneDesc`]; a syntax or type error becomes one diagnostic at
 /// the position ron reports, with a suggestion for misspelled names.
 pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
-    let opts = ron::Options::default();
+    // `implicit_some` lets optional fields be written bare (`focus_distance: 3.5`).
+    let opts = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     opts.from_str::<SceneDesc>(text).map_err(|e| {
         let start = offset_of(text, e.span.start.line, e.span.start.col);
         let mut end = offset_of(text, e.span.end.line, e.span.end.col).max(start);

@@ -6,9 +6,9 @@ use crate::camera::Camera;
 use crate::geometry::{Hit, Mesh, Shape};
 use crate::integrators::Integrator;
 use crate::lights::{Light, LightPicker};
-use crate::sampler::SamplerKind;
 use crate::materials::{Material, Texture};
 use crate::math::Ray;
+use crate::sampler::SamplerKind;
 use std::path::PathBuf;
 
 /// Image size and sampling.

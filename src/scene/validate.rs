@@ -1,9 +1,9 @@
 //! Semantic checks on a parsed scene. Returns every problem at once, each
 //! with its path in the scene, so a user fixes a file in one round trip.
 
-use super::desc::{ColorDesc, FresnelDesc, 
-    CameraDesc, Color, FilmDesc, IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
-    TransformDesc, V3,
+use super::desc::{
+    CameraDesc, Color, ColorDesc, FilmDesc, FresnelDesc, IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc,
+    SceneDesc, TransformDesc, V3,
 };
 use super::problem::{Problem, suggest};
 use glam::Vec3;
@@ -202,10 +202,17 @@ impl Checker {
         };
         match i {
             IntegratorDesc::Direct { light_samples } => samples(self, *light_samples),
-            IntegratorDesc::Whitted { max_depth, light_samples } => {
+            IntegratorDesc::Whitted {
+                max_depth,
+                light_samples,
+            } => {
                 samples(self, *light_samples);
                 if *max_depth > MAX_DEPTH {
-                    self.push("integrator.max_depth", format!("max_depth {max_depth} is above {MAX_DEPTH}"), "a handful of specular bounces is enough; 5 is typical");
+                    self.push(
+                        "integrator.max_depth",
+                        format!("max_depth {max_depth} is above {MAX_DEPTH}"),
+                        "a handful of specular bounces is enough; 5 is typical",
+                    );
                 }
             }
             IntegratorDesc::Path { max_depth, .. } => {
@@ -225,15 +232,21 @@ impl Checker {
     fn color_param(&mut self, path: &str, c: &ColorDesc, upper: Option<f32>) {
         match c {
             ColorDesc::Rgb(c) => self.color(path, c, upper),
-            ColorDesc::Image(f) if f.trim().is_empty() => {
-                self.push(path, "empty texture path", "give an image file (PNG, JPEG) relative to the scene file")
-            }
+            ColorDesc::Image(f) if f.trim().is_empty() => self.push(
+                path,
+                "empty texture path",
+                "give an image file (PNG, JPEG) relative to the scene file",
+            ),
             ColorDesc::Image(_) => {}
             ColorDesc::Checker { a, b, scale } => {
                 self.color(&format!("{path}.a"), a, upper);
                 self.color(&format!("{path}.b"), b, upper);
                 if !(*scale > 0.0 && scale.is_finite()) {
-                    self.push(&format!("{path}.scale"), format!("checker scale {scale} must be > 0"), "it is the number of squares per UV unit");
+                    self.push(
+                        &format!("{path}.scale"),
+                        format!("checker scale {scale} must be > 0"),
+                        "it is the number of squares per UV unit",
+                    );
                 }
             }
         }
@@ -251,42 +264,100 @@ impl Checker {
             MaterialDesc::Lambert { albedo } => self.color_param(&p("albedo"), albedo, Some(1.0)),
             MaterialDesc::OrenNayar { albedo, sigma } => {
                 self.color_param(&p("albedo"), albedo, Some(1.0));
-                self.range(&p("sigma"), *sigma, 0.0, 2.0, "sigma", "sigma is a unitless roughness: 0 is Lambert, 1 is very rough");
+                self.range(
+                    &p("sigma"),
+                    *sigma,
+                    0.0,
+                    2.0,
+                    "sigma",
+                    "sigma is a unitless roughness: 0 is Lambert, 1 is very rough",
+                );
             }
-            MaterialDesc::Phong { diffuse, specular, exponent } | MaterialDesc::BlinnPhong { diffuse, specular, exponent } => {
+            MaterialDesc::Phong {
+                diffuse,
+                specular,
+                exponent,
+            }
+            | MaterialDesc::BlinnPhong {
+                diffuse,
+                specular,
+                exponent,
+            } => {
                 self.color_param(&p("diffuse"), diffuse, Some(1.0));
                 self.color_param(&p("specular"), specular, Some(1.0));
-                self.range(&p("exponent"), *exponent, 0.0, 100_000.0, "exponent", "the lobe sharpness: 1 is broad, 1000 is nearly a mirror");
+                self.range(
+                    &p("exponent"),
+                    *exponent,
+                    0.0,
+                    100_000.0,
+                    "exponent",
+                    "the lobe sharpness: 1 is broad, 1000 is nearly a mirror",
+                );
                 if let (ColorDesc::Rgb(d), ColorDesc::Rgb(s)) = (diffuse, specular)
                     && d.iter().zip(s).any(|(a, b)| a + b > 1.0 + 1e-6)
                 {
                     self.push(&p("specular"), format!("diffuse {d:?} + specular {s:?} exceeds 1 in a channel"), "keep diffuse + specular ≤ 1 per channel so the surface reflects no more light than it receives");
                 }
             }
-            MaterialDesc::CookTorrance { roughness, fresnel, .. } => {
-                self.range(&p("roughness"), *roughness, 0.0, 1.0, "roughness", "0 is polished, 1 is very rough (α = roughness²)");
+            MaterialDesc::CookTorrance {
+                roughness, fresnel, ..
+            } => {
+                self.range(
+                    &p("roughness"),
+                    *roughness,
+                    0.0,
+                    1.0,
+                    "roughness",
+                    "0 is polished, 1 is very rough (α = roughness²)",
+                );
                 match fresnel {
                     FresnelDesc::Conductor { eta, k } => {
                         self.color(&p("fresnel.eta"), eta, None);
                         self.color(&p("fresnel.k"), k, None);
                         if eta.contains(&0.0) {
-                            self.push(&p("fresnel.eta"), "a conductor's η must be > 0", "use a preset such as `Metal(Gold)`");
+                            self.push(
+                                &p("fresnel.eta"),
+                                "a conductor's η must be > 0",
+                                "use a preset such as `Metal(Gold)`",
+                            );
                         }
                     }
                     FresnelDesc::Schlick { f0 } => self.color(&p("fresnel.f0"), f0, Some(1.0)),
                     FresnelDesc::Metal(_) => {}
                 }
             }
-            MaterialDesc::MetalPlastic { base_color, roughness, metalness } => {
+            MaterialDesc::MetalPlastic {
+                base_color,
+                roughness,
+                metalness,
+            } => {
                 self.color_param(&p("base_color"), base_color, Some(1.0));
-                self.range(&p("roughness"), *roughness, 0.0, 1.0, "roughness", "0 is polished, 1 is very rough");
-                self.range(&p("metalness"), *metalness, 0.0, 1.0, "metalness", "0 is plastic, 1 is metal");
+                self.range(
+                    &p("roughness"),
+                    *roughness,
+                    0.0,
+                    1.0,
+                    "roughness",
+                    "0 is polished, 1 is very rough",
+                );
+                self.range(
+                    &p("metalness"),
+                    *metalness,
+                    0.0,
+                    1.0,
+                    "metalness",
+                    "0 is plastic, 1 is metal",
+                );
             }
             MaterialDesc::Mirror { tint } => self.color_param(&p("tint"), tint, Some(1.0)),
             MaterialDesc::Glass { ior, tint, .. } => {
                 self.color_param(&p("tint"), tint, Some(1.0));
                 if !(*ior > 0.0 && ior.is_finite() && *ior <= 10.0) {
-                    self.push(&p("ior"), format!("index of refraction {ior} is outside (0, 10]"), "glass is about 1.5, water 1.33, diamond 2.42");
+                    self.push(
+                        &p("ior"),
+                        format!("index of refraction {ior} is outside (0, 10]"),
+                        "glass is about 1.5, water 1.33, diamond 2.42",
+                    );
                 }
             }
         }
@@ -308,24 +379,50 @@ impl Checker {
                 self.finite(&p("position"), position);
                 self.color(&p("intensity"), intensity, None);
             }
-            LightDesc::Spot { position, direction, intensity, cone_degrees, falloff_degrees } => {
+            LightDesc::Spot {
+                position,
+                direction,
+                intensity,
+                cone_degrees,
+                falloff_degrees,
+            } => {
                 self.finite(&p("position"), position);
                 self.nonzero(&p("direction"), direction, "`direction`");
                 self.color(&p("intensity"), intensity, None);
                 if !(*cone_degrees > 0.0 && *cone_degrees < 180.0) {
-                    self.push(&p("cone_degrees"), format!("cone angle {cone_degrees} is outside (0, 180)"), "the full opening angle of the cone, in degrees");
+                    self.push(
+                        &p("cone_degrees"),
+                        format!("cone angle {cone_degrees} is outside (0, 180)"),
+                        "the full opening angle of the cone, in degrees",
+                    );
                 }
                 if !(*falloff_degrees >= 0.0 && *falloff_degrees <= *cone_degrees) {
-                    self.push(&p("falloff_degrees"), format!("falloff {falloff_degrees} is outside [0, cone_degrees = {cone_degrees}]"), "the falloff band is the outer part of the cone");
+                    self.push(
+                        &p("falloff_degrees"),
+                        format!("falloff {falloff_degrees} is outside [0, cone_degrees = {cone_degrees}]"),
+                        "the falloff band is the outer part of the cone",
+                    );
                 }
             }
-            LightDesc::Quad { corner, edge_u, edge_v, radiance, material } => {
+            LightDesc::Quad {
+                corner,
+                edge_u,
+                edge_v,
+                radiance,
+                material,
+            } => {
                 self.finite(&p("corner"), corner);
                 self.parallelogram(path, "edge_u", edge_u, "edge_v", edge_v);
                 self.color(&p("radiance"), radiance, None);
                 surface(self, material);
             }
-            LightDesc::Rect { center, half_u, half_v, radiance, material } => {
+            LightDesc::Rect {
+                center,
+                half_u,
+                half_v,
+                radiance,
+                material,
+            } => {
                 self.finite(&p("center"), center);
                 self.parallelogram(path, "half_u", half_u, "half_v", half_v);
                 self.color(&p("radiance"), radiance, None);

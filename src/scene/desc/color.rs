@@ -17,7 +17,11 @@ pub enum ColorDesc {
     /// Image file, relative to the scene file.
     Image(String),
     /// Alternating squares of `a` and `b`, `scale` squares per UV unit.
-    Checker { a: [f32; 3], b: [f32; 3], scale: f32 },
+    Checker {
+        a: [f32; 3],
+        b: [f32; 3],
+        scale: f32,
+    },
 }
 
 impl From<[f32; 3]> for ColorDesc {
@@ -48,7 +52,9 @@ impl<'de> Deserialize<'de> for ColorDesc {
             fn visit_seq<A: SeqAccess<'de>>(self, mut s: A) -> Result<ColorDesc, A::Error> {
                 let mut v = [0.0f32; 3];
                 for (i, c) in v.iter_mut().enumerate() {
-                    *c = s.next_element()?.ok_or_else(|| de::Error::invalid_length(i, &"3 channels (r, g, b)"))?;
+                    *c = s
+                        .next_element()?
+                        .ok_or_else(|| de::Error::invalid_length(i, &"3 channels (r, g, b)"))?;
                 }
                 if s.next_element::<f32>()?.is_some() {
                     return Err(de::Error::invalid_length(4, &"3 channels (r, g, b)"));
@@ -70,10 +76,22 @@ impl<'de> Deserialize<'de> for ColorDesc {
             fn visit_map<A: MapAccess<'de>>(self, m: A) -> Result<ColorDesc, A::Error> {
                 let f = TextureFields::deserialize(de::value::MapAccessDeserializer::new(m))?;
                 match f {
-                    TextureFields { file: Some(file), a: None, b: None, scale: None } => Ok(ColorDesc::Image(file)),
-                    TextureFields { file: None, a: Some(a), b: Some(b), scale } => {
-                        Ok(ColorDesc::Checker { a, b, scale: scale.unwrap_or(1.0) })
-                    }
+                    TextureFields {
+                        file: Some(file),
+                        a: None,
+                        b: None,
+                        scale: None,
+                    } => Ok(ColorDesc::Image(file)),
+                    TextureFields {
+                        file: None,
+                        a: Some(a),
+                        b: Some(b),
+                        scale,
+                    } => Ok(ColorDesc::Checker {
+                        a,
+                        b,
+                        scale: scale.unwrap_or(1.0),
+                    }),
                     _ => Err(de::Error::custom(format!("expected {EXPECTED}"))),
                 }
             }
@@ -116,13 +134,26 @@ mod tests {
     fn color_desc_accepts_every_form() {
         assert_eq!(parse("(0.5, 1, 0)").ok(), Some(ColorDesc::Rgb([0.5, 1.0, 0.0])));
         assert_eq!(parse("0.25").ok(), Some(ColorDesc::Rgb([0.25; 3])));
-        assert_eq!(parse("\"wood.png\"").ok(), Some(ColorDesc::Image("wood.png".into())));
-        assert_eq!(parse("Image(file: \"wood.png\")").ok(), Some(ColorDesc::Image("wood.png".into())));
+        assert_eq!(
+            parse("\"wood.png\"").ok(),
+            Some(ColorDesc::Image("wood.png".into()))
+        );
+        assert_eq!(
+            parse("Image(file: \"wood.png\")").ok(),
+            Some(ColorDesc::Image("wood.png".into()))
+        );
         assert_eq!(
             parse("Checker(a: (1, 1, 1), b: (0, 0, 0), scale: 4)").ok(),
-            Some(ColorDesc::Checker { a: [1.0; 3], b: [0.0; 3], scale: 4.0 })
+            Some(ColorDesc::Checker {
+                a: [1.0; 3],
+                b: [0.0; 3],
+                scale: 4.0
+            })
         );
         assert!(parse("(1, 2)").is_err() && parse("(1, 2, 3, 4)").is_err());
-        assert!(parse("Checker(a: (1, 1, 1), c: (0, 0, 0))").is_err(), "unknown field");
+        assert!(
+            parse("Checker(a: (1, 1, 1), c: (0, 0, 0))").is_err(),
+            "unknown field"
+        );
     }
 }

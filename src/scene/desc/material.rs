@@ -14,9 +14,17 @@ pub enum MaterialDesc {
     /// unitless roughness ≥ 0 (0 = Lambert; useful up to about 1), not an angle.
     OrenNayar { albedo: ColorDesc, sigma: f32 },
     /// Energy-normalised (modified) Phong: diffuse/π + specular·(n+2)/(2π)·cosⁿα.
-    Phong { diffuse: ColorDesc, specular: ColorDesc, exponent: f32 },
+    Phong {
+        diffuse: ColorDesc,
+        specular: ColorDesc,
+        exponent: f32,
+    },
     /// Energy-normalised Blinn–Phong: diffuse/π + specular·(n+2)/(8π)·cosⁿθh.
-    BlinnPhong { diffuse: ColorDesc, specular: ColorDesc, exponent: f32 },
+    BlinnPhong {
+        diffuse: ColorDesc,
+        specular: ColorDesc,
+        exponent: f32,
+    },
     /// Microfacet reflection (Smith height-correlated masking-shadowing).
     /// `roughness` ∈ [0, 1], α = roughness².
     CookTorrance {
@@ -27,7 +35,11 @@ pub enum MaterialDesc {
     },
     /// The report's metal/plastic: a diffuse base under a GGX coat, mixed by
     /// `metalness` ∈ [0, 1] as in glTF's metallic–roughness model.
-    MetalPlastic { base_color: ColorDesc, roughness: f32, metalness: f32 },
+    MetalPlastic {
+        base_color: ColorDesc,
+        roughness: f32,
+        metalness: f32,
+    },
     /// Perfect specular reflection.
     Mirror {
         #[serde(default = "white")]

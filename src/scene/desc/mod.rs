@@ -25,8 +25,8 @@ mod object;
 mod transform;
 
 pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, SamplerDesc};
-pub use light::LightDesc;
 pub use color::ColorDesc;
+pub use light::LightDesc;
 pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
 pub use object::ObjectDesc;
 pub use transform::TransformDesc;
