@@ -5,6 +5,7 @@
 //! scene.
 
 pub mod accel;
+pub mod geometry;
 pub mod materials;
 pub mod math;
 pub mod scene;
