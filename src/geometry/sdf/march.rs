@@ -27,13 +27,20 @@ pub struct MarchParams {
     /// Hit threshold per unit of distance from the ray origin (radians, about
     /// a tenth of a pixel's angular size at 1000 pixels over 60°).
     pub eps_per_distance: f32,
-    /// Fraction of the distance stepped when [`Sdf::is_exact`] is false.
+    /// Multiple of the distance stepped over a bound (`1 ≤ ω < 2`): the
+    /// over-relaxation of Keinert et al. 2014, "Enhanced sphere tracing",
+    /// <https://doi.org/10.2312/stag.20141233>. A step that leaves the last
+    /// empty ball is taken back, so the result is the same as with `ω = 1`,
+    /// in fewer steps along surfaces the ray runs close to.
+    pub over_relax: f32,
+    /// Fraction of the distance stepped when [`Sdf::is_exact`] is false
+    /// (no over-relaxation: the estimate is not a bound to check against).
     pub estimate_step: f32,
 }
 
 impl Default for MarchParams {
     fn default() -> Self {
-        Self { max_steps: 256, min_eps: 1e-4, eps_per_distance: 1e-4, estimate_step: 0.9 }
+        Self { max_steps: 256, min_eps: 1e-4, eps_per_distance: 1e-4, over_relax: 1.6, estimate_step: 0.9 }
     }
 }
 
@@ -60,11 +67,14 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
     let Some((t_start, t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
         return SdfTrace { hit: None, steps: 0 };
     };
+    let exact = sdf.is_exact();
+    let omega = if exact { params.over_relax } else { params.estimate_step };
     // Distances are along the ray; t advances by distance / |d|.
-    let len = ray.d.length();
-    let step = (if sdf.is_exact() { 1.0 } else { params.estimate_step }) / len;
+    let inv_len = ray.d.length().recip();
     let mut t = t_start;
     let mut side = 1.0;
+    // Previous distance and step, both along the ray.
+    let (mut d_prev, mut step_prev) = (0.0f32, 0.0f32);
     for steps in 1..=params.max_steps {
         let mut d = sdf.distance(ray.at(t));
         if steps == 1 && d < 0.0 {
@@ -72,15 +82,36 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
             side = -1.0;
         }
         d *= side;
-        if d < params.eps_at(t * len) {
-            // A last step toward the surface; a bound cannot cross it.
-            let t_hit = (t + d * step).clamp(t_start, t_end);
-            return SdfTrace { hit: Some(t_hit), steps };
+        if step_prev > d_prev && d.abs() + d_prev < step_prev {
+            // The relaxed step left the last empty ball without landing in a
+            // new one that overlaps it: go back to that ball's edge.
+            t += (d_prev - step_prev) * inv_len;
+            step_prev = d_prev;
+            continue;
         }
-        t += d * step;
-        if t > t_end {
+        let eps = params.eps_at(t / inv_len);
+        if d < 0.0 && step_prev > 0.0 {
+            // Overshot (only an estimate can): bisect the last step down to eps.
+            let (mut outside, mut inside, mut steps) = (t - step_prev * inv_len, t, steps);
+            while (inside - outside) > eps * inv_len && steps < params.max_steps {
+                let mid = 0.5 * (outside + inside);
+                steps += 1;
+                if side * sdf.distance(ray.at(mid)) < 0.0 { inside = mid } else { outside = mid }
+            }
+            return SdfTrace { hit: Some(outside.clamp(t_start, t_end)), steps };
+        }
+        if d.abs() < eps {
+            // A last step toward the surface, only for a bound: it cannot cross.
+            let t_hit = if exact && d > 0.0 { t + d * inv_len } else { t };
+            return SdfTrace { hit: Some(t_hit.clamp(t_start, t_end)), steps };
+        }
+        // The empty ball reaches past the end: nothing left to hit.
+        if t + d * inv_len > t_end {
             return SdfTrace { hit: None, steps };
         }
+        let step = (d * omega).min((t_end - t) / inv_len);
+        t += step * inv_len;
+        (d_prev, step_prev) = (d, step);
     }
     SdfTrace { hit: None, steps: params.max_steps }
 }
