@@ -43,7 +43,13 @@ pub struct MarchParams {
 
 impl Default for MarchParams {
     fn default() -> Self {
-        Self { max_steps: 512, min_eps: 1e-4, eps_per_distance: 1e-4, over_relax: 1.6, estimate_step: 0.9 }
+        Self {
+            max_steps: 512,
+            min_eps: 1e-4,
+            eps_per_distance: 1e-4,
+            over_relax: 1.6,
+            estimate_step: 0.9,
+        }
     }
 }
 
@@ -68,10 +74,17 @@ pub struct SdfTrace {
 /// be unit length; `t` is the ray parameter.
 pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams) -> SdfTrace {
     let Some((t_start, t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
-        return SdfTrace { hit: None, steps: 0 };
+        return SdfTrace {
+            hit: None,
+            steps: 0,
+        };
     };
     let exact = sdf.is_exact();
-    let omega = if exact { params.over_relax } else { params.estimate_step };
+    let omega = if exact {
+        params.over_relax
+    } else {
+        params.estimate_step
+    };
     // Distances are along the ray; t advances by distance / |d|.
     let inv_len = ray.d.length().recip();
     let mut t = t_start;
@@ -96,7 +109,10 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
         if d.abs() < eps {
             // One last step onto the surface, only for a bound: it cannot cross.
             let t_hit = if exact { t + d * inv_len } else { t };
-            return SdfTrace { hit: Some(t_hit.clamp(t_start, t_end)), steps };
+            return SdfTrace {
+                hit: Some(t_hit.clamp(t_start, t_end)),
+                steps,
+            };
         }
         if d < 0.0 {
             // Overshot (an estimate can): bisect the last step down to eps.
@@ -104,9 +120,16 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
             while inside - outside > eps * inv_len && steps < params.max_steps {
                 let mid = 0.5 * (outside + inside);
                 steps += 1;
-                if side * sdf.distance(ray.at(mid)) < 0.0 { inside = mid } else { outside = mid }
+                if side * sdf.distance(ray.at(mid)) < 0.0 {
+                    inside = mid
+                } else {
+                    outside = mid
+                }
             }
-            return SdfTrace { hit: Some(outside.clamp(t_start, t_end)), steps };
+            return SdfTrace {
+                hit: Some(outside.clamp(t_start, t_end)),
+                steps,
+            };
         }
         // The empty ball reaches past the end: nothing left to hit.
         if t + d * inv_len > t_end {
@@ -116,7 +139,10 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
         t += step * inv_len;
         (d_prev, step_prev) = (d, step);
     }
-    SdfTrace { hit: None, steps: params.max_steps }
+    SdfTrace {
+        hit: None,
+        steps: params.max_steps,
+    }
 }
 
 /// Whether anything lies on `ray` within `[t_min, t_max]` (shadow rays).
@@ -136,7 +162,9 @@ pub fn normal(sdf: &Sdf, p: Vec3A, h: f32) -> Vec3A {
         Vec3A::new(-1.0, 1.0, -1.0),
         Vec3A::new(1.0, 1.0, 1.0),
     ];
-    let g = K.iter().fold(Vec3A::ZERO, |g, &k| g + k * sdf.distance(p + k * h));
+    let g = K
+        .iter()
+        .fold(Vec3A::ZERO, |g, &k| g + k * sdf.distance(p + k * h));
     // A flat spot (the centre of a sphere) has no gradient: pick any normal.
     g.normalize_or(Vec3A::Y)
 }

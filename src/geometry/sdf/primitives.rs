@@ -37,7 +37,11 @@ pub fn capsule(p: Vec3A, a: Vec3A, b: Vec3A, radius: f32) -> f32 {
     let ba = b - a;
     // Parameter of the closest point on the segment (a point if a = b).
     let bb = ba.length_squared();
-    let h = if bb > 0.0 { (pa.dot(ba) / bb).clamp(0.0, 1.0) } else { 0.0 };
+    let h = if bb > 0.0 {
+        (pa.dot(ba) / bb).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     (pa - ba * h).length() - radius
 }
 
@@ -70,7 +74,11 @@ mod tests {
     fn box_surface(y: Vec3A, b: Vec3A) -> Vec3A {
         let c = y.clamp(-b, b);
         // Inside: scale out along the ray from the centre to the nearest face.
-        if c != y { c } else { y / (y / b).abs().max_element() }
+        if c != y {
+            c
+        } else {
+            y / (y / b).abs().max_element()
+        }
     }
 
     /// Checks `d` against the distance to dense surface samples at random
@@ -80,10 +88,19 @@ mod tests {
         let mut rng = Pcg32::new(11, name.len() as u64);
         for _ in 0..400 {
             let q = vec_in(&mut rng, half);
-            let sampled = surface.iter().map(|s| (q - *s).length()).fold(f32::INFINITY, f32::min);
+            let sampled = surface
+                .iter()
+                .map(|s| (q - *s).length())
+                .fold(f32::INFINITY, f32::min);
             let got = d(q).abs();
-            assert!(got <= sampled + 1e-4, "{name} at {q}: |d| = {got} exceeds sampled distance {sampled}");
-            assert!(got >= sampled - tol, "{name} at {q}: |d| = {got}, expected ≈ {sampled} (tol {tol})");
+            assert!(
+                got <= sampled + 1e-4,
+                "{name} at {q}: |d| = {got} exceeds sampled distance {sampled}"
+            );
+            assert!(
+                got >= sampled - tol,
+                "{name} at {q}: |d| = {got}, expected ≈ {sampled} (tol {tol})"
+            );
         }
     }
 
@@ -109,12 +126,14 @@ mod tests {
     fn round_box_is_exact() {
         let (b, r) = (Vec3A::new(1.0, 0.5, 0.8), 0.2);
         let inner = b - Vec3A::splat(r);
-        let s = samples(80_000, |rng| loop {
-            // Push the closest point of the inner box out by the radius.
-            let y = vec_in(rng, 2.0);
-            let c = y.clamp(-inner, inner);
-            if c != y {
-                break c + r * (y - c).normalize();
+        let s = samples(80_000, |rng| {
+            loop {
+                // Push the closest point of the inner box out by the radius.
+                let y = vec_in(rng, 2.0);
+                let c = y.clamp(-inner, inner);
+                if c != y {
+                    break c + r * (y - c).normalize();
+                }
             }
         });
         check_exact("round_box", |p| round_box(p, b, r), &s, 2.5, 0.03);
@@ -143,7 +162,10 @@ mod tests {
         });
         check_exact("capsule", |p| capsule(p, a, b, radius), &s, 2.0, 0.03);
         // Degenerate segment: a ball.
-        assert!((capsule(Vec3A::X * 2.0, a, a, 0.5) - ((Vec3A::X * 2.0 - a).length() - 0.5)).abs() < 1e-6);
+        assert!(
+            (capsule(Vec3A::X * 2.0, a, a, 0.5) - ((Vec3A::X * 2.0 - a).length() - 0.5)).abs()
+                < 1e-6
+        );
     }
 
     #[test]
@@ -172,7 +194,10 @@ mod tests {
             let q = vec_in(&mut rng, 5.0);
             // Foot of the perpendicular lies on the plane, at distance |d|.
             let d = plane(q, n, 0.4);
-            assert!(plane(q - d * n, n, 0.4).abs() < 1e-5, "foot of {q} is off the plane");
+            assert!(
+                plane(q - d * n, n, 0.4).abs() < 1e-5,
+                "foot of {q} is off the plane"
+            );
         }
     }
 }

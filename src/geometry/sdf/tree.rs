@@ -34,18 +34,32 @@ impl Sdf {
     /// If `root` or a child index is out of order or out of range: a bug in
     /// the builder, which validates user input first.
     pub fn new(mut nodes: Vec<SdfNode>, root: u32) -> Self {
-        assert!((root as usize) < nodes.len(), "SDF root {root} outside {} nodes", nodes.len());
+        assert!(
+            (root as usize) < nodes.len(),
+            "SDF root {root} outside {} nodes",
+            nodes.len()
+        );
         for (i, node) in nodes.iter_mut().enumerate() {
-            assert!(node.children().iter().all(|&c| (c as usize) < i), "SDF node {i} has a child not before it");
+            assert!(
+                node.children().iter().all(|&c| (c as usize) < i),
+                "SDF node {i} has a child not before it"
+            );
             match node {
                 SdfNode::Plane { normal, .. } => *normal = normal.normalize_or(Vec3A::Y),
                 SdfNode::Transform { rotate, .. } => *rotate = rotate.normalize(),
                 _ => {}
             }
         }
-        let is_exact = !nodes.iter().any(|n| matches!(n, SdfNode::Mandelbulb { .. }));
+        let is_exact = !nodes
+            .iter()
+            .any(|n| matches!(n, SdfNode::Mandelbulb { .. }));
         let bounds = bounds_of(&nodes, root).0;
-        Self { nodes, root, is_exact, bounds }
+        Self {
+            nodes,
+            root,
+            is_exact,
+            bounds,
+        }
     }
 
     /// A tree of one node.
@@ -86,21 +100,45 @@ impl Sdf {
         match self.nodes[i as usize] {
             SdfNode::Sphere { radius } => sphere(p, radius),
             SdfNode::Box { half_extents } => cuboid(p, half_extents),
-            SdfNode::RoundBox { half_extents, radius } => round_box(p, half_extents, radius),
+            SdfNode::RoundBox {
+                half_extents,
+                radius,
+            } => round_box(p, half_extents, radius),
             SdfNode::Torus { major, minor } => torus(p, major, minor),
             SdfNode::Capsule { a, b, radius } => capsule(p, a, b, radius),
-            SdfNode::Cylinder { radius, half_height } => cylinder(p, radius, half_height),
+            SdfNode::Cylinder {
+                radius,
+                half_height,
+            } => cylinder(p, radius, half_height),
             SdfNode::Plane { normal, offset } => plane(p, normal, offset),
-            SdfNode::Mandelbulb { power, iterations, bailout } => mandelbulb(p, power, iterations, bailout),
+            SdfNode::Mandelbulb {
+                power,
+                iterations,
+                bailout,
+            } => mandelbulb(p, power, iterations, bailout),
             SdfNode::Menger { iterations } => menger(p, iterations),
             SdfNode::Union { children: [a, b] } => self.eval(a, p).min(self.eval(b, p)),
             SdfNode::Intersection { children: [a, b] } => self.eval(a, p).max(self.eval(b, p)),
             SdfNode::Difference { children: [a, b] } => self.eval(a, p).max(-self.eval(b, p)),
-            SdfNode::SmoothUnion { children: [a, b], k } => smooth_min(self.eval(a, p), self.eval(b, p), k),
+            SdfNode::SmoothUnion {
+                children: [a, b],
+                k,
+            } => smooth_min(self.eval(a, p), self.eval(b, p), k),
             // max(a, b) = −min(−a, −b), smoothed the same way.
-            SdfNode::SmoothIntersection { children: [a, b], k } => -smooth_min(-self.eval(a, p), -self.eval(b, p), k),
-            SdfNode::SmoothDifference { children: [a, b], k } => -smooth_min(-self.eval(a, p), self.eval(b, p), k),
-            SdfNode::Transform { child, translate, rotate, scale } => {
+            SdfNode::SmoothIntersection {
+                children: [a, b],
+                k,
+            } => -smooth_min(-self.eval(a, p), -self.eval(b, p), k),
+            SdfNode::SmoothDifference {
+                children: [a, b],
+                k,
+            } => -smooth_min(-self.eval(a, p), self.eval(b, p), k),
+            SdfNode::Transform {
+                child,
+                translate,
+                rotate,
+                scale,
+            } => {
                 // Into the child's space: undo the translation, rotation, scale.
                 let q = rotate.inverse() * (p - translate) / scale;
                 // Child distances are in child units; scale them back.
@@ -134,7 +172,15 @@ mod tests {
         let (c, s) = (Vec3A::new(1.0, -2.0, 0.5), 2.5);
         let rotate = Quat::from_axis_angle(glam::Vec3::new(1.0, 1.0, 0.0).normalize(), 0.7);
         let sdf = Sdf::new(
-            vec![SdfNode::Sphere { radius: 1.0 }, SdfNode::Transform { child: 0, translate: c, rotate, scale: s }],
+            vec![
+                SdfNode::Sphere { radius: 1.0 },
+                SdfNode::Transform {
+                    child: 0,
+                    translate: c,
+                    rotate,
+                    scale: s,
+                },
+            ],
             1,
         );
         let mut rng = Pcg32::new(1, 1);
@@ -151,16 +197,46 @@ mod tests {
         // Every node but the Mandelbulb, smooth operators included.
         let rotate = Quat::from_rotation_z(0.4);
         let nodes = vec![
-            SdfNode::Torus { major: 1.0, minor: 0.3 },
-            SdfNode::RoundBox { half_extents: Vec3A::new(0.6, 0.4, 0.5), radius: 0.1 },
-            SdfNode::SmoothUnion { children: [0, 1], k: 0.5 },
-            SdfNode::Capsule { a: Vec3A::NEG_Y, b: Vec3A::Y, radius: 0.3 },
-            SdfNode::SmoothDifference { children: [2, 3], k: 0.3 },
+            SdfNode::Torus {
+                major: 1.0,
+                minor: 0.3,
+            },
+            SdfNode::RoundBox {
+                half_extents: Vec3A::new(0.6, 0.4, 0.5),
+                radius: 0.1,
+            },
+            SdfNode::SmoothUnion {
+                children: [0, 1],
+                k: 0.5,
+            },
+            SdfNode::Capsule {
+                a: Vec3A::NEG_Y,
+                b: Vec3A::Y,
+                radius: 0.3,
+            },
+            SdfNode::SmoothDifference {
+                children: [2, 3],
+                k: 0.3,
+            },
             SdfNode::Menger { iterations: 3 },
-            SdfNode::Transform { child: 5, translate: Vec3A::X, rotate, scale: 0.7 },
-            SdfNode::SmoothIntersection { children: [4, 6], k: 0.2 },
-            SdfNode::Cylinder { radius: 0.4, half_height: 1.5 },
-            SdfNode::Plane { normal: Vec3A::new(0.0, 1.0, 1.0), offset: 0.2 },
+            SdfNode::Transform {
+                child: 5,
+                translate: Vec3A::X,
+                rotate,
+                scale: 0.7,
+            },
+            SdfNode::SmoothIntersection {
+                children: [4, 6],
+                k: 0.2,
+            },
+            SdfNode::Cylinder {
+                radius: 0.4,
+                half_height: 1.5,
+            },
+            SdfNode::Plane {
+                normal: Vec3A::new(0.0, 1.0, 1.0),
+                offset: 0.2,
+            },
             SdfNode::Difference { children: [8, 9] },
             SdfNode::Union { children: [7, 10] },
             SdfNode::Sphere { radius: 1.2 },
@@ -174,7 +250,10 @@ mod tests {
             let q = p + uniform_sphere(rng.next_vec2()) * 0.1 * rng.next_f32();
             let (dp, dq) = (sdf.distance(p), sdf.distance(q));
             let slope = (dp - dq).abs() / (p - q).length().max(1e-6);
-            assert!((dp - dq).abs() <= (p - q).length() * 1.001 + 1e-5, "slope {slope} > 1 between {p} and {q}");
+            assert!(
+                (dp - dq).abs() <= (p - q).length() * 1.001 + 1e-5,
+                "slope {slope} > 1 between {p} and {q}"
+            );
         }
     }
 
@@ -182,9 +261,16 @@ mod tests {
     fn smooth_min_stays_within_quarter_k() {
         let mut rng = Pcg32::new(4, 4);
         for _ in 0..10_000 {
-            let (a, b, k) = (rng.next_f32() * 2.0 - 1.0, rng.next_f32() * 2.0 - 1.0, rng.next_f32());
+            let (a, b, k) = (
+                rng.next_f32() * 2.0 - 1.0,
+                rng.next_f32() * 2.0 - 1.0,
+                rng.next_f32(),
+            );
             let s = smooth_min(a, b, k);
-            assert!(s <= a.min(b) && s >= a.min(b) - 0.25 * k, "smin({a}, {b}, {k}) = {s}");
+            assert!(
+                s <= a.min(b) && s >= a.min(b) - 0.25 * k,
+                "smin({a}, {b}, {k}) = {s}"
+            );
         }
         assert_eq!(smooth_min(0.3, -0.2, 0.0), -0.2);
     }

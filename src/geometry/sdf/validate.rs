@@ -21,9 +21,15 @@ use glam::Vec3A;
 pub fn validate(nodes: &[SdfNode], root: u32, path: &str) -> Vec<Problem> {
     let mut out = Vec::new();
     if nodes.is_empty() {
-        out.push(Problem::new(path, "the SDF has no shapes").help("give it at least one primitive, e.g. a sphere"));
+        out.push(
+            Problem::new(path, "the SDF has no shapes")
+                .help("give it at least one primitive, e.g. a sphere"),
+        );
     } else if root as usize >= nodes.len() {
-        out.push(Problem::new(path, format!("root {root} is past the last of {} SDF nodes", nodes.len())));
+        out.push(Problem::new(
+            path,
+            format!("root {root} is past the last of {} SDF nodes", nodes.len()),
+        ));
     } else {
         walk(nodes, root, path, &mut out);
     }
@@ -38,8 +44,11 @@ fn walk(nodes: &[SdfNode], i: u32, path: &str, out: &mut Vec<Problem>) {
         // Children before parents: no cycles, bounded recursion.
         if child >= i {
             out.push(
-                Problem::new(child_path, format!("child node {child} is not before its parent {i}"))
-                    .help("build the arena in post-order, children first"),
+                Problem::new(
+                    child_path,
+                    format!("child node {child} is not before its parent {i}"),
+                )
+                .help("build the arena in post-order, children first"),
             );
         } else {
             walk(nodes, child, &child_path, out);
@@ -57,15 +66,26 @@ pub fn validate_node(node: &SdfNode, path: &str, out: &mut Vec<Problem>) {
         SdfNode::Box { half_extents } => {
             c.positive_vec("half_extents", half_extents);
         }
-        SdfNode::RoundBox { half_extents, radius } => {
+        SdfNode::RoundBox {
+            half_extents,
+            radius,
+        } => {
             // The rounding fits inside the box: 0 ≤ radius ≤ the smallest half extent.
-            let largest = if c.positive_vec("half_extents", half_extents) { half_extents.min_element() } else { f32::MAX };
+            let largest = if c.positive_vec("half_extents", half_extents) {
+                half_extents.min_element()
+            } else {
+                f32::MAX
+            };
             c.range("radius", radius, 0.0, largest);
         }
         SdfNode::Torus { major, minor } => {
             if c.positive("major", major) && c.positive("minor", minor) && minor > major {
                 let message = format!("minor radius {minor} exceeds the major radius {major}");
-                c.push("minor", message, Some("the tube would pass through the axis; make `minor` at most `major`"));
+                c.push(
+                    "minor",
+                    message,
+                    Some("the tube would pass through the axis; make `minor` at most `major`"),
+                );
             }
         }
         SdfNode::Capsule { a, b, radius } => {
@@ -73,17 +93,28 @@ pub fn validate_node(node: &SdfNode, path: &str, out: &mut Vec<Problem>) {
             c.finite_vec("b", b);
             c.positive("radius", radius);
         }
-        SdfNode::Cylinder { radius, half_height } => {
+        SdfNode::Cylinder {
+            radius,
+            half_height,
+        } => {
             c.positive("radius", radius);
             c.positive("half_height", half_height);
         }
         SdfNode::Plane { normal, offset } => {
             if c.finite_vec("normal", normal) && normal == Vec3A::ZERO {
-                c.push("normal", "the normal is zero".into(), Some("give the direction the plane faces"));
+                c.push(
+                    "normal",
+                    "the normal is zero".into(),
+                    Some("give the direction the plane faces"),
+                );
             }
             c.finite("offset", offset);
         }
-        SdfNode::Mandelbulb { power, iterations, bailout } => {
+        SdfNode::Mandelbulb {
+            power,
+            iterations,
+            bailout,
+        } => {
             c.range("power", power, 2.0, 16.0);
             c.range("iterations", iterations as f32, 1.0, 64.0);
             // ≥ 2: every escaping orbit is caught; ≤ 8: bailoutⁿ stays finite.
@@ -93,14 +124,25 @@ pub fn validate_node(node: &SdfNode, path: &str, out: &mut Vec<Problem>) {
             c.range("iterations", iterations as f32, 0.0, 6.0);
         }
         SdfNode::Union { .. } | SdfNode::Intersection { .. } | SdfNode::Difference { .. } => {}
-        SdfNode::SmoothUnion { k, .. } | SdfNode::SmoothIntersection { k, .. } | SdfNode::SmoothDifference { k, .. } => {
+        SdfNode::SmoothUnion { k, .. }
+        | SdfNode::SmoothIntersection { k, .. }
+        | SdfNode::SmoothDifference { k, .. } => {
             c.range("k", k, 0.0, f32::MAX);
         }
-        SdfNode::Transform { translate, rotate, scale, .. } => {
+        SdfNode::Transform {
+            translate,
+            rotate,
+            scale,
+            ..
+        } => {
             c.finite_vec("translate", translate);
             if !rotate.is_finite() || rotate.length_squared() == 0.0 {
                 let message = format!("rotation {rotate} is not a usable quaternion");
-                c.push("rotate", message, Some("use a finite, non-zero quaternion (it is normalised)"));
+                c.push(
+                    "rotate",
+                    message,
+                    Some("use a finite, non-zero quaternion (it is normalised)"),
+                );
             }
             c.positive("scale", scale);
         }
@@ -108,7 +150,11 @@ pub fn validate_node(node: &SdfNode, path: &str, out: &mut Vec<Problem>) {
 }
 
 fn join(path: &str, field: &str) -> String {
-    if path.is_empty() { field.to_string() } else { format!("{path}.{field}") }
+    if path.is_empty() {
+        field.to_string()
+    } else {
+        format!("{path}.{field}")
+    }
 }
 
 struct Check<'a> {
@@ -127,7 +173,11 @@ impl Check<'_> {
 
     fn finite(&mut self, field: &str, v: f32) -> bool {
         if !v.is_finite() {
-            self.push(field, format!("`{field}` is {v}, not a finite number"), None);
+            self.push(
+                field,
+                format!("`{field}` is {v}, not a finite number"),
+                None,
+            );
         }
         v.is_finite()
     }
@@ -142,7 +192,11 @@ impl Check<'_> {
     fn positive(&mut self, field: &str, v: f32) -> bool {
         let ok = self.finite(field, v) && v > 0.0;
         if v.is_finite() && !ok {
-            self.push(field, format!("`{field}` must be positive, found {v}"), None);
+            self.push(
+                field,
+                format!("`{field}` must be positive, found {v}"),
+                None,
+            );
         }
         ok
     }
@@ -150,7 +204,11 @@ impl Check<'_> {
     fn positive_vec(&mut self, field: &str, v: Vec3A) -> bool {
         let ok = self.finite_vec(field, v) && v.min_element() > 0.0;
         if v.is_finite() && !ok {
-            self.push(field, format!("every component of `{field}` must be positive, found {v}"), None);
+            self.push(
+                field,
+                format!("every component of `{field}` must be positive, found {v}"),
+                None,
+            );
         }
         ok
     }
@@ -158,8 +216,16 @@ impl Check<'_> {
     fn range(&mut self, field: &str, v: f32, lo: f32, hi: f32) -> bool {
         let ok = self.finite(field, v) && (lo..=hi).contains(&v);
         if v.is_finite() && !ok {
-            let allowed = if hi == f32::MAX { format!("at least {lo}") } else { format!("in [{lo}, {hi}]") };
-            self.push(field, format!("`{field}` must be {allowed}, found {v}"), None);
+            let allowed = if hi == f32::MAX {
+                format!("at least {lo}")
+            } else {
+                format!("in [{lo}, {hi}]")
+            };
+            self.push(
+                field,
+                format!("`{field}` must be {allowed}, found {v}"),
+                None,
+            );
         }
         ok
     }
