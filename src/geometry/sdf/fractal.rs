@@ -31,7 +31,8 @@ pub fn mandelbulb(p: Vec3A, power: f32, iterations: u32, bailout: f32) -> f32 {
             break;
         }
         // d(zⁿ + p)/dp = n zⁿ⁻¹ dz + 1, in magnitude.
-        dz = power * r.powf(power - 1.0) * dz + 1.0;
+        let r_pow = r.powf(power - 1.0);
+        dz = power * r_pow * dz + 1.0;
         // zⁿ in spherical coordinates: raise r to n, multiply both angles by n.
         let cos_theta = if r > 0.0 {
             (w.y / r).clamp(-1.0, 1.0)
@@ -42,7 +43,7 @@ pub fn mandelbulb(p: Vec3A, power: f32, iterations: u32, bailout: f32) -> f32 {
         let phi = power * w.x.atan2(w.z);
         let (st, ct) = theta.sin_cos();
         let (sp, cp) = phi.sin_cos();
-        w = p + r.powf(power) * Vec3A::new(st * sp, ct, st * cp);
+        w = p + r_pow * r * Vec3A::new(st * sp, ct, st * cp);
         r = w.length();
     }
     // 0.5 r ln r / dz → 0 as r → 0 (interior points whose orbit collapses).

@@ -16,7 +16,7 @@
 //! Menger sponge <https://iquilezles.org/articles/menger/>.
 //!
 //! Stages: the loader maps its scene types onto [`SdfNode`]s, checks them
-//! with [`validate`], then builds an [`Sdf`]; the renderer uses [`trace`],
+//! with [`validate()`], then builds an [`Sdf`]; the renderer uses [`trace`],
 //! [`occluded`], [`normal`] and [`Sdf::bounds`] (for the BVH).
 
 pub mod bounds;

@@ -2,7 +2,7 @@
 //! `u32` index, so evaluation is a `match` with no boxes and no dynamic
 //! dispatch.
 //!
-//! Invariant (checked by [`crate::geometry::sdf::validate`] and asserted by
+//! Invariant (checked by [`crate::geometry::sdf::validate()`] and asserted by
 //! [`crate::geometry::sdf::Sdf::new`]): a child's index is smaller than its
 //! parent's. Building the arena in post-order gives it for free, and it rules
 //! out cycles, so recursion depth is bounded by the number of nodes.

@@ -28,7 +28,7 @@ pub struct Sdf {
 
 impl Sdf {
     /// Takes an arena whose children come before their parents (see
-    /// [`super::validate`]), normalising plane normals and rotations.
+    /// [`super::validate()`]), normalising plane normals and rotations.
     ///
     /// # Panics
     /// If `root` or a child index is out of order or out of range: a bug in
