@@ -19,7 +19,7 @@ pub const INFINITE: Aabb = Aabb {
 };
 
 /// Bounds and slack of node `i`.
-pub fn bounds_of(nodes: &[SdfNode], i: u32) -> (Aabb, f32) {
+pub(super) fn bounds_of(nodes: &[SdfNode], i: u32) -> (Aabb, f32) {
     let sym = |h: Vec3A| (Aabb { min: -h, max: h }, 1.0);
     match nodes[i as usize] {
         SdfNode::Sphere { radius } => sym(Vec3A::splat(radius)),
@@ -73,10 +73,12 @@ pub fn bounds_of(nodes: &[SdfNode], i: u32) -> (Aabb, f32) {
             scale,
         } => {
             let (b, c) = bounds_of(nodes, child);
-            if b.is_empty() || !(b.min.is_finite() && b.max.is_finite()) {
-                // Empty stays empty; an unbounded child stays unbounded.
-                return (if b.is_empty() { Aabb::EMPTY } else { INFINITE }, c);
+            if !(b.min.is_finite() && b.max.is_finite()) {
+                // An unbounded child stays unbounded.
+                return (INFINITE, c);
             }
+            // An inverted (empty) box goes through too: the hull of its
+            // corners still contains it once grown, as the slack requires.
             let m = Mat3A::from_quat(rotate.normalize());
             // Box of the 8 transformed corners.
             let corners: [Vec3A; 8] = std::array::from_fn(|k| {

@@ -71,12 +71,12 @@ pub fn validate_node(node: &SdfNode, path: &str, out: &mut Vec<Problem>) {
             radius,
         } => {
             // The rounding fits inside the box: 0 ≤ radius ≤ the smallest half extent.
-            let largest = if c.positive_vec("half_extents", half_extents) {
+            let most = if c.positive_vec("half_extents", half_extents) {
                 half_extents.min_element()
             } else {
                 f32::MAX
             };
-            c.range("radius", radius, 0.0, largest);
+            c.range("radius", radius, 0.0, most);
         }
         SdfNode::Torus { major, minor } => {
             if c.positive("major", major) && c.positive("minor", minor) && minor > major {
