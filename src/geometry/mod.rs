@@ -6,6 +6,7 @@ pub mod mesh;
 pub mod obj;
 pub mod plane;
 pub mod quad;
+pub mod sdf;
 pub mod sphere;
 pub mod triangle;
 
