@@ -40,6 +40,17 @@ pub enum Command {
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
     },
+    /// Render scenes at their `test` settings and compare with their golden
+    /// images (`golden/<name>.png` beside each scene).
+    Check {
+        /// Scene files or folders (every scene in a folder); default `scenes`.
+        paths: Vec<PathBuf>,
+        /// Rewrite the goldens that fail or are missing, on purpose.
+        #[arg(long)]
+        bless: bool,
+        #[arg(long)]
+        threads: Option<usize>,
+    },
     /// Compare two images (PNG, EXR, PFM): RMSE, relative MSE, PSNR, means.
     Diff {
         /// The image under test.
@@ -105,6 +116,11 @@ pub fn run(cli: Cli) -> ExitCode {
             stats,
         } => cmd_render(&scene, output, &settings, stats),
         Command::Validate { scenes } => cmd_validate(&scenes),
+        Command::Check {
+            paths,
+            bless,
+            threads,
+        } => cmd_check(paths, bless, threads),
         Command::Diff {
             a,
             b,
@@ -274,5 +290,63 @@ fn cmd_diff(
             ExitCode::FAILURE
         }
         _ => ExitCode::SUCCESS,
+    }
+}
+
+fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCode {
+    use crate::check::{Outcome, check_scene, collect, summary};
+    let paths = if paths.is_empty() {
+        vec![PathBuf::from("scenes")]
+    } else {
+        paths
+    };
+    let scenes = match collect(&paths) {
+        Ok(s) if !s.is_empty() => s,
+        Ok(_) => {
+            eprintln!(
+                "error: no scenes found in {}",
+                paths
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+            return ExitCode::FAILURE;
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let mut results = Vec::new();
+    for scene in &scenes {
+        let r = check_scene(scene, bless, threads);
+        match &r.outcome {
+            Outcome::Invalid(e) => print_load_error(e),
+            Outcome::Fail { new, heatmap, .. } => {
+                eprintln!(
+                    "{}: regression; new render {}, heat map {}",
+                    scene.display(),
+                    new.display(),
+                    heatmap.display()
+                )
+            }
+            Outcome::Missing { new } => eprintln!(
+                "{}: no golden image; new render written to {} (run `ronray check --bless` to accept it)",
+                scene.display(),
+                new.display()
+            ),
+            _ => {}
+        }
+        results.push(r);
+    }
+    print!("{}", summary(&results));
+    let failed = results.iter().filter(|r| r.failed()).count();
+    if failed == 0 {
+        println!("{} scenes checked, all match their goldens", results.len());
+        ExitCode::SUCCESS
+    } else {
+        println!("{failed} of {} scenes failed", results.len());
+        ExitCode::FAILURE
     }
 }

@@ -6,6 +6,7 @@
 
 pub mod accel;
 pub mod camera;
+pub mod check;
 pub mod cli;
 pub mod diagnostic;
 pub mod geometry;

@@ -22,6 +22,29 @@ pub fn validate(scene: &SceneDesc) -> Vec<Problem> {
     v.camera(&scene.camera);
     v.film(&scene.film);
     v.integrator(&scene.integrator);
+    if let Some(t) = &scene.test {
+        if t.width == 0 || t.width > 4096 || t.height.is_some_and(|h| h == 0 || h > 4096) {
+            v.push(
+                "test.width",
+                "test image size is outside 1..=4096",
+                "regression renders are small, e.g. 64 pixels wide",
+            );
+        }
+        if t.spp == 0 || t.spp > MAX_SPP {
+            v.push(
+                "test.spp",
+                format!("{} samples per pixel is outside 1..={MAX_SPP}", t.spp),
+                "use 4–64 for regression renders",
+            );
+        }
+        if !(t.tolerance > 0.0 && t.tolerance.is_finite()) {
+            v.push(
+                "test.tolerance",
+                format!("tolerance {} must be > 0", t.tolerance),
+                "it is the largest accepted relative MSE, e.g. 0.02",
+            );
+        }
+    }
     for (name, m) in &scene.materials {
         v.material(&format!("materials.{name}"), m);
     }

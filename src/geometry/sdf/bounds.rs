@@ -32,26 +32,17 @@ pub(super) fn bounds_of(nodes: &[SdfNode], i: u32) -> (Aabb, f32) {
             },
             1.0,
         ),
-        SdfNode::Cylinder {
-            radius,
-            half_height,
-        } => sym(Vec3A::new(radius, half_height, radius)),
+        SdfNode::Cylinder { radius, half_height } => sym(Vec3A::new(radius, half_height, radius)),
         SdfNode::Plane { .. } => (INFINITE, 1.0),
         SdfNode::Mandelbulb { power, .. } => sym(Vec3A::splat(mandelbulb_radius(power))),
         SdfNode::Menger { .. } => sym(Vec3A::ONE),
         SdfNode::Union { children: [a, b] } => union(bounds_of(nodes, a), bounds_of(nodes, b), 0.0),
-        SdfNode::SmoothUnion {
-            children: [a, b],
-            k,
-        } => {
+        SdfNode::SmoothUnion { children: [a, b], k } => {
             // smin ≥ min − k/4: the blend adds at most k/4 of distance.
             union(bounds_of(nodes, a), bounds_of(nodes, b), 0.25 * k.max(0.0))
         }
         // max and the smooth max (≥ max) only remove material.
-        SdfNode::Intersection { children: [a, b] }
-        | SdfNode::SmoothIntersection {
-            children: [a, b], ..
-        } => {
+        SdfNode::Intersection { children: [a, b] } | SdfNode::SmoothIntersection { children: [a, b], .. } => {
             let ((ba, ca), (bb, cb)) = (bounds_of(nodes, a), bounds_of(nodes, b));
             // Per axis [max lo, min hi]; disjoint boxes give an empty (inverted) box.
             (
@@ -62,10 +53,9 @@ pub(super) fn bounds_of(nodes: &[SdfNode], i: u32) -> (Aabb, f32) {
                 ca.max(cb),
             )
         }
-        SdfNode::Difference { children: [a, _] }
-        | SdfNode::SmoothDifference {
-            children: [a, _], ..
-        } => bounds_of(nodes, a),
+        SdfNode::Difference { children: [a, _] } | SdfNode::SmoothDifference { children: [a, _], .. } => {
+            bounds_of(nodes, a)
+        }
         SdfNode::Transform {
             child,
             translate,
@@ -82,11 +72,7 @@ pub(super) fn bounds_of(nodes: &[SdfNode], i: u32) -> (Aabb, f32) {
             let m = Mat3A::from_quat(rotate.normalize());
             // Box of the 8 transformed corners.
             let corners: [Vec3A; 8] = std::array::from_fn(|k| {
-                let corner = Vec3A::select(
-                    BVec3A::new(k & 1 != 0, k & 2 != 0, k & 4 != 0),
-                    b.max,
-                    b.min,
-                );
+                let corner = Vec3A::select(BVec3A::new(k & 1 != 0, k & 2 != 0, k & 4 != 0), b.max, b.min);
                 translate + m * (corner * scale)
             });
             // A cube of half side h, rotated, fits in one of half side h·max row sum |R|.
@@ -171,10 +157,7 @@ mod tests {
         ];
         let sdf = Sdf::new(nodes, 7);
         let b = sdf.bounds();
-        assert!(
-            b.min.is_finite() && b.max.is_finite(),
-            "bounded tree gave {b:?}"
-        );
+        assert!(b.min.is_finite() && b.max.is_finite(), "bounded tree gave {b:?}");
         let mut rng = Pcg32::new(6, 6);
         let mut inside = 0;
         for _ in 0..200_000 {

@@ -34,11 +34,7 @@ pub fn mandelbulb(p: Vec3A, power: f32, iterations: u32, bailout: f32) -> f32 {
         let r_pow = r.powf(power - 1.0);
         dz = power * r_pow * dz + 1.0;
         // zⁿ in spherical coordinates: raise r to n, multiply both angles by n.
-        let cos_theta = if r > 0.0 {
-            (w.y / r).clamp(-1.0, 1.0)
-        } else {
-            1.0
-        };
+        let cos_theta = if r > 0.0 { (w.y / r).clamp(-1.0, 1.0) } else { 1.0 };
         let theta = power * cos_theta.acos();
         let phi = power * w.x.atan2(w.z);
         let (st, ct) = theta.sin_cos();
@@ -85,10 +81,7 @@ mod tests {
             let p = uniform_sphere(rng.next_vec2()) * 3.0 * rng.next_f32();
             let d = mandelbulb(p, 8.0, 12, 2.0);
             assert!(d.is_finite(), "d({p}) = {d}");
-            assert!(
-                d >= p.length() - mandelbulb_radius(8.0),
-                "clamp lost at {p}"
-            );
+            assert!(d >= p.length() - mandelbulb_radius(8.0), "clamp lost at {p}");
         }
         // The centre's orbit stays at 0: inside.
         assert!(mandelbulb(Vec3A::ZERO, 8.0, 12, 2.0) <= 0.0);

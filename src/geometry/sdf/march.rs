@@ -74,10 +74,7 @@ pub struct SdfTrace {
 /// be unit length; `t` is the ray parameter.
 pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams) -> SdfTrace {
     let Some((t_start, t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
-        return SdfTrace {
-            hit: None,
-            steps: 0,
-        };
+        return SdfTrace { hit: None, steps: 0 };
     };
     let exact = sdf.is_exact();
     let omega = if exact {

@@ -162,10 +162,7 @@ mod tests {
         });
         check_exact("capsule", |p| capsule(p, a, b, radius), &s, 2.0, 0.03);
         // Degenerate segment: a ball.
-        assert!(
-            (capsule(Vec3A::X * 2.0, a, a, 0.5) - ((Vec3A::X * 2.0 - a).length() - 0.5)).abs()
-                < 1e-6
-        );
+        assert!((capsule(Vec3A::X * 2.0, a, a, 0.5) - ((Vec3A::X * 2.0 - a).length() - 0.5)).abs() < 1e-6);
     }
 
     #[test]

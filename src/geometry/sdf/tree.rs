@@ -50,9 +50,7 @@ impl Sdf {
                 _ => {}
             }
         }
-        let is_exact = !nodes
-            .iter()
-            .any(|n| matches!(n, SdfNode::Mandelbulb { .. }));
+        let is_exact = !nodes.iter().any(|n| matches!(n, SdfNode::Mandelbulb { .. }));
         let bounds = bounds_of(&nodes, root).0;
         Self {
             nodes,
@@ -100,16 +98,10 @@ impl Sdf {
         match self.nodes[i as usize] {
             SdfNode::Sphere { radius } => sphere(p, radius),
             SdfNode::Box { half_extents } => cuboid(p, half_extents),
-            SdfNode::RoundBox {
-                half_extents,
-                radius,
-            } => round_box(p, half_extents, radius),
+            SdfNode::RoundBox { half_extents, radius } => round_box(p, half_extents, radius),
             SdfNode::Torus { major, minor } => torus(p, major, minor),
             SdfNode::Capsule { a, b, radius } => capsule(p, a, b, radius),
-            SdfNode::Cylinder {
-                radius,
-                half_height,
-            } => cylinder(p, radius, half_height),
+            SdfNode::Cylinder { radius, half_height } => cylinder(p, radius, half_height),
             SdfNode::Plane { normal, offset } => plane(p, normal, offset),
             SdfNode::Mandelbulb {
                 power,
@@ -120,19 +112,14 @@ impl Sdf {
             SdfNode::Union { children: [a, b] } => self.eval(a, p).min(self.eval(b, p)),
             SdfNode::Intersection { children: [a, b] } => self.eval(a, p).max(self.eval(b, p)),
             SdfNode::Difference { children: [a, b] } => self.eval(a, p).max(-self.eval(b, p)),
-            SdfNode::SmoothUnion {
-                children: [a, b],
-                k,
-            } => smooth_min(self.eval(a, p), self.eval(b, p), k),
+            SdfNode::SmoothUnion { children: [a, b], k } => smooth_min(self.eval(a, p), self.eval(b, p), k),
             // max(a, b) = −min(−a, −b), smoothed the same way.
-            SdfNode::SmoothIntersection {
-                children: [a, b],
-                k,
-            } => -smooth_min(-self.eval(a, p), -self.eval(b, p), k),
-            SdfNode::SmoothDifference {
-                children: [a, b],
-                k,
-            } => -smooth_min(-self.eval(a, p), self.eval(b, p), k),
+            SdfNode::SmoothIntersection { children: [a, b], k } => {
+                -smooth_min(-self.eval(a, p), -self.eval(b, p), k)
+            }
+            SdfNode::SmoothDifference { children: [a, b], k } => {
+                -smooth_min(-self.eval(a, p), self.eval(b, p), k)
+            }
             SdfNode::Transform {
                 child,
                 translate,

@@ -22,8 +22,7 @@ pub fn validate(nodes: &[SdfNode], root: u32, path: &str) -> Vec<Problem> {
     let mut out = Vec::new();
     if nodes.is_empty() {
         out.push(
-            Problem::new(path, "the SDF has no shapes")
-                .help("give it at least one primitive, e.g. a sphere"),
+            Problem::new(path, "the SDF has no shapes").help("give it at least one primitive, e.g. a sphere"),
         );
     } else if root as usize >= nodes.len() {
         out.push(Problem::new(
@@ -66,10 +65,7 @@ pub fn validate_node(node: &SdfNode, path: &str, out: &mut Vec<Problem>) {
         SdfNode::Box { half_extents } => {
             c.positive_vec("half_extents", half_extents);
         }
-        SdfNode::RoundBox {
-            half_extents,
-            radius,
-        } => {
+        SdfNode::RoundBox { half_extents, radius } => {
             // The rounding fits inside the box: 0 ≤ radius ≤ the smallest half extent.
             let most = if c.positive_vec("half_extents", half_extents) {
                 half_extents.min_element()
@@ -93,10 +89,7 @@ pub fn validate_node(node: &SdfNode, path: &str, out: &mut Vec<Problem>) {
             c.finite_vec("b", b);
             c.positive("radius", radius);
         }
-        SdfNode::Cylinder {
-            radius,
-            half_height,
-        } => {
+        SdfNode::Cylinder { radius, half_height } => {
             c.positive("radius", radius);
             c.positive("half_height", half_height);
         }
@@ -173,11 +166,7 @@ impl Check<'_> {
 
     fn finite(&mut self, field: &str, v: f32) -> bool {
         if !v.is_finite() {
-            self.push(
-                field,
-                format!("`{field}` is {v}, not a finite number"),
-                None,
-            );
+            self.push(field, format!("`{field}` is {v}, not a finite number"), None);
         }
         v.is_finite()
     }
@@ -192,11 +181,7 @@ impl Check<'_> {
     fn positive(&mut self, field: &str, v: f32) -> bool {
         let ok = self.finite(field, v) && v > 0.0;
         if v.is_finite() && !ok {
-            self.push(
-                field,
-                format!("`{field}` must be positive, found {v}"),
-                None,
-            );
+            self.push(field, format!("`{field}` must be positive, found {v}"), None);
         }
         ok
     }
@@ -221,11 +206,7 @@ impl Check<'_> {
             } else {
                 format!("in [{lo}, {hi}]")
             };
-            self.push(
-                field,
-                format!("`{field}` must be {allowed}, found {v}"),
-                None,
-            );
+            self.push(field, format!("`{field}` must be {allowed}, found {v}"), None);
         }
         ok
     }

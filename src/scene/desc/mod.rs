@@ -55,4 +55,48 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
     #[serde(default)]
     pub objects: Vec<ObjectDesc>,
+    /// Settings for `ronray check`: the scene's regression test.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub test: Option<TestDesc>,
+}
+
+/// How `ronray check` renders this scene and compares it with its golden
+/// image `golden/<scene name>.png` beside the scene file.
+#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct TestDesc {
+    /// Test image width; the height keeps the film's aspect unless given.
+    #[serde(default = "test_width")]
+    pub width: u32,
+    #[serde(default)]
+    pub height: Option<u32>,
+    #[serde(default = "test_spp")]
+    pub spp: u32,
+    #[serde(default)]
+    pub seed: u64,
+    /// Largest accepted relative MSE against the golden image.
+    #[serde(default = "test_tolerance")]
+    pub tolerance: f32,
+}
+
+fn test_width() -> u32 {
+    64
+}
+fn test_spp() -> u32 {
+    16
+}
+fn test_tolerance() -> f32 {
+    crate::check::DEFAULT_TOLERANCE
+}
+
+impl Default for TestDesc {
+    fn default() -> Self {
+        Self {
+            width: test_width(),
+            height: None,
+            spp: test_spp(),
+            seed: 0,
+            tolerance: test_tolerance(),
+        }
+    }
 }

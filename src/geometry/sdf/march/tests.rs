@@ -43,10 +43,7 @@ fn trace_sphere_matches_analytic() {
         match got.hit {
             Some(t) => {
                 let miss_by = (ray.at(t) - c).length() - r;
-                assert!(
-                    miss_by.abs() <= params.eps_at(t),
-                    "hit {miss_by} off the surface"
-                );
+                assert!(miss_by.abs() <= params.eps_at(t), "hit {miss_by} off the surface");
                 assert!(
                     b <= r + eps,
                     "hit at t = {t} but the ray passes {} outside",
@@ -98,25 +95,14 @@ fn trace_starts_inside_and_scales_with_direction() {
         10.0,
         &params,
     );
-    assert_eq!(
-        away,
-        SdfTrace {
-            hit: None,
-            steps: 0
-        }
-    );
+    assert_eq!(away, SdfTrace { hit: None, steps: 0 });
     // An unbounded plane is still hit.
     let floor = Sdf::primitive(SdfNode::Plane {
         normal: Vec3A::Y,
         offset: -1.0,
     });
-    let down = Ray::new(
-        Vec3A::new(3.0, 2.0, 1.0),
-        Vec3A::new(1.0, -1.0, 0.0).normalize(),
-    );
-    let t = trace(&floor, &down, 0.0, f32::INFINITY, &params)
-        .hit
-        .unwrap();
+    let down = Ray::new(Vec3A::new(3.0, 2.0, 1.0), Vec3A::new(1.0, -1.0, 0.0).normalize());
+    let t = trace(&floor, &down, 0.0, f32::INFINITY, &params).hit.unwrap();
     assert!((t - 3.0 * 2f32.sqrt()).abs() < 1e-3, "plane at t = {t}");
 }
 
@@ -158,13 +144,8 @@ fn trace_torus_grazing_matches_dense_march() {
         let t_max = 6.0;
         // Ground truth: dense march of the exact distance, 2e-4 apart.
         let n = (t_max / 2e-4) as usize;
-        let samples: Vec<f32> = (0..=n)
-            .map(|k| sdf.distance(ray.at(k as f32 * 2e-4)))
-            .collect();
-        let first_inside = samples
-            .iter()
-            .position(|&d| d < 0.0)
-            .map(|k| k as f32 * 2e-4);
+        let samples: Vec<f32> = (0..=n).map(|k| sdf.distance(ray.at(k as f32 * 2e-4))).collect();
+        let first_inside = samples.iter().position(|&d| d < 0.0).map(|k| k as f32 * 2e-4);
         let deepest = samples.iter().copied().fold(f32::INFINITY, f32::min);
         let got = trace(&sdf, &ray, 0.0, t_max, &params);
         most = most.max(got.steps);
@@ -177,10 +158,7 @@ fn trace_torus_grazing_matches_dense_march() {
                     "ray {i}: hit at t = {t} is {d} off the surface"
                 );
                 if let Some(t_in) = first_inside {
-                    assert!(
-                        t <= t_in + 1e-3,
-                        "ray {i}: hit at {t} after entering at {t_in}"
-                    );
+                    assert!(t <= t_in + 1e-3, "ray {i}: hit at {t} after entering at {t_in}");
                 }
             }
             None => {

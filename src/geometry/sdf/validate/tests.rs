@@ -4,10 +4,7 @@ use glam::Quat;
 const P: &str = "objects[2].sdf";
 
 fn paths(nodes: &[SdfNode], root: u32) -> Vec<String> {
-    validate(nodes, root, P)
-        .into_iter()
-        .map(|p| p.path)
-        .collect()
+    validate(nodes, root, P).into_iter().map(|p| p.path).collect()
 }
 
 /// One bad node at the root: exactly one problem, at `P.<field>`.
@@ -43,11 +40,7 @@ fn validate_accepts_a_sane_tree() {
         },
         SdfNode::Union { children: [2, 6] },
     ];
-    assert!(
-        validate(&nodes, 7, P).is_empty(),
-        "{:?}",
-        validate(&nodes, 7, P)
-    );
+    assert!(validate(&nodes, 7, P).is_empty(), "{:?}", validate(&nodes, 7, P));
 }
 
 #[test]
@@ -177,10 +170,7 @@ fn validate_names_each_bad_parameter() {
     assert_one(SdfNode::Menger { iterations: 7 }, "iterations");
     let sphere = SdfNode::Sphere { radius: 1.0 };
     let op = |node: SdfNode, field: &str| {
-        assert_eq!(
-            paths(&[sphere, sphere, node], 2),
-            vec![format!("{P}.{field}")]
-        )
+        assert_eq!(paths(&[sphere, sphere, node], 2), vec![format!("{P}.{field}")])
     };
     op(
         SdfNode::SmoothUnion {
@@ -212,10 +202,7 @@ fn validate_names_each_bad_parameter() {
     op(t(Vec3A::ZERO, Quat::IDENTITY, 0.0), "scale");
     op(t(Vec3A::ZERO, Quat::IDENTITY, -2.0), "scale");
     op(t(Vec3A::NAN, Quat::IDENTITY, 1.0), "translate");
-    op(
-        t(Vec3A::ZERO, Quat::from_xyzw(0.0, 0.0, 0.0, 0.0), 1.0),
-        "rotate",
-    );
+    op(t(Vec3A::ZERO, Quat::from_xyzw(0.0, 0.0, 0.0, 0.0), 1.0), "rotate");
 }
 
 #[test]
@@ -256,10 +243,7 @@ fn validate_paths_follow_the_tree() {
 #[test]
 fn validate_reports_a_malformed_arena() {
     assert_eq!(paths(&[], 0), vec![P.to_string()]);
-    assert_eq!(
-        paths(&[SdfNode::Sphere { radius: 1.0 }], 3),
-        vec![P.to_string()]
-    );
+    assert_eq!(paths(&[SdfNode::Sphere { radius: 1.0 }], 3), vec![P.to_string()]);
     // A child after its parent (here itself) would loop forever.
     let cyclic = [
         SdfNode::Sphere { radius: 1.0 },
