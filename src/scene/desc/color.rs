@@ -30,15 +30,6 @@ impl From<[f32; 3]> for ColorDesc {
     }
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TextureFields {
-    file: Option<String>,
-    a: Option<[f32; 3]>,
-    b: Option<[f32; 3]>,
-    scale: Option<f32>,
-}
-
 const EXPECTED: &str = "a colour `(r, g, b)`, a grey level, an image `\"file.png\"`, `Image(file: \"…\")` or `Checker(a: (…), b: (…), scale: …)`";
 
 impl<'de> Deserialize<'de> for ColorDesc {
@@ -73,21 +64,22 @@ impl<'de> Deserialize<'de> for ColorDesc {
             fn visit_str<E: de::Error>(self, s: &str) -> Result<ColorDesc, E> {
                 Ok(ColorDesc::Image(s.to_string()))
             }
-            fn visit_map<A: MapAccess<'de>>(self, m: A) -> Result<ColorDesc, A::Error> {
-                let f = TextureFields::deserialize(de::value::MapAccessDeserializer::new(m))?;
-                match f {
-                    TextureFields {
-                        file: Some(file),
-                        a: None,
-                        b: None,
-                        scale: None,
-                    } => Ok(ColorDesc::Image(file)),
-                    TextureFields {
-                        file: None,
-                        a: Some(a),
-                        b: Some(b),
-                        scale,
-                    } => Ok(ColorDesc::Checker {
+            fn visit_map<A: MapAccess<'de>>(self, mut m: A) -> Result<ColorDesc, A::Error> {
+                // Read the fields by hand: `Option` fields would need `Some(…)`.
+                const FIELDS: &[&str] = &["file", "a", "b", "scale"];
+                let (mut file, mut a, mut b, mut scale) = (None, None, None, None);
+                while let Some(key) = m.next_key::<String>()? {
+                    match key.as_str() {
+                        "file" => file = Some(m.next_value::<String>()?),
+                        "a" => a = Some(m.next_value::<[f32; 3]>()?),
+                        "b" => b = Some(m.next_value::<[f32; 3]>()?),
+                        "scale" => scale = Some(m.next_value::<f32>()?),
+                        other => return Err(de::Error::unknown_field(other, FIELDS)),
+                    }
+                }
+                match (file, a, b, scale) {
+                    (Some(file), None, None, None) => Ok(ColorDesc::Image(file)),
+                    (None, Some(a), Some(b), scale) => Ok(ColorDesc::Checker {
                         a,
                         b,
                         scale: scale.unwrap_or(1.0),
