@@ -126,6 +126,7 @@ pub fn render_test(scene: &Path, threads: Option<usize>) -> Result<(Image, TestD
         spp: Some(t.spp),
         size: Some((t.width, height)),
         seed: Some(t.seed),
+        ..Default::default()
     };
     let loaded = load_with(scene, &o)?;
     let (img, _) = render(

@@ -39,7 +39,30 @@ pub enum Command {
     Validate {
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
+        /// `human` (source excerpts) or `json` (one JSON object per line:
+        /// file, line, column, path, severity, message, suggestion).
+        #[arg(long, default_value = "human", value_parser = ["human", "json"])]
+        format: String,
     },
+    /// Rewrite scenes in canonical form (stable field order and layout).
+    Fmt {
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Only report files that are not canonical (exit 1 if any).
+        #[arg(long)]
+        check: bool,
+        /// Print to standard output instead of rewriting.
+        #[arg(long)]
+        stdout: bool,
+        /// Write JSON (to `<scene>.json`) instead of RON.
+        #[arg(long)]
+        json: bool,
+        /// Format files with comments anyway (ron cannot keep comments).
+        #[arg(long)]
+        drop_comments: bool,
+    },
+    /// Print the JSON Schema of the scene format.
+    Schema,
     /// Render scenes at their `test` settings and compare with their golden
     /// images (`golden/<name>.png` beside each scene).
     Check {
@@ -83,6 +106,10 @@ pub struct RenderSettings {
     /// Worker threads (default: all cores). The image does not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Typed override `path=value` (value in RON), e.g.
+    /// `--set film.spp=256 --set materials.floor.albedo=(0.2,0.2,0.2)`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
 }
 
 impl RenderSettings {
@@ -91,6 +118,7 @@ impl RenderSettings {
             spp: self.spp,
             size: self.size,
             seed: self.seed,
+            sets: self.sets.clone(),
         }
     }
 }
@@ -115,7 +143,18 @@ pub fn run(cli: Cli) -> ExitCode {
             settings,
             stats,
         } => cmd_render(&scene, output, &settings, stats),
-        Command::Validate { scenes } => cmd_validate(&scenes),
+        Command::Validate { scenes, format } => cmd_validate(&scenes, format == "json"),
+        Command::Fmt {
+            scenes,
+            check,
+            stdout,
+            json,
+            drop_comments,
+        } => cmd_fmt(&scenes, check, stdout, json, drop_comments),
+        Command::Schema => {
+            print_out(&crate::schema::schema_json());
+            ExitCode::SUCCESS
+        }
         Command::Check {
             paths,
             bless,
@@ -214,15 +253,26 @@ fn cmd_render(path: &Path, output: Option<PathBuf>, settings: &RenderSettings, s
     ExitCode::SUCCESS
 }
 
-fn cmd_validate(paths: &[PathBuf]) -> ExitCode {
+/// Prints to stdout, ignoring a closed pipe (`ronray diff … | head`).
+fn print_out(text: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
+}
+
+fn cmd_validate(paths: &[PathBuf], json: bool) -> ExitCode {
     let mut failed = 0;
     for p in paths {
         match load_with(p, &Overrides::default()) {
-            Ok(_) => println!("{}: ok", p.display()),
+            Ok(_) if json => {}
+            Ok(_) => print_out(&format!("{}: ok\n", p.display())),
             Err(e) => {
                 failed += 1;
-                print_load_error(&e);
-                eprintln!("error: {e}");
+                if json {
+                    print_out(&json_lines(p, &e));
+                } else {
+                    print_load_error(&e);
+                    eprintln!("error: {e}");
+                }
             }
         }
     }
@@ -230,6 +280,100 @@ fn cmd_validate(paths: &[PathBuf]) -> ExitCode {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
+    }
+}
+
+/// One JSON object per diagnostic, for editors and CI.
+pub fn json_lines(scene: &Path, e: &LoadError) -> String {
+    let items: Vec<serde_json::Value> = match e.report() {
+        Some(r) => r
+            .diagnostics
+            .iter()
+            .map(|d| {
+                serde_json::json!({
+                    "file": d.file.display().to_string(),
+                    "line": d.line,
+                    "column": d.column,
+                    "path": d.path,
+                    "severity": "error",
+                    "message": d.message,
+                    "suggestion": d.help,
+                })
+            })
+            .collect(),
+        None => vec![serde_json::json!({
+            "file": scene.display().to_string(), "line": 0, "column": 0, "path": null,
+            "severity": "error", "message": e.to_string(), "suggestion": null,
+        })],
+    };
+    items.iter().map(|v| format!("{v}\n")).collect()
+}
+
+fn cmd_fmt(paths: &[PathBuf], check: bool, stdout: bool, json: bool, drop_comments: bool) -> ExitCode {
+    use crate::scene::format::{has_comments, to_json, to_ron};
+    let mut failed = false;
+    for p in paths {
+        let text = match std::fs::read_to_string(p) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("error: cannot read {}: {e}", p.display());
+                failed = true;
+                continue;
+            }
+        };
+        let desc = match crate::scene::load::parse(p, &text) {
+            Ok(d) => d,
+            Err(r) => {
+                eprint!("{}", r.render(std::io::stderr().is_terminal()));
+                failed = true;
+                continue;
+            }
+        };
+        let (out_text, target) = if json {
+            (to_json(&desc), p.with_extension("json"))
+        } else {
+            (to_ron(&desc), p.clone())
+        };
+        let out_text = match out_text {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("error: {}: {e}", p.display());
+                failed = true;
+                continue;
+            }
+        };
+        if check {
+            if out_text != text {
+                println!("{}: not in canonical form", p.display());
+                failed = true;
+            }
+            continue;
+        }
+        if stdout {
+            print_out(&out_text);
+            continue;
+        }
+        if has_comments(&text) && !json && !drop_comments {
+            eprintln!(
+                "error: {} has comments, which ron cannot keep through formatting; nothing was changed \
+                 (pass --drop-comments to format it anyway, or --stdout to see the result)",
+                p.display()
+            );
+            failed = true;
+            continue;
+        }
+        let tmp = target.with_extension("fmt.tmp");
+        if let Err(e) = std::fs::write(&tmp, &out_text).and_then(|_| std::fs::rename(&tmp, &target)) {
+            eprintln!("error: cannot write {}: {e}", target.display());
+            failed = true;
+            continue;
+        }
+        eprintln!("formatted {}", target.display());
+    }
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
     }
 }
 
@@ -340,7 +484,7 @@ fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCo
         }
         results.push(r);
     }
-    print!("{}", summary(&results));
+    print_out(&summary(&results));
     let failed = results.iter().filter(|r| r.failed()).count();
     if failed == 0 {
         println!("{} scenes checked, all match their goldens", results.len());

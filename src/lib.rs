@@ -18,3 +18,4 @@ pub mod math;
 pub mod render;
 pub mod sampler;
 pub mod scene;
+pub mod schema;

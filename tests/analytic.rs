@@ -202,6 +202,7 @@ fn whitted_equals_direct_without_specular_surfaces() {
             spp: Some(4),
             size: Some((32, 32)),
             seed: Some(5),
+            ..Default::default()
         };
         let l = load_str(&path, &t, &o).expect("scene loads");
         ronray::render::render(&l.scene, &Default::default()).0

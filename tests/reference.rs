@@ -21,6 +21,7 @@ fn render_at(scene: &str, spp: u32, seed: u64) -> Image {
         spp: Some(spp),
         size: Some((64, 64)),
         seed: Some(seed),
+        ..Default::default()
     };
     let loaded = load_with(&root().join("scenes").join(scene), &o).unwrap_or_else(|e| panic!("{scene}: {e}"));
     render(&loaded.scene, &Default::default()).0
@@ -95,6 +96,7 @@ fn sobol_beats_independent_on_cornell() {
                 spp: Some(16),
                 size: Some((64, 64)),
                 seed: Some(3),
+                ..Default::default()
             },
         )
         .expect("scene loads");

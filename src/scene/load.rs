@@ -51,6 +51,8 @@ pub struct Overrides {
     pub spp: Option<u32>,
     pub size: Option<(u32, u32)>,
     pub seed: Option<u64>,
+    /// `path=value` typed overrides (`--set`), applied before the others.
+    pub sets: Vec<String>,
 }
 
 impl Overrides {
@@ -85,6 +87,9 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Loaded, LoadError
 /// As [`load_with`], with the file's text already read (tests, watch mode).
 pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded, LoadError> {
     let mut desc = parse(path, text).map_err(LoadError::Invalid)?;
+    if let Err(problems) = super::set::apply_sets(&mut desc, &overrides.sets) {
+        return Err(LoadError::Invalid(command_line(&problems)));
+    }
     overrides.apply(&mut desc);
     let base = path.parent().unwrap_or(Path::new("."));
     let problems = validate(&desc);
@@ -110,6 +115,9 @@ pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded
 /// RON text → [`SceneDesc`]; a syntax or type error becomes one diagnostic at
 /// the position ron reports, with a suggestion for misspelled names.
 pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+        return parse_json(path, text);
+    }
     // `implicit_some` lets optional fields be written bare (`focus_distance: 3.5`).
     let opts = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     opts.from_str::<SceneDesc>(text).map_err(|e| {
@@ -120,6 +128,35 @@ pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
         }
         let (message, help) = describe(&e.code);
         let mut d = Diagnostic::new(path, text, Some(start..end), message);
+        d.help = help;
+        Report {
+            diagnostics: vec![d],
+            sources: vec![(path.to_path_buf(), text.to_string())],
+        }
+    })
+}
+
+/// JSON text → [`SceneDesc`], with the same kind of located diagnostic.
+fn parse_json(path: &Path, text: &str) -> Result<SceneDesc, Report> {
+    serde_json::from_str::<SceneDesc>(text).map_err(|e| {
+        let start = offset_of(text, e.line(), e.column().max(1));
+        let full = e.to_string();
+        let message = full
+            .rsplit_once(" at line ")
+            .map_or(full.as_str(), |(m, _)| m)
+            .to_string();
+        // serde's wording: "unknown field `x`, expected one of `a`, `b`".
+        let quoted: Vec<&str> = message.split('`').skip(1).step_by(2).collect();
+        let help = match quoted.split_first() {
+            Some((found, expected)) if message.starts_with("unknown") && !expected.is_empty() => {
+                Some(match suggest(found, expected.iter().copied()) {
+                    Some(s) => format!("did you mean `{s}`?"),
+                    None => format!("expected one of {}", expected.join(", ")),
+                })
+            }
+            _ => None,
+        };
+        let mut d = Diagnostic::new(path, text, Some(start.saturating_sub(1)..start), message);
         d.help = help;
         Report {
             diagnostics: vec![d],
@@ -198,5 +235,22 @@ fn describe(e: &ron::Error) -> (String, Option<String>) {
             Some("vectors and colours are written `(x, y, z)`".into()),
         ),
         other => (other.to_string(), None),
+    }
+}
+
+/// Problems in command-line overrides: located by `--set`, not by file.
+fn command_line(problems: &[Problem]) -> Report {
+    let diagnostics = problems
+        .iter()
+        .map(|p| {
+            let mut d = Diagnostic::new(Path::new("--set"), "", None, p.message.clone());
+            d.path = Some(p.path.clone());
+            d.help = p.help.clone();
+            d
+        })
+        .collect();
+    Report {
+        diagnostics,
+        sources: Vec::new(),
     }
 }

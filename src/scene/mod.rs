@@ -5,9 +5,11 @@
 pub mod build;
 pub mod build_material;
 pub mod desc;
+pub mod format;
 pub mod load;
 pub mod problem;
 pub mod runtime;
+pub mod set;
 pub mod spans;
 pub mod validate;
 

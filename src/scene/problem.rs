@@ -28,7 +28,15 @@ impl Problem {
 }
 
 /// Closest candidate by edit distance, if it is close enough to be a typo.
+/// A candidate that starts with what was typed (`fov` → `fov_y_degrees`)
+/// also counts.
 pub fn suggest<'a>(found: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let candidates: Vec<&'a str> = candidates.into_iter().collect();
+    if found.len() >= 3
+        && let Some(c) = candidates.iter().find(|c| c.starts_with(found))
+    {
+        return Some(c);
+    }
     candidates
         .into_iter()
         .map(|c| (strsim::damerau_levenshtein(found, c), c))

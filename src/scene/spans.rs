@@ -237,7 +237,21 @@ impl Scanner {
                 let Some((Tok::Atom { text, .. }, key_span)) = self.toks.get(self.pos).cloned() else {
                     return;
                 };
-                let child = join(path, &text);
+                // JSON writes enum variants as `{"Sphere": {...}}`: a lone
+                // capitalised key is a variant name, transparent in paths.
+                let variant = close == '}'
+                    && text.starts_with(|c: char| c.is_ascii_uppercase())
+                    && self.pos > 0
+                    && self.toks.get(self.pos - 1).is_some_and(|t| t.0 == Tok::Open('{'))
+                    && self
+                        .toks
+                        .get(self.skip_value(self.pos + 2))
+                        .is_some_and(|t| matches!(t.0, Tok::Close(_)));
+                let child = if variant {
+                    path.to_string()
+                } else {
+                    join(path, &text)
+                };
                 self.pos += 2;
                 self.map.insert(format!("{child}#key"), key_span);
                 self.value(&child);
@@ -250,6 +264,33 @@ impl Scanner {
                 }
             }
         }
+    }
+}
+
+impl Scanner {
+    /// Token index just past the value starting at `i`.
+    fn skip_value(&self, mut i: usize) -> usize {
+        let mut depth = 0i32;
+        while let Some((t, _)) = self.toks.get(i) {
+            match t {
+                Tok::Open(_) => depth += 1,
+                Tok::Close(_) => {
+                    depth -= 1;
+                    if depth < 0 {
+                        return i;
+                    }
+                    if depth == 0 {
+                        return i + 1;
+                    }
+                }
+                Tok::Atom { ident: true, .. }
+                    if depth == 0 && matches!(self.toks.get(i + 1), Some((Tok::Open('('), _))) => {}
+                _ if depth == 0 => return i + 1,
+                _ => {}
+            }
+            i += 1;
+        }
+        i
     }
 }
 
@@ -289,6 +330,16 @@ Scene(
         assert_eq!(text("objects[1].transform[0]"), "Translate((1, 2, 3))");
         assert_eq!(text("objects[0].radius"), "1");
         assert!(text("objects[0]").starts_with("Sphere("));
+    }
+
+    #[test]
+    fn spans_read_json_with_variants_transparent() {
+        let src = r#"{"objects": [{"Sphere": {"center": [0, 0, 0], "radius": -1, "material": "white"}}]}"#;
+        let s = Spans::scan(src);
+        let r = s
+            .get("objects[0].radius")
+            .expect("located through the variant layer");
+        assert_eq!(&src[r], "-1");
     }
 
     #[test]

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 /// A perspective camera looking from `eye` toward `target`.
 /// Image x runs along `normalize(forward × up)` (to the right), image row 0 is
 /// at the top.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
     pub eye: V3,
@@ -14,12 +14,13 @@ pub struct CameraDesc {
     #[serde(default = "default_up")]
     pub up: V3,
     /// Full vertical field of view, in degrees, in (0, 180).
+    #[schemars(range(min = 0, max = 180))]
     pub fov_y_degrees: f32,
     /// Thin-lens aperture radius in scene units; 0 is a pinhole.
     #[serde(default)]
     pub aperture_radius: f32,
     /// Distance from `eye` to the plane in focus; defaults to |target − eye|.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub focus_distance: Option<f32>,
 }
 
@@ -28,22 +29,25 @@ fn default_up() -> V3 {
 }
 
 /// Image size, sampling and output.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct FilmDesc {
     #[serde(default = "default_width")]
+    #[schemars(range(min = 1, max = 16384))]
     pub width: u32,
     #[serde(default = "default_height")]
+    #[schemars(range(min = 1, max = 16384))]
     pub height: u32,
     /// Samples per pixel.
     #[serde(default = "default_spp")]
+    #[schemars(range(min = 1, max = 1048576))]
     pub spp: u32,
     /// Seed of every random stream: same seed, same image.
     #[serde(default)]
     pub seed: u64,
     /// Default output path (relative to the scene file); `.png` or `.exr`.
     /// Defaults to the scene's file name with `.png`.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<String>,
     /// How sample positions are drawn.
     #[serde(default)]
@@ -51,7 +55,7 @@ pub struct FilmDesc {
 }
 
 /// Sample generator; all are deterministic per (pixel, sample, seed).
-#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 pub enum SamplerDesc {
     /// Uniform random numbers.
     Independent,
@@ -86,7 +90,7 @@ impl Default for FilmDesc {
 }
 
 /// How light transport is estimated.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum IntegratorDesc {
     /// Emission plus one bounce of light: hard shadows from point lights,
@@ -118,7 +122,7 @@ pub enum IntegratorDesc {
     },
 }
 
-#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 pub enum LightSelectionDesc {
     /// In proportion to emitted power.
     #[default]

@@ -3,7 +3,7 @@
 use super::{Color, V3};
 use serde::{Deserialize, Serialize};
 
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum LightDesc {
     /// Isotropic point light; `intensity` in W/sr per channel (irradiance at

@@ -5,14 +5,18 @@
 use super::color::ColorDesc;
 use serde::{Deserialize, Serialize};
 
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum MaterialDesc {
     /// Ideal diffuse: f = albedo/π. Channels in [0, 1].
     Lambert { albedo: ColorDesc },
     /// Rough diffuse (Fujii's energy-conserving Oren–Nayar). `sigma` is a
     /// unitless roughness ≥ 0 (0 = Lambert; useful up to about 1), not an angle.
-    OrenNayar { albedo: ColorDesc, sigma: f32 },
+    OrenNayar {
+        albedo: ColorDesc,
+        #[schemars(range(min = 0, max = 2))]
+        sigma: f32,
+    },
     /// Energy-normalised (modified) Phong: diffuse/π + specular·(n+2)/(2π)·cosⁿα.
     Phong {
         diffuse: ColorDesc,
@@ -30,6 +34,7 @@ pub enum MaterialDesc {
     CookTorrance {
         #[serde(default)]
         distribution: DistributionDesc,
+        #[schemars(range(min = 0, max = 1))]
         roughness: f32,
         fresnel: FresnelDesc,
     },
@@ -37,6 +42,7 @@ pub enum MaterialDesc {
     /// `metalness` ∈ [0, 1] as in glTF's metallic–roughness model.
     MetalPlastic {
         base_color: ColorDesc,
+        #[schemars(range(min = 0, max = 1))]
         roughness: f32,
         metalness: f32,
     },
@@ -65,14 +71,14 @@ fn glass_ior() -> f32 {
     1.5
 }
 
-#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 pub enum DistributionDesc {
     #[default]
     Ggx,
     Beckmann,
 }
 
-#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 pub enum DielectricFresnelDesc {
     /// The exact Fresnel equations for unpolarised light.
     #[default]
@@ -82,7 +88,7 @@ pub enum DielectricFresnelDesc {
 }
 
 /// Fresnel reflectance of a microfacet surface.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum FresnelDesc {
     /// A conductor with complex IOR η + ik per RGB channel.
@@ -93,7 +99,7 @@ pub enum FresnelDesc {
     Schlick { f0: [f32; 3] },
 }
 
-#[derive(Clone, Copy, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 pub enum MetalDesc {
     Gold,
     Silver,

@@ -40,7 +40,7 @@ pub type V3 = [f32; 3];
 pub type Color = [f32; 3];
 
 /// A whole scene file.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(rename = "Scene", deny_unknown_fields)]
 pub struct SceneDesc {
     pub camera: CameraDesc,
@@ -62,7 +62,7 @@ pub struct SceneDesc {
 
 /// How `ronray check` renders this scene and compares it with its golden
 /// image `golden/<scene name>.png` beside the scene file.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct TestDesc {
     /// Test image width; the height keeps the film's aspect unless given.
@@ -98,5 +98,39 @@ impl Default for TestDesc {
             seed: 0,
             tolerance: test_tolerance(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// parse → serialise → parse gives the same scene, for every shipped one.
+    #[test]
+    fn scene_desc_round_trips_through_ron_and_json() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let mut n = 0;
+        for e in std::fs::read_dir(dir).expect("scenes/").flatten() {
+            let p = e.path();
+            if p.extension().is_none_or(|x| x != "ron") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&p).expect("read");
+            let opts =
+                ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+            let a: SceneDesc = opts
+                .from_str(&text)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            let ron_text = crate::scene::format::to_ron(&a).expect("serialise");
+            let b: SceneDesc = opts
+                .from_str(&ron_text)
+                .unwrap_or_else(|e| panic!("{}: {e}\n{ron_text}", p.display()));
+            assert_eq!(a, b, "{} changed through RON", p.display());
+            let json = crate::scene::format::to_json(&a).expect("json");
+            let c: SceneDesc = serde_json::from_str(&json).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            assert_eq!(a, c, "{} changed through JSON", p.display());
+            n += 1;
+        }
+        assert!(n >= 4);
     }
 }

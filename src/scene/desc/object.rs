@@ -5,11 +5,12 @@ use serde::{Deserialize, Serialize};
 
 /// Every object names its material and may carry a `transform`: a list of
 /// steps applied to the object in the order written.
-#[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum ObjectDesc {
     Sphere {
         center: V3,
+        #[schemars(range(min = 0))]
         radius: f32,
         material: String,
         #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -1,0 +1,167 @@
+//! `--set path=value`: typed overrides applied to the parsed scene, not to
+//! its text. The scene is serialised to a JSON tree, the value (written in
+//! RON) replaces the node at `path`, and the tree is deserialised again, so
+//! every override is type-checked by the same serde types as the file.
+//!
+//! Paths use the diagnostic syntax: `film.spp`, `camera.fov_y_degrees`,
+//! `materials.floor.albedo`, `objects[2].radius`. Enum variant names are
+//! skipped, as in diagnostics (`materials.floor.albedo`, not
+//! `materials.floor.Lambert.albedo`).
+
+use super::desc::SceneDesc;
+use super::problem::{Problem, suggest};
+use serde_json::Value;
+
+/// Applies every `path=value` in order; all problems are reported together.
+pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<Problem>> {
+    if sets.is_empty() {
+        return Ok(());
+    }
+    let mut tree = serde_json::to_value(&*desc).map_err(|e| vec![Problem::new("", e.to_string())])?;
+    let mut problems = Vec::new();
+    for s in sets {
+        let Some((path, text)) = s.split_once('=') else {
+            problems.push(
+                Problem::new(s.as_str(), format!("`--set {s}` has no `=`"))
+                    .help("write `--set path=value`, e.g. `--set film.spp=256`"),
+            );
+            continue;
+        };
+        let (path, text) = (path.trim(), text.trim());
+        let value = match ron::from_str::<ron::Value>(text)
+            .map_err(|e| e.to_string())
+            .and_then(|v| serde_json::to_value(v).map_err(|e| e.to_string()))
+        {
+            Ok(v) => v,
+            Err(e) => {
+                problems.push(
+                    Problem::new(path, format!("cannot parse `{text}`: {e}"))
+                        .help("values are written in RON: `256`, `30.5`, `(0.2, 0.2, 0.2)`, `\"file.obj\"`"),
+                );
+                continue;
+            }
+        };
+        match node_mut(&mut tree, path) {
+            Ok(node) => *node = value,
+            Err(p) => problems.push(p),
+        }
+    }
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    match serde_json::from_value::<SceneDesc>(tree) {
+        Ok(d) => {
+            *desc = d;
+            Ok(())
+        }
+        Err(e) => Err(vec![
+            Problem::new(
+                sets.iter()
+                    .map(|s| s.split('=').next().unwrap_or("").trim())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                format!("override does not fit the scene: {e}"),
+            )
+            .help("check the value's type: numbers, `(r, g, b)` colours, `\"strings\"`"),
+        ]),
+    }
+}
+
+enum Seg<'a> {
+    Key(&'a str),
+    Index(usize),
+}
+
+fn segments(path: &str) -> Result<Vec<Seg<'_>>, String> {
+    let mut out = Vec::new();
+    for part in path.split('.') {
+        let (key, mut rest) = match part.find('[') {
+            Some(i) => (&part[..i], &part[i..]),
+            None => (part, ""),
+        };
+        if !key.is_empty() {
+            out.push(Seg::Key(key));
+        }
+        while let Some(r) = rest.strip_prefix('[') {
+            let end = r.find(']').ok_or_else(|| format!("unclosed `[` in `{path}`"))?;
+            let i = r[..end]
+                .parse()
+                .map_err(|_| format!("`{}` is not an index in `{path}`", &r[..end]))?;
+            out.push(Seg::Index(i));
+            rest = &r[end + 1..];
+        }
+    }
+    Ok(out)
+}
+
+/// Is `v` an externally tagged enum value (`{"Variant": {...}}`)?
+fn variant_body(v: &Value) -> Option<&str> {
+    let o = v.as_object()?;
+    let (k, _) = o.iter().next()?;
+    (o.len() == 1 && k.starts_with(|c: char| c.is_ascii_uppercase())).then_some(k.as_str())
+}
+
+fn node_mut<'v>(root: &'v mut Value, path: &str) -> Result<&'v mut Value, Problem> {
+    let segs = segments(path).map_err(|m| Problem::new(path, m))?;
+    if segs.is_empty() {
+        return Err(Problem::new(path, "empty path").help("name a field, e.g. `film.spp`"));
+    }
+    let mut node = root;
+    let mut done = String::new();
+    for seg in segs {
+        // Step through an enum variant layer transparently.
+        if let (Seg::Key(k), Some(variant)) = (&seg, variant_body(node))
+            && *k != variant
+        {
+            let variant = variant.to_string();
+            node = node
+                .get_mut(&variant)
+                .ok_or_else(|| Problem::new(path, "internal: variant vanished"))?;
+        }
+        match seg {
+            Seg::Key(k) => {
+                let keys: Vec<String> = node
+                    .as_object()
+                    .map(|o| o.keys().cloned().collect())
+                    .unwrap_or_default();
+                let here = if done.is_empty() {
+                    "the scene".to_string()
+                } else {
+                    format!("`{done}`")
+                };
+                if !keys.iter().any(|x| x == k) {
+                    let mut p = Problem::new(path, format!("{here} has no field `{k}`"));
+                    p = match suggest(k, keys.iter().map(String::as_str)) {
+                        Some(s) => p.help(format!("did you mean `{s}`?")),
+                        None if keys.is_empty() => p.help(format!("{here} is not a struct or map")),
+                        None => p.help(format!("its fields are: {}", keys.join(", "))),
+                    };
+                    return Err(p);
+                }
+                node = node
+                    .get_mut(k)
+                    .ok_or_else(|| Problem::new(path, "internal: key vanished"))?;
+                done = if done.is_empty() {
+                    k.to_string()
+                } else {
+                    format!("{done}.{k}")
+                };
+            }
+            Seg::Index(i) => {
+                let len = node.as_array().map(Vec::len);
+                match len {
+                    Some(n) if i < n => node = &mut node[i],
+                    Some(n) => {
+                        return Err(Problem::new(
+                            path,
+                            format!("`{done}` has {n} elements; index {i} is out of range"),
+                        ));
+                    }
+                    None => return Err(Problem::new(path, format!("`{done}` is not a list"))),
+                }
+                done = format!("{done}[{i}]");
+            }
+        }
+    }
+    Ok(node)
+}
