@@ -16,3 +16,4 @@ pub mod materials;
 pub mod math;
 pub mod render;
 pub mod scene;
+pub mod watch;
