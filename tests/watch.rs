@@ -341,3 +341,37 @@ fn render_accumulate_matches_render_bit_for_bit() {
         "passes 1+1+2+4 differ from one 8-sample render"
     );
 }
+
+#[test]
+fn watch_waits_for_a_scene_that_is_briefly_missing() {
+    let w = Watch::start();
+    std::fs::remove_file(w.path("scene.ron")).expect("remove");
+    w.wait_until("the missing-file notice", |log| {
+        log.iter().any(|l| l.contains("is missing; waiting"))
+    });
+    std::fs::write(w.path("scene.ron"), scene("0.2, 0.9, 0.9", 0.4, "tri.obj")).expect("recreate");
+    w.wait_finals(2);
+    assert_eq!(w.image(), w.reference());
+}
+
+#[cfg(unix)]
+#[test]
+fn watch_stops_cleanly_on_ctrl_c() {
+    let mut w = Watch::start();
+    let pid = w.child.id().to_string();
+    let kill = Command::new("kill")
+        .args(["-INT", &pid])
+        .status()
+        .expect("kill runs");
+    assert!(kill.success());
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = w.child.try_wait().expect("wait") {
+            break s;
+        }
+        assert!(start.elapsed() < DEADLINE, "still running after Ctrl-C");
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    assert!(status.success(), "exit status {status}");
+    w.wait_until("the goodbye", |log| log.last().is_some_and(|l| l == "stopped"));
+}
