@@ -176,9 +176,6 @@ impl Reporter {
 
     /// Leaves the terminal on a fresh line.
     pub fn finish(&self, message: &str) {
-        self.line(message);
-        if self.tty {
-            self.block("\n");
-        }
+        self.block(&format!("{message}\n"));
     }
 }
