@@ -90,6 +90,7 @@ pub fn render_accumulate(
     cancel: &AtomicBool,
     sums: &mut Image,
 ) -> RenderStats {
+    debug_assert_eq!((sums.width, sums.height), (scene.film.width, scene.film.height));
     let start = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.threads.unwrap_or(0))
