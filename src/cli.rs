@@ -35,6 +35,19 @@ pub enum Command {
         #[arg(long)]
         stats: bool,
     },
+    /// Re-render progressively whenever the scene or a file it uses changes.
+    Watch {
+        scene: PathBuf,
+        /// Output image, as for `render`; rewritten after every pass.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        settings: RenderSettings,
+        /// Serve a live page (default 127.0.0.1:8765 or the next free port;
+        /// `ADDR` is `HOST:PORT` or a port on loopback, 0 for any).
+        #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "")]
+        serve: Option<String>,
+    },
     /// Check scenes without rendering; prints every problem found.
     Validate {
         #[arg(required = true)]
@@ -160,6 +173,17 @@ pub fn run(cli: Cli) -> ExitCode {
             bless,
             threads,
         } => cmd_check(paths, bless, threads),
+        Command::Watch {
+            scene,
+            output,
+            settings,
+            serve,
+        } => crate::watch::run(crate::watch::WatchArgs {
+            scene,
+            output,
+            settings,
+            serve,
+        }),
         Command::Diff {
             a,
             b,

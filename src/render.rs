@@ -61,11 +61,15 @@ pub fn render_cancellable(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBo
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.threads.unwrap_or(0))
         .build();
-    let work = || render_tiles(scene, opts, cancel);
-    let (image, counters, samples) = match pool {
+    let work = || render_tiles(scene, opts, cancel, None);
+    let (mut image, counters, samples) = match pool {
         Ok(pool) => pool.install(work),
         Err(_) => work(),
     };
+    let spp = opts.sample_range.map_or(scene.film.spp, |(_, n)| n);
+    for p in &mut image.pixels {
+        *p /= spp as f32;
+    }
     let stats = RenderStats {
         elapsed: start.elapsed(),
         samples,
@@ -75,7 +79,47 @@ pub fn render_cancellable(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBo
     (image, stats)
 }
 
-fn render_tiles(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBool) -> (Image, Counters, u64) {
+/// Progressive refinement without rounding drift: `sums` holds per-pixel
+/// sample sums over `[0, first)` where `opts.sample_range` is `(first, n)`,
+/// and on return the sums over `[0, first + n)`, each pixel's samples added
+/// in order as [`render`] adds them. Dividing by `first + n` therefore gives
+/// exactly [`render`]'s image at that sample count. A cancelled pass leaves
+/// `sums` untouched.
+pub fn render_accumulate(
+    scene: &Scene,
+    opts: &RenderOptions,
+    cancel: &AtomicBool,
+    sums: &mut Image,
+) -> RenderStats {
+    debug_assert_eq!((sums.width, sums.height), (scene.film.width, scene.film.height));
+    let start = Instant::now();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads.unwrap_or(0))
+        .build();
+    let work = || render_tiles(scene, opts, cancel, Some(&*sums));
+    let (image, counters, samples) = match pool {
+        Ok(pool) => pool.install(work),
+        Err(_) => work(),
+    };
+    let cancelled = cancel.load(Ordering::Relaxed);
+    if !cancelled {
+        *sums = image;
+    }
+    RenderStats {
+        elapsed: start.elapsed(),
+        samples,
+        rays: counters.rays,
+        cancelled,
+    }
+}
+
+/// Per-pixel sample sums, continuing from `prefix` when given.
+fn render_tiles(
+    scene: &Scene,
+    opts: &RenderOptions,
+    cancel: &AtomicBool,
+    prefix: Option<&Image>,
+) -> (Image, Counters, u64) {
     let film = scene.film;
     let (w, h) = (film.width, film.height);
     let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
@@ -106,7 +150,7 @@ fn render_tiles(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBool) -> (Im
             }
             for y in y0..y1 {
                 for x in x0..x1 {
-                    let mut sum = Rgb::ZERO;
+                    let mut sum = prefix.map_or(Rgb::ZERO, |p| p.get(x, y));
                     for s in s0..s0 + spp {
                         let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
                         let jitter = sampler.next_vec2();
@@ -115,7 +159,7 @@ fn render_tiles(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBool) -> (Im
                         let ray = scene.camera.ray(film_pos, aspect, sampler.next_vec2());
                         sum += scene.integrator.li(scene, &ray, &mut sampler, &mut counters);
                     }
-                    px.push(sum / spp as f32);
+                    px.push(sum);
                 }
             }
             bar.inc(1);

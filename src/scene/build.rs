@@ -9,7 +9,7 @@ use super::problem::Problem;
 use super::runtime::{Film, Scene};
 use crate::accel::Bvh;
 use crate::camera::Camera;
-use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere, obj};
+use crate::geometry::{Mesh, NO_LIGHT, Plane, Quad, Shape, Sphere, obj};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
 use crate::lights::{Light, LightPicker, PointLight, QuadLight, SpotLight};
 use crate::materials::Material;
@@ -31,6 +31,16 @@ pub struct BuildStats {
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
 /// the folder relative paths resolve against.
 pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<Problem>> {
+    build_with(desc, base, &obj::load_obj)
+}
+
+/// As [`build`], reading OBJ files through `load_mesh`, so that watch mode
+/// can reuse meshes whose files did not change between reloads.
+pub fn build_with(
+    desc: &SceneDesc,
+    base: &Path,
+    load_mesh: &dyn Fn(&Path) -> Result<Mesh, String>,
+) -> Result<(Scene, BuildStats), Vec<Problem>> {
     let t0 = Instant::now();
     let mut problems = Vec::new();
     let super::build_material::Materials {
@@ -155,7 +165,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
             }
             ObjectDesc::Mesh { file, .. } => {
                 let path = base.join(file);
-                match obj::load_obj(&path) {
+                match load_mesh(&path) {
                     Ok(mut mesh) => {
                         let normal_m = m.inverse().transpose();
                         for p in &mut mesh.positions {

@@ -1,7 +1,7 @@
 //! Reading a scene file through every stage, turning each stage's problems
 //! into located diagnostics.
 
-use super::build::{BuildStats, build};
+use super::build::{BuildStats, build_with};
 use super::desc::SceneDesc;
 use super::problem::{Problem, suggest};
 use super::runtime::Scene;
@@ -86,6 +86,17 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Loaded, LoadError
 
 /// As [`load_with`], with the file's text already read (tests, watch mode).
 pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded, LoadError> {
+    load_str_with_meshes(path, text, overrides, &crate::geometry::obj::load_obj)
+}
+
+/// As [`load_str`], reading OBJ files through `load_mesh` (watch mode's
+/// cache of unchanged meshes).
+pub fn load_str_with_meshes(
+    path: &Path,
+    text: &str,
+    overrides: &Overrides,
+    load_mesh: &dyn Fn(&Path) -> Result<crate::geometry::Mesh, String>,
+) -> Result<Loaded, LoadError> {
     let mut desc = parse(path, text).map_err(LoadError::Invalid)?;
     if let Err(problems) = super::set::apply_sets(&mut desc, &overrides.sets) {
         return Err(LoadError::Invalid(command_line(&problems)));
@@ -96,7 +107,8 @@ pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded
     if !problems.is_empty() {
         return Err(LoadError::Invalid(located(path, text, &problems)));
     }
-    let (scene, stats) = build(&desc, base).map_err(|p| LoadError::Invalid(located(path, text, &p)))?;
+    let (scene, stats) =
+        build_with(&desc, base, load_mesh).map_err(|p| LoadError::Invalid(located(path, text, &p)))?;
     let mut files = vec![path.to_path_buf()];
     files.extend(stats.texture_files.iter().cloned());
     for o in &desc.objects {

@@ -109,6 +109,34 @@ impl Serialize for ColorDesc {
     }
 }
 
+impl schemars::JsonSchema for ColorDesc {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Color".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let rgb = schemars::json_schema!({
+            "type": "array", "items": { "type": "number", "minimum": 0 }, "minItems": 3, "maxItems": 3
+        });
+        schemars::json_schema!({
+            "description": "A linear RGB colour `(r, g, b)`, a grey level, an image file (sRGB, relative to the scene file), `Image(file: ...)` or `Checker(a: (r, g, b), b: (r, g, b), scale: squares per UV unit)`.",
+            "anyOf": [
+                rgb,
+                { "type": "number", "minimum": 0 },
+                { "type": "string", "description": "image file" },
+                {
+                    "type": "object", "additionalProperties": false, "required": ["file"],
+                    "properties": { "file": { "type": "string" } }
+                },
+                {
+                    "type": "object", "additionalProperties": false, "required": ["a", "b"],
+                    "properties": { "a": rgb, "b": rgb, "scale": { "type": "number", "exclusiveMinimum": 0 } }
+                }
+            ]
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -147,33 +175,5 @@ mod tests {
             parse("Checker(a: (1, 1, 1), c: (0, 0, 0))").is_err(),
             "unknown field"
         );
-    }
-}
-
-impl schemars::JsonSchema for ColorDesc {
-    fn schema_name() -> std::borrow::Cow<'static, str> {
-        "Color".into()
-    }
-
-    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
-        let rgb = schemars::json_schema!({
-            "type": "array", "items": { "type": "number", "minimum": 0 }, "minItems": 3, "maxItems": 3
-        });
-        schemars::json_schema!({
-            "description": "A linear RGB colour `(r, g, b)`, a grey level, an image file (sRGB, relative to the scene file), `Image(file: ...)` or `Checker(a: (r, g, b), b: (r, g, b), scale: squares per UV unit)`.",
-            "anyOf": [
-                rgb,
-                { "type": "number", "minimum": 0 },
-                { "type": "string", "description": "image file" },
-                {
-                    "type": "object", "additionalProperties": false, "required": ["file"],
-                    "properties": { "file": { "type": "string" } }
-                },
-                {
-                    "type": "object", "additionalProperties": false, "required": ["a", "b"],
-                    "properties": { "a": rgb, "b": rgb, "scale": { "type": "number", "exclusiveMinimum": 0 } }
-                }
-            ]
-        })
     }
 }

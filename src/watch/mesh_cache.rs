@@ -1,0 +1,85 @@
+//! Meshes kept between reloads, so a camera, material or light edit does not
+//! re-read and re-triangulate OBJ files.
+//!
+//! A mesh is reused while its file's (path, modification time, size) is
+//! unchanged. The cached mesh is the file's content in object space; the
+//! scene's transform is applied to a copy by `build`, and the BVH is rebuilt
+//! (milliseconds for thousands of triangles).
+
+use crate::geometry::{Mesh, obj};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+type Stamp = (Option<SystemTime>, u64);
+
+#[derive(Default)]
+pub struct MeshCache {
+    entries: RefCell<HashMap<PathBuf, (Stamp, Mesh)>>,
+    hits: RefCell<usize>,
+}
+
+fn stamp(path: &Path) -> Option<Stamp> {
+    let m = std::fs::metadata(path).ok()?;
+    Some((m.modified().ok(), m.len()))
+}
+
+impl MeshCache {
+    /// A drop-in for [`obj::load_obj`].
+    pub fn load(&self, path: &Path) -> Result<Mesh, String> {
+        let before = stamp(path);
+        if let Some(s) = before
+            && let Some((cached, mesh)) = self.entries.borrow().get(path)
+            && *cached == s
+        {
+            *self.hits.borrow_mut() += 1;
+            return Ok(mesh.clone());
+        }
+        let mesh = obj::load_obj(path)?;
+        // A file rewritten while it was read is not cached: the next event
+        // reloads it.
+        match before {
+            Some(s) if stamp(path) == before => {
+                self.entries
+                    .borrow_mut()
+                    .insert(path.to_path_buf(), (s, mesh.clone()));
+            }
+            _ => {
+                self.entries.borrow_mut().remove(path);
+            }
+        }
+        Ok(mesh)
+    }
+
+    /// Forgets meshes the scene no longer uses.
+    pub fn retain(&self, files: &[PathBuf]) {
+        self.entries.borrow_mut().retain(|p, _| files.contains(p));
+    }
+
+    /// Meshes served from the cache since the last call.
+    pub fn take_hits(&self) -> usize {
+        std::mem::take(&mut *self.hits.borrow_mut())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mesh_cache_reuses_until_the_file_changes() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("t.obj");
+        std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").expect("write");
+        let cache = MeshCache::default();
+        assert_eq!(cache.load(&path).map(|m| m.triangle_count()), Ok(1));
+        assert_eq!(cache.load(&path).map(|m| m.triangle_count()), Ok(1));
+        assert_eq!(cache.take_hits(), 1);
+        std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n").expect("write");
+        assert_eq!(cache.load(&path).map(|m| m.triangle_count()), Ok(2));
+        assert_eq!(cache.take_hits(), 0, "a changed file is read again");
+        cache.retain(&[]);
+        assert!(cache.entries.borrow().is_empty());
+    }
+}

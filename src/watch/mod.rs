@@ -1,0 +1,239 @@
+//! `ronray watch`: edit the scene, see the image, never lose the last good
+//! picture.
+//!
+//! The main thread owns the filesystem watcher: a change cancels the render
+//! in flight at once, then, once the files have been quiet for a moment
+//! ([`debounce`]), reloads and validates. A valid scene goes to the render
+//! worker ([`progressive`]), which writes a quick pass and then refines it;
+//! an invalid one prints its diagnostics and leaves the image on disk alone.
+//! Folders are watched rather than files ([`watched`]), and the set is
+//! re-derived after every reload, so adding or renaming an OBJ re-arms it.
+
+mod debounce;
+mod hub;
+mod mesh_cache;
+mod progressive;
+mod server;
+mod status;
+mod watched;
+
+use crate::cli::{RenderSettings, output_path};
+use crate::scene::desc::ObjectDesc;
+use crate::scene::load::{load_str_with_meshes, parse};
+use crate::scene::{LoadError, Overrides};
+use debounce::Debounce;
+use mesh_cache::MeshCache;
+use notify::{RecommendedWatcher, RecursiveMode, Watcher};
+use progressive::{Cancel, Job};
+use status::Reporter;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
+use std::time::Instant;
+use watched::WatchSet;
+
+/// What `ronray watch` was asked to do.
+#[derive(Clone, Debug)]
+pub struct WatchArgs {
+    pub scene: PathBuf,
+    pub output: Option<PathBuf>,
+    pub settings: RenderSettings,
+    /// `Some("")` serves on the default address.
+    pub serve: Option<String>,
+}
+
+enum Msg {
+    Fs(notify::Result<notify::Event>),
+    Quit,
+}
+
+pub fn run(args: WatchArgs) -> ExitCode {
+    let hub = args.serve.is_some().then(|| Arc::new(hub::Hub::default()));
+    let reporter = Arc::new(Reporter::new(std::io::stderr().is_terminal(), hub.clone()));
+    if let (Some(addr), Some(hub)) = (&args.serve, hub) {
+        match server::start(addr, hub) {
+            Ok(a) => eprintln!("serving http://{a}/"),
+            Err(e) => {
+                let shown = if addr.is_empty() {
+                    "the default port"
+                } else {
+                    addr.as_str()
+                };
+                eprintln!("error: cannot serve on {shown}: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    if !args.scene.is_file() {
+        eprintln!("error: cannot read scene file {}", args.scene.display());
+        return ExitCode::FAILURE;
+    }
+    let (tx, rx) = mpsc::channel();
+    let quit = tx.clone();
+    if let Err(e) = ctrlc::set_handler(move || {
+        let _ = quit.send(Msg::Quit);
+    }) {
+        eprintln!("warning: Ctrl-C will not stop cleanly: {e}");
+    }
+    let watcher = match notify::recommended_watcher(move |r| {
+        let _ = tx.send(Msg::Fs(r));
+    }) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("error: cannot watch files: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    eprintln!("watching {} (Ctrl-C to stop)", args.scene.display());
+    let (jobs, queue) = mpsc::channel();
+    let worker = progressive::spawn(queue, reporter.clone(), args.settings.threads);
+    let mut session = Session {
+        overrides: args.settings.overrides(),
+        scene: args.scene,
+        output: args.output,
+        reporter: reporter.clone(),
+        watcher,
+        set: WatchSet::default(),
+        cache: MeshCache::default(),
+        cancel: Arc::new(Cancel::default()),
+        generation: 0,
+        jobs,
+    };
+    // Watch before the first load, so an edit during it is not missed.
+    session.rearm(WatchSet::new([&session.scene]));
+    session.reload(Instant::now());
+    session.event_loop(&rx);
+    session.cancel.cancel();
+    drop(session);
+    let _ = worker.join();
+    reporter.finish("stopped");
+    ExitCode::SUCCESS
+}
+
+/// The watcher side: what is watched, the last load, the job in flight.
+struct Session {
+    scene: PathBuf,
+    output: Option<PathBuf>,
+    overrides: Overrides,
+    reporter: Arc<Reporter>,
+    watcher: RecommendedWatcher,
+    set: WatchSet,
+    cache: MeshCache,
+    cancel: Arc<Cancel>,
+    generation: u64,
+    jobs: Sender<Job>,
+}
+
+impl Session {
+    fn event_loop(&mut self, rx: &Receiver<Msg>) {
+        let mut debounce = Debounce::default();
+        loop {
+            if let Some(first) = debounce.take_due(Instant::now()) {
+                self.reload(first);
+            }
+            let msg = match debounce.deadline() {
+                Some(d) => rx.recv_timeout(d.saturating_duration_since(Instant::now())),
+                None => rx.recv().map_err(|_| RecvTimeoutError::Disconnected),
+            };
+            match msg {
+                Ok(Msg::Quit) | Err(RecvTimeoutError::Disconnected) => return,
+                Err(RecvTimeoutError::Timeout) => {}
+                Ok(Msg::Fs(Ok(ev))) => {
+                    if ev.need_rescan() || self.set.matters(&ev.kind, &ev.paths) {
+                        // The render in flight is stale already: stop it now,
+                        // not after the debounce.
+                        self.cancel.cancel();
+                        debounce.note(Instant::now());
+                    }
+                }
+                Ok(Msg::Fs(Err(e))) => self.reporter.line(&format!("warning: file watcher: {e}")),
+            }
+        }
+    }
+
+    /// Loads the scene as it is now and hands it to the worker, or reports
+    /// why it cannot be rendered.
+    fn reload(&mut self, changed_at: Instant) {
+        self.generation += 1;
+        let generation = self.generation;
+        self.cancel.cancel();
+        let t0 = Instant::now();
+        let text = match std::fs::read_to_string(&self.scene) {
+            Ok(t) => t,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                let msg = format!("{} is missing; waiting for it", self.scene.display());
+                return self.reporter.problem(generation, &msg);
+            }
+            Err(source) => {
+                let path = self.scene.clone();
+                return self.reporter.invalid(generation, &LoadError::Io { path, source });
+            }
+        };
+        let cache = &self.cache;
+        let loaded = load_str_with_meshes(&self.scene, &text, &self.overrides, &|p| cache.load(p));
+        let loaded = match loaded {
+            Ok(l) => l,
+            Err(e) => {
+                self.reporter.invalid(generation, &e);
+                // Watch what the broken scene names too: creating the OBJ
+                // it is missing should fix it.
+                let next = self
+                    .set
+                    .union(&WatchSet::new(&referenced_files(&self.scene, &text)));
+                return self.rearm(next);
+            }
+        };
+        let (load_time, reused) = (t0.elapsed(), self.cache.take_hits());
+        self.cache.retain(&loaded.files);
+        self.rearm(WatchSet::new(&loaded.files));
+        let output = output_path(&self.scene, self.output.clone(), &loaded.scene.output);
+        let ext = output.extension().and_then(|e| e.to_str()).unwrap_or("");
+        if !ext.eq_ignore_ascii_case("png") && !ext.eq_ignore_ascii_case("exr") {
+            let msg = format!("error: output {} must end in .png or .exr", output.display());
+            return self.reporter.problem(generation, &msg);
+        }
+        let name = self.scene.display().to_string();
+        let watched = self.set.file_count();
+        self.reporter
+            .loaded(generation, &name, load_time, reused, watched);
+        self.cancel = Arc::new(Cancel::default());
+        let job = Job {
+            scene: loaded.scene,
+            output,
+            cancel: self.cancel.clone(),
+            generation,
+            changed_at,
+        };
+        let _ = self.jobs.send(job);
+    }
+
+    /// Watches the folders of `next` and stops watching the others.
+    fn rearm(&mut self, next: WatchSet) {
+        for dir in next.dirs().filter(|d| !self.set.has_dir(d)) {
+            if let Err(e) = self.watcher.watch(dir, RecursiveMode::NonRecursive) {
+                self.reporter
+                    .line(&format!("warning: cannot watch {}: {e}", dir.display()));
+            }
+        }
+        for dir in self.set.dirs().filter(|d| !next.has_dir(d)) {
+            let _ = self.watcher.unwatch(dir);
+        }
+        self.set = next;
+    }
+}
+
+/// The files a scene that failed to load names, as far as it parses.
+fn referenced_files(scene: &Path, text: &str) -> Vec<PathBuf> {
+    let base = scene.parent().unwrap_or(Path::new("."));
+    let mut files = vec![scene.to_path_buf()];
+    if let Ok(desc) = parse(scene, text) {
+        for o in &desc.objects {
+            if let ObjectDesc::Mesh { file, .. } = o {
+                files.push(base.join(file));
+            }
+        }
+    }
+    files
+}
