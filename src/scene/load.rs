@@ -98,6 +98,7 @@ pub fn load_str_with_meshes(
     load_mesh: &dyn Fn(&Path) -> Result<crate::geometry::Mesh, String>,
 ) -> Result<Loaded, LoadError> {
     let mut desc = parse(path, text).map_err(LoadError::Invalid)?;
+    let composition = super::include::compose(path, text, &mut desc).map_err(LoadError::Invalid)?;
     if let Err(problems) = super::set::apply_sets(&mut desc, &overrides.sets) {
         return Err(LoadError::Invalid(command_line(&problems)));
     }
@@ -105,11 +106,11 @@ pub fn load_str_with_meshes(
     let base = path.parent().unwrap_or(Path::new("."));
     let problems = validate(&desc);
     if !problems.is_empty() {
-        return Err(LoadError::Invalid(located(path, text, &problems)));
+        return Err(LoadError::Invalid(composition.locate(&problems)));
     }
     let (scene, stats) =
-        build_with(&desc, base, load_mesh).map_err(|p| LoadError::Invalid(located(path, text, &p)))?;
-    let mut files = vec![path.to_path_buf()];
+        build_with(&desc, base, load_mesh).map_err(|p| LoadError::Invalid(composition.locate(&p)))?;
+    let mut files: Vec<PathBuf> = composition.sources.iter().map(|(p, _)| p.clone()).collect();
     files.extend(stats.texture_files.iter().cloned());
     for o in &desc.objects {
         if let super::desc::ObjectDesc::Mesh { file, .. } = o {

@@ -6,6 +6,7 @@ pub mod build;
 pub mod build_material;
 pub mod desc;
 pub mod format;
+pub mod include;
 pub mod load;
 pub mod problem;
 pub mod runtime;

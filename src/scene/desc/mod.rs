@@ -43,6 +43,10 @@ pub type Color = [f32; 3];
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(rename = "Scene", deny_unknown_fields)]
 pub struct SceneDesc {
+    /// Files whose materials, lights and objects are added to this scene
+    /// (relative to this file); this file's own materials override theirs.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub include: Vec<String>,
     pub camera: CameraDesc,
     #[serde(default)]
     pub film: FilmDesc,
@@ -58,6 +62,22 @@ pub struct SceneDesc {
     /// Settings for `ronray check`: the scene's regression test.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub test: Option<TestDesc>,
+}
+
+/// An included file: shared materials, lights and objects (a studio rig, a
+/// material library). Camera, film and integrator belong to the scene that
+/// includes it.
+#[derive(Clone, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
+#[serde(rename = "Include", deny_unknown_fields)]
+pub struct IncludeDesc {
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub include: Vec<String>,
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialDesc>,
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+    #[serde(default)]
+    pub objects: Vec<ObjectDesc>,
 }
 
 /// How `ronray check` renders this scene and compares it with its golden

@@ -1,0 +1,328 @@
+//! Scene composition: `include: ["studio.ron", ...]` pulls materials, lights
+//! and objects from other files.
+//!
+//! Precedence: included files are merged in the order listed (depth first),
+//! then the including file's own entries; a material the including file
+//! defines overrides an included one of the same name. Two *included* files
+//! defining the same material name is an error (neither should win
+//! silently), and so is an include cycle; both show both locations.
+//! Relative paths inside an included file (OBJ files, textures, nested
+//! includes) stay relative to that file.
+//!
+//! Every merged entry remembers where it came from, so a problem found in
+//! the composed scene is reported in the file and at the line that wrote it.
+
+use super::desc::{ColorDesc, IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
+use super::problem::Problem;
+use super::spans::Spans;
+use crate::diagnostic::{Diagnostic, Report, offset_of};
+use std::path::{Path, PathBuf};
+
+/// Where a path of the composed scene was written.
+#[derive(Clone, Debug)]
+struct Origin {
+    merged: String,
+    file: usize,
+    original: String,
+}
+
+/// The files a composed scene was read from, and where each entry came from.
+#[derive(Debug, Default)]
+pub struct Composition {
+    pub sources: Vec<(PathBuf, String)>,
+    origins: Vec<Origin>,
+}
+
+impl Composition {
+    /// A scene without includes: everything is in file 0.
+    pub fn single(path: &Path, text: &str) -> Self {
+        Self {
+            sources: vec![(path.to_path_buf(), text.to_string())],
+            origins: Vec::new(),
+        }
+    }
+
+    /// Turns problems of the composed scene into diagnostics in the right file.
+    pub fn locate(&self, problems: &[Problem]) -> Report {
+        let spans: Vec<Spans> = self.sources.iter().map(|(_, t)| Spans::scan(t)).collect();
+        let diagnostics = problems
+            .iter()
+            .map(|p| {
+                let (file, path) = self.origin_of(&p.path);
+                let (fpath, text) = &self.sources[file];
+                let mut d = Diagnostic::new(fpath, text, spans[file].find(&path), p.message.clone());
+                d.path = Some(path);
+                d.help = p.help.clone();
+                d
+            })
+            .collect();
+        Report {
+            diagnostics,
+            sources: self.sources.clone(),
+        }
+    }
+
+    fn origin_of(&self, path: &str) -> (usize, String) {
+        let best = self
+            .origins
+            .iter()
+            .filter(|o| {
+                path.strip_prefix(o.merged.as_str())
+                    .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
+            })
+            .max_by_key(|o| o.merged.len());
+        match best {
+            Some(o) => (o.file, format!("{}{}", o.original, &path[o.merged.len()..])),
+            None => (0, path.to_string()),
+        }
+    }
+}
+
+/// Merges `desc.include` (recursively) into `desc`.
+pub fn compose(path: &Path, text: &str, desc: &mut SceneDesc) -> Result<Composition, Report> {
+    let mut c = Composition::single(path, text);
+    if desc.include.is_empty() {
+        return Ok(c);
+    }
+    let mut merged = IncludeDesc::default();
+    let mut defined: std::collections::HashMap<String, (usize, String)> = Default::default();
+    let mut errors = Vec::new();
+    let stack = vec![canonical(path)];
+    for (i, inc) in desc.include.clone().iter().enumerate() {
+        let at = Site {
+            file: 0,
+            path: format!("include[{i}]"),
+        };
+        include(
+            &mut c,
+            &mut merged,
+            &mut defined,
+            &mut errors,
+            &stack,
+            PathBuf::new(),
+            inc,
+            at,
+        );
+    }
+    if !errors.is_empty() {
+        return Err(Report {
+            diagnostics: errors,
+            sources: c.sources,
+        });
+    }
+    // The including file's own entries come after the included ones.
+    let (nl, no) = (merged.lights.len(), merged.objects.len());
+    for i in 0..desc.lights.len() {
+        c.origins.push(Origin {
+            merged: format!("lights[{}]", nl + i),
+            file: 0,
+            original: format!("lights[{i}]"),
+        });
+    }
+    for i in 0..desc.objects.len() {
+        c.origins.push(Origin {
+            merged: format!("objects[{}]", no + i),
+            file: 0,
+            original: format!("objects[{i}]"),
+        });
+    }
+    for name in desc.materials.keys() {
+        c.origins.retain(|o| o.merged != format!("materials.{name}"));
+    }
+    merged.lights.append(&mut desc.lights);
+    merged.objects.append(&mut desc.objects);
+    desc.lights = merged.lights;
+    desc.objects = merged.objects;
+    for (name, m) in merged.materials {
+        desc.materials.entry(name).or_insert(m);
+    }
+    Ok(c)
+}
+
+/// Where an include entry is written.
+struct Site {
+    file: usize,
+    path: String,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn include(
+    c: &mut Composition,
+    merged: &mut IncludeDesc,
+    defined: &mut std::collections::HashMap<String, (usize, String)>,
+    errors: &mut Vec<Diagnostic>,
+    stack: &[PathBuf],
+    parent_rel: PathBuf,
+    inc: &str,
+    at: Site,
+) {
+    let rel = parent_rel.join(inc);
+    let top_dir = c.sources[0].0.parent().unwrap_or(Path::new(".")).to_path_buf();
+    let full = top_dir.join(&rel);
+    let err = |c: &Composition, msg: String, help: String| {
+        let (p, t) = &c.sources[at.file];
+        let mut d = Diagnostic::new(p, t, Spans::scan(t).find(&at.path), msg);
+        d.path = Some(at.path.clone());
+        d.help = Some(help);
+        d
+    };
+    let key = canonical(&full);
+    if let Some(k) = stack.iter().position(|s| *s == key) {
+        let chain: Vec<String> = stack[k..]
+            .iter()
+            .chain([&key])
+            .map(|p| p.display().to_string())
+            .collect();
+        let first = c
+            .sources
+            .iter()
+            .position(|(p, _)| canonical(p) == key)
+            .map(|i| location(c, i, ""));
+        errors.push(err(
+            c,
+            format!("include cycle: {}", chain.join(" → ")),
+            format!(
+                "{} is already being included (from {}); remove one of the includes",
+                full.display(),
+                first.unwrap_or_default()
+            ),
+        ));
+        return;
+    }
+    let text = match std::fs::read_to_string(&full) {
+        Ok(t) => t,
+        Err(e) => {
+            errors.push(err(
+                c,
+                format!("cannot read included file {}: {e}", full.display()),
+                "include paths are relative to the including file's folder".into(),
+            ));
+            return;
+        }
+    };
+    let file = c.sources.len();
+    c.sources.push((full.clone(), text.clone()));
+    let opts = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let parsed = if full.extension().is_some_and(|e| e == "json") {
+        serde_json::from_str::<IncludeDesc>(&text)
+            .map_err(|e| (offset_of(&text, e.line(), e.column()), e.to_string()))
+    } else {
+        opts.from_str::<IncludeDesc>(&text).map_err(|e| {
+            (
+                offset_of(&text, e.span.start.line, e.span.start.col),
+                e.code.to_string(),
+            )
+        })
+    };
+    let mut inc_desc = match parsed {
+        Ok(d) => d,
+        Err((off, msg)) => {
+            errors.push(Diagnostic::new(
+                &full,
+                &text,
+                Some(off..(off + 1).min(text.len())),
+                msg,
+            ));
+            return;
+        }
+    };
+    let here = rel.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut stack = stack.to_vec();
+    stack.push(key);
+    for (i, nested) in inc_desc.include.clone().iter().enumerate() {
+        let site = Site {
+            file,
+            path: format!("include[{i}]"),
+        };
+        include(c, merged, defined, errors, &stack, here.clone(), nested, site);
+    }
+    // Relative asset paths stay relative to the included file.
+    let fix = |f: &mut String| {
+        if Path::new(f.as_str()).is_relative() {
+            *f = here.join(f.as_str()).to_string_lossy().into_owned();
+        }
+    };
+    for (name, mut m) in std::mem::take(&mut inc_desc.materials) {
+        for_each_image(&mut m, fix);
+        if let Some((first_file, first_path)) = defined.get(&name) {
+            let first = location(c, *first_file, first_path);
+            let mut d = Diagnostic::new(
+                &full,
+                &text,
+                Spans::scan(&text).find(&format!("materials.{name}")),
+                format!("material `{name}` is defined in two included files"),
+            );
+            d.path = Some(format!("materials.{name}"));
+            d.help = Some(format!(
+                "it is first defined at {first}; rename one, or define it in the including scene to choose"
+            ));
+            errors.push(d);
+            continue;
+        }
+        defined.insert(name.clone(), (file, format!("materials.{name}")));
+        c.origins.push(Origin {
+            merged: format!("materials.{name}"),
+            file,
+            original: format!("materials.{name}"),
+        });
+        merged.materials.insert(name, m);
+    }
+    for (i, l) in inc_desc.lights.into_iter().enumerate() {
+        c.origins.push(Origin {
+            merged: format!("lights[{}]", merged.lights.len()),
+            file,
+            original: format!("lights[{i}]"),
+        });
+        merged.lights.push(l);
+    }
+    for (i, mut o) in inc_desc.objects.into_iter().enumerate() {
+        if let ObjectDesc::Mesh { file: f, .. } = &mut o {
+            fix(f);
+        }
+        c.origins.push(Origin {
+            merged: format!("objects[{}]", merged.objects.len()),
+            file,
+            original: format!("objects[{i}]"),
+        });
+        merged.objects.push(o);
+    }
+}
+
+fn for_each_image(m: &mut MaterialDesc, mut f: impl FnMut(&mut String)) {
+    let mut one = |c: &mut ColorDesc| {
+        if let ColorDesc::Image(file) = c {
+            f(file);
+        }
+    };
+    match m {
+        MaterialDesc::Lambert { albedo } | MaterialDesc::OrenNayar { albedo, .. } => one(albedo),
+        MaterialDesc::Phong {
+            diffuse, specular, ..
+        }
+        | MaterialDesc::BlinnPhong {
+            diffuse, specular, ..
+        } => {
+            one(diffuse);
+            one(specular);
+        }
+        MaterialDesc::MetalPlastic { base_color, .. } => one(base_color),
+        MaterialDesc::Mirror { tint } | MaterialDesc::Glass { tint, .. } => one(tint),
+        MaterialDesc::CookTorrance { .. } => {}
+    }
+}
+
+/// `file:line:col` of `path` in source `file` (the file alone if unknown).
+fn location(c: &Composition, file: usize, path: &str) -> String {
+    let (p, t) = &c.sources[file];
+    match Spans::scan(t).find(path).filter(|_| !path.is_empty()) {
+        Some(r) => {
+            let (l, col) = crate::diagnostic::line_col(t, r.start);
+            format!("{}:{l}:{col}", p.display())
+        }
+        None => p.display().to_string(),
+    }
+}
+
+fn canonical(p: &Path) -> PathBuf {
+    std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf())
+}

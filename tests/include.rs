@@ -1,0 +1,153 @@
+//! Scene composition with `include`.
+
+use ronray::scene::{LoadError, Overrides, load_with};
+use std::path::Path;
+
+fn write(dir: &Path, name: &str, text: &str) {
+    let p = dir.join(name);
+    if let Some(parent) = p.parent() {
+        std::fs::create_dir_all(parent).expect("mkdir");
+    }
+    std::fs::write(p, text).expect("write");
+}
+
+const CAMERA: &str = "camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40)";
+
+fn diagnostics(path: &Path) -> Vec<ronray::diagnostic::Diagnostic> {
+    match load_with(path, &Overrides::default()) {
+        Err(LoadError::Invalid(r)) => r.diagnostics,
+        Err(e) => panic!("expected diagnostics, got {e}"),
+        Ok(_) => panic!("{} should not load", path.display()),
+    }
+}
+
+#[test]
+fn include_composes_and_the_including_file_wins() {
+    let d = tempfile::tempdir().expect("tmp");
+    write(
+        d.path(),
+        "rig/studio.ron",
+        r#"Include(
+            materials: { "floor": Lambert(albedo: (0.5, 0.5, 0.5)), "white": Lambert(albedo: (0.9, 0.9, 0.9)) },
+            lights: [Point(position: (0, 3, 0), intensity: (5, 5, 5))],
+            objects: [Mesh(file: "block.obj", material: "floor")],
+        )"#,
+    );
+    write(d.path(), "rig/block.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write(
+        d.path(),
+        "scene.ron",
+        &format!(
+            r#"Scene(include: ["rig/studio.ron"], {CAMERA},
+            materials: {{ "white": Lambert(albedo: (0.1, 0.2, 0.3)) }},
+            objects: [Sphere(center: (0, 0, 0), radius: 1, material: "white"), Plane(point: (0, -1, 0), normal: (0, 1, 0), material: "floor")],
+        )"#
+        ),
+    );
+    let l = load_with(&d.path().join("scene.ron"), &Overrides::default()).expect("composed scene loads");
+    assert_eq!(l.desc.materials.len(), 2);
+    assert_eq!(
+        format!("{:?}", l.desc.materials["white"]),
+        "Lambert { albedo: Rgb([0.1, 0.2, 0.3]) }",
+        "the including file overrides"
+    );
+    assert_eq!(l.desc.lights.len(), 1, "lights from the include");
+    assert_eq!(
+        l.desc.objects.len(),
+        3,
+        "included objects first, then the scene's"
+    );
+    assert!(
+        l.files.iter().any(|f| f.ends_with("rig/studio.ron")),
+        "watch mode sees the include"
+    );
+    assert!(
+        l.files.iter().any(|f| f.ends_with("rig/block.obj")),
+        "the OBJ resolves next to the include"
+    );
+}
+
+#[test]
+fn problems_in_an_include_point_into_that_file() {
+    let d = tempfile::tempdir().expect("tmp");
+    write(
+        d.path(),
+        "parts.ron",
+        "Include(\n    objects: [\n        Sphere(center: (0, 0, 0), radius: -2, material: \"white\"),\n    ],\n)\n",
+    );
+    write(
+        d.path(),
+        "scene.ron",
+        &format!(
+            "Scene(include: [\"parts.ron\"], {CAMERA}, materials: {{ \"white\": Lambert(albedo: (1, 1, 1)) }})"
+        ),
+    );
+    let diags = diagnostics(&d.path().join("scene.ron"));
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    assert!(
+        diags[0].file.ends_with("parts.ron"),
+        "reported in {}",
+        diags[0].file.display()
+    );
+    assert_eq!((diags[0].line, diags[0].column), (3, 43), "{}", diags[0]);
+    assert_eq!(diags[0].path.as_deref(), Some("objects[0].radius"));
+}
+
+#[test]
+fn include_cycle_is_a_located_error() {
+    let d = tempfile::tempdir().expect("tmp");
+    write(d.path(), "a.ron", "Include(include: [\"b.ron\"])");
+    write(d.path(), "b.ron", "Include(\n  include: [\"a.ron\"],\n)");
+    write(
+        d.path(),
+        "scene.ron",
+        &format!("Scene(include: [\"a.ron\"], {CAMERA})"),
+    );
+    let diags = diagnostics(&d.path().join("scene.ron"));
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    let d0 = &diags[0];
+    assert!(
+        d0.message.contains("include cycle") && d0.message.contains("a.ron") && d0.message.contains("b.ron"),
+        "{d0}"
+    );
+    assert!(
+        d0.file.ends_with("b.ron") && d0.line == 2,
+        "the include that closes the cycle: {d0}"
+    );
+    assert!(
+        d0.help.as_deref().unwrap_or("").contains("a.ron"),
+        "names the first inclusion: {d0}"
+    );
+}
+
+#[test]
+fn duplicate_name_across_includes_shows_both_locations() {
+    let d = tempfile::tempdir().expect("tmp");
+    write(
+        d.path(),
+        "one.ron",
+        "Include(materials: {\n  \"metal\": Mirror(tint: (1, 1, 1)),\n})",
+    );
+    write(
+        d.path(),
+        "two.ron",
+        "Include(\n  materials: {\n    \"metal\": Mirror(tint: (0.5, 0.5, 0.5)),\n  },\n)",
+    );
+    write(
+        d.path(),
+        "scene.ron",
+        &format!("Scene(include: [\"one.ron\", \"two.ron\"], {CAMERA})"),
+    );
+    let diags = diagnostics(&d.path().join("scene.ron"));
+    assert_eq!(diags.len(), 1, "{diags:?}");
+    let d0 = &diags[0];
+    assert!(
+        d0.file.ends_with("two.ron") && d0.line == 3,
+        "second definition located: {d0}"
+    );
+    let help = d0.help.clone().unwrap_or_default();
+    assert!(
+        help.contains("one.ron:2:"),
+        "first definition located in the help: {help}"
+    );
+}
