@@ -76,6 +76,20 @@ pub enum Command {
     },
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Render every scene of the folders given into one folder of PNGs and
+    /// print a Markdown gallery (what the README shows).
+    Gallery {
+        /// Scene files or folders; default `scenes`.
+        paths: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(short, long, default_value = "docs/gallery")]
+        out: PathBuf,
+        /// Image width (the height keeps each scene's aspect).
+        #[arg(long, default_value_t = 320)]
+        width: u32,
+        #[arg(long)]
+        spp: Option<u32>,
+    },
     /// Render scenes at their `test` settings and compare with their golden
     /// images (`golden/<name>.png` beside each scene).
     Check {
@@ -164,6 +178,7 @@ pub fn run(cli: Cli) -> ExitCode {
             json,
             drop_comments,
         } => cmd_fmt(&scenes, check, stdout, json, drop_comments),
+        Command::Gallery { paths, out, width, spp } => cmd_gallery(paths, &out, width, spp),
         Command::Schema => {
             print_out(&crate::schema::schema_json());
             ExitCode::SUCCESS
@@ -517,4 +532,40 @@ fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCo
         println!("{failed} of {} scenes failed", results.len());
         ExitCode::FAILURE
     }
+}
+
+fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) -> ExitCode {
+    let paths = if paths.is_empty() { vec![PathBuf::from("scenes")] } else { paths };
+    let Ok(scenes) = crate::check::collect(&paths) else {
+        eprintln!("error: cannot list {}", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+        return ExitCode::FAILURE;
+    };
+    let mut md = String::from("| scene | image |\n|---|---|\n");
+    let mut failed = false;
+    for scene in &scenes {
+        let full = match load_with(scene, &Overrides::default()) {
+            Ok(l) => l,
+            Err(e) => {
+                print_load_error(&e);
+                failed = true;
+                continue;
+            }
+        };
+        let f = &full.desc.film;
+        let height = ((width as f32) * f.height as f32 / f.width as f32).round().max(1.0) as u32;
+        let o = Overrides { size: Some((width, height)), spp, ..Default::default() };
+        let Ok(loaded) = load_with(scene, &o) else { continue };
+        let stem = scene.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
+        let target = out.join(format!("{stem}.png"));
+        let (img, stats) = render(&loaded.scene, &RenderOptions { progress: std::io::stderr().is_terminal(), ..Default::default() });
+        if let Err(e) = write_image(&img, &target) {
+            eprintln!("error: {e}");
+            failed = true;
+            continue;
+        }
+        eprintln!("{}: {}", target.display(), stats.summary());
+        md += &format!("| `{}` | ![{stem}]({}) |\n", scene.display(), target.display());
+    }
+    print_out(&md);
+    if failed { ExitCode::FAILURE } else { ExitCode::SUCCESS }
 }
