@@ -183,7 +183,7 @@ fn cmd_render(path: &Path, output: Option<PathBuf>, settings: &RenderSettings, s
         let b = loaded.stats;
         let bs = loaded.scene.bvh.stats();
         eprintln!(
-            "scene: {} shapes, {} triangles; load {:.1} ms; BVH build {:.1} ms, {} nodes, {} leaves, depth {}, SAH cost {:.2}, {:.1} KiB",
+            "scene: {} shapes, {} triangles placed; load {:.1} ms (OBJ parse + mesh BVHs); top-level BVH build {:.1} ms, {} nodes, {} leaves, depth {}, SAH cost {:.2}, {:.1} KiB",
             loaded.scene.shapes.len(),
             b.triangles,
             b.load_time.as_secs_f64() * 1e3,
@@ -193,6 +193,35 @@ fn cmd_render(path: &Path, output: Option<PathBuf>, settings: &RenderSettings, s
             bs.max_depth,
             bs.sah_cost,
             bs.bytes as f64 / 1024.0
+        );
+        let geo = &loaded.scene.geometry;
+        let unique: usize = geo.meshes.iter().map(|m| m.triangle_count()).sum();
+        eprintln!(
+            "meshes: {} in memory ({} triangles), {} instances; mesh BVHs + triangles {:.1} MiB ({:.1} B/triangle), all mesh data {:.1} MiB",
+            b.meshes,
+            unique,
+            b.instances,
+            b.mesh_accel_bytes as f64 / 1048576.0,
+            b.mesh_accel_bytes as f64 / unique.max(1) as f64,
+            geo.meshes.iter().map(|m| m.total_bytes()).sum::<usize>() as f64 / 1048576.0
+        );
+        for (i, m) in geo.meshes.iter().enumerate().take(8) {
+            if let Some(s) = m.blas().map(|b| b.stats()) {
+                eprintln!(
+                    "  mesh {i}: {} triangles, {} 4-wide nodes, {} leaves, depth {} (binary), SAH cost {:.2}",
+                    m.triangle_count(),
+                    s.nodes,
+                    s.leaves,
+                    s.max_depth,
+                    s.sah_cost
+                );
+            }
+        }
+        let secs = stats.elapsed.as_secs_f64().max(1e-9);
+        eprintln!(
+            "rays: {} traced, {:.2} M rays/s",
+            stats.rays,
+            stats.rays as f64 / secs / 1e6
         );
     }
     ExitCode::SUCCESS

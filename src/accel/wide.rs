@@ -40,6 +40,7 @@ pub(crate) struct Node4 {
 
 const _: () = assert!(size_of::<Node4>() == 128);
 
+#[derive(Clone, Debug)]
 pub struct Bvh4 {
     /// Node 0 is the root; empty iff no primitive has non-empty bounds.
     nodes: Vec<Node4>,

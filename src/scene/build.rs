@@ -2,12 +2,14 @@
 //! loaded and transformed, the BVH is built. Problems found here (a missing
 //! OBJ) are reported like validation problems.
 
+use super::build_mesh::MeshBuilder;
+use super::build_mtl::MtlMaterials;
 use super::desc::{IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, TransformDesc};
 use super::problem::Problem;
 use super::runtime::{Film, Scene};
 use crate::accel::Bvh;
 use crate::camera::Camera;
-use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere, obj};
+use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
 use crate::integrators::{Direct, Integrator};
 use crate::lights::{Light, PointLight, QuadLight};
 use crate::materials::{ColorTex, Material};
@@ -21,7 +23,13 @@ use std::time::{Duration, Instant};
 pub struct BuildStats {
     pub bvh_time: Duration,
     pub load_time: Duration,
+    /// Triangles over all placed meshes (instances counted each time).
     pub triangles: usize,
+    /// Distinct meshes held in memory, and their placements.
+    pub meshes: usize,
+    pub instances: usize,
+    /// Bytes of the meshes' BVHs and inline triangles (each mesh once).
+    pub mesh_accel_bytes: usize,
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
@@ -85,10 +93,10 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
         }
     }
 
-    let mut meshes = Vec::new();
-    let mut triangles = 0;
+    let mut mesh_builder = MeshBuilder::new(desc, base);
+    let mut mtl = MtlMaterials::new(materials.len() as u32, 0);
     for (i, o) in desc.objects.iter().enumerate() {
-        let material = index.get(o.material()).copied().unwrap_or(0);
+        let material = o.material().and_then(|n| index.get(n)).copied().unwrap_or(0);
         let m = compose(o.transform());
         let point = |p: &[f32; 3]| Vec3A::from(m.transform_point3(Vec3::from(*p)));
         let vector = |v: &[f32; 3]| Vec3A::from(m.transform_vector3(Vec3::from(*v)));
@@ -142,50 +150,22 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
                     NO_LIGHT,
                 )));
             }
-            ObjectDesc::Mesh { file, .. } => {
-                let path = base.join(file);
-                match obj::load_obj(&path) {
-                    Ok(mut mesh) => {
-                        let normal_m = m.inverse().transpose();
-                        for p in &mut mesh.positions {
-                            *p = m.transform_point3(Vec3::from(*p)).into();
-                        }
-                        for n in &mut mesh.normals {
-                            *n = normal_m
-                                .transform_vector3(Vec3::from(*n))
-                                .normalize_or_zero()
-                                .into();
-                        }
-                        mesh.material = material;
-                        let id = meshes.len() as u32;
-                        triangles += mesh.triangle_count();
-                        shapes.extend(
-                            (0..mesh.triangle_count() as u32).map(|tri| Shape::Triangle { mesh: id, tri }),
-                        );
-                        meshes.push(mesh);
-                    }
-                    Err(msg) => {
-                        let help = if path.exists() {
-                            "check that the file is a Wavefront OBJ with `v` and `f` lines".to_string()
-                        } else {
-                            format!(
-                                "no file at {} (paths are relative to the scene file's folder)",
-                                path.display()
-                            )
-                        };
-                        problems.push(Problem::new(format!("objects[{i}].file"), msg).help(help));
-                    }
-                }
+            ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => {
+                mesh_builder.add(i, o, m, &index, &mut mtl, &mut shapes, &mut problems)
             }
         }
     }
+    let (geometry, triangles, notes) = mesh_builder.finish();
+    notes.iter().for_each(|n| eprintln!("note: {n}"));
+    materials.extend(mtl.materials);
+    let textures = mtl.textures;
     if !problems.is_empty() {
         return Err(problems);
     }
     let load_time = t0.elapsed();
 
     let t1 = Instant::now();
-    let bounds: Vec<_> = shapes.iter().filter_map(|s| s.bounds(&meshes)).collect();
+    let bounds: Vec<_> = shapes.iter().filter_map(|s| s.bounds(&geometry)).collect();
     let bvh = Bvh::build(&bounds);
     let bvh_time = t1.elapsed();
     let bounded = shapes.len() as u32;
@@ -212,21 +192,22 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
         output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
         integrator,
         materials,
-        textures: Vec::new(),
+        textures,
         lights,
         shapes,
         bounded,
-        meshes,
+        geometry,
         bvh,
     };
-    Ok((
-        scene,
-        BuildStats {
-            bvh_time,
-            load_time,
-            triangles,
-        },
-    ))
+    let stats = BuildStats {
+        bvh_time,
+        load_time,
+        triangles,
+        meshes: scene.geometry.meshes.len(),
+        instances: scene.geometry.instances.len(),
+        mesh_accel_bytes: scene.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),
+    };
+    Ok((scene, stats))
 }
 
 fn push_quad_light(

@@ -98,6 +98,7 @@ pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded
             files.push(base.join(file));
         }
     }
+    files.extend(desc.meshes.values().map(|m| base.join(&m.file)));
     Ok(Loaded {
         scene,
         desc,

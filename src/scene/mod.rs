@@ -3,6 +3,8 @@
 //! into located diagnostics.
 
 pub mod build;
+mod build_mesh;
+mod build_mtl;
 pub mod desc;
 pub mod load;
 pub mod problem;

@@ -26,7 +26,7 @@ mod transform;
 pub use camera::{CameraDesc, FilmDesc, IntegratorDesc};
 pub use light::LightDesc;
 pub use material::MaterialDesc;
-pub use object::ObjectDesc;
+pub use object::{MeshDesc, ObjectDesc};
 pub use transform::TransformDesc;
 
 use serde::{Deserialize, Serialize};
@@ -53,4 +53,7 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
     #[serde(default)]
     pub objects: Vec<ObjectDesc>,
+    /// Named meshes that `Instance` objects place; loaded once each.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub meshes: BTreeMap<String, MeshDesc>,
 }
