@@ -56,6 +56,13 @@ pub enum Command {
         #[arg(long)]
         mask: Option<PathBuf>,
     },
+    /// Time BVH build and closest-hit throughput on an OBJ mesh.
+    Bench {
+        obj: PathBuf,
+        /// Threads for the multi-threaded figures (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
 }
 
 /// Overrides shared by `render` and `watch`.
@@ -112,6 +119,13 @@ pub fn run(cli: Cli) -> ExitCode {
             max_rmse,
             mask,
         } => cmd_diff(&a, &b, heatmap.as_deref(), max_rmse, mask.as_deref()),
+        Command::Bench { obj, threads } => crate::bench::run(&obj, threads).map_or_else(
+            |e| {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            },
+            |()| ExitCode::SUCCESS,
+        ),
     }
 }
 

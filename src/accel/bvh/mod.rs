@@ -34,7 +34,7 @@ pub struct Bvh {
 }
 
 /// Size and quality of a built tree.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BvhStats {
     pub nodes: usize,
     pub leaves: usize,
