@@ -20,9 +20,9 @@ const STACK: usize = 3 * MAX_DEPTH as usize + 1;
 struct SlabRay {
     o: [Vec4; 3],
     inv: [Vec4; 3],
-    /// Row of `Node4::b` holding the near (entry) plane per axis; the far
-    /// plane is 3 rows on (mod 6).
+    /// Rows of `Node4::b` holding the near (entry) and far planes per axis.
     near: [usize; 3],
+    far: [usize; 3],
 }
 
 impl SlabRay {
@@ -34,6 +34,7 @@ impl SlabRay {
             o: [0, 1, 2].map(|a| Vec4::splat(ray.o[a])),
             inv: [0, 1, 2].map(|a| Vec4::splat(inv_d[a])),
             near,
+            far: near.map(|r| (r + 3) % 6),
         }
     }
 
@@ -42,12 +43,12 @@ impl SlabRay {
     #[inline(always)]
     fn test(&self, n: &Node4, t_max: f32) -> (Vec4, u32) {
         let plane = |row: usize, a: usize| (Vec4::from_array(n.b[row]) - self.o[a]) * self.inv[a];
-        let far = |a: usize| (self.near[a] + 3) % 6;
-        let t_near = plane(self.near[0], 0)
-            .max(plane(self.near[1], 1))
-            .max(plane(self.near[2], 2))
+        let (near, far) = (&self.near, &self.far);
+        let t_near = plane(near[0], 0)
+            .max(plane(near[1], 1))
+            .max(plane(near[2], 2))
             .max(Vec4::ZERO);
-        let t_far = (plane(far(0), 0).min(plane(far(1), 1)).min(plane(far(2), 2)) * FAR_SCALE)
+        let t_far = (plane(far[0], 0).min(plane(far[1], 1)).min(plane(far[2], 2)) * FAR_SCALE)
             .min(Vec4::splat(t_max));
         (t_near, t_near.cmple(t_far).bitmask())
     }
