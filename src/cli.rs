@@ -117,6 +117,13 @@ pub enum Command {
         #[arg(long)]
         mask: Option<PathBuf>,
     },
+    /// Time BVH build and closest-hit throughput on an OBJ mesh.
+    Bench {
+        obj: PathBuf,
+        /// Threads for the multi-threaded figures (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
 }
 
 /// Overrides shared by `render` and `watch`.
@@ -178,7 +185,12 @@ pub fn run(cli: Cli) -> ExitCode {
             json,
             drop_comments,
         } => cmd_fmt(&scenes, check, stdout, json, drop_comments),
-        Command::Gallery { paths, out, width, spp } => cmd_gallery(paths, &out, width, spp),
+        Command::Gallery {
+            paths,
+            out,
+            width,
+            spp,
+        } => cmd_gallery(paths, &out, width, spp),
         Command::Schema => {
             print_out(&crate::schema::schema_json());
             ExitCode::SUCCESS
@@ -206,6 +218,13 @@ pub fn run(cli: Cli) -> ExitCode {
             max_rmse,
             mask,
         } => cmd_diff(&a, &b, heatmap.as_deref(), max_rmse, mask.as_deref()),
+        Command::Bench { obj, threads } => crate::bench::run(&obj, threads).map_or_else(
+            |e| {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            },
+            |()| ExitCode::SUCCESS,
+        ),
     }
 }
 
@@ -277,7 +296,7 @@ fn cmd_render(path: &Path, output: Option<PathBuf>, settings: &RenderSettings, s
         let b = loaded.stats;
         let bs = loaded.scene.bvh.stats();
         eprintln!(
-            "scene: {} shapes, {} triangles; load {:.1} ms; BVH build {:.1} ms, {} nodes, {} leaves, depth {}, SAH cost {:.2}, {:.1} KiB",
+            "scene: {} shapes, {} triangles placed; load {:.1} ms (OBJ parse + mesh BVHs); top-level BVH build {:.1} ms, {} nodes, {} leaves, depth {}, SAH cost {:.2}, {:.1} KiB",
             loaded.scene.shapes.len(),
             b.triangles,
             b.load_time.as_secs_f64() * 1e3,
@@ -287,6 +306,35 @@ fn cmd_render(path: &Path, output: Option<PathBuf>, settings: &RenderSettings, s
             bs.max_depth,
             bs.sah_cost,
             bs.bytes as f64 / 1024.0
+        );
+        let geo = &loaded.scene.geometry;
+        let unique: usize = geo.meshes.iter().map(|m| m.triangle_count()).sum();
+        eprintln!(
+            "meshes: {} in memory ({} triangles), {} instances; mesh BVHs + triangles {:.1} MiB ({:.1} B/triangle), all mesh data {:.1} MiB",
+            b.meshes,
+            unique,
+            b.instances,
+            b.mesh_accel_bytes as f64 / 1048576.0,
+            b.mesh_accel_bytes as f64 / unique.max(1) as f64,
+            geo.meshes.iter().map(|m| m.total_bytes()).sum::<usize>() as f64 / 1048576.0
+        );
+        for (i, m) in geo.meshes.iter().enumerate().take(8) {
+            if let Some(s) = m.blas().map(|b| b.stats()) {
+                eprintln!(
+                    "  mesh {i}: {} triangles, {} 4-wide nodes, {} leaves, depth {} (binary), SAH cost {:.2}",
+                    m.triangle_count(),
+                    s.nodes,
+                    s.leaves,
+                    s.max_depth,
+                    s.sah_cost
+                );
+            }
+        }
+        let secs = stats.elapsed.as_secs_f64().max(1e-9);
+        eprintln!(
+            "rays: {} traced, {:.2} M rays/s",
+            stats.rays,
+            stats.rays as f64 / secs / 1e6
         );
     }
     ExitCode::SUCCESS
@@ -535,9 +583,20 @@ fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCo
 }
 
 fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) -> ExitCode {
-    let paths = if paths.is_empty() { vec![PathBuf::from("scenes")] } else { paths };
+    let paths = if paths.is_empty() {
+        vec![PathBuf::from("scenes")]
+    } else {
+        paths
+    };
     let Ok(scenes) = crate::check::collect(&paths) else {
-        eprintln!("error: cannot list {}", paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", "));
+        eprintln!(
+            "error: cannot list {}",
+            paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
         return ExitCode::FAILURE;
     };
     let mut md = String::from("| scene | image |\n|---|---|\n");
@@ -552,12 +611,26 @@ fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) ->
             }
         };
         let f = &full.desc.film;
-        let height = ((width as f32) * f.height as f32 / f.width as f32).round().max(1.0) as u32;
-        let o = Overrides { size: Some((width, height)), spp, ..Default::default() };
-        let Ok(loaded) = load_with(scene, &o) else { continue };
+        let height = ((width as f32) * f.height as f32 / f.width as f32)
+            .round()
+            .max(1.0) as u32;
+        let o = Overrides {
+            size: Some((width, height)),
+            spp,
+            ..Default::default()
+        };
+        let Ok(loaded) = load_with(scene, &o) else {
+            continue;
+        };
         let stem = scene.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
         let target = out.join(format!("{stem}.png"));
-        let (img, stats) = render(&loaded.scene, &RenderOptions { progress: std::io::stderr().is_terminal(), ..Default::default() });
+        let (img, stats) = render(
+            &loaded.scene,
+            &RenderOptions {
+                progress: std::io::stderr().is_terminal(),
+                ..Default::default()
+            },
+        );
         if let Err(e) = write_image(&img, &target) {
             eprintln!("error: {e}");
             failed = true;
@@ -567,5 +640,9 @@ fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) ->
         md += &format!("| `{}` | ![{stem}]({}) |\n", scene.display(), target.display());
     }
     print_out(&md);
-    if failed { ExitCode::FAILURE } else { ExitCode::SUCCESS }
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
 }

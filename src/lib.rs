@@ -5,6 +5,7 @@
 //! [`scene::Scene`].
 
 pub mod accel;
+pub mod bench;
 pub mod camera;
 pub mod check;
 pub mod cli;

@@ -22,7 +22,7 @@ const MIN_DIR: f32 = 1e-30;
 /// distance by this makes the slab test conservative under rounding, so a box
 /// whose primitive is hit is never culled, even a flat one.
 /// Ize 2013, "Robust BVH Ray Traversal", <https://jcgt.org/published/0002/02/02/>.
-const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+pub(crate) const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 impl Aabb {
     pub const EMPTY: Aabb = Aabb {

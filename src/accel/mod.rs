@@ -4,6 +4,8 @@
 
 pub mod aabb;
 pub mod bvh;
+pub mod wide;
 
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};
+pub use wide::Bvh4;

@@ -1,7 +1,12 @@
 //! Shapes the renderer intersects. A closed set, so `enum Shape` with a
 //! hand-written `match`; each variant is small (a triangle is a mesh index and
 //! a triangle index) so the primitive array stays cache friendly.
+//!
+//! Triangles are not shapes of their own: a mesh carries its own BVH and the
+//! scene BVH sees one [`Shape::Instance`] per placed mesh (two-level BVH, see
+//! `instance.rs`), so a million-triangle mesh is one entry at the top level.
 
+pub mod instance;
 pub mod mesh;
 pub mod obj;
 pub mod plane;
@@ -10,7 +15,8 @@ pub mod sdf;
 pub mod sphere;
 pub mod triangle;
 
-pub use mesh::Mesh;
+pub use instance::Instance;
+pub use mesh::{Mesh, MeshHit};
 pub use plane::Plane;
 pub use quad::Quad;
 pub use sphere::Sphere;
@@ -26,12 +32,16 @@ pub const NO_LIGHT: u32 = u32::MAX;
 pub enum Shape {
     Sphere(Sphere),
     Quad(Quad),
-    /// Triangle `tri` of mesh `mesh`.
-    Triangle {
-        mesh: u32,
-        tri: u32,
-    },
+    /// Instance `0` of [`Geometry::instances`]: a mesh and its transform.
+    Instance(u32),
     Plane(Plane),
+}
+
+/// Meshes and their placements, shared by every [`Shape::Instance`].
+#[derive(Clone, Debug, Default)]
+pub struct Geometry {
+    pub meshes: Vec<Mesh>,
+    pub instances: Vec<Instance>,
 }
 
 /// A ray–surface intersection with what shading needs.
@@ -53,34 +63,54 @@ pub struct Hit {
 impl Shape {
     /// Distance to the first intersection in `(0, t_max)`.
     #[inline]
-    pub fn intersect_t(&self, ray: &Ray, t_max: f32, meshes: &[Mesh]) -> Option<f32> {
+    pub fn intersect_t(&self, ray: &Ray, t_max: f32, geo: &Geometry) -> Option<f32> {
         match self {
             Shape::Sphere(s) => s.intersect(ray, t_max),
             Shape::Quad(q) => q.intersect(ray, t_max).map(|(t, _)| t),
-            Shape::Triangle { mesh, tri } => {
-                meshes[*mesh as usize].intersect(*tri, ray, t_max).map(|(t, _)| t)
-            }
+            Shape::Instance(i) => geo.instances[*i as usize]
+                .closest(ray, t_max, &geo.meshes)
+                .map(|h| h.t),
             Shape::Plane(p) => p.intersect(ray, t_max),
         }
     }
 
-    /// Full hit record for a `t` returned by [`Shape::intersect_t`].
-    pub fn hit(&self, ray: &Ray, t: f32, meshes: &[Mesh]) -> Hit {
+    /// Whether the shape is hit in `(0, t_max)`.
+    #[inline]
+    pub fn occludes(&self, ray: &Ray, t_max: f32, geo: &Geometry) -> bool {
+        match self {
+            Shape::Instance(i) => geo.instances[*i as usize].occluded(ray, t_max, &geo.meshes),
+            s => s.intersect_t(ray, t_max, geo).is_some(),
+        }
+    }
+
+    /// Full hit record for a `t` returned by [`Shape::intersect_t`]. An
+    /// instance re-traces its mesh (callers on the hot path keep the
+    /// [`MeshHit`] instead, see `Scene::intersect`).
+    pub fn hit(&self, ray: &Ray, t: f32, geo: &Geometry) -> Hit {
         let p = ray.at(t);
         match self {
             Shape::Sphere(s) => s.hit(p, t),
             Shape::Quad(q) => q.hit(ray, t),
-            Shape::Triangle { mesh, tri } => meshes[*mesh as usize].hit(*tri, ray, t),
+            Shape::Instance(i) => {
+                let inst = &geo.instances[*i as usize];
+                let h = inst.closest(ray, t * (1.0 + 1e-5) + f32::MIN_POSITIVE, &geo.meshes);
+                let h = h.unwrap_or(MeshHit {
+                    t,
+                    tri: 0,
+                    bc: Vec2::ZERO,
+                });
+                inst.hit(ray, h, &geo.meshes)
+            }
             Shape::Plane(pl) => pl.hit(p, t),
         }
     }
 
     /// `None` for unbounded shapes (planes), which live outside the BVH.
-    pub fn bounds(&self, meshes: &[Mesh]) -> Option<Aabb> {
+    pub fn bounds(&self, geo: &Geometry) -> Option<Aabb> {
         match self {
             Shape::Sphere(s) => Some(s.bounds()),
             Shape::Quad(q) => Some(q.bounds()),
-            Shape::Triangle { mesh, tri } => Some(meshes[*mesh as usize].tri_bounds(*tri)),
+            Shape::Instance(i) => Some(geo.instances[*i as usize].bounds(&geo.meshes)),
             Shape::Plane(_) => None,
         }
     }

@@ -1,50 +1,128 @@
-//! Wavefront OBJ loading through tobj: polygons triangulated, one index per
-//! vertex, every model of the file merged into one mesh.
+//! Wavefront OBJ loading through tobj: polygons triangulated (fans), one
+//! index per vertex, every object/group of the file merged into one mesh
+//! whose triangles remember their group as a material slot.
+//!
+//! Real files are messy (see `tests/fixtures/obj-corpus/SOURCES.md`), so the
+//! loader repairs what it can and says so in `warnings`: normals that are
+//! missing, dangling (a `vn` index with no `vn` line comes back as a zero
+//! normal) or not finite are dropped for that group, and the shading falls
+//! back to the geometric normal; a missing MTL file leaves the groups without
+//! material. What it cannot repair (no faces, a vertex index out of range, a
+//! non-finite vertex) is an error naming the file, group and face.
 
 use super::Mesh;
 use glam::{Vec2, Vec3A};
 use std::path::Path;
 
-/// Loads `path`; the error is a sentence naming what is wrong.
+/// One OBJ object/group (tobj model): a material slot of the mesh.
+#[derive(Clone, Debug)]
+pub struct ObjGroup {
+    pub name: String,
+    /// Index into [`ObjData::materials`].
+    pub material: Option<usize>,
+}
+
+/// A loaded OBJ: the mesh (slot `k` = `groups[k]`) and its MTL materials.
+#[derive(Clone, Debug)]
+pub struct ObjData {
+    pub mesh: Mesh,
+    pub groups: Vec<ObjGroup>,
+    pub materials: Vec<tobj::Material>,
+    /// Repairs made, one sentence each.
+    pub warnings: Vec<String>,
+}
+
+/// Loads `path` as one mesh, ignoring materials.
 pub fn load_obj(path: &Path) -> Result<Mesh, String> {
+    load_obj_data(path).map(|d| d.mesh)
+}
+
+/// Loads `path` with its groups and MTL materials; the error is a sentence
+/// naming what is wrong and where.
+pub fn load_obj_data(path: &Path) -> Result<ObjData, String> {
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _materials) = tobj::load_obj(path, &opts).map_err(|e| match e {
+    // tobj is not ours: a panic on some input we did not foresee becomes an
+    // error rather than taking the renderer down.
+    let loaded = std::panic::catch_unwind(|| tobj::load_obj(path, &opts))
+        .map_err(|_| format!("invalid OBJ file {}: the OBJ parser gave up", path.display()))?;
+    let (models, mtl) = loaded.map_err(|e| match e {
         tobj::LoadError::OpenFileFailed => format!("cannot open OBJ file {}", path.display()),
         tobj::LoadError::ReadError => format!("cannot read OBJ file {}", path.display()),
         other => format!("invalid OBJ file {}: {other}", path.display()),
     })?;
+    let mut warnings = Vec::new();
+    let materials = mtl.unwrap_or_else(|e| {
+        warnings.push(format!("{}: its MTL file was not loaded ({e})", path.display()));
+        Vec::new()
+    });
     let mut mesh = Mesh::default();
-    let mut any_normals = true;
-    let mut any_uvs = true;
-    for m in &models {
+    let mut groups = Vec::new();
+    let (mut any_normals, mut any_uvs) = (false, false);
+    for (slot, m) in models.iter().enumerate() {
         let mm = &m.mesh;
         let base = mesh.positions.len() as u32;
         let nv = mm.positions.len() / 3;
+        let name = if m.name.is_empty() { "unnamed" } else { &m.name };
+        for (k, p) in mm.positions.chunks_exact(3).enumerate() {
+            if !p.iter().all(|x| x.is_finite()) {
+                return Err(format!(
+                    "{}: vertex {} of object `{name}` is not finite: ({}, {}, {})",
+                    path.display(),
+                    k + 1,
+                    p[0],
+                    p[1],
+                    p[2]
+                ));
+            }
+        }
         mesh.positions
             .extend(mm.positions.chunks_exact(3).map(|p| Vec3A::new(p[0], p[1], p[2])));
-        any_normals &= mm.normals.len() == mm.positions.len();
-        any_uvs &= mm.texcoords.len() / 2 == nv;
-        mesh.normals
-            .extend(mm.normals.chunks_exact(3).map(|n| Vec3A::new(n[0], n[1], n[2])));
-        mesh.uvs
-            .extend(mm.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+        let normals_ok = mm.normals.len() == mm.positions.len()
+            && mm
+                .normals
+                .chunks_exact(3)
+                .all(|n| n.iter().all(|x| x.is_finite()) && n.iter().map(|x| x * x).sum::<f32>() > 0.0);
+        if normals_ok {
+            any_normals = true;
+            mesh.normals
+                .extend(mm.normals.chunks_exact(3).map(|n| Vec3A::new(n[0], n[1], n[2])));
+        } else {
+            if !mm.normals.is_empty() {
+                warnings.push(format!(
+                    "{}: object `{name}` has missing or invalid normals (dangling `vn` indices?); using face normals",
+                    path.display()
+                ));
+            }
+            mesh.normals.resize(mesh.positions.len(), Vec3A::ZERO);
+        }
+        if mm.texcoords.len() == 2 * nv && mm.texcoords.iter().all(|x| x.is_finite()) {
+            any_uvs = true;
+            mesh.uvs
+                .extend(mm.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+        } else {
+            mesh.uvs.resize(mesh.positions.len(), Vec2::ZERO);
+        }
         for (k, tri) in mm.indices.chunks_exact(3).enumerate() {
             if let Some(&bad) = tri.iter().find(|&&i| i as usize >= nv) {
                 return Err(format!(
-                    "{}: face {} of object `{}` uses vertex index {} but the object has {nv} vertices",
+                    "{}: face {} of object `{name}` uses vertex index {} but the object has {nv} vertices",
                     path.display(),
                     k + 1,
-                    m.name,
                     bad as usize + 1
                 ));
             }
             mesh.indices.push([base + tri[0], base + tri[1], base + tri[2]]);
+            mesh.slots.push(slot as u32);
         }
+        groups.push(ObjGroup {
+            name: name.to_string(),
+            material: mm.material_id.filter(|&i| i < materials.len()),
+        });
     }
     if !any_normals {
         mesh.normals.clear();
@@ -52,11 +130,54 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
     if !any_uvs {
         mesh.uvs.clear();
     }
-    if let Some(p) = mesh.positions.iter().find(|p| !p.is_finite()) {
-        return Err(format!("{}: vertex {p} is not finite", path.display()));
-    }
     if mesh.indices.is_empty() {
         return Err(format!("{} contains no faces", path.display()));
     }
-    Ok(mesh)
+    mesh.slot_count = groups.len().max(1) as u32;
+    Ok(ObjData {
+        mesh,
+        groups,
+        materials,
+        warnings,
+    })
+}
+
+/// The image file of a `map_Kd` value, skipping MTL texture options
+/// (`-o 0.1 0 0 file.jpg`, `-clamp on file.png`, `file.png -bm 1`).
+pub fn texture_file(spec: &str) -> Option<&str> {
+    let mut words = spec.split_whitespace().peekable();
+    while let Some(w) = words.next() {
+        if w.starts_with('-') && w.parse::<f32>().is_err() {
+            // An option: skip its numeric / on-off arguments (one for `-type`
+            // and `-imfchan`, which take a word).
+            if matches!(w, "-type" | "-imfchan") {
+                words.next();
+            }
+            while words
+                .peek()
+                .is_some_and(|a| a.parse::<f32>().is_ok() || *a == "on" || *a == "off")
+            {
+                words.next();
+            }
+        } else {
+            return Some(w);
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::texture_file;
+
+    #[test]
+    fn obj_texture_file_skips_options() {
+        assert_eq!(texture_file("a.png"), Some("a.png"));
+        assert_eq!(
+            texture_file("-o 0.1 0 0 -clamp on diffuse.jpg"),
+            Some("diffuse.jpg")
+        );
+        assert_eq!(texture_file("-type sphere d.jpg -bm 1"), Some("d.jpg"));
+        assert_eq!(texture_file("-s 1"), None);
+    }
 }

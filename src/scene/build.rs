@@ -2,6 +2,8 @@
 //! loaded and transformed, the BVH is built. Problems found here (a missing
 //! OBJ) are reported like validation problems.
 
+use super::build_mesh::MeshBuilder;
+use super::build_mtl::MtlMaterials;
 use super::desc::{
     IntegratorDesc, LightDesc, LightSelectionDesc, ObjectDesc, SamplerDesc, SceneDesc, TransformDesc,
 };
@@ -9,7 +11,8 @@ use super::problem::Problem;
 use super::runtime::{Film, Scene};
 use crate::accel::Bvh;
 use crate::camera::Camera;
-use crate::geometry::{Mesh, NO_LIGHT, Plane, Quad, Shape, Sphere, obj};
+use crate::geometry::obj::ObjData;
+use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
 use crate::lights::{Light, LightPicker, PointLight, QuadLight, SpotLight};
 use crate::materials::Material;
@@ -23,29 +26,35 @@ use std::time::{Duration, Instant};
 pub struct BuildStats {
     pub bvh_time: Duration,
     pub load_time: Duration,
+    /// Triangles over all placed meshes (instances counted each time).
     pub triangles: usize,
     /// Texture files read while building (watch mode re-reads on change).
     pub texture_files: Vec<std::path::PathBuf>,
+    /// Distinct meshes held in memory, and their placements.
+    pub meshes: usize,
+    pub instances: usize,
+    /// Bytes of the meshes' BVHs and inline triangles (each mesh once).
+    pub mesh_accel_bytes: usize,
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
 /// the folder relative paths resolve against.
 pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<Problem>> {
-    build_with(desc, base, &obj::load_obj)
+    build_with(desc, base, &crate::geometry::obj::load_obj_data)
 }
 
-/// As [`build`], reading OBJ files through `load_mesh`, so that watch mode
+/// As [`build`], reading OBJ files through `load_obj`, so that watch mode
 /// can reuse meshes whose files did not change between reloads.
 pub fn build_with(
     desc: &SceneDesc,
     base: &Path,
-    load_mesh: &dyn Fn(&Path) -> Result<Mesh, String>,
+    load_obj: &dyn Fn(&Path) -> Result<ObjData, String>,
 ) -> Result<(Scene, BuildStats), Vec<Problem>> {
     let t0 = Instant::now();
     let mut problems = Vec::new();
     let super::build_material::Materials {
         mut materials,
-        textures,
+        mut textures,
         index,
         files: texture_files,
     } = super::build_material::build_materials(&desc.materials, base)?;
@@ -106,10 +115,12 @@ pub fn build_with(
         }
     }
 
-    let mut meshes = Vec::new();
-    let mut triangles = 0;
+    let index_by_str: std::collections::HashMap<&str, u32> =
+        index.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    let mut mesh_builder = MeshBuilder::new(desc, base, load_obj);
+    let mut mtl = MtlMaterials::new(materials.len() as u32, textures.len() as u32);
     for (i, o) in desc.objects.iter().enumerate() {
-        let material = index.get(o.material()).copied().unwrap_or(0);
+        let material = o.material().and_then(|n| index.get(n)).copied().unwrap_or(0);
         let m = compose(o.transform());
         let point = |p: &[f32; 3]| Vec3A::from(m.transform_point3(Vec3::from(*p)));
         let vector = |v: &[f32; 3]| Vec3A::from(m.transform_vector3(Vec3::from(*v)));
@@ -163,50 +174,22 @@ pub fn build_with(
                     NO_LIGHT,
                 )));
             }
-            ObjectDesc::Mesh { file, .. } => {
-                let path = base.join(file);
-                match load_mesh(&path) {
-                    Ok(mut mesh) => {
-                        let normal_m = m.inverse().transpose();
-                        for p in &mut mesh.positions {
-                            *p = m.transform_point3(Vec3::from(*p)).into();
-                        }
-                        for n in &mut mesh.normals {
-                            *n = normal_m
-                                .transform_vector3(Vec3::from(*n))
-                                .normalize_or_zero()
-                                .into();
-                        }
-                        mesh.material = material;
-                        let id = meshes.len() as u32;
-                        triangles += mesh.triangle_count();
-                        shapes.extend(
-                            (0..mesh.triangle_count() as u32).map(|tri| Shape::Triangle { mesh: id, tri }),
-                        );
-                        meshes.push(mesh);
-                    }
-                    Err(msg) => {
-                        let help = if path.exists() {
-                            "check that the file is a Wavefront OBJ with `v` and `f` lines".to_string()
-                        } else {
-                            format!(
-                                "no file at {} (paths are relative to the scene file's folder)",
-                                path.display()
-                            )
-                        };
-                        problems.push(Problem::new(format!("objects[{i}].file"), msg).help(help));
-                    }
-                }
+            ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => {
+                mesh_builder.add(i, o, m, &index_by_str, &mut mtl, &mut shapes, &mut problems)
             }
         }
     }
+    let (geometry, triangles, notes) = mesh_builder.finish();
+    notes.iter().for_each(|n| eprintln!("note: {n}"));
+    materials.extend(mtl.materials);
+    textures.extend(mtl.textures);
     if !problems.is_empty() {
         return Err(problems);
     }
     let load_time = t0.elapsed();
 
     let t1 = Instant::now();
-    let bounds: Vec<_> = shapes.iter().filter_map(|s| s.bounds(&meshes)).collect();
+    let bounds: Vec<_> = shapes.iter().filter_map(|s| s.bounds(&geometry)).collect();
     let bvh = Bvh::build(&bounds);
     let bvh_time = t1.elapsed();
     let bounded = shapes.len() as u32;
@@ -265,18 +248,19 @@ pub fn build_with(
         lights,
         shapes,
         bounded,
-        meshes,
+        geometry,
         bvh,
     };
-    Ok((
-        scene,
-        BuildStats {
-            bvh_time,
-            load_time,
-            triangles,
-            texture_files,
-        },
-    ))
+    let stats = BuildStats {
+        bvh_time,
+        load_time,
+        triangles,
+        texture_files,
+        meshes: scene.geometry.meshes.len(),
+        instances: scene.geometry.instances.len(),
+        mesh_accel_bytes: scene.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),
+    };
+    Ok((scene, stats))
 }
 
 fn push_quad_light(lights: &mut Vec<Light>, shapes: &mut Vec<Shape>, material: u32, q: QuadLight) {

@@ -86,7 +86,7 @@ pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Loaded, LoadError
 
 /// As [`load_with`], with the file's text already read (tests, watch mode).
 pub fn load_str(path: &Path, text: &str, overrides: &Overrides) -> Result<Loaded, LoadError> {
-    load_str_with_meshes(path, text, overrides, &crate::geometry::obj::load_obj)
+    load_str_with_meshes(path, text, overrides, &crate::geometry::obj::load_obj_data)
 }
 
 /// As [`load_str`], reading OBJ files through `load_mesh` (watch mode's
@@ -95,7 +95,7 @@ pub fn load_str_with_meshes(
     path: &Path,
     text: &str,
     overrides: &Overrides,
-    load_mesh: &dyn Fn(&Path) -> Result<crate::geometry::Mesh, String>,
+    load_mesh: &dyn Fn(&Path) -> Result<crate::geometry::obj::ObjData, String>,
 ) -> Result<Loaded, LoadError> {
     let mut desc = parse(path, text).map_err(LoadError::Invalid)?;
     let composition = super::include::compose(path, text, &mut desc).map_err(LoadError::Invalid)?;
@@ -117,6 +117,7 @@ pub fn load_str_with_meshes(
             files.push(base.join(file));
         }
     }
+    files.extend(desc.meshes.values().map(|m| base.join(&m.file)));
     Ok(Loaded {
         scene,
         desc,

@@ -4,6 +4,8 @@
 
 pub mod build;
 pub mod build_material;
+mod build_mesh;
+mod build_mtl;
 pub mod desc;
 pub mod format;
 pub mod include;

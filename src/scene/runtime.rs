@@ -3,7 +3,7 @@
 
 use crate::accel::Bvh;
 use crate::camera::Camera;
-use crate::geometry::{Hit, Mesh, Shape};
+use crate::geometry::{Geometry, Hit, Shape};
 use crate::integrators::Integrator;
 use crate::lights::{Light, LightPicker};
 use crate::materials::{Material, Texture};
@@ -37,36 +37,51 @@ pub struct Scene {
     /// (planes), which every ray tests.
     pub shapes: Vec<Shape>,
     pub bounded: u32,
-    pub meshes: Vec<Mesh>,
+    /// Meshes (each with its own BVH) and their instances.
+    pub geometry: Geometry,
     pub bvh: Bvh,
 }
 
 impl Scene {
     /// Closest hit in `(0, t_max)`.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let meshes = &self.meshes;
+        let geo = &self.geometry;
         let shapes = &self.shapes;
-        let mut best = self.bvh.intersect(ray, t_max, |i, r, tm| {
-            shapes[i as usize].intersect_t(r, tm, meshes)
-        });
+        // The last instance hit reported is the nearest one so far (the BVH
+        // only asks below the current best); keep its triangle and
+        // barycentrics so the hit record needs no second trace.
+        let mut mesh_hit = None;
+        let mut best = self
+            .bvh
+            .intersect(ray, t_max, |i, r, tm| match shapes[i as usize] {
+                Shape::Instance(k) => {
+                    let h = geo.instances[k as usize].closest(r, tm, &geo.meshes)?;
+                    mesh_hit = Some(h);
+                    Some(h.t)
+                }
+                s => s.intersect_t(r, tm, geo),
+            });
         let mut t_best = best.map_or(t_max, |(_, t)| t);
         for i in self.bounded..self.shapes.len() as u32 {
-            if let Some(t) = shapes[i as usize].intersect_t(ray, t_best, meshes) {
+            if let Some(t) = shapes[i as usize].intersect_t(ray, t_best, geo) {
                 t_best = t;
                 best = Some((i, t));
             }
         }
-        best.map(|(i, t)| shapes[i as usize].hit(ray, t, meshes))
+        let (i, t) = best?;
+        Some(match (shapes[i as usize], mesh_hit) {
+            (Shape::Instance(k), Some(h)) => geo.instances[k as usize].hit(ray, h, &geo.meshes),
+            (s, _) => s.hit(ray, t, geo),
+        })
     }
 
     /// Whether anything blocks `ray` before `t_max` (shadow rays).
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let meshes = &self.meshes;
+        let geo = &self.geometry;
         let shapes = &self.shapes;
-        (self.bounded..self.shapes.len() as u32)
-            .any(|i| shapes[i as usize].intersect_t(ray, t_max, meshes).is_some())
-            || self.bvh.occluded(ray, t_max, |i, r, tm| {
-                shapes[i as usize].intersect_t(r, tm, meshes).is_some()
-            })
+        (self.bounded..self.shapes.len() as u32).any(|i| shapes[i as usize].occludes(ray, t_max, geo))
+            || self
+                .bvh
+                .occluded(ray, t_max, |i, r, tm| shapes[i as usize].occludes(r, tm, geo))
     }
 }

@@ -55,23 +55,36 @@ pub fn validate(scene: &SceneDesc) -> Vec<Problem> {
     for (i, o) in scene.objects.iter().enumerate() {
         let path = format!("objects[{i}]");
         v.object(&path, o);
-        let name = o.material();
-        if !scene.materials.contains_key(name) {
-            let mut p = Problem::new(format!("{path}.material"), format!("unknown material `{name}`"));
-            p = match suggest(name, scene.materials.keys().map(String::as_str)) {
-                Some(s) => p.help(format!("did you mean `{s}`?")),
-                None if scene.materials.is_empty() => p.help("define it under `materials: { ... }`"),
-                None => p.help(format!(
-                    "the materials defined are: {}",
-                    scene
-                        .materials
-                        .keys()
-                        .map(|k| format!("`{k}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )),
-            };
-            v.problems.push(p);
+        if let Some(name) = o.material() {
+            v.name_ref(
+                &format!("{path}.material"),
+                "material",
+                name,
+                scene.materials.keys(),
+                "materials",
+            );
+        }
+        for (key, name) in o.material_overrides().into_iter().flatten() {
+            let at = format!("{path}.materials.{key}");
+            v.name_ref(&at, "material", name, scene.materials.keys(), "materials");
+        }
+        if let ObjectDesc::Instance { mesh, .. } = o {
+            v.name_ref(
+                &format!("{path}.mesh"),
+                "mesh",
+                mesh,
+                scene.meshes.keys(),
+                "meshes",
+            );
+        }
+    }
+    for (name, m) in &scene.meshes {
+        if m.file.trim().is_empty() {
+            v.push(
+                &format!("meshes.{name}.file"),
+                "empty OBJ path",
+                "give the path of a .obj file, relative to the scene file",
+            );
         }
     }
     v.problems
@@ -82,6 +95,35 @@ struct Checker {
 }
 
 impl Checker {
+    /// `name` must be one of `known` (the keys of the scene's `section`).
+    fn name_ref<'a>(
+        &mut self,
+        path: &str,
+        what: &str,
+        name: &str,
+        known: impl Iterator<Item = &'a String> + Clone,
+        section: &str,
+    ) {
+        if known.clone().any(|k| k == name) {
+            return;
+        }
+        let mut p = Problem::new(path, format!("unknown {what} `{name}`"));
+        let names: Vec<&str> = known.map(String::as_str).collect();
+        p = match suggest(name, names.iter().copied()) {
+            Some(s) => p.help(format!("did you mean `{s}`?")),
+            None if names.is_empty() => p.help(format!("define it under `{section}: {{ ... }}`")),
+            None => p.help(format!(
+                "the {section} defined are: {}",
+                names
+                    .iter()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
+        };
+        self.problems.push(p);
+    }
+
     fn push(&mut self, path: &str, msg: impl Into<String>, help: impl Into<String>) {
         self.problems.push(Problem::new(path, msg).help(help));
     }
@@ -510,6 +552,7 @@ impl Checker {
                     );
                 }
             }
+            ObjectDesc::Instance { .. } => {}
         }
         for (k, t) in o.transform().iter().enumerate() {
             let tp = format!("{path}.transform[{k}]");

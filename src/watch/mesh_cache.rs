@@ -6,7 +6,7 @@
 //! scene's transform is applied to a copy by `build`, and the BVH is rebuilt
 //! (milliseconds for thousands of triangles).
 
-use crate::geometry::{Mesh, obj};
+use crate::geometry::obj::{self, ObjData};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -16,7 +16,7 @@ type Stamp = (Option<SystemTime>, u64);
 
 #[derive(Default)]
 pub struct MeshCache {
-    entries: RefCell<HashMap<PathBuf, (Stamp, Mesh)>>,
+    entries: RefCell<HashMap<PathBuf, (Stamp, ObjData)>>,
     hits: RefCell<usize>,
 }
 
@@ -26,8 +26,8 @@ fn stamp(path: &Path) -> Option<Stamp> {
 }
 
 impl MeshCache {
-    /// A drop-in for [`obj::load_obj`].
-    pub fn load(&self, path: &Path) -> Result<Mesh, String> {
+    /// A drop-in for [`obj::load_obj_data`].
+    pub fn load(&self, path: &Path) -> Result<ObjData, String> {
         let before = stamp(path);
         if let Some(s) = before
             && let Some((cached, mesh)) = self.entries.borrow().get(path)
@@ -36,7 +36,7 @@ impl MeshCache {
             *self.hits.borrow_mut() += 1;
             return Ok(mesh.clone());
         }
-        let mesh = obj::load_obj(path)?;
+        let mesh = obj::load_obj_data(path)?;
         // A file rewritten while it was read is not cached: the next event
         // reloads it.
         match before {
@@ -73,11 +73,11 @@ mod tests {
         let path = dir.path().join("t.obj");
         std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").expect("write");
         let cache = MeshCache::default();
-        assert_eq!(cache.load(&path).map(|m| m.triangle_count()), Ok(1));
-        assert_eq!(cache.load(&path).map(|m| m.triangle_count()), Ok(1));
+        assert_eq!(cache.load(&path).map(|m| m.mesh.triangle_count()), Ok(1));
+        assert_eq!(cache.load(&path).map(|m| m.mesh.triangle_count()), Ok(1));
         assert_eq!(cache.take_hits(), 1);
         std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n").expect("write");
-        assert_eq!(cache.load(&path).map(|m| m.triangle_count()), Ok(2));
+        assert_eq!(cache.load(&path).map(|m| m.mesh.triangle_count()), Ok(2));
         assert_eq!(cache.take_hits(), 0, "a changed file is read again");
         cache.retain(&[]);
         assert!(cache.entries.borrow().is_empty());

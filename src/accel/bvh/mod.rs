@@ -15,14 +15,14 @@ mod node;
 mod traverse;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 use super::Aabb;
-use node::Node;
+pub(crate) use node::Node;
 
 /// Deepest leaf the build produces; also the traversal stack size, which is
 /// therefore fixed, on the stack, and never overflows.
-const MAX_DEPTH: u32 = 64;
+pub(crate) const MAX_DEPTH: u32 = 64;
 
 pub struct Bvh {
     /// Depth-first; empty iff no primitive has non-empty bounds.
@@ -34,7 +34,7 @@ pub struct Bvh {
 }
 
 /// Size and quality of a built tree.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BvhStats {
     pub nodes: usize,
     pub leaves: usize,
@@ -76,39 +76,50 @@ impl Bvh {
     }
 
     pub fn stats(&self) -> BvhStats {
-        let mut s = BvhStats {
-            nodes: self.nodes.len(),
-            leaves: 0,
-            max_depth: 0,
-            sah_cost: 0.0,
-            bytes: self.nodes.len() * size_of::<Node>() + self.indices.len() * size_of::<u32>(),
-        };
-        if self.nodes.is_empty() {
-            return s;
-        }
-        // A zero-area root (every primitive a single point) makes all areas
-        // equal; count each node as area 1 then.
-        let root_area = self.nodes[0].bounds().surface_area();
-        let rel = |n: &Node| {
-            if root_area > 0.0 {
-                n.bounds().surface_area() / root_area
-            } else {
-                1.0
-            }
-        };
-        let mut stack = vec![(0usize, 0u32)];
-        while let Some((i, depth)) = stack.pop() {
-            let n = &self.nodes[i];
-            s.max_depth = s.max_depth.max(depth);
-            if n.is_leaf() {
-                s.leaves += 1;
-                s.sah_cost += rel(n) * n.count as f32;
-            } else {
-                s.sah_cost += build::TRAVERSAL_COST * rel(n);
-                stack.push((i + 1, depth + 1));
-                stack.push((n.offset as usize, depth + 1));
-            }
-        }
-        s
+        stats_of(&self.nodes, self.indices.len())
     }
+}
+
+/// Binary nodes and leaf-order primitive ids, for trees built on this one
+/// (the 4-wide [`crate::accel::wide::Bvh4`]).
+pub(crate) fn build_nodes(bounds: &[Aabb]) -> (Vec<Node>, Vec<u32>) {
+    build::build(bounds)
+}
+
+/// Stats of depth-first binary `nodes` over `indices` leaf slots.
+pub(crate) fn stats_of(nodes: &[Node], indices: usize) -> BvhStats {
+    let mut s = BvhStats {
+        nodes: nodes.len(),
+        leaves: 0,
+        max_depth: 0,
+        sah_cost: 0.0,
+        bytes: size_of_val(nodes) + indices * size_of::<u32>(),
+    };
+    if nodes.is_empty() {
+        return s;
+    }
+    // A zero-area root (every primitive a single point) makes all areas
+    // equal; count each node as area 1 then.
+    let root_area = nodes[0].bounds().surface_area();
+    let rel = |n: &Node| {
+        if root_area > 0.0 {
+            n.bounds().surface_area() / root_area
+        } else {
+            1.0
+        }
+    };
+    let mut stack = vec![(0usize, 0u32)];
+    while let Some((i, depth)) = stack.pop() {
+        let n = &nodes[i];
+        s.max_depth = s.max_depth.max(depth);
+        if n.is_leaf() {
+            s.leaves += 1;
+            s.sah_cost += rel(n) * n.count as f32;
+        } else {
+            s.sah_cost += build::TRAVERSAL_COST * rel(n);
+            stack.push((i + 1, depth + 1));
+            stack.push((n.offset as usize, depth + 1));
+        }
+    }
+    s
 }

@@ -28,7 +28,7 @@ pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, Sampl
 pub use color::ColorDesc;
 pub use light::LightDesc;
 pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
-pub use object::ObjectDesc;
+pub use object::{MeshDesc, ObjectDesc};
 pub use transform::TransformDesc;
 
 use serde::{Deserialize, Serialize};
@@ -59,6 +59,9 @@ pub struct SceneDesc {
     pub lights: Vec<LightDesc>,
     #[serde(default)]
     pub objects: Vec<ObjectDesc>,
+    /// Named meshes that `Instance` objects place; loaded once each.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub meshes: BTreeMap<String, MeshDesc>,
     /// Settings for `ronray check`: the scene's regression test.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub test: Option<TestDesc>,

@@ -1,7 +1,68 @@
-//! Geometry placed in the scene.
+//! Geometry placed in the scene, and the shared meshes `Instance`s place.
+//!
+//! ```
+//! let text = r#"
+//! Scene(
+//!     camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+//!     materials: { "clay": Lambert(albedo: (0.8, 0.6, 0.5)), "red": Lambert(albedo: (0.6, 0.1, 0.1)) },
+//!     meshes: { "bunny": (file: "bunny.obj", smooth: true) },
+//!     objects: [
+//!         // OBJ materials (MTL), with one group/material replaced.
+//!         Mesh(file: "cornell.obj", materials: { "shortBox": "red" }),
+//!         // One material for the whole mesh.
+//!         Mesh(file: "bunny.obj", material: "clay", smooth: true),
+//!         // Shared geometry, placed twice.
+//!         Instance(mesh: "bunny", material: "clay", transform: [Translate((1, 0, 0))]),
+//!         Instance(mesh: "bunny", transform: [Translate((-1, 0, 0))]),
+//!     ],
+//! )"#;
+//! let scene: ronray::scene::desc::SceneDesc = ron::from_str(text).unwrap();
+//! assert_eq!(scene.objects.len(), 4);
+//! ```
 
 use super::{TransformDesc, V3};
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
+use std::collections::BTreeMap;
+
+/// A mesh loaded once and placed by any number of `Instance` objects.
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct MeshDesc {
+    /// Wavefront OBJ, relative to the scene file.
+    pub file: String,
+    /// Replace the file's normals by area-weighted vertex normals.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub smooth: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+/// Accepts `"name"` as well as RON's `Some("name")` / `None`, so an optional
+/// material reads like a required one.
+fn plain_or_some<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
+    struct V;
+    impl<'de> serde::de::Visitor<'de> for V {
+        type Value = Option<String>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a material name (a string)")
+        }
+        fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Self::Value, E> {
+            Ok(Some(v.to_owned()))
+        }
+        fn visit_none<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(None)
+        }
+        fn visit_unit<E: serde::de::Error>(self) -> Result<Self::Value, E> {
+            Ok(None)
+        }
+        fn visit_some<D2: Deserializer<'de>>(self, d: D2) -> Result<Self::Value, D2::Error> {
+            String::deserialize(d).map(Some)
+        }
+    }
+    d.deserialize_any(V)
+}
 
 /// Every object names its material and may carry a `transform`: a list of
 /// steps applied to the object in the order written.
@@ -43,22 +104,58 @@ pub enum ObjectDesc {
         transform: Vec<TransformDesc>,
     },
     /// A Wavefront OBJ triangle mesh; `file` is relative to the scene file.
+    /// Without `material`, each OBJ group keeps its MTL material (grey if it
+    /// has none); `materials` replaces some by OBJ group/object or MTL name.
     Mesh {
         file: String,
-        material: String,
+        #[serde(
+            default,
+            deserialize_with = "plain_or_some",
+            skip_serializing_if = "Option::is_none"
+        )]
+        material: Option<String>,
+        #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+        materials: BTreeMap<String, String>,
+        #[serde(default, skip_serializing_if = "is_false")]
+        smooth: bool,
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        transform: Vec<TransformDesc>,
+    },
+    /// A mesh from the scene's `meshes`, placed by `transform`; materials as
+    /// for `Mesh`. Instances share the mesh's memory and BVH.
+    Instance {
+        mesh: String,
+        #[serde(
+            default,
+            deserialize_with = "plain_or_some",
+            skip_serializing_if = "Option::is_none"
+        )]
+        material: Option<String>,
+        #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+        materials: BTreeMap<String, String>,
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
 }
 
 impl ObjectDesc {
-    pub fn material(&self) -> &str {
+    /// The scene material named for the whole object, if any (meshes may
+    /// leave it to their MTL file).
+    pub fn material(&self) -> Option<&str> {
         match self {
             ObjectDesc::Sphere { material, .. }
             | ObjectDesc::Plane { material, .. }
             | ObjectDesc::Quad { material, .. }
-            | ObjectDesc::Rect { material, .. }
-            | ObjectDesc::Mesh { material, .. } => material,
+            | ObjectDesc::Rect { material, .. } => Some(material),
+            ObjectDesc::Mesh { material, .. } | ObjectDesc::Instance { material, .. } => material.as_deref(),
+        }
+    }
+
+    /// Per-group material overrides (meshes only).
+    pub fn material_overrides(&self) -> Option<&BTreeMap<String, String>> {
+        match self {
+            ObjectDesc::Mesh { materials, .. } | ObjectDesc::Instance { materials, .. } => Some(materials),
+            _ => None,
         }
     }
 
@@ -68,7 +165,8 @@ impl ObjectDesc {
             | ObjectDesc::Plane { transform, .. }
             | ObjectDesc::Quad { transform, .. }
             | ObjectDesc::Rect { transform, .. }
-            | ObjectDesc::Mesh { transform, .. } => transform,
+            | ObjectDesc::Mesh { transform, .. }
+            | ObjectDesc::Instance { transform, .. } => transform,
         }
     }
 }

@@ -11,15 +11,15 @@ use crate::math::sampling::uniform_sphere;
 use crate::math::{Pcg32, Ray};
 
 #[derive(Clone, Copy, Debug)]
-struct Tri([Vec3A; 3]);
+pub(crate) struct Tri(pub [Vec3A; 3]);
 
 impl Tri {
-    fn bounds(&self) -> Aabb {
+    pub(crate) fn bounds(&self) -> Aabb {
         Aabb::from_points(&self.0)
     }
 
     /// Möller & Trumbore 1997, <https://doi.org/10.1080/10867651.1997.10487468>.
-    fn hit(&self, ray: &Ray, t_max: f32) -> Option<f32> {
+    pub(crate) fn hit(&self, ray: &Ray, t_max: f32) -> Option<f32> {
         let [v0, v1, v2] = self.0;
         let (e1, e2) = (v1 - v0, v2 - v0);
         let p = ray.d.cross(e2);
@@ -49,7 +49,7 @@ fn rand3(rng: &mut Pcg32) -> Vec3A {
 
 /// Triangles with centres in `[-1, 1]³ · scale + offset`, mostly small, some
 /// large; `flat` puts every vertex on z = offset.z.
-fn soup(seed: u64, n: usize, scale: f32, offset: Vec3A, flat: bool) -> Vec<Tri> {
+pub(crate) fn soup(seed: u64, n: usize, scale: f32, offset: Vec3A, flat: bool) -> Vec<Tri> {
     let mut rng = Pcg32::new(seed, 1);
     (0..n)
         .map(|i| {
@@ -65,7 +65,7 @@ fn soup(seed: u64, n: usize, scale: f32, offset: Vec3A, flat: bool) -> Vec<Tri> 
 }
 
 /// Origins in the scene bounds grown by half their size, uniform directions.
-fn rays(seed: u64, n: usize, tris: &[Tri]) -> Vec<Ray> {
+pub(crate) fn rays(seed: u64, n: usize, tris: &[Tri]) -> Vec<Ray> {
     let b = tris.iter().fold(Aabb::EMPTY, |b, t| b.union(t.bounds()));
     let (c, e) = (b.centroid(), b.extent().max(Vec3A::splat(1e-3)));
     let mut rng = Pcg32::new(seed, 2);
@@ -84,7 +84,7 @@ fn build(tris: &[Tri]) -> Bvh {
     bvh
 }
 
-fn brute(tris: &[Tri], ray: &Ray, t_max: f32) -> Option<(u32, f32)> {
+pub(crate) fn brute(tris: &[Tri], ray: &Ray, t_max: f32) -> Option<(u32, f32)> {
     let mut best = None;
     let mut t_best = t_max;
     for (i, tri) in tris.iter().enumerate() {

@@ -1,0 +1,96 @@
+//! Binary → 4-wide: each 4-wide node takes a binary node's two children and
+//! keeps opening the interior child with the largest surface area until it
+//! has four (the greedy rule of Wald et al. 2008 and Embree's BVH4 builder;
+//! opening large boxes first removes the traversal steps rays take most).
+//! A binary subtree of at most four primitives becomes one leaf: its
+//! primitives are contiguous in leaf order, and one leaf test is cheaper
+//! than a node visit plus two leaf tests (it also cut node memory from 37
+//! to about 22 bytes per triangle).
+
+use super::{Node4, leaf_ref};
+use crate::accel::bvh::Node;
+
+/// Collapses depth-first binary `nodes` (leaf ranges index the leaf-order
+/// array) into 4-wide nodes, root first.
+pub(super) fn collapse(nodes: &[Node]) -> Vec<Node4> {
+    let mut out = Vec::with_capacity(nodes.len() / 3 + 1);
+    if nodes.is_empty() {
+        return out;
+    }
+    if nodes[0].is_leaf() {
+        // A lone leaf still gets a root node, so traversal has one shape.
+        let mut root = Node4::EMPTY;
+        root.set_child(0, nodes[0].bounds(), leaf_ref(nodes[0].offset, nodes[0].count));
+        out.push(root);
+        return out;
+    }
+    // Leaf range of every binary subtree, bottom-up (children come after
+    // their parent in depth-first order).
+    let mut range = vec![(0u32, 0u32); nodes.len()];
+    for i in (0..nodes.len()).rev() {
+        let n = &nodes[i];
+        range[i] = if n.is_leaf() {
+            (n.offset, n.count)
+        } else {
+            let [l, r] = kids(nodes, i);
+            (range[l].0, range[l].1 + range[r].1)
+        };
+    }
+    let c = Collapser { nodes, range: &range };
+    c.emit(0, &mut out);
+    out
+}
+
+struct Collapser<'a> {
+    nodes: &'a [Node],
+    range: &'a [(u32, u32)],
+}
+
+/// Children of binary interior node `i`.
+#[inline]
+fn kids(nodes: &[Node], i: usize) -> [usize; 2] {
+    [i + 1, nodes[i].offset as usize]
+}
+
+impl Collapser<'_> {
+    /// Whether binary node `i` becomes a 4-wide leaf.
+    fn is_leaf(&self, i: usize) -> bool {
+        self.range[i].1 <= 4
+    }
+
+    /// Appends the 4-wide node for binary interior node `i` and its subtree;
+    /// returns its index.
+    fn emit(&self, i: usize, out: &mut Vec<Node4>) -> u32 {
+        let nodes = self.nodes;
+        let me = out.len();
+        out.push(Node4::EMPTY);
+        let mut open: Vec<usize> = kids(nodes, i).to_vec();
+        while open.len() < 4 {
+            let best = open
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| !self.is_leaf(**c))
+                .max_by(|a, b| {
+                    let area = |k: usize| nodes[k].bounds().surface_area();
+                    area(*a.1).total_cmp(&area(*b.1))
+                })
+                .map(|(slot, _)| slot);
+            let Some(slot) = best else { break };
+            let c = open.swap_remove(slot);
+            open.extend(kids(nodes, c));
+        }
+        // Keep the binary tree's left-to-right order for determinism.
+        open.sort_unstable();
+        let mut node = Node4::EMPTY;
+        for (lane, &c) in open.iter().enumerate() {
+            let r = if self.is_leaf(c) {
+                leaf_ref(self.range[c].0, self.range[c].1)
+            } else {
+                self.emit(c, out)
+            };
+            node.set_child(lane, nodes[c].bounds(), r);
+        }
+        out[me] = node;
+        me as u32
+    }
+}

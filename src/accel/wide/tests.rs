@@ -1,0 +1,131 @@
+//! The 4-wide tree against brute force and its structure, on the binary
+//! tree's test soups and degenerate inputs.
+
+use super::{Bvh4, EMPTY, LEAF, leaf_range};
+use crate::accel::Aabb;
+use crate::accel::bvh::tests::{Tri, brute, rays, soup};
+use crate::math::Ray;
+use glam::Vec3A;
+
+fn build(tris: &[Tri]) -> Bvh4 {
+    let bounds: Vec<Aabb> = tris.iter().map(Tri::bounds).collect();
+    let bvh = Bvh4::build(&bounds);
+    check_structure(&bvh, &bounds);
+    bvh
+}
+
+/// Every child box contains its subtree; every non-empty primitive is in
+/// exactly one leaf slot; empty lanes have no child.
+fn check_structure(bvh: &Bvh4, bounds: &[Aabb]) {
+    let mut seen = vec![0u32; bvh.order().len()];
+    let mut stack = vec![0u32];
+    while let Some(n) = stack.pop() {
+        let node = &bvh.nodes[n as usize];
+        for lane in 0..4 {
+            let r = node.child[lane];
+            if r == EMPTY {
+                continue;
+            }
+            let b = node.child_bounds(lane);
+            if r & LEAF != 0 {
+                let (first, count) = leaf_range(r);
+                for slot in first..first + count {
+                    seen[slot as usize] += 1;
+                    let prim = bvh.order()[slot as usize] as usize;
+                    assert!(
+                        b.contains(&bounds[prim]),
+                        "leaf box {b:?} misses primitive {prim}"
+                    );
+                }
+            } else {
+                let child = &bvh.nodes[r as usize];
+                for l in (0..4).filter(|&l| child.child[l] != EMPTY) {
+                    assert!(
+                        b.contains(&child.child_bounds(l)),
+                        "node {r} escapes its parent box"
+                    );
+                }
+                stack.push(r);
+            }
+        }
+    }
+    assert!(
+        seen.iter().all(|&c| c == 1),
+        "each leaf slot is used exactly once"
+    );
+    let live = bounds.iter().filter(|b| !b.is_empty()).count();
+    assert_eq!(
+        bvh.order().len(),
+        live,
+        "every non-empty primitive is in the tree"
+    );
+}
+
+fn closest(bvh: &Bvh4, tris: &[Tri], ray: &Ray) -> Option<(u32, f32)> {
+    let mut best = None;
+    bvh.intersect(ray, f32::INFINITY, |first, count, t_max| {
+        let mut t_best = t_max;
+        let mut hit = None;
+        for slot in first..first + count {
+            let prim = bvh.order()[slot as usize];
+            if let Some(t) = tris[prim as usize].hit(ray, t_best) {
+                t_best = t;
+                hit = Some(t);
+                best = Some((prim, t));
+            }
+        }
+        hit
+    });
+    best
+}
+
+fn assert_matches(what: &str, tris: &[Tri], rays: &[Ray]) {
+    let bvh = build(tris);
+    for (i, ray) in rays.iter().enumerate() {
+        let got = closest(&bvh, tris, ray);
+        let want = brute(tris, ray, f32::INFINITY);
+        match (got, want) {
+            (None, None) => {}
+            (Some((gp, gt)), Some((wp, wt))) => assert!(
+                gt == wt && (gp == wp || tris[gp as usize].hit(ray, f32::INFINITY) == Some(wt)),
+                "{what}, ray {i}: Bvh4 gave ({gp}, {gt}), brute force ({wp}, {wt})"
+            ),
+            _ => panic!("{what}, ray {i}: Bvh4 gave {got:?}, brute force {want:?}"),
+        }
+        let occ = bvh.occluded(ray, f32::INFINITY, |first, count, tm| {
+            (first..first + count).any(|s| tris[bvh.order()[s as usize] as usize].hit(ray, tm).is_some())
+        });
+        assert_eq!(occ, want.is_some(), "{what}, ray {i}: occlusion disagrees");
+    }
+}
+
+#[test]
+fn bvh4_matches_brute_force() {
+    for (seed, n) in [(1, 1), (2, 3), (3, 5), (4, 100), (5, 2000)] {
+        let tris = soup(seed, n, 1.0, Vec3A::ZERO, false);
+        assert_matches(&format!("soup of {n}"), &tris, &rays(seed, 2000, &tris));
+    }
+}
+
+#[test]
+fn bvh4_degenerate_inputs() {
+    let empty = Bvh4::build(&[]);
+    assert!(
+        empty
+            .intersect(&Ray::new(Vec3A::ZERO, Vec3A::X), f32::INFINITY, |_, _, _| Some(
+                0.0
+            ))
+            .is_none()
+    );
+    assert_eq!(empty.bounds(), Aabb::EMPTY);
+    let flat = soup(7, 500, 1.0, Vec3A::ZERO, true);
+    assert_matches("coplanar", &flat, &rays(7, 2000, &flat));
+    let huge = soup(8, 500, 1e18, Vec3A::splat(3e18), false);
+    assert_matches("huge", &huge, &rays(8, 2000, &huge));
+    let same = vec![Tri([Vec3A::ZERO, Vec3A::X, Vec3A::Y]); 9];
+    assert_matches("identical", &same, &rays(9, 500, &same));
+    let mut with_empty: Vec<Aabb> = same.iter().map(Tri::bounds).collect();
+    with_empty.push(Aabb::EMPTY);
+    let bvh = Bvh4::build(&with_empty);
+    check_structure(&bvh, &with_empty);
+}

@@ -1,0 +1,148 @@
+//! Stack-based traversal of the 4-wide tree, nearest child first.
+//!
+//! One SIMD slab test per node gives four entry distances; the children hit
+//! are pushed farthest first so the nearest is popped next, and entries
+//! beyond the best hit found since are skipped when popped. Per axis the
+//! near and far planes are picked once per ray from the direction's sign
+//! (so the test needs no min/max between the two planes). The stack is a
+//! fixed array: the binary tree is at most `MAX_DEPTH` deep and each 4-wide
+//! level pushes at most 3 entries, so `3 · MAX_DEPTH + 1` never overflows.
+
+use super::{Bvh4, EMPTY, LEAF, Node4, leaf_range};
+use crate::accel::aabb::{FAR_SCALE, safe_inv_dir};
+use crate::accel::bvh::MAX_DEPTH;
+use crate::math::Ray;
+use glam::{Vec3A, Vec4};
+
+const STACK: usize = 3 * MAX_DEPTH as usize + 1;
+
+/// The per-ray slab setup.
+struct SlabRay {
+    o: [Vec4; 3],
+    inv: [Vec4; 3],
+    /// Rows of `Node4::b` holding the near (entry) and far planes per axis.
+    near: [usize; 3],
+    far: [usize; 3],
+}
+
+impl SlabRay {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        let inv_d: Vec3A = safe_inv_dir(ray.d);
+        let near = [0, 1, 2].map(|a| if inv_d[a] >= 0.0 { a } else { a + 3 });
+        Self {
+            o: [0, 1, 2].map(|a| Vec4::splat(ray.o[a])),
+            inv: [0, 1, 2].map(|a| Vec4::splat(inv_d[a])),
+            near,
+            far: near.map(|r| (r + 3) % 6),
+        }
+    }
+
+    /// Entry distances of the four children and the mask of those hit
+    /// before `t_max`. Empty slots (`+inf` boxes) never hit.
+    #[inline(always)]
+    fn test(&self, n: &Node4, t_max: f32) -> (Vec4, u32) {
+        let plane = |row: usize, a: usize| (Vec4::from_array(n.b[row]) - self.o[a]) * self.inv[a];
+        let (near, far) = (&self.near, &self.far);
+        let t_near = plane(near[0], 0)
+            .max(plane(near[1], 1))
+            .max(plane(near[2], 2))
+            .max(Vec4::ZERO);
+        let t_far = (plane(far[0], 0).min(plane(far[1], 1)).min(plane(far[2], 2)) * FAR_SCALE)
+            .min(Vec4::splat(t_max));
+        (t_near, t_near.cmple(t_far).bitmask())
+    }
+}
+
+impl Bvh4 {
+    /// Closest hit. `leaf(first, count, t_max)` intersects leaf slots
+    /// `first..first + count` (in [`Bvh4::order`]) and returns the nearest
+    /// distance below `t_max`, having recorded whatever else it needs.
+    /// Returns the best distance.
+    #[inline]
+    pub fn intersect(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        mut leaf: impl FnMut(u32, u32, f32) -> Option<f32>,
+    ) -> Option<f32> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let sr = SlabRay::new(ray);
+        // A finite bound keeps `inf` (empty) slots from passing `near <= far`.
+        let mut t_best = t_max.min(f32::MAX);
+        let mut found = false;
+        let mut stack = [(0u32, 0.0f32); STACK];
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let (r, t_enter) = stack[sp];
+            if t_enter > t_best {
+                continue;
+            }
+            if r & LEAF != 0 {
+                let (first, count) = leaf_range(r);
+                if let Some(t) = leaf(first, count, t_best)
+                    && t < t_best
+                {
+                    t_best = t;
+                    found = true;
+                }
+                continue;
+            }
+            let node = &self.nodes[r as usize];
+            let (t_near, mut mask) = sr.test(node, t_best);
+            // Push the hit children, then sort the new entries so the
+            // nearest is on top (at most four: insertion sort).
+            let base = sp;
+            while mask != 0 {
+                let lane = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                debug_assert!(node.child[lane] != EMPTY);
+                let e = (node.child[lane], t_near[lane]);
+                let mut j = sp;
+                while j > base && stack[j - 1].1 < e.1 {
+                    stack[j] = stack[j - 1];
+                    j -= 1;
+                }
+                stack[j] = e;
+                sp += 1;
+            }
+        }
+        found.then_some(t_best)
+    }
+
+    /// Any hit below `t_max`: `leaf(first, count, t_max)` returns whether a
+    /// primitive of the leaf is hit; stops at the first that is.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32, mut leaf: impl FnMut(u32, u32, f32) -> bool) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let sr = SlabRay::new(ray);
+        let t_max = t_max.min(f32::MAX);
+        let mut stack = [0u32; STACK];
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let r = stack[sp];
+            if r & LEAF != 0 {
+                let (first, count) = leaf_range(r);
+                if leaf(first, count, t_max) {
+                    return true;
+                }
+                continue;
+            }
+            let node = &self.nodes[r as usize];
+            let (_, mut mask) = sr.test(node, t_max);
+            while mask != 0 {
+                let lane = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                stack[sp] = node.child[lane];
+                sp += 1;
+            }
+        }
+        false
+    }
+}

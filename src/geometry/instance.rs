@@ -1,0 +1,99 @@
+//! A mesh placed in the world: the top level of the two-level BVH.
+//!
+//! The scene BVH holds one box per instance; a ray that reaches it is moved
+//! into the mesh's space (`object_from_world`, direction not renormalised so
+//! `t` is the same in both spaces) and traced through the mesh's own BVH.
+//! A thousand instances of one mesh cost one mesh plus a thousand of these
+//! (pbrt-v4's `TransformedPrimitive`/`BVHAggregate` split,
+//! <https://pbr-book.org/4ed/Primitives_and_Intersection_Acceleration/Object_Instancing_and_Primitives_in_Motion>).
+
+use super::Hit;
+use super::mesh::{Mesh, MeshHit};
+use crate::accel::Aabb;
+use crate::math::Ray;
+use glam::{Affine3A, Mat3A, Vec3A};
+
+#[derive(Clone, Debug)]
+pub struct Instance {
+    pub mesh: u32,
+    pub world_from_object: Affine3A,
+    pub object_from_world: Affine3A,
+    /// Inverse transpose of the linear part, for normals.
+    normal_from_object: Mat3A,
+    /// Skips the transforms for meshes baked into world space.
+    identity: bool,
+    /// Scene material of each of the mesh's slots.
+    pub materials: Box<[u32]>,
+}
+
+impl Instance {
+    /// `world_from_object` must be invertible (validation checks it).
+    pub fn new(mesh: u32, world_from_object: Affine3A, materials: Box<[u32]>) -> Self {
+        let object_from_world = world_from_object.inverse();
+        Self {
+            mesh,
+            world_from_object,
+            object_from_world,
+            normal_from_object: world_from_object.matrix3.inverse().transpose(),
+            identity: world_from_object == Affine3A::IDENTITY,
+            materials,
+        }
+    }
+
+    #[inline(always)]
+    fn local(&self, ray: &Ray) -> Ray {
+        if self.identity {
+            *ray
+        } else {
+            Ray::new(
+                self.object_from_world.transform_point3a(ray.o),
+                self.object_from_world.transform_vector3a(ray.d),
+            )
+        }
+    }
+
+    #[inline]
+    pub fn closest(&self, ray: &Ray, t_max: f32, meshes: &[Mesh]) -> Option<MeshHit> {
+        meshes[self.mesh as usize].closest(&self.local(ray), t_max)
+    }
+
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32, meshes: &[Mesh]) -> bool {
+        meshes[self.mesh as usize].occluded(&self.local(ray), t_max)
+    }
+
+    /// World-space shading record.
+    pub fn hit(&self, ray: &Ray, h: MeshHit, meshes: &[Mesh]) -> Hit {
+        let mesh = &meshes[self.mesh as usize];
+        let mut hit = mesh.hit(h.tri, h.t, h.bc);
+        hit.material = self
+            .materials
+            .get(mesh.slot(h.tri) as usize)
+            .copied()
+            .unwrap_or(0);
+        if !self.identity {
+            hit.p = self.world_from_object.transform_point3a(hit.p);
+            hit.ng = (self.normal_from_object * hit.ng).normalize_or(hit.ng);
+            hit.ns = (self.normal_from_object * hit.ns).normalize_or(hit.ng);
+        }
+        // A point on the world-space ray is more accurate far from the origin.
+        debug_assert!(hit.p.is_finite() && ray.at(h.t).is_finite());
+        hit
+    }
+
+    /// World bounds: the mesh box's eight corners transformed.
+    pub fn bounds(&self, meshes: &[Mesh]) -> Aabb {
+        let b = meshes[self.mesh as usize].bounds();
+        if b.is_empty() {
+            return b;
+        }
+        (0..8).fold(Aabb::EMPTY, |acc, i| {
+            let c = Vec3A::new(
+                if i & 1 == 0 { b.min.x } else { b.max.x },
+                if i & 2 == 0 { b.min.y } else { b.max.y },
+                if i & 4 == 0 { b.min.z } else { b.max.z },
+            );
+            acc.grow_point(self.world_from_object.transform_point3a(c))
+        })
+    }
+}

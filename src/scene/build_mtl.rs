@@ -1,0 +1,148 @@
+//! MTL materials → ronray materials, for OBJ groups the scene does not
+//! override. The MTL model (Kd, Ks, Ns, Ni, d/Tr, illum) is mapped onto the
+//! closest runtime model:
+//!
+//! | MTL | ronray |
+//! |---|---|
+//! | `illum` 4, 6, 7, or `d` < 1 / `Tr` > 0 | `Glass(ior: Ni or 1.5)`, tinted by `Tf` if given |
+//! | `illum` 3 (ray-traced reflection) | `Mirror(tint: Ks)` |
+//! | `Ks` non-zero | `Phong(kd: Kd, ks: Ks, exponent: Ns)` |
+//! | otherwise | `Lambert(albedo: Kd)` (`map_Kd` → sRGB image texture) |
+//!
+//! Colours are clamped to [0, 1]. `Ke` (emission) is not supported: such a
+//! group gets its `Kd` and a note, since an OBJ light would need an area
+//! light per triangle.
+
+use crate::materials::{ColorTex, DielectricFresnel, Material, Texture};
+use crate::math::Rgb;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Materials and textures created for MTL files, appended after the
+/// scene's own (`first` is the index of the first).
+pub struct MtlMaterials {
+    first: u32,
+    /// Index the first MTL texture will have in the scene's texture list.
+    first_texture: u32,
+    pub materials: Vec<Material>,
+    names: Vec<Option<String>>,
+    pub textures: Vec<Texture>,
+    textures_by_path: HashMap<PathBuf, Option<u32>>,
+}
+
+fn rgb(c: Option<[f32; 3]>, default: f32) -> Rgb {
+    Rgb::from(c.unwrap_or([default; 3])).clamp(Rgb::ZERO, Rgb::ONE)
+}
+
+impl MtlMaterials {
+    pub fn new(first: u32, first_texture: u32) -> Self {
+        Self {
+            first,
+            first_texture,
+            materials: Vec::new(),
+            names: Vec::new(),
+            textures: Vec::new(),
+            textures_by_path: HashMap::new(),
+        }
+    }
+
+    /// Adds a material that has no MTL name; returns its scene index.
+    pub fn push(&mut self, m: Material) -> u32 {
+        self.materials.push(m);
+        self.names.push(None);
+        self.first + self.materials.len() as u32 - 1
+    }
+
+    /// The MTL name of scene material `i`, if it came from an MTL file.
+    pub fn name(&self, i: u32) -> Option<String> {
+        self.names.get(i.checked_sub(self.first)? as usize)?.clone()
+    }
+
+    /// Maps one MTL material (textures relative to `dir`).
+    pub fn add(&mut self, m: &tobj::Material, dir: &Path, notes: &mut Vec<String>) -> u32 {
+        let kd = rgb(m.diffuse, 0.8);
+        let ks = rgb(m.specular, 0.0);
+        let illum = m.illumination_model.unwrap_or(2);
+        let tr = m
+            .unknown_param
+            .get("Tr")
+            .and_then(|t| t.trim().parse::<f32>().ok());
+        let transparent = m.dissolve.is_some_and(|d| d < 1.0) || tr.is_some_and(|t| t > 0.0);
+        if m.emissive.is_some_and(|e| e.iter().any(|&x| x > 0.0)) {
+            notes.push(format!(
+                "MTL material `{}` emits light (Ke); OBJ emission is not supported, it is shaded by its Kd",
+                m.name
+            ));
+        }
+        let albedo = match m
+            .diffuse_texture
+            .as_deref()
+            .and_then(crate::geometry::obj::texture_file)
+        {
+            Some(file) => match self.texture(&dir.join(file), notes) {
+                Some(t) => ColorTex::Image(t),
+                None => ColorTex::Const(kd),
+            },
+            None => ColorTex::Const(kd),
+        };
+        let material = if matches!(illum, 4 | 6 | 7) || transparent {
+            let tint = m
+                .unknown_param
+                .get("Tf")
+                .and_then(|t| {
+                    let v: Vec<f32> = t.split_whitespace().filter_map(|x| x.parse().ok()).collect();
+                    (v.len() == 3).then(|| [v[0], v[1], v[2]])
+                })
+                .map_or(Rgb::ONE, |c| rgb(Some(c), 1.0));
+            Material::Glass {
+                ior: m
+                    .optical_density
+                    .filter(|n| n.is_finite() && *n >= 1.0)
+                    .unwrap_or(1.5),
+                tint: ColorTex::Const(tint),
+                fresnel: DielectricFresnel::Exact,
+            }
+        } else if illum == 3 {
+            let tint = if ks.max_element() > 0.0 {
+                ks
+            } else {
+                Rgb::splat(0.9)
+            };
+            Material::Mirror {
+                tint: ColorTex::Const(tint),
+            }
+        } else if ks.max_element() > 0.0 {
+            Material::Phong {
+                kd: albedo,
+                ks: ColorTex::Const(ks),
+                exponent: m.shininess.filter(|n| n.is_finite() && *n > 0.0).unwrap_or(10.0),
+            }
+        } else {
+            Material::Lambert { albedo }
+        };
+        let i = self.push(material);
+        *self.names.last_mut().expect("just pushed") = Some(m.name.clone());
+        i
+    }
+
+    /// Decodes an image once per path; `None` (with a note) if unreadable.
+    fn texture(&mut self, path: &Path, notes: &mut Vec<String>) -> Option<u32> {
+        if let Some(t) = self.textures_by_path.get(path) {
+            return *t;
+        }
+        let t = match image::open(path) {
+            Ok(img) => {
+                let rgb = img.to_rgb8();
+                self.textures
+                    .push(Texture::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()));
+                Some(self.first_texture + self.textures.len() as u32 - 1)
+            }
+            Err(e) => {
+                notes.push(format!("texture {} not used: {e}", path.display()));
+                None
+            }
+        };
+        self.textures_by_path.insert(path.to_path_buf(), t);
+        t
+    }
+}
