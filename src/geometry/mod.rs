@@ -7,12 +7,14 @@ pub mod obj;
 pub mod plane;
 pub mod quad;
 pub mod sdf;
+pub mod sdf_object;
 pub mod sphere;
 pub mod triangle;
 
 pub use mesh::Mesh;
 pub use plane::Plane;
 pub use quad::Quad;
+pub use sdf_object::SdfObject;
 pub use sphere::Sphere;
 
 use crate::accel::Aabb;
@@ -24,6 +26,8 @@ pub const NO_LIGHT: u32 = u32::MAX;
 
 #[derive(Clone, Copy, Debug)]
 pub enum Shape {
+    /// Implicit surface `i` of `Scene::sdfs`.
+    Sdf(u32),
     Sphere(Sphere),
     Quad(Quad),
     /// Triangle `tri` of mesh `mesh`.
@@ -53,8 +57,9 @@ pub struct Hit {
 impl Shape {
     /// Distance to the first intersection in `(0, t_max)`.
     #[inline]
-    pub fn intersect_t(&self, ray: &Ray, t_max: f32, meshes: &[Mesh]) -> Option<f32> {
+    pub fn intersect_t(&self, ray: &Ray, t_max: f32, meshes: &[Mesh], sdfs: &[SdfObject]) -> Option<f32> {
         match self {
+            Shape::Sdf(i) => sdfs[*i as usize].intersect(ray, t_max),
             Shape::Sphere(s) => s.intersect(ray, t_max),
             Shape::Quad(q) => q.intersect(ray, t_max).map(|(t, _)| t),
             Shape::Triangle { mesh, tri } => {
@@ -65,9 +70,10 @@ impl Shape {
     }
 
     /// Full hit record for a `t` returned by [`Shape::intersect_t`].
-    pub fn hit(&self, ray: &Ray, t: f32, meshes: &[Mesh]) -> Hit {
+    pub fn hit(&self, ray: &Ray, t: f32, meshes: &[Mesh], sdfs: &[SdfObject]) -> Hit {
         let p = ray.at(t);
         match self {
+            Shape::Sdf(i) => sdfs[*i as usize].hit(ray, t),
             Shape::Sphere(s) => s.hit(p, t),
             Shape::Quad(q) => q.hit(ray, t),
             Shape::Triangle { mesh, tri } => meshes[*mesh as usize].hit(*tri, ray, t),
@@ -76,8 +82,9 @@ impl Shape {
     }
 
     /// `None` for unbounded shapes (planes), which live outside the BVH.
-    pub fn bounds(&self, meshes: &[Mesh]) -> Option<Aabb> {
+    pub fn bounds(&self, meshes: &[Mesh], sdfs: &[SdfObject]) -> Option<Aabb> {
         match self {
+            Shape::Sdf(i) => sdfs[*i as usize].bounds(),
             Shape::Sphere(s) => Some(s.bounds()),
             Shape::Quad(q) => Some(q.bounds()),
             Shape::Triangle { mesh, tri } => Some(meshes[*mesh as usize].tri_bounds(*tri)),

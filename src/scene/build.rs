@@ -97,6 +97,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
     }
 
     let mut meshes = Vec::new();
+    let mut sdfs = Vec::new();
     let mut triangles = 0;
     for (i, o) in desc.objects.iter().enumerate() {
         let material = index.get(o.material()).copied().unwrap_or(0);
@@ -104,6 +105,10 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
         let point = |p: &[f32; 3]| Vec3A::from(m.transform_point3(Vec3::from(*p)));
         let vector = |v: &[f32; 3]| Vec3A::from(m.transform_vector3(Vec3::from(*v)));
         match o {
+            ObjectDesc::Sdf { shape, march, .. } => {
+                let (s, bounded) = super::build_sdf::build_sdf(shape, march, &m, material, &mut sdfs);
+                if bounded { &mut shapes } else { &mut unbounded }.push(s);
+            }
             ObjectDesc::Sphere { center, radius, .. } => {
                 let scale = m.transform_vector3(Vec3::X).length();
                 shapes.push(Shape::Sphere(Sphere {
@@ -196,7 +201,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
     let load_time = t0.elapsed();
 
     let t1 = Instant::now();
-    let bounds: Vec<_> = shapes.iter().filter_map(|s| s.bounds(&meshes)).collect();
+    let bounds: Vec<_> = shapes.iter().filter_map(|s| s.bounds(&meshes, &sdfs)).collect();
     let bvh = Bvh::build(&bounds);
     let bvh_time = t1.elapsed();
     let bounded = shapes.len() as u32;
@@ -257,6 +262,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
         bounded,
         meshes,
         bvh,
+        sdfs,
     };
     Ok((
         scene,

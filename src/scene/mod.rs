@@ -4,12 +4,14 @@
 
 pub mod build;
 pub mod build_material;
+pub mod build_sdf;
 pub mod desc;
 pub mod load;
 pub mod problem;
 pub mod runtime;
 pub mod spans;
 pub mod validate;
+pub mod validate_sdf;
 
 pub use load::{LoadError, Loaded, Overrides, load, load_str, load_with};
 pub use runtime::{Film, Scene};

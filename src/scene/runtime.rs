@@ -3,7 +3,7 @@
 
 use crate::accel::Bvh;
 use crate::camera::Camera;
-use crate::geometry::{Hit, Mesh, Shape};
+use crate::geometry::{Hit, Mesh, SdfObject, Shape};
 use crate::integrators::Integrator;
 use crate::lights::{Light, LightPicker};
 use crate::materials::{Material, Texture};
@@ -39,34 +39,36 @@ pub struct Scene {
     pub bounded: u32,
     pub meshes: Vec<Mesh>,
     pub bvh: Bvh,
+    /// Implicit surfaces, referred to by [`Shape::Sdf`].
+    pub sdfs: Vec<SdfObject>,
 }
 
 impl Scene {
     /// Closest hit in `(0, t_max)`.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let meshes = &self.meshes;
+        let (meshes, sdfs) = (&self.meshes, &self.sdfs);
         let shapes = &self.shapes;
         let mut best = self.bvh.intersect(ray, t_max, |i, r, tm| {
-            shapes[i as usize].intersect_t(r, tm, meshes)
+            shapes[i as usize].intersect_t(r, tm, meshes, sdfs)
         });
         let mut t_best = best.map_or(t_max, |(_, t)| t);
         for i in self.bounded..self.shapes.len() as u32 {
-            if let Some(t) = shapes[i as usize].intersect_t(ray, t_best, meshes) {
+            if let Some(t) = shapes[i as usize].intersect_t(ray, t_best, meshes, sdfs) {
                 t_best = t;
                 best = Some((i, t));
             }
         }
-        best.map(|(i, t)| shapes[i as usize].hit(ray, t, meshes))
+        best.map(|(i, t)| shapes[i as usize].hit(ray, t, meshes, sdfs))
     }
 
     /// Whether anything blocks `ray` before `t_max` (shadow rays).
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let meshes = &self.meshes;
+        let (meshes, sdfs) = (&self.meshes, &self.sdfs);
         let shapes = &self.shapes;
         (self.bounded..self.shapes.len() as u32)
-            .any(|i| shapes[i as usize].intersect_t(ray, t_max, meshes).is_some())
+            .any(|i| shapes[i as usize].intersect_t(ray, t_max, meshes, sdfs).is_some())
             || self.bvh.occluded(ray, t_max, |i, r, tm| {
-                shapes[i as usize].intersect_t(r, tm, meshes).is_some()
+                shapes[i as usize].intersect_t(r, tm, meshes, sdfs).is_some()
             })
     }
 }

@@ -8,6 +8,15 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Deserialize, Serialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum ObjectDesc {
+    /// An implicit surface: a tree of SDF shapes and operators (`desc/sdf.rs`).
+    Sdf {
+        shape: super::SdfDesc,
+        material: String,
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        transform: Vec<TransformDesc>,
+        #[serde(default, skip_serializing_if = "super::MarchDesc::is_default")]
+        march: super::MarchDesc,
+    },
     Sphere {
         center: V3,
         radius: f32,
@@ -53,6 +62,7 @@ pub enum ObjectDesc {
 impl ObjectDesc {
     pub fn material(&self) -> &str {
         match self {
+            ObjectDesc::Sdf { material, .. } => material,
             ObjectDesc::Sphere { material, .. }
             | ObjectDesc::Plane { material, .. }
             | ObjectDesc::Quad { material, .. }
@@ -63,6 +73,7 @@ impl ObjectDesc {
 
     pub fn transform(&self) -> &[TransformDesc] {
         match self {
+            ObjectDesc::Sdf { transform, .. } => transform,
             ObjectDesc::Sphere { transform, .. }
             | ObjectDesc::Plane { transform, .. }
             | ObjectDesc::Quad { transform, .. }
