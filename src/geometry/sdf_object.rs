@@ -17,12 +17,21 @@ use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 
 /// Smallest hit threshold for scene SDFs, in scene units.
 ///
-/// Why not the engine's 1e-4: `integrators::spawn` moves secondary rays off
-/// the surface by `ray_epsilon(p) = 1e-4·(1 + |p|max) ≥ 1e-4`, and a march
-/// starting closer than its threshold (at `t ≈ 0`, `min_eps`) reports a hit
-/// at its own origin. With 2.5e-5 the offset is at least 4× the threshold
-/// everywhere, twice the 2× margin the march asks for, which leaves room for
-/// a Mandelbulb estimate that undershoots the true distance by half.
+/// Secondary rays leave a hit through `integrators::spawn`, offset along the
+/// normal by `ray_epsilon(p) = 1e-4·(1 + |p|max)`: at least 1e-4, about
+/// 2e-4 for a unit-sized object at the origin. The march needs that offset
+/// to be at least twice its hit threshold on both ends of the ray:
+/// - where the spawned ray starts (`t ≈ 0`) the threshold is `min_eps`; the
+///   engine's 1e-4 would equal the offset, so a ray could "hit" at its own
+///   origin. 2.5e-5 keeps the offset ≥ 4× the threshold everywhere, with
+///   room for a Mandelbulb estimate that undershoots the distance by half;
+/// - where the camera ray stopped, the threshold grows like a pixel's cone,
+///   `1e-4·t`: 3e-4 – 1e-3 at camera distances of 3 – 10, larger than the
+///   offset. A hit that far in front of the surface would send a refracted
+///   ray off from outside. So hits on exact SDFs are projected onto the
+///   surface ([`SdfObject::hit`]); for a distance estimate the rendered
+///   surface is the level set the march stopped at, which an outward spawn
+///   leaves anyway.
 pub const MIN_EPS: f32 = 2.5e-5;
 
 #[derive(Clone, Debug)]
@@ -63,10 +72,30 @@ impl SdfObject {
     /// Hit record at `t` from [`Self::intersect`]; the normal is the SDF's
     /// gradient, sampled no finer than the hit threshold there (finer
     /// would resolve detail the march itself blurred away).
-    pub fn hit(&self, ray: &Ray, t: f32) -> Hit {
-        let p = ray.at(t);
+    pub fn hit(&self, ray: &Ray, mut t: f32) -> Hit {
+        let mut p = ray.at(t);
         let h = self.params.eps_at(t * ray.d.length()).max(ray_epsilon(p));
         let n = normal(&self.sdf, p, h);
+        if self.sdf.is_exact() {
+            // The march stops up to eps_at(t) in front of the surface (see
+            // MIN_EPS). Newton steps along the ray, with the gradient's
+            // slope, put p on it (to 1e-6, in 1–2 steps at fair angles) and
+            // keep it on the ray; a nearly tangent ray projects along the
+            // normal instead, where its Newton step would be long.
+            let (len, cos) = (ray.d.length(), n.dot(ray.d.normalize()));
+            if cos < -0.05 {
+                for _ in 0..4 {
+                    let d = self.sdf.distance(ray.at(t));
+                    t += d / (-cos * len);
+                    if d.abs() < 0.05 * MIN_EPS {
+                        break;
+                    }
+                }
+                p = ray.at(t);
+            } else {
+                p -= n * self.sdf.distance(p);
+            }
+        }
         // Spherical coordinates about the centre, as for the analytic sphere.
         let dir = (p - self.uv_center).normalize_or(Vec3A::Y);
         let u = 0.5 + dir.z.atan2(dir.x) / (2.0 * PI);
