@@ -106,7 +106,7 @@ pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<P
         let vector = |v: &[f32; 3]| Vec3A::from(m.transform_vector3(Vec3::from(*v)));
         match o {
             ObjectDesc::Sdf { shape, march, .. } => {
-                let (s, bounded) = super::build_sdf::build_sdf(shape, march, &m, material, &mut sdfs);
+                let (s, bounded) = super::build_sdf::build_sdf(desc, shape, march, &m, material, &mut sdfs);
                 if bounded { &mut shapes } else { &mut unbounded }.push(s);
             }
             ObjectDesc::Sphere { center, radius, .. } => {

@@ -4,7 +4,7 @@
 //! checked by `validate_sdf`) wraps the root as one `Transform` node, so the
 //! runtime [`Sdf`] is already in world space.
 
-use super::desc::{MarchDesc, SdfDesc};
+use super::desc::{MarchDesc, SceneDesc, SdfDesc};
 use crate::geometry::Shape;
 use crate::geometry::sdf::{MarchParams, Sdf, SdfNode};
 use crate::geometry::sdf_object::{MIN_EPS, SdfObject};
@@ -12,7 +12,9 @@ use glam::{Mat3, Mat4, Quat, Vec3, Vec3A};
 
 /// Builds one validated SDF object, appends it to `sdfs` and returns its
 /// shape with whether it is bounded (BVH) or not (tested by every ray).
+/// `scene` gives the pixel size for the default hit threshold.
 pub fn build_sdf(
+    scene: &SceneDesc,
     shape: &SdfDesc,
     march: &MarchDesc,
     world_from_object: &Mat4,
@@ -31,17 +33,35 @@ pub fn build_sdf(
         });
         root = nodes.len() as u32 - 1;
     }
+    let sdf = Sdf::new(nodes, root);
+    let eps_per_distance = march.eps_per_distance.unwrap_or(if sdf.is_exact() {
+        MarchParams::default().eps_per_distance
+    } else {
+        half_pixel(scene)
+    });
     let params = MarchParams {
         max_steps: march.max_steps,
         min_eps: MIN_EPS,
-        eps_per_distance: march.eps_per_distance,
+        eps_per_distance,
         over_relax: march.over_relax,
         estimate_step: march.estimate_step,
     };
-    let object = SdfObject::new(Sdf::new(nodes, root), params, material);
+    let object = SdfObject::new(sdf, params, material);
     let bounded = object.bounds().is_some();
     sdfs.push(object);
     (Shape::Sdf(sdfs.len() as u32 - 1), bounded)
+}
+
+/// Half the angle a pixel subtends at the image centre, in radians.
+///
+/// Why the default threshold for distance estimates: the march stops on the
+/// level set `DE = eps`, so `eps` *is* the fractal's level of detail. Finer
+/// than a pixel, the detail aliases into speckles at any affordable sample
+/// count and costs steps (measured on the Mandelbulb at 192²: 1e-4 gave 32
+/// steps per march and noise, half a pixel 15 steps and a clean surface).
+pub fn half_pixel(scene: &SceneDesc) -> f32 {
+    let tan_half_fov = (0.5 * scene.camera.fov_y_degrees.to_radians()).tan();
+    tan_half_fov / scene.film.height.max(1) as f32
 }
 
 /// Uniform scale, rotation and translation of a similarity without mirroring

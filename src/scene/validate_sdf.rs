@@ -151,11 +151,12 @@ fn march_settings(path: &str, m: &MarchDesc, out: &mut Vec<Problem>) {
         format!("max_steps {} is outside 1..=100000", m.max_steps),
         "512 (the default) suits most shapes; fractals seen close up may need more",
     );
+    let eps = m.eps_per_distance.unwrap_or(1e-4);
     check(
         "eps_per_distance",
-        (0.0..=0.01).contains(&m.eps_per_distance),
-        format!("eps_per_distance {} is outside [0, 0.01]", m.eps_per_distance),
-        "the hit threshold per unit of distance; the default 1e-4 is a tenth of a pixel at 1000 pixels",
+        (0.0..=0.05).contains(&eps),
+        format!("eps_per_distance {eps} is outside [0, 0.05]"),
+        "the hit threshold per unit of distance, in radians; half a pixel is about tan(fov/2)/height",
     );
     check(
         "over_relax",

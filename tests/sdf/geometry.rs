@@ -10,7 +10,8 @@ use std::fmt::Write as _;
 
 const CENTER: Vec3A = Vec3A::new(0.1, 0.2, 0.0);
 const RADIUS: f32 = 0.8;
-const SDF_SPHERE: &str = r#"Sdf(shape: Sphere(radius: 0.8), material: "m", transform: [Translate((0.1, 0.2, 0))])"#;
+const SDF_SPHERE: &str =
+    r#"Sdf(shape: Sphere(radius: 0.8), material: "m", transform: [Translate((0.1, 0.2, 0))])"#;
 const ANALYTIC_SPHERE: &str = r#"Sphere(center: (0.1, 0.2, 0), radius: 0.8, material: "m")"#;
 
 /// A sphere (`object`), checker-textured to test UVs too; `full` adds a
@@ -45,8 +46,15 @@ fn rmse(a: &Image, b: &Image) -> f64 {
 
 #[test]
 fn sdf_sphere_renders_like_analytic_sphere() {
-    let (mut sdf, mut ana) = (sphere_scene(SDF_SPHERE, true), sphere_scene(ANALYTIC_SPHERE, true));
-    let (s1, a1, a2) = (render_seed(&mut sdf, 1), render_seed(&mut ana, 1), render_seed(&mut ana, 2));
+    let (mut sdf, mut ana) = (
+        sphere_scene(SDF_SPHERE, true),
+        sphere_scene(ANALYTIC_SPHERE, true),
+    );
+    let (s1, a1, a2) = (
+        render_seed(&mut sdf, 1),
+        render_seed(&mut ana, 1),
+        render_seed(&mut ana, 2),
+    );
     let s2 = render_seed(&mut sdf, 2);
     // The noise of one render: two independent renders differ by √2 of it.
     let noise = rmse(&a1, &a2) / 2f64.sqrt();
@@ -67,7 +75,10 @@ fn sdf_sphere_renders_like_analytic_sphere() {
 
 #[test]
 fn sdf_sphere_hits_where_analytic_sphere_does() {
-    let (sdf, ana) = (sphere_scene(SDF_SPHERE, false), sphere_scene(ANALYTIC_SPHERE, false));
+    let (sdf, ana) = (
+        sphere_scene(SDF_SPHERE, false),
+        sphere_scene(ANALYTIC_SPHERE, false),
+    );
     let mut rng = Pcg32::new(7, 7);
     let (mut hits, mut grazing, mut spawned) = (0, 0, 0);
     for _ in 0..5000 {
@@ -80,7 +91,10 @@ fn sdf_sphere_hits_where_analytic_sphere_does() {
         // Within 1e-3·r of tangent, where a hit slides along the ray by
         // √(2r·δ) for a surface δ off: only hit-or-miss is ill-posed there.
         let tangent = (miss - RADIUS).abs() < 1e-3 * RADIUS;
-        match (sdf.intersect(&ray, f32::INFINITY), ana.intersect(&ray, f32::INFINITY)) {
+        match (
+            sdf.intersect(&ray, f32::INFINITY),
+            ana.intersect(&ray, f32::INFINITY),
+        ) {
             (Some(s), Some(a)) => {
                 hits += 1;
                 let on_sphere = ((s.p - CENTER).length() - RADIUS).abs();
@@ -143,9 +157,20 @@ fn check_spawn(scene: &Scene, hit: &ronray::geometry::Hit, rng: &mut Pcg32) -> u
     let off_surface = ((exit.p - CENTER).length() - RADIUS).abs();
     if exit.t < 0.5 * chord {
         let o = &scene.sdfs[0];
-        println!("DEBUG hit {:?} off {off} d(origin) {} d(p) {}", hit, o.sdf.distance(inward.o), o.sdf.distance(hit.p));
-        for k in 0..6 { let t = exit.t * k as f32 / 3.0; println!("DEBUG t {t} d {}", o.sdf.distance(inward.at(t))); }
-        println!("DEBUG {:?}", ronray::geometry::sdf::trace(&o.sdf, &inward, 0.0, f32::INFINITY, &o.params));
+        println!(
+            "DEBUG hit {:?} off {off} d(origin) {} d(p) {}",
+            hit,
+            o.sdf.distance(inward.o),
+            o.sdf.distance(hit.p)
+        );
+        for k in 0..6 {
+            let t = exit.t * k as f32 / 3.0;
+            println!("DEBUG t {t} d {}", o.sdf.distance(inward.at(t)));
+        }
+        println!(
+            "DEBUG {:?}",
+            ronray::geometry::sdf::trace(&o.sdf, &inward, 0.0, f32::INFINITY, &o.params)
+        );
     }
     assert!(
         off_surface < 1e-3 * RADIUS && exit.t > 0.5 * chord,
@@ -215,7 +240,10 @@ fn sdf_torus_grazing_rays_match_a_fine_mesh() {
         for x in 0..n {
             let film = (Vec2::new(x as f32, y as f32) + 0.5) / n as f32;
             let ray = cam.ray(film, 1.0, Vec2::ZERO);
-            let (s, m) = (sdf.intersect(&ray, f32::INFINITY), mesh.intersect(&ray, f32::INFINITY));
+            let (s, m) = (
+                sdf.intersect(&ray, f32::INFINITY),
+                mesh.intersect(&ray, f32::INFINITY),
+            );
             // Surfaces 2e-4 apart along the normal: hits about that far apart
             // along it, whatever the angle.
             let agree = match (&s, &m) {
@@ -228,13 +256,22 @@ fn sdf_torus_grazing_rays_match_a_fine_mesh() {
                 continue;
             }
             let near = match (&s, &m) {
-                (Some(s), Some(m)) => if s.t < m.t { s } else { m },
+                (Some(s), Some(m)) => {
+                    if s.t < m.t {
+                        s
+                    } else {
+                        m
+                    }
+                }
                 (Some(h), None) | (None, Some(h)) => h,
                 (None, None) => unreachable!("agreeing misses were skipped"),
             };
             if near.ng.dot(ray.d).abs() < 0.1 {
                 grazing += 1;
-            } else if s.as_ref().is_some_and(|s| s.t <= near.t && true_torus(s.p).abs() < 1e-4) {
+            } else if s
+                .as_ref()
+                .is_some_and(|s| s.t <= near.t && true_torus(s.p).abs() < 1e-4)
+            {
                 cracks += 1;
             } else {
                 panic!("ray {ray:?}: hole or false hit: SDF {s:?}, mesh {m:?}");
@@ -242,15 +279,26 @@ fn sdf_torus_grazing_rays_match_a_fine_mesh() {
         }
     }
     println!("{both} rays hit both; {grazing} grazing and {cracks} mesh-crack disagreements");
-    assert!(both > 10_000 && grazing < both / 200 && cracks < 5, "{grazing}, {cracks} of {both}");
+    assert!(
+        both > 10_000 && grazing < both / 200 && cracks < 5,
+        "{grazing}, {cracks} of {both}"
+    );
     // Renders: acne would darken lit pixels, holes would show black.
     let (a, b) = (render_seed(&mut sdf, 3), render_seed(&mut mesh, 3));
     let (mask, edges) = silhouette(&b);
     let c = compare(&a, &b, Some(&mask)).unwrap();
     let all = compare(&a, &b, None).unwrap();
-    println!("silhouette pixels {edges}: RMSE {:.5}; whole image {:.5}", c.rmse, all.rmse);
+    println!(
+        "silhouette pixels {edges}: RMSE {:.5}; whole image {:.5}",
+        c.rmse, all.rmse
+    );
     assert!(edges > 100, "{edges} silhouette pixels");
-    assert!(c.rmse < 0.01, "silhouette RMSE {} (whole image {})", c.rmse, all.rmse);
+    assert!(
+        c.rmse < 0.01,
+        "silhouette RMSE {} (whole image {})",
+        c.rmse,
+        all.rmse
+    );
     assert!(all.rmse < 0.005, "whole-image RMSE {}", all.rmse);
 }
 
@@ -259,7 +307,11 @@ fn sdf_torus_grazing_rays_match_a_fine_mesh() {
 /// shadow boundaries, where grazing rays decide; and how many there are.
 fn silhouette(img: &Image) -> (Vec<bool>, usize) {
     let (w, h) = (img.width as i32, img.height as i32);
-    let covered = |x: i32, y: i32| img.get(x.clamp(0, w - 1) as u32, y.clamp(0, h - 1) as u32).max_element() > 0.0;
+    let covered = |x: i32, y: i32| {
+        img.get(x.clamp(0, w - 1) as u32, y.clamp(0, h - 1) as u32)
+            .max_element()
+            > 0.0
+    };
     let mut skip = vec![true; (w * h) as usize];
     for y in 0..h {
         for x in 0..w {

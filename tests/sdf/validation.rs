@@ -57,7 +57,10 @@ fn locate(i: usize, path: &str, needle: &str) -> (usize, usize) {
     } else {
         line.find(&format!("{field}:")).map_or(0, |k| k + field.len() + 1)
     };
-    let at = from + line[from..].find(needle).unwrap_or_else(|| panic!("{needle} in {line}"));
+    let at = from
+        + line[from..]
+            .find(needle)
+            .unwrap_or_else(|| panic!("{needle} in {line}"));
     (line_no, line[..at].chars().count() + 1)
 }
 
@@ -71,7 +74,14 @@ fn sdf_validation_locates_every_mistake() {
     let got: Vec<_> = report
         .diagnostics
         .iter()
-        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column, d.message.clone()))
+        .map(|d| {
+            (
+                d.path.clone().unwrap_or_default(),
+                d.line,
+                d.column,
+                d.message.clone(),
+            )
+        })
         .collect();
     assert_eq!(
         got.len(),
@@ -83,8 +93,15 @@ fn sdf_validation_locates_every_mistake() {
         assert_eq!(got_path, path, "diagnostics in order:\n{}", report.render(false));
         let object: usize = path["objects[".len()..path.find(']').unwrap()].parse().unwrap();
         let want = locate(object, path, needle);
-        assert_eq!((*line, *column), want, "{path} should point at `{needle}`: {message}");
-        assert!(message.contains(word), "{path}: `{message}` should mention `{word}`");
+        assert_eq!(
+            (*line, *column),
+            want,
+            "{path} should point at `{needle}`: {message}"
+        );
+        assert!(
+            message.contains(word),
+            "{path}: `{message}` should mention `{word}`"
+        );
     }
 }
 
@@ -98,8 +115,12 @@ fn sdf_unbounded_intersection_is_accepted_once_cut() {
         );
         load_str(Path::new("cut.ron"), &text, &Overrides::default())
     };
-    assert!(scene("Intersection(of: [Plane(normal: (0, 1, 1), offset: 0.1), Box(half_extents: (1, 1, 1))])").is_ok());
-    let Err(LoadError::Invalid(r)) = scene("Difference(of: [Plane(normal: (0, 1, 0)), Sphere(radius: 1)])") else {
+    assert!(
+        scene("Intersection(of: [Plane(normal: (0, 1, 1), offset: 0.1), Box(half_extents: (1, 1, 1))])")
+            .is_ok()
+    );
+    let Err(LoadError::Invalid(r)) = scene("Difference(of: [Plane(normal: (0, 1, 0)), Sphere(radius: 1)])")
+    else {
         panic!("an unbounded difference loaded");
     };
     assert_eq!(r.diagnostics[0].path.as_deref(), Some("objects[0].shape.of[0]"));

@@ -144,8 +144,11 @@ pub struct MarchDesc {
     /// Steps before a ray gives up (a miss).
     pub max_steps: u32,
     /// Hit threshold per unit of distance travelled (radians): larger is
-    /// faster and blurs finer fractal detail.
-    pub eps_per_distance: f32,
+    /// faster and blurs finer fractal detail. By default 1e-4 for exact
+    /// shapes, whose silhouettes it would fatten, and half a pixel's angle
+    /// for trees with a Mandelbulb, whose finer detail would only alias
+    /// into speckles (see `build_sdf`).
+    pub eps_per_distance: Option<f32>,
     /// Over-relaxation of steps on exact distances, in `[1, 2)`.
     pub over_relax: f32,
     /// Fraction of a distance *estimate* (Mandelbulb) stepped, in `(0, 1]`.
@@ -157,7 +160,7 @@ impl Default for MarchDesc {
         let p = crate::geometry::sdf::MarchParams::default();
         Self {
             max_steps: p.max_steps,
-            eps_per_distance: p.eps_per_distance,
+            eps_per_distance: None,
             over_relax: p.over_relax,
             estimate_step: p.estimate_step,
         }
