@@ -107,3 +107,14 @@ fn golden_sdf_shapes() {
 fn golden_mandelbulb() {
     check_golden("mandelbulb", 4);
 }
+
+#[test]
+fn sdf_scenes_round_trip_through_ron() {
+    for name in ["sdf_shapes", "mandelbulb"] {
+        let loaded = load_with(&root().join(format!("scenes/{name}.ron")), &Overrides::default()).unwrap();
+        let text = ron::ser::to_string_pretty(&loaded.desc, Default::default()).unwrap();
+        let again = ronray::scene::load::parse(Path::new("again.ron"), &text)
+            .unwrap_or_else(|r| panic!("{name} does not parse back:\n{}\n{text}", r.render(false)));
+        assert_eq!(again, loaded.desc, "{name} changed in the round trip");
+    }
+}
