@@ -12,6 +12,8 @@
 mod geometry;
 #[path = "sdf/mandelbulb.rs"]
 mod mandelbulb;
+#[path = "sdf/torus.rs"]
+mod torus;
 #[path = "sdf/validation.rs"]
 mod validation;
 
