@@ -336,6 +336,15 @@ fn cmd_render(path: &Path, output: Option<PathBuf>, settings: &RenderSettings, s
             stats.rays,
             stats.rays as f64 / secs / 1e6
         );
+        let sdf = crate::geometry::sdf_object::take_stats();
+        if sdf.traces > 0 {
+            eprintln!(
+                "sdf: {} marches, {:.1} steps per march; steps histogram {}",
+                sdf.traces,
+                sdf.steps_per_trace(),
+                sdf.histogram_text()
+            );
+        }
     }
     ExitCode::SUCCESS
 }

@@ -12,6 +12,7 @@ pub mod obj;
 pub mod plane;
 pub mod quad;
 pub mod sdf;
+pub mod sdf_object;
 pub mod sphere;
 pub mod triangle;
 
@@ -19,6 +20,7 @@ pub use instance::Instance;
 pub use mesh::{Mesh, MeshHit};
 pub use plane::Plane;
 pub use quad::Quad;
+pub use sdf_object::SdfObject;
 pub use sphere::Sphere;
 
 use crate::accel::Aabb;
@@ -30,6 +32,8 @@ pub const NO_LIGHT: u32 = u32::MAX;
 
 #[derive(Clone, Copy, Debug)]
 pub enum Shape {
+    /// Implicit surface `i` of `Geometry::sdfs`.
+    Sdf(u32),
     Sphere(Sphere),
     Quad(Quad),
     /// Instance `0` of [`Geometry::instances`]: a mesh and its transform.
@@ -42,6 +46,8 @@ pub enum Shape {
 pub struct Geometry {
     pub meshes: Vec<Mesh>,
     pub instances: Vec<Instance>,
+    /// Implicit surfaces, referred to by [`Shape::Sdf`].
+    pub sdfs: Vec<SdfObject>,
 }
 
 /// A ray–surface intersection with what shading needs.
@@ -65,6 +71,7 @@ impl Shape {
     #[inline]
     pub fn intersect_t(&self, ray: &Ray, t_max: f32, geo: &Geometry) -> Option<f32> {
         match self {
+            Shape::Sdf(i) => geo.sdfs[*i as usize].intersect(ray, t_max),
             Shape::Sphere(s) => s.intersect(ray, t_max),
             Shape::Quad(q) => q.intersect(ray, t_max).map(|(t, _)| t),
             Shape::Instance(i) => geo.instances[*i as usize]
@@ -89,6 +96,7 @@ impl Shape {
     pub fn hit(&self, ray: &Ray, t: f32, geo: &Geometry) -> Hit {
         let p = ray.at(t);
         match self {
+            Shape::Sdf(i) => geo.sdfs[*i as usize].hit(ray, t),
             Shape::Sphere(s) => s.hit(p, t),
             Shape::Quad(q) => q.hit(ray, t),
             Shape::Instance(i) => {
@@ -108,6 +116,7 @@ impl Shape {
     /// `None` for unbounded shapes (planes), which live outside the BVH.
     pub fn bounds(&self, geo: &Geometry) -> Option<Aabb> {
         match self {
+            Shape::Sdf(i) => geo.sdfs[*i as usize].bounds(),
             Shape::Sphere(s) => Some(s.bounds()),
             Shape::Quad(q) => Some(q.bounds()),
             Shape::Instance(i) => Some(geo.instances[*i as usize].bounds(&geo.meshes)),

@@ -119,12 +119,17 @@ pub fn build_with(
         index.iter().map(|(k, v)| (k.as_str(), *v)).collect();
     let mut mesh_builder = MeshBuilder::new(desc, base, load_obj);
     let mut mtl = MtlMaterials::new(materials.len() as u32, textures.len() as u32);
+    let mut sdfs = Vec::new();
     for (i, o) in desc.objects.iter().enumerate() {
         let material = o.material().and_then(|n| index.get(n)).copied().unwrap_or(0);
         let m = compose(o.transform());
         let point = |p: &[f32; 3]| Vec3A::from(m.transform_point3(Vec3::from(*p)));
         let vector = |v: &[f32; 3]| Vec3A::from(m.transform_vector3(Vec3::from(*v)));
         match o {
+            ObjectDesc::Sdf { shape, march, .. } => {
+                let (s, bounded) = super::build_sdf::build_sdf(desc, shape, march, &m, material, &mut sdfs);
+                if bounded { &mut shapes } else { &mut unbounded }.push(s);
+            }
             ObjectDesc::Sphere { center, radius, .. } => {
                 let scale = m.transform_vector3(Vec3::X).length();
                 shapes.push(Shape::Sphere(Sphere {
@@ -179,7 +184,8 @@ pub fn build_with(
             }
         }
     }
-    let (geometry, triangles, notes) = mesh_builder.finish();
+    let (mut geometry, triangles, notes) = mesh_builder.finish();
+    geometry.sdfs = sdfs;
     notes.iter().for_each(|n| eprintln!("note: {n}"));
     materials.extend(mtl.materials);
     textures.extend(mtl.textures);

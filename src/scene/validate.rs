@@ -511,6 +511,12 @@ impl Checker {
 
     fn object(&mut self, path: &str, o: &ObjectDesc) {
         match o {
+            ObjectDesc::Sdf {
+                shape,
+                march,
+                transform,
+                ..
+            } => (self.problems).extend(super::validate_sdf::validate_sdf(path, shape, march, transform)),
             ObjectDesc::Sphere { center, radius, .. } => {
                 self.finite(&format!("{path}.center"), center);
                 if !(*radius > 0.0 && radius.is_finite()) {

@@ -22,6 +22,7 @@ mod color;
 mod light;
 mod material;
 mod object;
+mod sdf;
 mod transform;
 
 pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, SamplerDesc};
@@ -29,6 +30,7 @@ pub use color::ColorDesc;
 pub use light::LightDesc;
 pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
 pub use object::{MeshDesc, ObjectDesc};
+pub use sdf::{MarchDesc, RotationDesc, SdfDesc};
 pub use transform::TransformDesc;
 
 use serde::{Deserialize, Serialize};

@@ -69,6 +69,15 @@ fn plain_or_some<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::E
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum ObjectDesc {
+    /// An implicit surface: a tree of SDF shapes and operators (`desc/sdf.rs`).
+    Sdf {
+        shape: super::SdfDesc,
+        material: String,
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        transform: Vec<TransformDesc>,
+        #[serde(default, skip_serializing_if = "super::MarchDesc::is_default")]
+        march: super::MarchDesc,
+    },
     Sphere {
         center: V3,
         #[schemars(range(min = 0))]
@@ -143,6 +152,7 @@ impl ObjectDesc {
     /// leave it to their MTL file).
     pub fn material(&self) -> Option<&str> {
         match self {
+            ObjectDesc::Sdf { material, .. } => Some(material),
             ObjectDesc::Sphere { material, .. }
             | ObjectDesc::Plane { material, .. }
             | ObjectDesc::Quad { material, .. }
@@ -161,6 +171,7 @@ impl ObjectDesc {
 
     pub fn transform(&self) -> &[TransformDesc] {
         match self {
+            ObjectDesc::Sdf { transform, .. } => transform,
             ObjectDesc::Sphere { transform, .. }
             | ObjectDesc::Plane { transform, .. }
             | ObjectDesc::Quad { transform, .. }
