@@ -24,7 +24,7 @@
 //!     march: (max_steps: 256),
 //! )"#;
 //! let o: ronray::scene::desc::ObjectDesc = ron::from_str(text).unwrap();
-//! assert_eq!(o.material(), "gold");
+//! assert_eq!(o.material(), Some("gold"));
 //! ```
 
 use super::V3;
