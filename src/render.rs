@@ -157,7 +157,12 @@ fn render_tiles(
                         let film_pos =
                             Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
                         let ray = scene.camera.ray(film_pos, aspect, sampler.next_vec2());
-                        sum += scene.integrator.li(scene, &ray, &mut sampler, &mut counters);
+                        let li = scene.integrator.li(scene, &ray, &mut sampler, &mut counters);
+                        // A non-finite sample (a numerical bug, caught by
+                        // debug asserts) must not poison the pixel in release.
+                        if li.is_finite() {
+                            sum += li;
+                        }
                     }
                     px.push(sum);
                 }

@@ -54,10 +54,19 @@ pub const UNIFORM_HEMISPHERE_PDF: f32 = 1.0 / (2.0 * PI);
 
 /// Veach's power heuristic (β = 2) for combining two strategies by MIS.
 #[inline]
+/// Written as 1/(1 + (g/f)²) so huge densities (a light seen edge-on from
+/// far away) cannot overflow to ∞/∞.
+#[inline]
 pub fn power_heuristic(f_pdf: f32, g_pdf: f32) -> f32 {
-    let f2 = f_pdf * f_pdf;
-    let g2 = g_pdf * g_pdf;
-    if f2 + g2 == 0.0 { 0.0 } else { f2 / (f2 + g2) }
+    if f_pdf.is_nan() || f_pdf <= 0.0 {
+        return 0.0;
+    }
+    let r = g_pdf / f_pdf;
+    if r.is_nan() {
+        // Both infinite: split evenly.
+        return 0.5;
+    }
+    1.0 / (1.0 + r * r)
 }
 
 #[cfg(test)]
@@ -82,6 +91,16 @@ mod tests {
         // ∫ cos dω = π
         let est = acc / n as f64;
         assert!((est - PI as f64).abs() < 0.01, "∫cos = {est}");
+    }
+
+    #[test]
+    fn power_heuristic_survives_extreme_densities() {
+        assert_eq!(power_heuristic(1.2e20, 0.3), 1.0);
+        assert_eq!(power_heuristic(0.3, 1.2e20), 0.0);
+        assert_eq!(power_heuristic(0.0, 0.0), 0.0);
+        assert_eq!(power_heuristic(f32::INFINITY, f32::INFINITY), 0.5);
+        assert!((power_heuristic(1.0, 1.0) - 0.5).abs() < 1e-7);
+        assert!((power_heuristic(2.0, 1.0) - 0.8).abs() < 1e-6);
     }
 
     #[test]
