@@ -52,9 +52,8 @@ pub fn uniform_hemisphere(u: Vec2) -> Vec3A {
 
 pub const UNIFORM_HEMISPHERE_PDF: f32 = 1.0 / (2.0 * PI);
 
-/// Veach's power heuristic (β = 2) for combining two strategies by MIS.
-#[inline]
-/// Written as 1/(1 + (g/f)²) so huge densities (a light seen edge-on from
+/// Veach's power heuristic (β = 2) for combining two strategies by MIS,
+/// written as 1/(1 + (g/f)²) so huge densities (a light seen edge-on from
 /// far away) cannot overflow to ∞/∞.
 #[inline]
 pub fn power_heuristic(f_pdf: f32, g_pdf: f32) -> f32 {
