@@ -1,0 +1,131 @@
+//! `ronray check` (golden-image regressions) and `ronray gallery`.
+use super::{print_load_error, print_out};
+use crate::imageio::write_image;
+use crate::render::{RenderOptions, render};
+use crate::scene::{Overrides, load_with};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+pub(super) fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCode {
+    use crate::check::{Outcome, check_scene, collect, summary};
+    let paths = if paths.is_empty() {
+        vec![PathBuf::from("scenes")]
+    } else {
+        paths
+    };
+    let scenes = match collect(&paths) {
+        Ok(s) if !s.is_empty() => s,
+        Ok(_) => {
+            eprintln!(
+                "error: no scenes found in {}",
+                paths
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+            return ExitCode::FAILURE;
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let mut results = Vec::new();
+    for scene in &scenes {
+        let r = check_scene(scene, bless, threads);
+        match &r.outcome {
+            Outcome::Invalid(e) => print_load_error(e),
+            Outcome::Fail { new, heatmap, .. } => {
+                eprintln!(
+                    "{}: regression; new render {}, heat map {}",
+                    scene.display(),
+                    new.display(),
+                    heatmap.display()
+                )
+            }
+            Outcome::Missing { new } => eprintln!(
+                "{}: no golden image; new render written to {} (run `ronray check --bless` to accept it)",
+                scene.display(),
+                new.display()
+            ),
+            _ => {}
+        }
+        results.push(r);
+    }
+    print_out(&summary(&results));
+    let failed = results.iter().filter(|r| r.failed()).count();
+    if failed == 0 {
+        println!("{} scenes checked, all match their goldens", results.len());
+        ExitCode::SUCCESS
+    } else {
+        println!("{failed} of {} scenes failed", results.len());
+        ExitCode::FAILURE
+    }
+}
+
+pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) -> ExitCode {
+    let paths = if paths.is_empty() {
+        vec![PathBuf::from("scenes")]
+    } else {
+        paths
+    };
+    let Ok(scenes) = crate::check::collect(&paths) else {
+        eprintln!(
+            "error: cannot list {}",
+            paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        return ExitCode::FAILURE;
+    };
+    let mut md = String::from("| scene | image |\n|---|---|\n");
+    let mut failed = false;
+    for scene in &scenes {
+        let full = match load_with(scene, &Overrides::default()) {
+            Ok(l) => l,
+            Err(e) => {
+                print_load_error(&e);
+                failed = true;
+                continue;
+            }
+        };
+        let f = &full.desc.film;
+        let height = ((width as f32) * f.height as f32 / f.width as f32)
+            .round()
+            .max(1.0) as u32;
+        let o = Overrides {
+            size: Some((width, height)),
+            spp,
+            ..Default::default()
+        };
+        let Ok(loaded) = load_with(scene, &o) else {
+            continue;
+        };
+        let stem = scene.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
+        let target = out.join(format!("{stem}.png"));
+        let (img, stats) = render(
+            &loaded.scene,
+            &RenderOptions {
+                progress: std::io::stderr().is_terminal(),
+                ..Default::default()
+            },
+        );
+        if let Err(e) = write_image(&img, &target) {
+            eprintln!("error: {e}");
+            failed = true;
+            continue;
+        }
+        eprintln!("{}: {}", target.display(), stats.summary());
+        md += &format!("| `{}` | ![{stem}]({}) |\n", scene.display(), target.display());
+    }
+    print_out(&md);
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}

@@ -1,0 +1,255 @@
+//! Subcommands. No rendering logic here: each command calls the library and
+//! turns its results into messages and exit codes.
+
+mod check;
+mod diff;
+mod fmt;
+mod render;
+mod validate;
+
+pub use render::output_path;
+pub use validate::json_lines;
+
+use crate::scene::{LoadError, Overrides};
+use check::{cmd_check, cmd_gallery};
+use clap::{Args, Parser, Subcommand};
+use diff::cmd_diff;
+use fmt::cmd_fmt;
+use render::cmd_render;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use validate::cmd_validate;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "ronray",
+    version,
+    about = "A physically based renderer for hand-written RON scenes"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render a scene to PNG (8-bit sRGB) or EXR (linear float).
+    Render {
+        scene: PathBuf,
+        /// Output image; defaults to the scene's `film.output`, else
+        /// `<scene name>.png` in the current folder.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        settings: RenderSettings,
+        /// Print build and traversal statistics.
+        #[arg(long)]
+        stats: bool,
+    },
+    /// Re-render progressively whenever the scene or a file it uses changes.
+    Watch {
+        scene: PathBuf,
+        /// Output image, as for `render`; rewritten after every pass.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        #[command(flatten)]
+        settings: RenderSettings,
+        /// Serve a live page (default 127.0.0.1:8765 or the next free port;
+        /// `ADDR` is `HOST:PORT` or a port on loopback, 0 for any).
+        #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "")]
+        serve: Option<String>,
+    },
+    /// Check scenes without rendering; prints every problem found.
+    Validate {
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// `human` (source excerpts) or `json` (one JSON object per line:
+        /// file, line, column, path, severity, message, suggestion).
+        #[arg(long, default_value = "human", value_parser = ["human", "json"])]
+        format: String,
+    },
+    /// Rewrite scenes in canonical form (stable field order and layout).
+    Fmt {
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Only report files that are not canonical (exit 1 if any).
+        #[arg(long)]
+        check: bool,
+        /// Print to standard output instead of rewriting.
+        #[arg(long)]
+        stdout: bool,
+        /// Write JSON (to `<scene>.json`) instead of RON.
+        #[arg(long)]
+        json: bool,
+        /// Format files with comments anyway (ron cannot keep comments).
+        #[arg(long)]
+        drop_comments: bool,
+    },
+    /// Print the JSON Schema of the scene format.
+    Schema,
+    /// Render every scene of the folders given into one folder of PNGs and
+    /// print a Markdown gallery (what the README shows).
+    Gallery {
+        /// Scene files or folders; default `scenes`.
+        paths: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(short, long, default_value = "docs/gallery")]
+        out: PathBuf,
+        /// Image width (the height keeps each scene's aspect).
+        #[arg(long, default_value_t = 320)]
+        width: u32,
+        #[arg(long)]
+        spp: Option<u32>,
+    },
+    /// Render scenes at their `test` settings and compare with their golden
+    /// images (`golden/<name>.png` beside each scene).
+    Check {
+        /// Scene files or folders (every scene in a folder); default `scenes`.
+        paths: Vec<PathBuf>,
+        /// Rewrite the goldens that fail or are missing, on purpose.
+        #[arg(long)]
+        bless: bool,
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+    /// Compare two images (PNG, EXR, PFM): RMSE, relative MSE, PSNR, means.
+    Diff {
+        /// The image under test.
+        a: PathBuf,
+        /// The reference.
+        b: PathBuf,
+        /// Write a per-pixel error heat map (PNG).
+        #[arg(long)]
+        heatmap: Option<PathBuf>,
+        /// Exit with status 1 when the RMSE is above this.
+        #[arg(long)]
+        max_rmse: Option<f64>,
+        /// Grey image; pixels ≥ 128 are left out of the error metrics.
+        #[arg(long)]
+        mask: Option<PathBuf>,
+    },
+    /// Time BVH build and closest-hit throughput on an OBJ mesh.
+    Bench {
+        obj: PathBuf,
+        /// Threads for the multi-threaded figures (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+    },
+}
+
+/// Overrides shared by `render` and `watch`.
+#[derive(Args, Debug, Clone, Default)]
+pub struct RenderSettings {
+    /// Samples per pixel.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Image size, `WIDTHxHEIGHT`.
+    #[arg(long, value_parser = parse_size)]
+    pub size: Option<(u32, u32)>,
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Worker threads (default: all cores). The image does not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Typed override `path=value` (value in RON), e.g.
+    /// `--set film.spp=256 --set materials.floor.albedo=(0.2,0.2,0.2)`.
+    #[arg(long = "set", value_name = "PATH=VALUE")]
+    pub sets: Vec<String>,
+}
+
+impl RenderSettings {
+    pub fn overrides(&self) -> Overrides {
+        Overrides {
+            spp: self.spp,
+            size: self.size,
+            seed: self.seed,
+            sets: self.sets.clone(),
+        }
+    }
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{s}` is not WIDTHxHEIGHT (e.g. 640x480)"))?;
+    let p = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("`{v}` in `{s}` is not a whole number"))
+    };
+    Ok((p(w)?, p(h)?))
+}
+
+pub fn run(cli: Cli) -> ExitCode {
+    match cli.command {
+        Command::Render {
+            scene,
+            output,
+            settings,
+            stats,
+        } => cmd_render(&scene, output, &settings, stats),
+        Command::Validate { scenes, format } => cmd_validate(&scenes, format == "json"),
+        Command::Fmt {
+            scenes,
+            check,
+            stdout,
+            json,
+            drop_comments,
+        } => cmd_fmt(&scenes, check, stdout, json, drop_comments),
+        Command::Gallery {
+            paths,
+            out,
+            width,
+            spp,
+        } => cmd_gallery(paths, &out, width, spp),
+        Command::Schema => {
+            print_out(&crate::schema::schema_json());
+            ExitCode::SUCCESS
+        }
+        Command::Check {
+            paths,
+            bless,
+            threads,
+        } => cmd_check(paths, bless, threads),
+        Command::Watch {
+            scene,
+            output,
+            settings,
+            serve,
+        } => crate::watch::run(crate::watch::WatchArgs {
+            scene,
+            output,
+            settings,
+            serve,
+        }),
+        Command::Diff {
+            a,
+            b,
+            heatmap,
+            max_rmse,
+            mask,
+        } => cmd_diff(&a, &b, heatmap.as_deref(), max_rmse, mask.as_deref()),
+        Command::Bench { obj, threads } => crate::bench::run(&obj, threads).map_or_else(
+            |e| {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            },
+            |()| ExitCode::SUCCESS,
+        ),
+    }
+}
+
+/// Prints a load failure with full context.
+pub fn print_load_error(e: &LoadError) {
+    match e.report() {
+        Some(r) => eprint!("{}", r.render(std::io::stderr().is_terminal())),
+        None => eprintln!("error: {e}"),
+    }
+}
+
+/// Prints to stdout, ignoring a closed pipe (`ronray diff … | head`).
+pub(crate) fn print_out(text: &str) {
+    use std::io::Write;
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
+}
