@@ -1,0 +1,125 @@
+//! Camera, film and integrator checks.
+
+use super::Checker;
+use super::*;
+use crate::scene::desc::{CameraDesc, FilmDesc, IntegratorDesc};
+use glam::Vec3;
+
+impl Checker {
+    pub(super) fn camera(&mut self, c: &CameraDesc) {
+        let ok = self.finite("camera.eye", &c.eye)
+            & self.finite("camera.target", &c.target)
+            & self.nonzero("camera.up", &c.up, "`up`");
+        if ok {
+            let view = Vec3::from(c.target) - Vec3::from(c.eye);
+            if view.length_squared() == 0.0 {
+                self.push(
+                    "camera.target",
+                    "`target` equals `eye`: the camera has no view direction",
+                    "move `target` away from `eye`",
+                );
+            } else if view.normalize().cross(Vec3::from(c.up).normalize()).length() < 1e-4 {
+                self.push(
+                    "camera.up",
+                    format!(
+                        "`up` {:?} is parallel to the view direction {:?}",
+                        c.up,
+                        view.to_array()
+                    ),
+                    "choose an `up` that is not along `target − eye`, e.g. (0, 1, 0) or (0, 0, 1)",
+                );
+            }
+        }
+        if !(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0) {
+            self.push(
+                "camera.fov_y_degrees",
+                format!("field of view {} is outside (0, 180)", c.fov_y_degrees),
+                "it is the full vertical angle in degrees; typical values are 30–90",
+            );
+        }
+        if !(c.aperture_radius >= 0.0 && c.aperture_radius.is_finite()) {
+            self.push(
+                "camera.aperture_radius",
+                format!("aperture radius {} must be ≥ 0", c.aperture_radius),
+                "use 0 for a pinhole camera",
+            );
+        }
+        if let Some(f) = c.focus_distance.filter(|f| !(*f > 0.0 && f.is_finite())) {
+            self.push(
+                "camera.focus_distance",
+                format!("focus distance {f} must be > 0"),
+                "it is the distance from `eye` to the sharp plane",
+            );
+        }
+    }
+
+    pub(super) fn film(&mut self, f: &FilmDesc) {
+        for (name, v) in [("width", f.width), ("height", f.height)] {
+            if v == 0 || v > MAX_RESOLUTION {
+                self.push(
+                    &format!("film.{name}"),
+                    format!("{name} {v} is outside 1..={MAX_RESOLUTION}"),
+                    format!("images are at most {MAX_RESOLUTION} pixels on a side"),
+                );
+            }
+        }
+        if f.spp == 0 || f.spp > MAX_SPP {
+            self.push(
+                "film.spp",
+                format!("{} samples per pixel is outside 1..={MAX_SPP}", f.spp),
+                "use at least 1; 16–1024 is typical",
+            );
+        }
+        if let Some(out) = &f.output {
+            let ext = std::path::Path::new(out)
+                .extension()
+                .and_then(|e| e.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase();
+            if ext != "png" && ext != "exr" {
+                self.push(
+                    "film.output",
+                    format!("output `{out}` has no supported extension"),
+                    "end it in `.png` (8-bit sRGB) or `.exr` (linear float)",
+                );
+            }
+        }
+    }
+
+    pub(super) fn integrator(&mut self, i: &IntegratorDesc) {
+        let samples = |v: &mut Self, n: u32| {
+            if n == 0 || n > MAX_LIGHT_SAMPLES {
+                v.push(
+                    "integrator.light_samples",
+                    format!("{n} light samples is outside 1..={MAX_LIGHT_SAMPLES}"),
+                    "use 1–64 shadow rays per area light",
+                );
+            }
+        };
+        match i {
+            IntegratorDesc::Direct { light_samples } => samples(self, *light_samples),
+            IntegratorDesc::Whitted {
+                max_depth,
+                light_samples,
+            } => {
+                samples(self, *light_samples);
+                if *max_depth > MAX_DEPTH {
+                    self.push(
+                        "integrator.max_depth",
+                        format!("max_depth {max_depth} is above {MAX_DEPTH}"),
+                        "a handful of specular bounces is enough; 5 is typical",
+                    );
+                }
+            }
+            IntegratorDesc::Path { max_depth, .. } => {
+                if *max_depth == 0 || *max_depth < -1 {
+                    self.push(
+                        "integrator.max_depth",
+                        format!("max_depth {max_depth} is neither −1 nor ≥ 1"),
+                        "it counts path segments: 1 = emitters only, 2 = direct lighting, 8 is typical, −1 = unlimited",
+                    );
+                }
+            }
+        }
+    }
+}
