@@ -13,7 +13,7 @@
 //! not. The threshold is the scene's `test.tolerance` (default
 //! [`DEFAULT_TOLERANCE`]).
 
-use crate::imageio::{Image, compare, metrics, read_image, srgb_decode, srgb_encode, write_image};
+use crate::imageio::{Image, compare, metrics, read_image, srgb_decode, srgb8, write_image};
 use crate::render::{RenderOptions, render};
 use crate::scene::desc::TestDesc;
 use crate::scene::{LoadError, Overrides, load_with};
@@ -106,10 +106,7 @@ pub fn golden_path(scene: &Path) -> PathBuf {
 fn quantise(img: &Image) -> Image {
     let mut out = img.clone();
     for p in &mut out.pixels {
-        *p = p
-            .to_array()
-            .map(|c| srgb_decode(((srgb_encode(c.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8) as f32 / 255.0))
-            .into();
+        *p = p.to_array().map(|c| srgb_decode(srgb8(c) as f32 / 255.0)).into();
     }
     out
 }

@@ -3,7 +3,7 @@
 
 use ronray::render::render;
 use ronray::scene::{LoadError, Overrides, load_with};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 fn root() -> PathBuf {
@@ -231,5 +231,4 @@ fn fmt_is_canonical_and_refuses_to_drop_comments() {
         ronray(&["validate", ps]).status.success(),
         "formatted scene still valid"
     );
-    let _ = Path::new("");
 }

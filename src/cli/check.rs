@@ -7,30 +7,38 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-pub(super) fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCode {
-    use crate::check::{Outcome, check_scene, collect, summary};
+/// The scenes named or found in the folders named (default `scenes`); an
+/// unreadable folder or no scene at all is reported here.
+fn scenes_in(paths: Vec<PathBuf>) -> Option<Vec<PathBuf>> {
     let paths = if paths.is_empty() {
         vec![PathBuf::from("scenes")]
     } else {
         paths
     };
-    let scenes = match collect(&paths) {
-        Ok(s) if !s.is_empty() => s,
+    let names = || {
+        paths
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match crate::check::collect(&paths) {
+        Ok(s) if !s.is_empty() => Some(s),
         Ok(_) => {
-            eprintln!(
-                "error: no scenes found in {}",
-                paths
-                    .iter()
-                    .map(|p| p.display().to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            );
-            return ExitCode::FAILURE;
+            eprintln!("error: no scenes found in {}", names());
+            None
         }
         Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::FAILURE;
+            eprintln!("error: cannot list {}: {e}", names());
+            None
         }
+    }
+}
+
+pub(super) fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCode {
+    use crate::check::{Outcome, check_scene, summary};
+    let Some(scenes) = scenes_in(paths) else {
+        return ExitCode::FAILURE;
     };
     let mut results = Vec::new();
     for scene in &scenes {
@@ -66,20 +74,7 @@ pub(super) fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>
 }
 
 pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) -> ExitCode {
-    let paths = if paths.is_empty() {
-        vec![PathBuf::from("scenes")]
-    } else {
-        paths
-    };
-    let Ok(scenes) = crate::check::collect(&paths) else {
-        eprintln!(
-            "error: cannot list {}",
-            paths
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
+    let Some(scenes) = scenes_in(paths) else {
         return ExitCode::FAILURE;
     };
     let mut md = String::from("| scene | image |\n|---|---|\n");

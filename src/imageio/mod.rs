@@ -65,6 +65,18 @@ pub fn srgb_encode(x: f32) -> f32 {
     }
 }
 
+/// Linear → 8-bit sRGB, clamped: what a PNG output stores.
+#[inline]
+pub fn srgb8(x: f32) -> u8 {
+    (srgb_encode(x.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8
+}
+
+/// The image as 8-bit sRGB RGB bytes, row 0 first (PNG outputs, the watch
+/// page).
+pub fn to_srgb8(img: &Image) -> Vec<u8> {
+    img.pixels.iter().flat_map(|p| p.to_array().map(srgb8)).collect()
+}
+
 /// sRGB transfer function, encoded → linear.
 #[inline]
 pub fn srgb_decode(x: f32) -> f32 {

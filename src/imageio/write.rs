@@ -2,7 +2,7 @@
 //! folder, then rename over the target, so a viewer never sees half an image
 //! and a failed write leaves the previous file untouched.
 
-use super::{Image, ImageError, srgb_encode};
+use super::{Image, ImageError};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
@@ -28,14 +28,7 @@ pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
     };
     let dynimg = match format {
         image::ImageFormat::Png => {
-            let bytes = img
-                .pixels
-                .iter()
-                .flat_map(|p| {
-                    p.to_array()
-                        .map(|c| (srgb_encode(c.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8)
-                })
-                .collect();
+            let bytes = super::to_srgb8(img);
             image::DynamicImage::ImageRgb8(
                 image::RgbImage::from_raw(img.width, img.height, bytes)
                     .ok_or_else(|| err("size mismatch".into()))?,

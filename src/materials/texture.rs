@@ -54,15 +54,8 @@ pub struct Texture {
     pub texels: Vec<Rgb>,
 }
 
-/// The sRGB electro-optical transfer function (IEC 61966-2-1), one channel.
-#[inline]
-pub fn srgb_to_linear(c: f32) -> f32 {
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
+/// The sRGB transfer function lives with the other image conversions.
+pub use crate::imageio::srgb_decode as srgb_to_linear;
 
 impl Texture {
     /// Decodes 8-bit sRGB texels (`rgb.len() == 3·width·height`, file order)

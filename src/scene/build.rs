@@ -64,10 +64,9 @@ pub fn build_with(
     let mut lights = Vec::new();
     let mut shapes = Vec::new();
     let mut unbounded = Vec::new();
-    for (i, l) in desc.lights.iter().enumerate() {
+    for l in &desc.lights {
         // An area light's surface is black unless the scene gives it a material.
         let surface = |m: &Option<String>| m.as_ref().and_then(|n| index.get(n).copied()).unwrap_or(emitter);
-        let _ = i;
         match l {
             LightDesc::Point { position, intensity } => lights.push(Light::Point(PointLight {
                 position: (*position).into(),

@@ -8,7 +8,7 @@
 //! invalid edit leaves the last good image on disk as it was.
 
 use super::status::{PassInfo, Reporter};
-use crate::imageio::{Image, srgb_encode, write_image};
+use crate::imageio::{Image, write_image};
 use crate::render::{RenderOptions, render_accumulate};
 use crate::scene::Scene;
 use std::path::PathBuf;
@@ -125,14 +125,7 @@ fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
 /// The web page's copy of a pass: 8-bit sRGB like a PNG output file, even
 /// when the output is EXR.
 fn encode_png(img: &Image) -> Vec<u8> {
-    let bytes: Vec<u8> = img
-        .pixels
-        .iter()
-        .flat_map(|p| {
-            p.to_array()
-                .map(|c| (srgb_encode(c.clamp(0.0, 1.0)) * 255.0 + 0.5) as u8)
-        })
-        .collect();
+    let bytes = crate::imageio::to_srgb8(img);
     let mut png = Vec::new();
     let encoder = image::codecs::png::PngEncoder::new(&mut png);
     let ok = image::ImageEncoder::write_image(
