@@ -114,6 +114,15 @@ impl Bvh4 {
         }
     }
 
+    /// Every leaf's `(first, count)` slot range, in no particular order.
+    pub fn leaves(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.nodes
+            .iter()
+            .flat_map(|n| n.child)
+            .filter(|&r| r != EMPTY && r & LEAF != 0)
+            .map(leaf_range)
+    }
+
     /// Heap bytes of the nodes alone (the order array can be dropped by a
     /// caller that reorders its primitives).
     pub fn node_bytes(&self) -> usize {

@@ -12,7 +12,7 @@
 //! on vertices. Per-ray setup ([`WatertightRay`]) is done once per traversal.
 
 use crate::math::Ray;
-use glam::{Vec2, Vec3A};
+use glam::{Vec2, Vec3A, Vec4};
 
 /// The per-ray part of the watertight test: the axis permutation and shear.
 #[derive(Clone, Copy, Debug)]
@@ -92,6 +92,149 @@ impl WatertightRay {
     }
 }
 
+/// Floats per triangle in a [`Tri4`] leaf block.
+pub const FLOATS: usize = 9;
+
+/// A leaf's triangles, tested four at a time. The block is the leaf's
+/// `count` triangles in SoA order: component `k` (vertex `k / 3`, axis
+/// `k % 3`) of lane `i` is `soa[k * count + i]`. A 4-lane load of a
+/// component of a short leaf reads the next component's values into the
+/// spare lanes, which the lane mask discards, so leaves need no padding; the
+/// caller keeps 3 spare floats after the last block.
+pub struct Tri4<'a> {
+    pub soa: &'a [f32],
+    pub count: u32,
+}
+
+impl Tri4<'_> {
+    /// Triangle `i` of the block.
+    #[inline]
+    fn corners(&self, i: usize) -> [Vec3A; 3] {
+        let c = self.count as usize;
+        [0, 1, 2].map(|v| Vec3A::from_array([0, 1, 2].map(|a| self.soa[(3 * v + a) * c + i])))
+    }
+}
+
+/// [`WatertightRay`] splatted over four lanes for [`Tri4`] blocks.
+pub struct WatertightRay4 {
+    one: WatertightRay,
+    /// Ray origin per sheared axis `(kx, ky, kz)`.
+    o: [Vec4; 3],
+    s: [Vec4; 3],
+}
+
+impl WatertightRay4 {
+    #[inline]
+    pub fn new(ray: &Ray) -> Self {
+        let one = WatertightRay::new(ray);
+        Self {
+            o: one.k.map(|k| Vec4::splat(one.o[k])),
+            s: one.s.map(Vec4::splat),
+            one,
+        }
+    }
+
+    /// The lanes of `block` hit in `(0, t_max)`, their distances and the
+    /// barycentrics `(b1, b2)` as two 4-lane vectors. Every lane computes
+    /// exactly what [`WatertightRay::intersect`] does for its triangle, in
+    /// the same order of operations, so results are bit-identical; a block
+    /// where a live lane's edge value is exactly zero runs the scalar test
+    /// (with its f64 fallback) instead.
+    #[inline(always)]
+    fn lanes(&self, block: &Tri4, t_max: f32) -> Lanes {
+        let c = block.count as usize;
+        let soa = block.soa;
+        let [kx, ky, kz] = self.one.k;
+        let load = |k: usize| Vec4::from_slice(&soa[k * c..k * c + 4]);
+        // Vertex `v` relative to the origin and sheared: (x, y, z).
+        let vert = |v: usize| {
+            let z = load(3 * v + kz) - self.o[2];
+            (
+                (load(3 * v + kx) - self.o[0]) - self.s[0] * z,
+                (load(3 * v + ky) - self.o[1]) - self.s[1] * z,
+                z,
+            )
+        };
+        let (ax, ay, az) = vert(0);
+        let (bx, by, bz) = vert(1);
+        let (cx, cy, cz) = vert(2);
+        let u = cx * by - cy * bx;
+        let v = ax * cy - ay * cx;
+        let w = bx * ay - by * ax;
+        let live = (1u32 << c) - 1;
+        let zero = Vec4::ZERO;
+        if (u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero)).bitmask() & live != 0 {
+            return self.scalar(block, t_max);
+        }
+        let inside =
+            (u.cmpge(zero) & v.cmpge(zero) & w.cmpge(zero)) | (u.cmple(zero) & v.cmple(zero) & w.cmple(zero));
+        let det = u + v + w;
+        let ok = det.cmpne(zero) & det.abs().cmplt(Vec4::INFINITY);
+        let tz = self.s[2] * (u * az + v * bz + w * cz);
+        let inv = Vec4::ONE / det;
+        let t = tz * inv;
+        let hit = t.cmpgt(zero) & t.cmplt(Vec4::splat(t_max));
+        Lanes {
+            mask: (inside & ok & hit).bitmask() & live,
+            t,
+            b1: v * inv,
+            b2: w * inv,
+        }
+    }
+
+    /// The same result lane by lane through the scalar test.
+    #[cold]
+    fn scalar(&self, block: &Tri4, t_max: f32) -> Lanes {
+        let mut out = Lanes {
+            mask: 0,
+            t: Vec4::ZERO,
+            b1: Vec4::ZERO,
+            b2: Vec4::ZERO,
+        };
+        for i in 0..block.count as usize {
+            let [a, b, c] = block.corners(i);
+            if let Some((t, bc)) = self.one.intersect(a, b, c, t_max) {
+                out.mask |= 1 << i;
+                out.t[i] = t;
+                out.b1[i] = bc.x;
+                out.b2[i] = bc.y;
+            }
+        }
+        out
+    }
+
+    /// Nearest hit of the block in `(0, t_max)`: distance, lane and
+    /// barycentrics. Ties go to the lowest lane, like a scalar loop.
+    #[inline(always)]
+    pub fn closest(&self, block: &Tri4, t_max: f32) -> Option<(f32, u32, Vec2)> {
+        let l = self.lanes(block, t_max);
+        let mut mask = l.mask;
+        let mut best: Option<(f32, u32, Vec2)> = None;
+        while mask != 0 {
+            let i = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            if best.is_none_or(|(t, _, _)| l.t[i] < t) {
+                best = Some((l.t[i], i as u32, Vec2::new(l.b1[i], l.b2[i])));
+            }
+        }
+        best
+    }
+
+    /// Whether any triangle of the block is hit in `(0, t_max)`.
+    #[inline(always)]
+    pub fn any(&self, block: &Tri4, t_max: f32) -> bool {
+        self.lanes(block, t_max).mask != 0
+    }
+}
+
+/// Per-lane results of a [`Tri4`] test.
+struct Lanes {
+    mask: u32,
+    t: Vec4,
+    b1: Vec4,
+    b2: Vec4,
+}
+
 /// One-shot test (sets up the ray each call); traversal uses
 /// [`WatertightRay`] directly.
 #[inline]
@@ -117,6 +260,62 @@ mod tests {
         let up = Ray::new(Vec3A::new(0.2, 0.1, -1.0), Vec3A::Z);
         let (t, bc) = intersect(a, b, c, &up, f32::INFINITY).expect("two-sided");
         assert!((t - 1.0).abs() < 1e-6 && (bc - Vec2::new(0.2, 0.1)).length() < 1e-6);
+    }
+
+    /// Packs `tris` as one `Tri4` block (plus the 3 spare floats).
+    fn pack(tris: &[[Vec3A; 3]]) -> Vec<f32> {
+        let c = tris.len();
+        let mut soa = vec![f32::NAN; FLOATS * c + 3];
+        for (i, t) in tris.iter().enumerate() {
+            for (k, x) in t.iter().flat_map(|p| p.to_array()).enumerate() {
+                soa[k * c + i] = x;
+            }
+        }
+        soa
+    }
+
+    #[test]
+    fn four_lanes_match_the_scalar_test_bit_for_bit() {
+        let mut rng = crate::math::Pcg32::new(7, 3);
+        let mut p = || Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0;
+        let (mut hits, mut checked) = (0, 0);
+        for round in 0..4000 {
+            let count = 1 + round % 4;
+            let mut tris: Vec<[Vec3A; 3]> = (0..count).map(|_| [p(), p(), p()]).collect();
+            if round % 7 == 0 {
+                // Exact edge and vertex cases: a shared edge, a ray through a vertex.
+                tris[0] = [Vec3A::ZERO, Vec3A::X, Vec3A::Y];
+            }
+            let o = p() * 3.0;
+            let target = if round % 7 == 0 { Vec3A::ZERO } else { p() * 0.5 };
+            let ray = Ray::new(o, (target - o).normalize());
+            let soa = pack(&tris);
+            let block = Tri4 {
+                soa: &soa,
+                count: count as u32,
+            };
+            let wt = WatertightRay4::new(&ray);
+            let t_max = if round % 3 == 0 { 2.0 } else { f32::INFINITY };
+            let want =
+                tris.iter()
+                    .enumerate()
+                    .fold(None, |best: Option<(f32, u32, Vec2)>, (i, [a, b, c])| {
+                        match wt.one.intersect(*a, *b, *c, best.map_or(t_max, |h| h.0)) {
+                            Some((t, bc)) => Some((t, i as u32, bc)),
+                            None => best,
+                        }
+                    });
+            let got = wt.closest(&block, t_max);
+            assert_eq!(
+                got.map(|(t, i, bc)| (t.to_bits(), i, bc.x.to_bits(), bc.y.to_bits())),
+                want.map(|(t, i, bc)| (t.to_bits(), i, bc.x.to_bits(), bc.y.to_bits())),
+                "round {round}"
+            );
+            assert_eq!(wt.any(&block, t_max), want.is_some());
+            hits += want.is_some() as u32;
+            checked += 1;
+        }
+        assert!(hits > checked / 10, "the rays exercise hits: {hits}/{checked}");
     }
 
     #[test]

@@ -7,12 +7,15 @@
 //! (so the test needs no min/max between the two planes). The stack is a
 //! fixed array: the binary tree is at most `MAX_DEPTH` deep and each 4-wide
 //! level pushes at most 3 entries, so `3 · MAX_DEPTH + 1` never overflows.
+//! It is left uninitialised: zeroing 1.5 KB per ray was 4–6% of the time of
+//! a render or a benchmark, and only the entries below `sp` are ever read.
 
 use super::{Bvh4, EMPTY, LEAF, Node4, leaf_range};
 use crate::accel::aabb::{FAR_SCALE, safe_inv_dir};
 use crate::accel::bvh::MAX_DEPTH;
 use crate::math::Ray;
 use glam::{Vec3A, Vec4};
+use std::mem::MaybeUninit;
 
 const STACK: usize = 3 * MAX_DEPTH as usize + 1;
 
@@ -54,6 +57,22 @@ impl SlabRay {
     }
 }
 
+/// Asks for `node`'s two cache lines ahead of its visit, so the misses of a
+/// node's children overlap instead of following one another.
+#[inline(always)]
+fn prefetch(node: &Node4) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        let p = (node as *const Node4).cast::<i8>();
+        // SAFETY: SSE is part of x86-64; a prefetch never faults.
+        unsafe {
+            _mm_prefetch::<_MM_HINT_T0>(p);
+            _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64));
+        }
+    }
+}
+
 impl Bvh4 {
     /// Closest hit. `leaf(first, count, t_max)` intersects leaf slots
     /// `first..first + count` (in [`Bvh4::order`]) and returns the nearest
@@ -73,11 +92,13 @@ impl Bvh4 {
         // A finite bound keeps `inf` (empty) slots from passing `near <= far`.
         let mut t_best = t_max.min(f32::MAX);
         let mut found = false;
-        let mut stack = [(0u32, 0.0f32); STACK];
+        let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; STACK];
+        stack[0].write((0, 0.0));
         let mut sp = 1;
         while sp > 0 {
             sp -= 1;
-            let (r, t_enter) = stack[sp];
+            // SAFETY: entries `..sp` have been written (see the pushes).
+            let (r, t_enter) = unsafe { stack[sp].assume_init() };
             if t_enter > t_best {
                 continue;
             }
@@ -101,12 +122,16 @@ impl Bvh4 {
                 mask &= mask - 1;
                 debug_assert!(node.child[lane] != EMPTY);
                 let e = (node.child[lane], t_near[lane]);
+                if e.0 & LEAF == 0 {
+                    prefetch(&self.nodes[e.0 as usize]);
+                }
                 let mut j = sp;
-                while j > base && stack[j - 1].1 < e.1 {
+                // SAFETY: `base..sp` holds this node's entries, all written.
+                while j > base && unsafe { stack[j - 1].assume_init() }.1 < e.1 {
                     stack[j] = stack[j - 1];
                     j -= 1;
                 }
-                stack[j] = e;
+                stack[j].write(e);
                 sp += 1;
             }
         }
@@ -122,11 +147,13 @@ impl Bvh4 {
         }
         let sr = SlabRay::new(ray);
         let t_max = t_max.min(f32::MAX);
-        let mut stack = [0u32; STACK];
+        let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
+        stack[0].write(0);
         let mut sp = 1;
         while sp > 0 {
             sp -= 1;
-            let r = stack[sp];
+            // SAFETY: entries `..sp` have been written.
+            let r = unsafe { stack[sp].assume_init() };
             if r & LEAF != 0 {
                 let (first, count) = leaf_range(r);
                 if leaf(first, count, t_max) {
@@ -139,7 +166,7 @@ impl Bvh4 {
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                stack[sp] = node.child[lane];
+                stack[sp].write(node.child[lane]);
                 sp += 1;
             }
         }
