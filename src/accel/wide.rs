@@ -63,14 +63,29 @@ fn leaf_range(r: u32) -> (u32, u32) {
     ((r & !LEAF) >> 2, (r & 3) + 1)
 }
 
+/// How leaves are formed when collapsing the binary tree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Leaves {
+    /// Any binary subtree of at most four primitives becomes one leaf
+    /// (meshes: fewer, fuller leaves and smaller trees).
+    Merged,
+    /// Only the binary tree's SAH leaves (scene shapes: large or costly
+    /// primitives are kept apart).
+    Sah,
+}
+
 impl Bvh4 {
     /// Builds over `bounds[i]` for primitive `i` (binned SAH, parallel, then
     /// collapsed). Panics above [`MAX_PRIMS`] primitives.
     pub fn build(bounds: &[Aabb]) -> Self {
+        Self::build_with(bounds, Leaves::Merged)
+    }
+
+    pub fn build_with(bounds: &[Aabb], leaves: Leaves) -> Self {
         assert!(bounds.len() < MAX_PRIMS, "Bvh4 holds at most 2^29 primitives");
         let (binary, order) = bvh::build_nodes(bounds);
         let stats = bvh::stats_of(&binary, order.len());
-        let nodes = collapse::collapse(&binary);
+        let nodes = collapse::collapse(&binary, leaves);
         Self {
             nodes,
             order,

@@ -43,8 +43,9 @@ pub struct MeshHit {
 }
 
 impl Mesh {
+    /// The three corners of triangle `tri`.
     #[inline]
-    fn corners(&self, tri: u32) -> (Vec3A, Vec3A, Vec3A) {
+    pub fn corners(&self, tri: u32) -> (Vec3A, Vec3A, Vec3A) {
         let [a, b, c] = self.indices[tri as usize];
         (
             self.positions[a as usize],
@@ -87,13 +88,9 @@ impl Mesh {
         let wt = WatertightRay4::new(ray);
         let mut best = None;
         blas.intersect(ray, t_max, |first, count, t_best| {
-            let (t, lane, bc) = wt.closest(&self.block(first, count), t_best)?;
-            best = Some(MeshHit {
-                t,
-                tri: first + lane,
-                bc,
-            });
-            Some(t)
+            let h = self.leaf_closest(&wt, first, count, t_best)?;
+            best = Some(h);
+            Some(h.t)
         })?;
         best
     }
@@ -106,8 +103,25 @@ impl Mesh {
         };
         let wt = WatertightRay4::new(ray);
         blas.occluded(ray, t_max, |first, count, t_max| {
-            wt.any(&self.block(first, count), t_max)
+            self.leaf_occluded(&wt, first, count, t_max)
         })
+    }
+
+    /// Nearest hit among leaf slots `first..first + count` (a BVH leaf).
+    #[inline(always)]
+    pub fn leaf_closest(&self, wt: &WatertightRay4, first: u32, count: u32, t_max: f32) -> Option<MeshHit> {
+        let (t, lane, bc) = wt.closest(&self.block(first, count), t_max)?;
+        Some(MeshHit {
+            t,
+            tri: first + lane,
+            bc,
+        })
+    }
+
+    /// Whether any of leaf slots `first..first + count` is hit.
+    #[inline(always)]
+    pub fn leaf_occluded(&self, wt: &WatertightRay4, first: u32, count: u32, t_max: f32) -> bool {
+        wt.any(&self.block(first, count), t_max)
     }
 
     /// The triangles of the BVH leaf `first..first + count`.

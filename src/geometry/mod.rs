@@ -4,10 +4,13 @@
 //!
 //! Triangles are not shapes of their own: a mesh carries its own BVH and the
 //! scene BVH sees one [`Shape::Instance`] per placed mesh (two-level BVH, see
-//! `instance.rs`), so a million-triangle mesh is one entry at the top level.
+//! `instance.rs`), so a million-triangle mesh is one entry at the top level;
+//! only very small baked meshes put their triangles in the top level
+//! (`mesh_triangle.rs`).
 
 pub mod instance;
 pub mod mesh;
+pub mod mesh_triangle;
 pub mod obj;
 pub mod plane;
 pub mod quad;
@@ -18,6 +21,7 @@ pub mod triangle;
 
 pub use instance::Instance;
 pub use mesh::{Mesh, MeshHit};
+pub use mesh_triangle::MeshTriangle;
 pub use plane::Plane;
 pub use quad::Quad;
 pub use sdf_object::SdfObject;
@@ -26,6 +30,7 @@ pub use sphere::Sphere;
 use crate::accel::Aabb;
 use crate::math::Ray;
 use glam::{Vec2, Vec3A};
+use triangle::WatertightRay;
 
 /// Marks "no area light" in [`Shape`] emitter fields.
 pub const NO_LIGHT: u32 = u32::MAX;
@@ -39,6 +44,8 @@ pub enum Shape {
     /// Instance `0` of [`Geometry::instances`]: a mesh and its transform.
     Instance(u32),
     Plane(Plane),
+    /// A triangle of a small mesh, flattened into the scene BVH.
+    Triangle(MeshTriangle),
 }
 
 /// Meshes and their placements, shared by every [`Shape::Instance`].
@@ -78,6 +85,7 @@ impl Shape {
                 .closest(ray, t_max, &geo.meshes)
                 .map(|h| h.t),
             Shape::Plane(p) => p.intersect(ray, t_max),
+            Shape::Triangle(tr) => tr.intersect(&WatertightRay::new(ray), t_max).map(|(t, _)| t),
         }
     }
 
@@ -110,6 +118,13 @@ impl Shape {
                 inst.hit(ray, h, &geo.meshes)
             }
             Shape::Plane(pl) => pl.hit(p, t),
+            Shape::Triangle(tr) => {
+                let wt = WatertightRay::new(ray);
+                let bc = tr
+                    .intersect(&wt, t * (1.0 + 1e-5) + f32::MIN_POSITIVE)
+                    .map_or(Vec2::ZERO, |(_, bc)| bc);
+                tr.hit(ray, t, bc, geo)
+            }
         }
     }
 
@@ -121,6 +136,7 @@ impl Shape {
             Shape::Quad(q) => Some(q.bounds()),
             Shape::Instance(i) => Some(geo.instances[*i as usize].bounds(&geo.meshes)),
             Shape::Plane(_) => None,
+            Shape::Triangle(tr) => Some(tr.bounds()),
         }
     }
 }

@@ -13,6 +13,11 @@ pub struct Quad {
     pub v: Vec3A,
     /// `normalize(u × v)`.
     pub n: Vec3A,
+    /// Dual basis of `(u, v)` in the plane: `p · du` and `p · dv` are the
+    /// `(s, t)` of an in-plane offset `p`, precomputed because the division
+    /// and cross products were most of the cost of a quad test.
+    du: Vec3A,
+    dv: Vec3A,
     pub material: u32,
     /// Area light index or `NO_LIGHT`.
     pub light: u32,
@@ -20,11 +25,15 @@ pub struct Quad {
 
 impl Quad {
     pub fn new(corner: Vec3A, u: Vec3A, v: Vec3A, material: u32, light: u32) -> Self {
+        let uxv = u.cross(v);
+        let inv = 1.0 / uxv.length_squared();
         Self {
             corner,
             u,
             v,
-            n: u.cross(v).normalize(),
+            n: uxv.normalize(),
+            du: v.cross(uxv) * inv,
+            dv: uxv.cross(u) * inv,
             material,
             light,
         }
@@ -41,16 +50,15 @@ impl Quad {
         if denom.abs() < 1e-12 {
             return None;
         }
+        // Range check on the numerator first: most planes a ray meets lie
+        // behind its best hit, and the division would only be waited on.
         let t = (self.corner - ray.o).dot(self.n) / denom;
         if !(t > 1e-5 && t < t_max) {
             return None;
         }
+        // Solve d = s·u + r·v: (d × v)·(u × v) = d · (v × (u × v)), etc.
         let d = ray.at(t) - self.corner;
-        // Solve d = s·u + t·v with the dual basis of (u, v) in the plane.
-        let uxv = self.u.cross(self.v);
-        let inv = 1.0 / uxv.length_squared();
-        let s = d.cross(self.v).dot(uxv) * inv;
-        let r = self.u.cross(d).dot(uxv) * inv;
+        let (s, r) = (d.dot(self.du), d.dot(self.dv));
         ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r)).then_some((t, Vec2::new(s, r)))
     }
 

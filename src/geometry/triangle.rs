@@ -127,9 +127,14 @@ impl WatertightRay4 {
     #[inline]
     pub fn new(ray: &Ray) -> Self {
         let one = WatertightRay::new(ray);
+        let ([kx, ky, kz], [sx, sy, sz]) = (one.k, one.s);
         Self {
-            o: one.k.map(|k| Vec4::splat(one.o[k])),
-            s: one.s.map(Vec4::splat),
+            o: [
+                Vec4::splat(one.o[kx]),
+                Vec4::splat(one.o[ky]),
+                Vec4::splat(one.o[kz]),
+            ],
+            s: [Vec4::splat(sx), Vec4::splat(sy), Vec4::splat(sz)],
             one,
         }
     }

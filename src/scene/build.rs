@@ -9,7 +9,7 @@ use super::desc::{
 };
 use super::problem::Problem;
 use super::runtime::{Film, Scene};
-use crate::accel::Bvh;
+use crate::accel::{Aabb, Bvh4, Leaves};
 use crate::camera::Camera;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
@@ -194,8 +194,14 @@ pub fn build_with(
     let load_time = t0.elapsed();
 
     let t1 = Instant::now();
-    let bounds: Vec<_> = shapes.iter().filter_map(|s| s.bounds(&geometry)).collect();
-    let bvh = Bvh::build(&bounds);
+    let bounds: Vec<_> = shapes
+        .iter()
+        .map(|s| s.bounds(&geometry).unwrap_or(Aabb::EMPTY))
+        .collect();
+    let bvh = Bvh4::build_with(&bounds, Leaves::Sah);
+    // Shapes in leaf order, so a leaf is a contiguous run of them; shapes
+    // with empty bounds (never hit) drop out here.
+    let mut shapes: Vec<Shape> = bvh.order().iter().map(|&i| shapes[i as usize]).collect();
     let bvh_time = t1.elapsed();
     let bounded = shapes.len() as u32;
     shapes.extend(unbounded);

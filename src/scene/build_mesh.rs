@@ -9,8 +9,9 @@
 use super::build_mtl::MtlMaterials;
 use super::desc::{ObjectDesc, SceneDesc};
 use super::problem::{Problem, suggest};
+use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::{ObjData, ObjGroup};
-use crate::geometry::{Geometry, Instance, Shape};
+use crate::geometry::{Geometry, Instance, MeshTriangle, Shape};
 use crate::materials::{ColorTex, Material};
 use crate::math::Rgb;
 use glam::{Affine3A, Mat4, Vec3};
@@ -56,7 +57,8 @@ impl<'a> MeshBuilder<'a> {
         }
     }
 
-    /// Adds object `i` (a `Mesh` or an `Instance`) as one [`Shape::Instance`].
+    /// Adds object `i` (a `Mesh` or an `Instance`) as one [`Shape::Instance`],
+    /// or, for a small baked mesh, as its triangles (see `mesh_triangle.rs`).
     #[allow(clippy::too_many_arguments)]
     pub fn add(
         &mut self,
@@ -69,6 +71,7 @@ impl<'a> MeshBuilder<'a> {
         problems: &mut Vec<Problem>,
     ) {
         let path = format!("objects[{i}]");
+        let mut flatten = false;
         let (loaded, transform) = match o {
             ObjectDesc::Mesh { file, smooth, .. } => {
                 let Some(mut data) = self.load(file, *smooth, &format!("{path}.file"), problems) else {
@@ -76,6 +79,7 @@ impl<'a> MeshBuilder<'a> {
                 };
                 // Baked: the mesh is this object's alone.
                 bake(&mut data, world_from_object);
+                flatten = data.mesh.triangle_count() <= FLATTEN_MAX;
                 data.mesh.prepare();
                 (self.push_mesh(data, file, mats), Affine3A::IDENTITY)
             }
@@ -109,8 +113,20 @@ impl<'a> MeshBuilder<'a> {
             transform,
             materials.into_boxed_slice(),
         ));
-        self.triangles += self.geo.meshes[loaded.mesh as usize].triangle_count();
-        shapes.push(Shape::Instance(id));
+        let mesh = &self.geo.meshes[loaded.mesh as usize];
+        self.triangles += mesh.triangle_count();
+        if flatten {
+            shapes.extend((0..mesh.triangle_count() as u32).map(|tri| {
+                let (a, b, c) = mesh.corners(tri);
+                Shape::Triangle(MeshTriangle {
+                    p: [a.into(), b.into(), c.into()],
+                    instance: id,
+                    tri,
+                })
+            }));
+        } else {
+            shapes.push(Shape::Instance(id));
+        }
     }
 
     fn load(&mut self, file: &str, smooth: bool, at: &str, problems: &mut Vec<Problem>) -> Option<ObjData> {

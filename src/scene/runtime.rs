@@ -1,14 +1,17 @@
 //! The runtime scene the renderer sees: glam types, u32 indices, no names,
 //! no options, no serde. Built once by `build`, never mutated while rendering.
 
-use crate::accel::Bvh;
+use crate::accel::Bvh4;
 use crate::camera::Camera;
+use crate::geometry::MeshHit;
+use crate::geometry::triangle::WatertightRay;
 use crate::geometry::{Geometry, Hit, Shape};
 use crate::integrators::Integrator;
 use crate::lights::{Light, LightPicker};
 use crate::materials::{Material, Texture};
 use crate::math::Ray;
 use crate::sampler::SamplerKind;
+use glam::Vec2;
 use std::path::PathBuf;
 
 /// Image size and sampling.
@@ -33,13 +36,21 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Chooses the light for next-event estimation.
     pub light_picker: LightPicker,
-    /// Bounded shapes first (`..bounded`, in the BVH), then unbounded ones
-    /// (planes), which every ray tests.
+    /// Bounded shapes first (`..bounded`, in the BVH's leaf order), then
+    /// unbounded ones (planes), which every ray tests.
     pub shapes: Vec<Shape>,
     pub bounded: u32,
     /// Meshes (each with its own BVH) and their instances.
     pub geometry: Geometry,
-    pub bvh: Bvh,
+    pub bvh: Bvh4,
+}
+
+/// What the nearest hit so far needs for its hit record beyond `t`.
+#[derive(Clone, Copy)]
+enum Nearest {
+    Shape(u32),
+    Mesh(u32, MeshHit),
+    Triangle(u32, Vec2),
 }
 
 impl Scene {
@@ -47,31 +58,53 @@ impl Scene {
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let geo = &self.geometry;
         let shapes = &self.shapes;
-        // The last instance hit reported is the nearest one so far (the BVH
-        // only asks below the current best); keep its triangle and
-        // barycentrics so the hit record needs no second trace.
-        let mut mesh_hit = None;
-        let mut best = self
-            .bvh
-            .intersect(ray, t_max, |i, r, tm| match shapes[i as usize] {
-                Shape::Instance(k) => {
-                    let h = geo.instances[k as usize].closest(r, tm, &geo.meshes)?;
-                    mesh_hit = Some(h);
-                    Some(h.t)
-                }
-                s => s.intersect_t(r, tm, geo),
-            });
-        let mut t_best = best.map_or(t_max, |(_, t)| t);
+        // Kept with the nearest hit so the hit record needs no second trace
+        // (the BVH only asks for hits below the current best).
+        let mut nearest = None;
+        let wt = WatertightRay::new(ray);
+        let best = self.bvh.intersect(ray, t_max, |first, count, mut t_best| {
+            let mut found = None;
+            for i in first..first + count {
+                let (t, n) = match &shapes[i as usize] {
+                    Shape::Instance(k) => {
+                        let Some(h) = geo.instances[*k as usize].closest(ray, t_best, &geo.meshes) else {
+                            continue;
+                        };
+                        (h.t, Nearest::Mesh(*k, h))
+                    }
+                    Shape::Triangle(tr) => {
+                        let Some((t, bc)) = tr.intersect(&wt, t_best) else {
+                            continue;
+                        };
+                        (t, Nearest::Triangle(i, bc))
+                    }
+                    s => {
+                        let Some(t) = s.intersect_t(ray, t_best, geo) else {
+                            continue;
+                        };
+                        (t, Nearest::Shape(i))
+                    }
+                };
+                t_best = t;
+                found = Some(t);
+                nearest = Some(n);
+            }
+            found
+        });
+        let mut t_best = best.unwrap_or(t_max);
         for i in self.bounded..self.shapes.len() as u32 {
             if let Some(t) = shapes[i as usize].intersect_t(ray, t_best, geo) {
                 t_best = t;
-                best = Some((i, t));
+                nearest = Some(Nearest::Shape(i));
             }
         }
-        let (i, t) = best?;
-        Some(match (shapes[i as usize], mesh_hit) {
-            (Shape::Instance(k), Some(h)) => geo.instances[k as usize].hit(ray, h, &geo.meshes),
-            (s, _) => s.hit(ray, t, geo),
+        Some(match nearest? {
+            Nearest::Mesh(k, h) => geo.instances[k as usize].hit(ray, h, &geo.meshes),
+            Nearest::Triangle(i, bc) => match &shapes[i as usize] {
+                Shape::Triangle(tr) => tr.hit(ray, t_best, bc, geo),
+                s => s.hit(ray, t_best, geo),
+            },
+            Nearest::Shape(i) => shapes[i as usize].hit(ray, t_best, geo),
         })
     }
 
@@ -79,9 +112,17 @@ impl Scene {
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         let geo = &self.geometry;
         let shapes = &self.shapes;
-        (self.bounded..self.shapes.len() as u32).any(|i| shapes[i as usize].occludes(ray, t_max, geo))
-            || self
-                .bvh
-                .occluded(ray, t_max, |i, r, tm| shapes[i as usize].occludes(r, tm, geo))
+        if (self.bounded..self.shapes.len() as u32).any(|i| shapes[i as usize].occludes(ray, t_max, geo)) {
+            return true;
+        }
+        let wt = WatertightRay::new(ray);
+        self.bvh.occluded(ray, t_max, |first, count, t_max| {
+            shapes[first as usize..(first + count) as usize]
+                .iter()
+                .any(|s| match s {
+                    Shape::Triangle(tr) => tr.intersect(&wt, t_max).is_some(),
+                    s => s.occludes(ray, t_max, geo),
+                })
+        })
     }
 }

@@ -5,14 +5,17 @@
 //! A binary subtree of at most four primitives becomes one leaf: its
 //! primitives are contiguous in leaf order, and one leaf test is cheaper
 //! than a node visit plus two leaf tests (it also cut node memory from 37
-//! to about 22 bytes per triangle).
+//! to about 22 bytes per triangle). That merge suits triangles, whose boxes
+//! are small and cheap to test; [`Leaves::Sah`] keeps the binary tree's
+//! own SAH leaves instead, for scene-level shapes such as the walls of a
+//! room, whose union box every ray enters.
 
-use super::{Node4, leaf_ref};
+use super::{Leaves, Node4, leaf_ref};
 use crate::accel::bvh::Node;
 
 /// Collapses depth-first binary `nodes` (leaf ranges index the leaf-order
 /// array) into 4-wide nodes, root first.
-pub(super) fn collapse(nodes: &[Node]) -> Vec<Node4> {
+pub(super) fn collapse(nodes: &[Node], leaves: Leaves) -> Vec<Node4> {
     let mut out = Vec::with_capacity(nodes.len() / 3 + 1);
     if nodes.is_empty() {
         return out;
@@ -36,7 +39,11 @@ pub(super) fn collapse(nodes: &[Node]) -> Vec<Node4> {
             (range[l].0, range[l].1 + range[r].1)
         };
     }
-    let c = Collapser { nodes, range: &range };
+    let c = Collapser {
+        nodes,
+        range: &range,
+        leaves,
+    };
     c.emit(0, &mut out);
     out
 }
@@ -44,6 +51,7 @@ pub(super) fn collapse(nodes: &[Node]) -> Vec<Node4> {
 struct Collapser<'a> {
     nodes: &'a [Node],
     range: &'a [(u32, u32)],
+    leaves: Leaves,
 }
 
 /// Children of binary interior node `i`.
@@ -55,7 +63,10 @@ fn kids(nodes: &[Node], i: usize) -> [usize; 2] {
 impl Collapser<'_> {
     /// Whether binary node `i` becomes a 4-wide leaf.
     fn is_leaf(&self, i: usize) -> bool {
-        self.range[i].1 <= 4
+        match self.leaves {
+            Leaves::Merged => self.range[i].1 <= 4,
+            Leaves::Sah => self.nodes[i].is_leaf(),
+        }
     }
 
     /// Appends the 4-wide node for binary interior node `i` and its subtree;

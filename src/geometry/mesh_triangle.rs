@@ -1,0 +1,47 @@
+//! One triangle of a small mesh placed directly in the scene BVH.
+//!
+//! Going through an instance costs a ray transform, a second traversal
+//! setup and a second stack; for a 12-triangle Cornell block that overhead
+//! was most of what a ray spent on the block (flattening made the Cornell
+//! render 7% faster). Meshes of at most [`FLATTEN_MAX`] triangles that are
+//! baked into world space (a scene's `Mesh` object, not a shared
+//! `Instance`) therefore put each triangle in the top level, and keep their
+//! [`super::Instance`] only for shading (normals, UVs, material slots).
+//! Handing the top level whole four-triangle leaves instead was measured
+//! slower: their boxes are much looser than single triangles'.
+
+use super::triangle::WatertightRay;
+use super::{Geometry, Hit, MeshHit};
+use crate::accel::Aabb;
+use crate::math::Ray;
+use glam::{Vec2, Vec3, Vec3A};
+
+/// Meshes up to this many triangles are flattened into the scene BVH.
+pub const FLATTEN_MAX: usize = 64;
+
+#[derive(Clone, Copy, Debug)]
+pub struct MeshTriangle {
+    /// World-space corners (the mesh is baked, so they are its own).
+    pub p: [Vec3; 3],
+    /// The instance that shades it, and the triangle's index in its mesh.
+    pub instance: u32,
+    pub tri: u32,
+}
+
+impl MeshTriangle {
+    #[inline(always)]
+    pub fn intersect(&self, wt: &WatertightRay, t_max: f32) -> Option<(f32, Vec2)> {
+        let [a, b, c] = self.p;
+        wt.intersect(a.into(), b.into(), c.into(), t_max)
+    }
+
+    /// Shading record for a hit found by [`MeshTriangle::intersect`].
+    pub fn hit(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry) -> Hit {
+        let h = MeshHit { t, tri: self.tri, bc };
+        geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb::from_points(&self.p.map(Vec3A::from))
+    }
+}
