@@ -48,13 +48,23 @@ impl PrimRef {
 
 /// Output of the build: depth-first nodes and the reordered primitive ids.
 pub(crate) fn build(bounds: &[Aabb]) -> (Vec<Node>, Vec<u32>) {
-    build_with_max_depth(bounds, MAX_DEPTH)
+    build_with_limits(bounds, MAX_DEPTH, MAX_LEAF)
+}
+
+/// With leaves of at most `max_leaf` (1..=[`MAX_LEAF`]) primitives.
+pub(crate) fn build_with_max_leaf(bounds: &[Aabb], max_leaf: usize) -> (Vec<Node>, Vec<u32>) {
+    build_with_limits(bounds, MAX_DEPTH, max_leaf.clamp(1, MAX_LEAF))
 }
 
 /// Leaves end up no deeper than `max_depth` if it is at least
 /// `ceil(log2 n)`; `MAX_DEPTH` = 64 covers any u32 count. Tests lower it to
 /// exercise the depth budget.
+#[cfg(test)]
 pub(crate) fn build_with_max_depth(bounds: &[Aabb], max_depth: u32) -> (Vec<Node>, Vec<u32>) {
+    build_with_limits(bounds, max_depth, MAX_LEAF)
+}
+
+fn build_with_limits(bounds: &[Aabb], max_depth: u32, max_leaf: usize) -> (Vec<Node>, Vec<u32>) {
     assert!(
         bounds.len() <= u32::MAX as usize,
         "a BVH indexes primitives with u32"
@@ -78,7 +88,7 @@ pub(crate) fn build_with_max_depth(bounds: &[Aabb], max_depth: u32) -> (Vec<Node
         let (b, cb) = bounds_of(&refs);
         // Measured ~1.1 nodes per primitive on meshes (leaves of 1–2).
         nodes.reserve(refs.len() + refs.len() / 8);
-        build_rec(&mut refs, 0, b, cb, max_depth, &mut nodes);
+        build_rec(&mut refs, 0, b, cb, (max_depth, max_leaf), &mut nodes);
     }
     (nodes, refs.iter().map(|r| r.index).collect())
 }
@@ -96,7 +106,15 @@ fn ceil_log2(n: usize) -> u32 {
 
 /// Appends the subtree over `refs` (slots `first..` of the index array) to
 /// `out`, root first; offsets are relative to `out`'s start.
-fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, budget: u32, out: &mut Vec<Node>) {
+/// `limits` is the depth budget left and the largest leaf allowed.
+fn build_rec(
+    refs: &mut [PrimRef],
+    first: u32,
+    b: Aabb,
+    cb: Aabb,
+    (budget, max_leaf): (u32, usize),
+    out: &mut Vec<Node>,
+) {
     let n = refs.len();
     let me = out.len();
     out.push(Node::leaf(b, first, n as u32));
@@ -111,7 +129,7 @@ fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, budget: u32, o
     } else {
         None
     };
-    if n <= MAX_LEAF {
+    if n <= max_leaf {
         let area = b.surface_area();
         let leaf_cost = area * n as f32;
         if sah.is_none_or(|s| leaf_cost <= TRAVERSAL_COST * area + s.cost) {
@@ -127,14 +145,14 @@ fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, budget: u32, o
     if n >= PARALLEL_MIN {
         let mut right_nodes = Vec::new();
         rayon::join(
-            || build_rec(left, first, lb, lcb, budget.saturating_sub(1), out),
+            || build_rec(left, first, lb, lcb, (budget.saturating_sub(1), max_leaf), out),
             || {
                 build_rec(
                     right,
                     second_first,
                     rb,
                     rcb,
-                    budget.saturating_sub(1),
+                    (budget.saturating_sub(1), max_leaf),
                     &mut right_nodes,
                 )
             },
@@ -148,9 +166,16 @@ fn build_rec(refs: &mut [PrimRef], first: u32, b: Aabb, cb: Aabb, budget: u32, o
             node
         }));
     } else {
-        build_rec(left, first, lb, lcb, budget.saturating_sub(1), out);
+        build_rec(left, first, lb, lcb, (budget.saturating_sub(1), max_leaf), out);
         out[me] = Node::interior(b, out.len() as u32);
-        build_rec(right, second_first, rb, rcb, budget.saturating_sub(1), out);
+        build_rec(
+            right,
+            second_first,
+            rb,
+            rcb,
+            (budget.saturating_sub(1), max_leaf),
+            out,
+        );
     }
 }
 

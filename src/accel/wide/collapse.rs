@@ -6,9 +6,9 @@
 //! primitives are contiguous in leaf order, and one leaf test is cheaper
 //! than a node visit plus two leaf tests (it also cut node memory from 37
 //! to about 22 bytes per triangle). That merge suits triangles, whose boxes
-//! are small and cheap to test; [`Leaves::Sah`] keeps the binary tree's
-//! own SAH leaves instead, for scene-level shapes such as the walls of a
-//! room, whose union box every ray enters.
+//! are small and cheap to test; [`Leaves::Single`] keeps the binary tree's
+//! one-primitive leaves instead, for scene-level shapes such as the walls of
+//! a room, whose union box every ray enters.
 
 use super::{Leaves, Node4, leaf_ref};
 use crate::accel::bvh::Node;
@@ -65,7 +65,7 @@ impl Collapser<'_> {
     fn is_leaf(&self, i: usize) -> bool {
         match self.leaves {
             Leaves::Merged => self.range[i].1 <= 4,
-            Leaves::Sah => self.nodes[i].is_leaf(),
+            Leaves::Single => self.nodes[i].is_leaf(),
         }
     }
 
