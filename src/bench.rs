@@ -23,6 +23,13 @@ use rayon::prelude::*;
 use std::path::Path;
 use std::time::Instant;
 
+/// `println!` that ignores a closed pipe (`ronray bench … | head`).
+macro_rules! out {
+    ($($arg:tt)*) => {
+        crate::cli::print_out(&format!("{}\n", format_args!($($arg)*)))
+    };
+}
+
 /// Runs the benchmark and prints a table; the error names the file.
 pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
     let n = threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
@@ -35,7 +42,7 @@ pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
     let (p1, pn) = (pool(1)?, pool(n)?);
     let t0 = Instant::now();
     let raw = load_obj(path)?;
-    println!(
+    out!(
         "{}: {} triangles, parsed in {:.0} ms; load {}",
         path.display(),
         raw.triangle_count(),
@@ -58,13 +65,14 @@ pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
     let (_, build1, cpu1) = build(&p1);
     let (mesh, build_n, cpu_n) = build(&pn);
     let s = mesh.blas().map(|b| b.stats()).unwrap_or_default();
-    println!(
-        "build: {:.1} ms on 1 thread ({:.0} ms CPU), {:.1} ms on {n} ({:.0} ms CPU); {} 4-wide nodes, binary depth {}, SAH cost {:.2}; {:.1} bytes/triangle (nodes + inline triangles)",
+    out!(
+        "build: {:.1} ms on 1 thread ({:.0} ms CPU), {:.1} ms on {n} ({:.0} ms CPU); {} {}-wide nodes, binary depth {}, SAH cost {:.2}; {:.1} bytes/triangle (nodes + inline triangles)",
         build1 * 1e3,
         cpu1 * 1e3,
         build_n * 1e3,
         cpu_n * 1e3,
         s.nodes,
+        crate::accel::wide::WIDTH,
         s.max_depth,
         s.sah_cost,
         mesh.accel_bytes() as f64 / mesh.triangle_count().max(1) as f64
@@ -87,8 +95,8 @@ pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
             Ray::new(b.min + u * b.extent(), sampling::uniform_sphere(rng.next_vec2()))
         })
         .collect();
-    println!("| rays | hit % | 1 thread Mrays/s | per CPU s | {n} threads Mrays/s | per CPU s |");
-    println!("|---|---|---|---|---|---|");
+    out!("| rays | hit % | 1 thread Mrays/s | per CPU s | {n} threads Mrays/s | per CPU s |");
+    out!("|---|---|---|---|---|---|");
     for (name, rays) in [("primary", &primary), ("incoherent", &incoherent)] {
         let trace = |p: &rayon::ThreadPool| {
             let (t, c) = (Instant::now(), cpu_seconds());
@@ -110,12 +118,12 @@ pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
         };
         let (r1, c1, hits) = trace(&p1);
         let (rn, cn, _) = trace(&pn);
-        println!(
+        out!(
             "| {name} | {:.1} | {r1:.2} | {c1:.2} | {rn:.2} | {cn:.2} |",
             100.0 * hits as f64 / rays.len() as f64
         );
     }
-    println!("load after: {}", load_average());
+    out!("load after: {}", load_average());
     Ok(())
 }
 

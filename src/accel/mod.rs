@@ -8,4 +8,4 @@ pub mod wide;
 
 pub use aabb::Aabb;
 pub use bvh::{Bvh, BvhStats};
-pub use wide::{Bvh4, Leaves};
+pub use wide::{Leaves, WideBvh};

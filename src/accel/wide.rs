@@ -1,12 +1,16 @@
-//! A 4-wide BVH: the binned-SAH binary tree of [`super::bvh`] collapsed so
-//! each node holds four child boxes in SoA layout, tested together with one
-//! SIMD slab test (glam's `Vec4`, SSE2 on any x86-64). Halves the traversal
-//! steps of the binary tree and the node bytes per primitive (Wald, Benthin,
-//! Boulos 2008, "Getting Rid of Packets", <https://doi.org/10.1109/RT.2008.4634620>;
-//! Embree's BVH4 is the same idea).
+//! An 8-wide BVH: the binned-SAH binary tree of [`super::bvh`] collapsed so
+//! each node holds eight child boxes in SoA layout, tested together with one
+//! SIMD slab test (`wide::f32x8`: one AVX operation per step on x86-64-v3,
+//! two SSE ones elsewhere). It takes a third of the binary tree's levels,
+//! and a level is one dependent memory access: on a mesh far larger than
+//! the caches, where traversal waits on memory, depth is what costs (Wald,
+//! Benthin, Boulos 2008, "Getting Rid of Packets",
+//! <https://doi.org/10.1109/RT.2008.4634620>; Embree uses BVH8 on AVX
+//! machines). An earlier 4-wide version of this tree traced incoherent rays
+//! on the 1M-triangle mesh at 1.04-1.11 Mrays/s on one thread.
 //!
 //! Like [`super::Bvh`] it knows no shapes: it is built from bounds, and its
-//! [`Bvh4::order`] tells the caller how to reorder its primitives so that
+//! [`WideBvh::order`] tells the caller how to reorder its primitives so that
 //! every leaf is a contiguous range `first..first + count`. Traversal hands
 //! the closure whole leaves, so a mesh intersects a run of inline triangles
 //! with no index indirection and no per-primitive `enum` dispatch.
@@ -22,28 +26,36 @@ use super::bvh::{self, BvhStats};
 use glam::Vec3A;
 
 /// Child reference: a node index, or (top bit set) a leaf packing its first
-/// primitive (bits 2..31) and `count - 1` (bits 0..2; leaves hold ≤ 4).
+/// primitive (bits 3..31) and `count - 1` (bits 0..3; leaves hold at most
+/// [`MAX_LEAF`]).
 const LEAF: u32 = 1 << 31;
+/// Largest leaf: a merged subtree of up to eight primitives (two four-lane
+/// triangle blocks for a mesh).
+pub const MAX_LEAF: u32 = 8;
 /// An unused child slot; its box is all `+inf`, which no ray enters.
 const EMPTY: u32 = u32::MAX;
-/// Leaf-first indices must fit 29 bits.
-pub const MAX_PRIMS: usize = 1 << 29;
+/// Leaf-first indices must fit 28 bits.
+pub const MAX_PRIMS: usize = 1 << 28;
 
-/// Four child boxes, SoA: `b[axis][lane]` for mins (axes 0..3) and maxes
-/// (3..6). 128 bytes, aligned to two cache lines.
+/// Children per node.
+pub const WIDTH: usize = 8;
+
+/// Eight child boxes, SoA: `b[row][lane]` for mins (rows 0..3, one per
+/// axis) and maxes (3..6). 224 bytes used, padded to four whole cache
+/// lines (a 224-byte layout straddling lines measured ~3% slower).
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(64))]
-pub(crate) struct Node4 {
-    pub b: [[f32; 4]; 6],
-    pub child: [u32; 4],
+pub(crate) struct WideNode {
+    pub b: [[f32; WIDTH]; 6],
+    pub child: [u32; WIDTH],
 }
 
-const _: () = assert!(size_of::<Node4>() == 128);
+const _: () = assert!(size_of::<WideNode>() == 256);
 
 #[derive(Clone, Debug)]
-pub struct Bvh4 {
+pub struct WideBvh {
     /// Node 0 is the root; empty iff no primitive has non-empty bounds.
-    nodes: Vec<Node4>,
+    nodes: Vec<WideNode>,
     /// Caller's primitive index for each leaf slot.
     order: Vec<u32>,
     len: usize,
@@ -53,21 +65,23 @@ pub struct Bvh4 {
 
 #[inline(always)]
 fn leaf_ref(first: u32, count: u32) -> u32 {
-    debug_assert!((1..=4).contains(&count) && (first as usize) < MAX_PRIMS);
-    LEAF | first << 2 | (count - 1)
+    debug_assert!((1..=MAX_LEAF).contains(&count) && (first as usize) < MAX_PRIMS);
+    LEAF | first << 3 | (count - 1)
 }
 
 /// `(first, count)` of a leaf reference.
 #[inline(always)]
 fn leaf_range(r: u32) -> (u32, u32) {
-    ((r & !LEAF) >> 2, (r & 3) + 1)
+    ((r & !LEAF) >> 3, (r & 7) + 1)
 }
 
 /// How leaves are formed when collapsing the binary tree.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Leaves {
-    /// Any binary subtree of at most four primitives becomes one leaf
-    /// (meshes: fewer, fuller leaves and smaller trees).
+    /// Any binary subtree of at most [`MAX_LEAF`] primitives becomes one
+    /// leaf (meshes: fewer, fuller leaves and smaller trees). Without it, a
+    /// subtree of 5–8 triangles became a 256-byte node holding two leaves,
+    /// and the bunny's tree took 68 bytes per triangle.
     Merged,
     /// One primitive per leaf (scene shapes). The SAH assumes rays come
     /// from outside a box; in a room they start inside it, and it grouped
@@ -77,7 +91,7 @@ pub enum Leaves {
     Single,
 }
 
-impl Bvh4 {
+impl WideBvh {
     /// Builds over `bounds[i]` for primitive `i` (binned SAH, parallel, then
     /// collapsed). Panics above [`MAX_PRIMS`] primitives.
     pub fn build(bounds: &[Aabb]) -> Self {
@@ -85,14 +99,16 @@ impl Bvh4 {
     }
 
     pub fn build_with(bounds: &[Aabb], leaves: Leaves) -> Self {
-        assert!(bounds.len() < MAX_PRIMS, "Bvh4 holds at most 2^29 primitives");
+        assert!(bounds.len() < MAX_PRIMS, "WideBvh holds at most 2^28 primitives");
         let max_leaf = match leaves {
             Leaves::Merged => 4,
             Leaves::Single => 1,
         };
         let (binary, order) = bvh::build_nodes(bounds, max_leaf);
-        let stats = bvh::stats_of(&binary, order.len());
-        let nodes = collapse::collapse(&binary, leaves);
+        let (stats, nodes) = rayon::join(
+            || bvh::stats_of(&binary, order.len()),
+            || collapse::collapse(&binary, leaves),
+        );
         Self {
             nodes,
             order,
@@ -121,17 +137,17 @@ impl Bvh4 {
         let Some(root) = self.nodes.first() else {
             return Aabb::EMPTY;
         };
-        (0..4)
+        (0..WIDTH)
             .filter(|&i| root.child[i] != EMPTY)
             .fold(Aabb::EMPTY, |acc, i| acc.union(root.child_bounds(i)))
     }
 
-    /// Stats: `nodes` counts 4-wide nodes, `bytes` the 4-wide nodes and the
+    /// Stats: `nodes` counts wide nodes, `bytes` the wide nodes and the
     /// order array; depth and SAH cost are those of the binary tree.
     pub fn stats(&self) -> BvhStats {
         BvhStats {
             nodes: self.nodes.len(),
-            bytes: self.nodes.len() * size_of::<Node4>() + self.order.len() * 4,
+            bytes: self.nodes.len() * size_of::<WideNode>() + self.order.len() * 4,
             ..self.binary
         }
     }
@@ -148,14 +164,14 @@ impl Bvh4 {
     /// Heap bytes of the nodes alone (the order array can be dropped by a
     /// caller that reorders its primitives).
     pub fn node_bytes(&self) -> usize {
-        self.nodes.len() * size_of::<Node4>()
+        self.nodes.len() * size_of::<WideNode>()
     }
 }
 
-impl Node4 {
-    pub(crate) const EMPTY: Node4 = Node4 {
-        b: [[f32::INFINITY; 4]; 6],
-        child: [EMPTY; 4],
+impl WideNode {
+    pub(crate) const EMPTY: WideNode = WideNode {
+        b: [[f32::INFINITY; WIDTH]; 6],
+        child: [EMPTY; WIDTH],
     };
 
     pub(crate) fn child_bounds(&self, i: usize) -> Aabb {

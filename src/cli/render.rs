@@ -97,9 +97,10 @@ pub(super) fn cmd_render(
         for (i, m) in geo.meshes.iter().enumerate().take(8) {
             if let Some(s) = m.blas().map(|b| b.stats()) {
                 eprintln!(
-                    "  mesh {i}: {} triangles, {} 4-wide nodes, {} leaves, depth {} (binary), SAH cost {:.2}",
+                    "  mesh {i}: {} triangles, {} {}-wide nodes, {} leaves, depth {} (binary), SAH cost {:.2}",
                     m.triangle_count(),
                     s.nodes,
+                    crate::accel::wide::WIDTH,
                     s.leaves,
                     s.max_depth,
                     s.sah_cost

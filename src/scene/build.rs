@@ -9,7 +9,7 @@ use super::desc::{
 };
 use super::problem::Problem;
 use super::runtime::{Film, Scene};
-use crate::accel::{Aabb, Bvh4, Leaves};
+use crate::accel::{Aabb, Leaves, WideBvh};
 use crate::camera::Camera;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
@@ -198,7 +198,7 @@ pub fn build_with(
         .iter()
         .map(|s| s.bounds(&geometry).unwrap_or(Aabb::EMPTY))
         .collect();
-    let bvh = Bvh4::build_with(&bounds, Leaves::Single);
+    let bvh = WideBvh::build_with(&bounds, Leaves::Single);
     // Shapes in leaf order, so a leaf is a contiguous run of them; shapes
     // with empty bounds (never hit) drop out here.
     let mut shapes: Vec<Shape> = bvh.order().iter().map(|&i| shapes[i as usize]).collect();

@@ -1,7 +1,7 @@
 //! The runtime scene the renderer sees: glam types, u32 indices, no names,
 //! no options, no serde. Built once by `build`, never mutated while rendering.
 
-use crate::accel::Bvh4;
+use crate::accel::WideBvh;
 use crate::camera::Camera;
 use crate::geometry::MeshHit;
 use crate::geometry::triangle::WatertightRay;
@@ -42,7 +42,7 @@ pub struct Scene {
     pub bounded: u32,
     /// Meshes (each with its own BVH) and their instances.
     pub geometry: Geometry,
-    pub bvh: Bvh4,
+    pub bvh: WideBvh,
 }
 
 /// What the nearest hit so far needs for its hit record beyond `t`.

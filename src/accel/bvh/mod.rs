@@ -81,7 +81,7 @@ impl Bvh {
 }
 
 /// Binary nodes and leaf-order primitive ids, for trees built on this one
-/// (the 4-wide [`crate::accel::wide::Bvh4`]).
+/// (the wide [`crate::accel::wide::WideBvh`]).
 pub(crate) fn build_nodes(bounds: &[Aabb], max_leaf: usize) -> (Vec<Node>, Vec<u32>) {
     build::build_with_max_leaf(bounds, max_leaf)
 }

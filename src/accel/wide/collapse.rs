@@ -1,8 +1,8 @@
-//! Binary → 4-wide: each 4-wide node takes a binary node's two children and
+//! Binary → wide: each wide node takes a binary node's two children and
 //! keeps opening the interior child with the largest surface area until it
-//! has four (the greedy rule of Wald et al. 2008 and Embree's BVH4 builder;
+//! has [`WIDTH`] (the greedy rule of Wald et al. 2008 and Embree's builder;
 //! opening large boxes first removes the traversal steps rays take most).
-//! A binary subtree of at most four primitives becomes one leaf: its
+//! A binary subtree of at most `MAX_LEAF` primitives becomes one leaf: its
 //! primitives are contiguous in leaf order, and one leaf test is cheaper
 //! than a node visit plus two leaf tests (it also cut node memory from 37
 //! to about 22 bytes per triangle). That merge suits triangles, whose boxes
@@ -10,19 +10,19 @@
 //! one-primitive leaves instead, for scene-level shapes such as the walls of
 //! a room, whose union box every ray enters.
 
-use super::{Leaves, Node4, leaf_ref};
+use super::{Leaves, MAX_LEAF, WIDTH, WideNode, leaf_ref};
 use crate::accel::bvh::Node;
 
 /// Collapses depth-first binary `nodes` (leaf ranges index the leaf-order
-/// array) into 4-wide nodes, root first.
-pub(super) fn collapse(nodes: &[Node], leaves: Leaves) -> Vec<Node4> {
+/// array) into wide nodes, root first.
+pub(super) fn collapse(nodes: &[Node], leaves: Leaves) -> Vec<WideNode> {
     let mut out = Vec::with_capacity(nodes.len() / 3 + 1);
     if nodes.is_empty() {
         return out;
     }
     if nodes[0].is_leaf() {
         // A lone leaf still gets a root node, so traversal has one shape.
-        let mut root = Node4::EMPTY;
+        let mut root = WideNode::EMPTY;
         root.set_child(0, nodes[0].bounds(), leaf_ref(nodes[0].offset, nodes[0].count));
         out.push(root);
         return out;
@@ -61,22 +61,22 @@ fn kids(nodes: &[Node], i: usize) -> [usize; 2] {
 }
 
 impl Collapser<'_> {
-    /// Whether binary node `i` becomes a 4-wide leaf.
+    /// Whether binary node `i` becomes a wide-tree leaf.
     fn is_leaf(&self, i: usize) -> bool {
         match self.leaves {
-            Leaves::Merged => self.range[i].1 <= 4,
+            Leaves::Merged => self.range[i].1 <= MAX_LEAF,
             Leaves::Single => self.nodes[i].is_leaf(),
         }
     }
 
-    /// Appends the 4-wide node for binary interior node `i` and its subtree;
+    /// Appends the wide node for binary interior node `i` and its subtree;
     /// returns its index.
-    fn emit(&self, i: usize, out: &mut Vec<Node4>) -> u32 {
+    fn emit(&self, i: usize, out: &mut Vec<WideNode>) -> u32 {
         let nodes = self.nodes;
         let me = out.len();
-        out.push(Node4::EMPTY);
+        out.push(WideNode::EMPTY);
         let mut open: Vec<usize> = kids(nodes, i).to_vec();
-        while open.len() < 4 {
+        while open.len() < WIDTH {
             let best = open
                 .iter()
                 .enumerate()
@@ -92,7 +92,7 @@ impl Collapser<'_> {
         }
         // Keep the binary tree's left-to-right order for determinism.
         open.sort_unstable();
-        let mut node = Node4::EMPTY;
+        let mut node = WideNode::EMPTY;
         for (lane, &c) in open.iter().enumerate() {
             let r = if self.is_leaf(c) {
                 leaf_ref(self.range[c].0, self.range[c].1)

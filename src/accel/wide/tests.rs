@@ -1,27 +1,27 @@
-//! The 4-wide tree against brute force and its structure, on the binary
+//! The wide tree against brute force and its structure, on the binary
 //! tree's test soups and degenerate inputs.
 
-use super::{Bvh4, EMPTY, LEAF, leaf_range};
+use super::{EMPTY, LEAF, WIDTH, WideBvh, leaf_range};
 use crate::accel::Aabb;
 use crate::accel::bvh::tests::{Tri, brute, rays, soup};
 use crate::math::Ray;
 use glam::Vec3A;
 
-fn build(tris: &[Tri]) -> Bvh4 {
+fn build(tris: &[Tri]) -> WideBvh {
     let bounds: Vec<Aabb> = tris.iter().map(Tri::bounds).collect();
-    let bvh = Bvh4::build(&bounds);
+    let bvh = WideBvh::build(&bounds);
     check_structure(&bvh, &bounds);
     bvh
 }
 
 /// Every child box contains its subtree; every non-empty primitive is in
 /// exactly one leaf slot; empty lanes have no child.
-fn check_structure(bvh: &Bvh4, bounds: &[Aabb]) {
+fn check_structure(bvh: &WideBvh, bounds: &[Aabb]) {
     let mut seen = vec![0u32; bvh.order().len()];
     let mut stack = vec![0u32];
     while let Some(n) = stack.pop() {
         let node = &bvh.nodes[n as usize];
-        for lane in 0..4 {
+        for lane in 0..WIDTH {
             let r = node.child[lane];
             if r == EMPTY {
                 continue;
@@ -39,7 +39,7 @@ fn check_structure(bvh: &Bvh4, bounds: &[Aabb]) {
                 }
             } else {
                 let child = &bvh.nodes[r as usize];
-                for l in (0..4).filter(|&l| child.child[l] != EMPTY) {
+                for l in (0..WIDTH).filter(|&l| child.child[l] != EMPTY) {
                     assert!(
                         b.contains(&child.child_bounds(l)),
                         "node {r} escapes its parent box"
@@ -61,7 +61,7 @@ fn check_structure(bvh: &Bvh4, bounds: &[Aabb]) {
     );
 }
 
-fn closest(bvh: &Bvh4, tris: &[Tri], ray: &Ray) -> Option<(u32, f32)> {
+fn closest(bvh: &WideBvh, tris: &[Tri], ray: &Ray) -> Option<(u32, f32)> {
     let mut best = None;
     bvh.intersect(ray, f32::INFINITY, |first, count, t_max| {
         let mut t_best = t_max;
@@ -88,9 +88,9 @@ fn assert_matches(what: &str, tris: &[Tri], rays: &[Ray]) {
             (None, None) => {}
             (Some((gp, gt)), Some((wp, wt))) => assert!(
                 gt == wt && (gp == wp || tris[gp as usize].hit(ray, f32::INFINITY) == Some(wt)),
-                "{what}, ray {i}: Bvh4 gave ({gp}, {gt}), brute force ({wp}, {wt})"
+                "{what}, ray {i}: WideBvh gave ({gp}, {gt}), brute force ({wp}, {wt})"
             ),
-            _ => panic!("{what}, ray {i}: Bvh4 gave {got:?}, brute force {want:?}"),
+            _ => panic!("{what}, ray {i}: WideBvh gave {got:?}, brute force {want:?}"),
         }
         let occ = bvh.occluded(ray, f32::INFINITY, |first, count, tm| {
             (first..first + count).any(|s| tris[bvh.order()[s as usize] as usize].hit(ray, tm).is_some())
@@ -109,7 +109,7 @@ fn bvh4_matches_brute_force() {
 
 #[test]
 fn bvh4_degenerate_inputs() {
-    let empty = Bvh4::build(&[]);
+    let empty = WideBvh::build(&[]);
     assert!(
         empty
             .intersect(&Ray::new(Vec3A::ZERO, Vec3A::X), f32::INFINITY, |_, _, _| Some(
@@ -126,6 +126,6 @@ fn bvh4_degenerate_inputs() {
     assert_matches("identical", &same, &rays(9, 500, &same));
     let mut with_empty: Vec<Aabb> = same.iter().map(Tri::bounds).collect();
     with_empty.push(Aabb::EMPTY);
-    let bvh = Bvh4::build(&with_empty);
+    let bvh = WideBvh::build(&with_empty);
     check_structure(&bvh, &with_empty);
 }

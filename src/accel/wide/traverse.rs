@@ -1,29 +1,32 @@
-//! Stack-based traversal of the 4-wide tree, nearest child first.
+//! Stack-based traversal of the wide tree, nearest child first.
 //!
-//! One SIMD slab test per node gives four entry distances; the children hit
+//! One SIMD slab test per node gives eight entry distances; the children hit
 //! are pushed farthest first so the nearest is popped next, and entries
 //! beyond the best hit found since are skipped when popped. Per axis the
 //! near and far planes are picked once per ray from the direction's sign
 //! (so the test needs no min/max between the two planes). The stack is a
-//! fixed array: the binary tree is at most `MAX_DEPTH` deep and each 4-wide
-//! level pushes at most 3 entries, so `3 · MAX_DEPTH + 1` never overflows.
-//! It is left uninitialised: zeroing 1.5 KB per ray was 4–6% of the time of
+//! fixed array: the binary tree is at most `MAX_DEPTH` deep and each wide
+//! level pushes at most `WIDTH - 1` entries beyond the one it pops, so
+//! `(WIDTH - 1) · MAX_DEPTH + 1` never overflows.
+//! It is left uninitialised: zeroing the 1.5 KB stack of the 4-wide tree per
+//! ray was 4–6% of the time of
 //! a render or a benchmark, and only the entries below `sp` are ever read.
 
-use super::{Bvh4, EMPTY, LEAF, Node4, leaf_range};
+use super::{EMPTY, LEAF, WIDTH, WideBvh, WideNode, leaf_range};
 use crate::accel::aabb::{FAR_SCALE, safe_inv_dir};
 use crate::accel::bvh::MAX_DEPTH;
 use crate::math::Ray;
-use glam::{Vec3A, Vec4};
+use glam::Vec3A;
 use std::mem::MaybeUninit;
+use wide::f32x8;
 
-const STACK: usize = 3 * MAX_DEPTH as usize + 1;
+const STACK: usize = (WIDTH - 1) * MAX_DEPTH as usize + 1;
 
 /// The per-ray slab setup.
 struct SlabRay {
-    o: [Vec4; 3],
-    inv: [Vec4; 3],
-    /// Rows of `Node4::b` holding the near (entry) and far planes per axis.
+    o: [f32x8; 3],
+    inv: [f32x8; 3],
+    /// Rows of `WideNode::b` holding the near (entry) and far planes per axis.
     near: [usize; 3],
     far: [usize; 3],
 }
@@ -37,48 +40,62 @@ impl SlabRay {
         let near = |a: usize| if inv_d[a] >= 0.0 { a } else { a + 3 };
         let near = [near(0), near(1), near(2)];
         Self {
-            o: [Vec4::splat(ray.o.x), Vec4::splat(ray.o.y), Vec4::splat(ray.o.z)],
-            inv: [Vec4::splat(inv_d.x), Vec4::splat(inv_d.y), Vec4::splat(inv_d.z)],
+            o: [
+                f32x8::splat(ray.o.x),
+                f32x8::splat(ray.o.y),
+                f32x8::splat(ray.o.z),
+            ],
+            inv: [
+                f32x8::splat(inv_d.x),
+                f32x8::splat(inv_d.y),
+                f32x8::splat(inv_d.z),
+            ],
             near,
             far: [(near[0] + 3) % 6, (near[1] + 3) % 6, (near[2] + 3) % 6],
         }
     }
 
-    /// Entry distances of the four children and the mask of those hit
-    /// before `t_max`. Empty slots (`+inf` boxes) never hit.
+    /// Entry distances of the children and the mask of those hit before
+    /// `t_max`. Empty slots (`+inf` boxes) never hit. `fast_max`/`fast_min`
+    /// are the bare SIMD instructions (no NaN fix-up): `safe_inv_dir` keeps
+    /// every plane distance a number or an infinity.
     #[inline(always)]
-    fn test(&self, n: &Node4, t_max: f32) -> (Vec4, u32) {
-        let plane = |row: usize, a: usize| (Vec4::from_array(n.b[row]) - self.o[a]) * self.inv[a];
+    fn test(&self, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
+        let plane = |row: usize, a: usize| (f32x8::from(n.b[row]) - self.o[a]) * self.inv[a];
         let (near, far) = (&self.near, &self.far);
         let t_near = plane(near[0], 0)
-            .max(plane(near[1], 1))
-            .max(plane(near[2], 2))
-            .max(Vec4::ZERO);
-        let t_far = (plane(far[0], 0).min(plane(far[1], 1)).min(plane(far[2], 2)) * FAR_SCALE)
-            .min(Vec4::splat(t_max));
-        (t_near, t_near.cmple(t_far).bitmask())
+            .fast_max(plane(near[1], 1))
+            .fast_max(plane(near[2], 2))
+            .fast_max(f32x8::ZERO);
+        let t_far = (plane(far[0], 0)
+            .fast_min(plane(far[1], 1))
+            .fast_min(plane(far[2], 2))
+            * f32x8::splat(FAR_SCALE))
+        .fast_min(f32x8::splat(t_max));
+        (t_near.to_array(), t_near.simd_le(t_far).to_bitmask())
     }
 }
 
-/// Asks for `node`'s two cache lines ahead of its visit, so the misses of a
+/// Asks for `node`'s cache lines ahead of its visit, so the misses of a
 /// node's children overlap instead of following one another.
 #[inline(always)]
-fn prefetch(node: &Node4) {
+fn prefetch(node: &WideNode) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let p = (node as *const Node4).cast::<i8>();
+        let p = (node as *const WideNode).cast::<i8>();
         // SAFETY: SSE is part of x86-64; a prefetch never faults.
         unsafe {
-            _mm_prefetch::<_MM_HINT_T0>(p);
-            _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64));
+            for line in 0..size_of::<WideNode>() / 64 {
+                _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64 * line));
+            }
         }
     }
 }
 
-impl Bvh4 {
+impl WideBvh {
     /// Closest hit. `leaf(first, count, t_max)` intersects leaf slots
-    /// `first..first + count` (in [`Bvh4::order`]) and returns the nearest
+    /// `first..first + count` (in [`WideBvh::order`]) and returns the nearest
     /// distance below `t_max`, having recorded whatever else it needs.
     /// Returns the best distance.
     #[inline]
@@ -118,7 +135,7 @@ impl Bvh4 {
             let node = &self.nodes[r as usize];
             let (t_near, mut mask) = sr.test(node, t_best);
             // Push the hit children, then sort the new entries so the
-            // nearest is on top (at most four: insertion sort).
+            // nearest is on top (at most eight: insertion sort).
             let base = sp;
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
