@@ -185,6 +185,18 @@ pub enum Material {
 }
 
 impl Material {
+    /// Whether any parameter is a texture (so shading needs `uv`).
+    pub fn is_textured(&self) -> bool {
+        let t = |c: &ColorTex| !matches!(c, ColorTex::Const(_));
+        match self {
+            Material::Lambert { albedo } | Material::OrenNayar { albedo, .. } => t(albedo),
+            Material::Phong { kd, ks, .. } | Material::BlinnPhong { kd, ks, .. } => t(kd) || t(ks),
+            Material::MetalPlastic { base_color, .. } => t(base_color),
+            Material::Mirror { tint } | Material::Glass { tint, .. } => t(tint),
+            Material::CookTorrance { .. } | Material::Emitter => false,
+        }
+    }
+
     /// Resolves textures at surface coordinates `uv`.
     pub fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf {
         let tex = |c: &ColorTex| c.eval(uv, textures);
@@ -240,6 +252,41 @@ pub(crate) fn flip_up(wo: Vec3A, wi: Vec3A) -> (Vec3A, Vec3A) {
 #[cfg(test)]
 mod material_tests {
     use super::*;
+
+    #[test]
+    fn only_texture_parameters_make_a_material_textured() {
+        let checker = ColorTex::Checker {
+            a: Rgb::ONE,
+            b: Rgb::ZERO,
+            scale: 4.0,
+        };
+        let plain = Material::Lambert {
+            albedo: ColorTex::Const(Rgb::ONE),
+        };
+        assert!(!plain.is_textured());
+        assert!(
+            Material::Lambert {
+                albedo: checker.clone()
+            }
+            .is_textured()
+        );
+        assert!(
+            Material::Phong {
+                kd: ColorTex::Const(Rgb::ONE),
+                ks: ColorTex::Image(0),
+                exponent: 10.0
+            }
+            .is_textured()
+        );
+        assert!(
+            Material::Glass {
+                ior: 1.5,
+                tint: checker,
+                fresnel: DielectricFresnel::Exact
+            }
+            .is_textured()
+        );
+    }
 
     #[test]
     fn material_resolves_every_variant_and_texture() {

@@ -78,6 +78,20 @@ impl Scene {
                         };
                         (t, Nearest::Triangle(i, bc))
                     }
+                    // The common analytic shapes inline (the shared match
+                    // in `intersect_t` stayed an out-of-line call).
+                    Shape::Quad(q) => {
+                        let Some((t, _)) = q.intersect(ray, t_best) else {
+                            continue;
+                        };
+                        (t, Nearest::Shape(i))
+                    }
+                    Shape::Sphere(sp) => {
+                        let Some(t) = sp.intersect(ray, t_best) else {
+                            continue;
+                        };
+                        (t, Nearest::Shape(i))
+                    }
                     s => {
                         let Some(t) = s.intersect_t(ray, t_best, geo) else {
                             continue;
@@ -104,7 +118,12 @@ impl Scene {
                 Shape::Triangle(tr) => tr.hit(ray, t_best, bc, geo),
                 s => s.hit(ray, t_best, geo),
             },
-            Nearest::Shape(i) => shapes[i as usize].hit(ray, t_best, geo),
+            Nearest::Shape(i) => match &shapes[i as usize] {
+                Shape::Sphere(sp) if !self.materials[sp.material as usize].is_textured() => {
+                    sp.hit_without_uv(ray.at(t_best), t_best)
+                }
+                s => s.hit(ray, t_best, geo),
+            },
         })
     }
 
@@ -121,6 +140,8 @@ impl Scene {
                 .iter()
                 .any(|s| match s {
                     Shape::Triangle(tr) => tr.intersect(&wt, t_max).is_some(),
+                    Shape::Quad(q) => q.intersect(ray, t_max).is_some(),
+                    Shape::Sphere(sp) => sp.intersect(ray, t_max).is_some(),
                     s => s.occludes(ray, t_max, geo),
                 })
         })
