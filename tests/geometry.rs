@@ -204,3 +204,58 @@ fn mesh_smooth_normals_are_area_weighted() {
         assert!(n.dot(*p) > 0.999, "normal {n} at {p} should point outward");
     }
 }
+
+/// A scene with the tall Cornell block, written as a baked `Mesh` object
+/// (`object`) or as an identity `Instance` of a shared mesh.
+fn block_scene(object: &str) -> ronray::scene::Scene {
+    use ronray::scene::{Overrides, load_str};
+    let text = format!(
+        r#"Scene(
+            camera: (eye: (0, 0, 3.9), target: (0, 0, 0), up: (0, 1, 0), fov_y_degrees: 37.5),
+            film: (width: 8, height: 8, spp: 1),
+            materials: {{"white": Lambert(albedo: (0.8, 0.8, 0.8))}},
+            meshes: {{"block": (file: "tall_block.obj")}},
+            lights: [Point(position: (0, 0.9, 0), intensity: (1, 1, 1))],
+            objects: [{object}],
+        )"#
+    );
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/flatten.ron");
+    match load_str(&path, &text, &Overrides::default()) {
+        Ok(l) => l.scene,
+        Err(e) => panic!("block scene: {e}"),
+    }
+}
+
+#[test]
+fn small_baked_mesh_in_the_scene_bvh_matches_its_instance() {
+    use ronray::geometry::Shape;
+    let flat = block_scene(r#"Mesh(file: "tall_block.obj", material: "white")"#);
+    let inst = block_scene(r#"Instance(mesh: "block", material: "white")"#);
+    let triangles = |s: &ronray::scene::Scene| {
+        s.shapes
+            .iter()
+            .filter(|s| matches!(s, Shape::Triangle(_)))
+            .count()
+    };
+    assert_eq!(triangles(&flat), 12, "the 12-triangle block is flattened");
+    assert_eq!(triangles(&inst), 0, "a shared mesh stays an instance");
+    let mut rng = Pcg32::new(5, 2);
+    let mut hits = 0;
+    for i in 0..5000 {
+        let o = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0;
+        let ray = Ray::new(o, sampling::uniform_sphere(rng.next_vec2()));
+        let (a, b) = (
+            flat.intersect(&ray, f32::INFINITY),
+            inst.intersect(&ray, f32::INFINITY),
+        );
+        assert_eq!(a.is_some(), b.is_some(), "ray {i}");
+        if let (Some(a), Some(b)) = (a, b) {
+            // Same world-space vertices and the same watertight arithmetic.
+            assert_eq!(a.t.to_bits(), b.t.to_bits(), "ray {i}: t");
+            assert!((a.p - b.p).length() < 1e-6 && a.ng == b.ng && a.material == b.material);
+            assert_eq!(flat.occluded(&ray, a.t * 1.001), inst.occluded(&ray, a.t * 1.001));
+            hits += 1;
+        }
+    }
+    assert!(hits > 500, "the rays reach the block: {hits}");
+}

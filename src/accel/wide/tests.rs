@@ -1,16 +1,21 @@
 //! The wide tree against brute force and its structure, on the binary
 //! tree's test soups and degenerate inputs.
 
-use super::{EMPTY, LEAF, WIDTH, WideBvh, leaf_range};
+use super::{EMPTY, LEAF, Leaves, MAX_LEAF, WIDTH, WideBvh, leaf_range};
 use crate::accel::Aabb;
 use crate::accel::bvh::tests::{Tri, brute, rays, soup};
 use crate::math::Ray;
 use glam::Vec3A;
 
-fn build(tris: &[Tri]) -> WideBvh {
+fn build_with(tris: &[Tri], leaves: Leaves) -> WideBvh {
     let bounds: Vec<Aabb> = tris.iter().map(Tri::bounds).collect();
-    let bvh = WideBvh::build(&bounds);
+    let bvh = WideBvh::build_with(&bounds, leaves);
     check_structure(&bvh, &bounds);
+    let largest = bvh.leaves().map(|(_, c)| c).max().unwrap_or(0);
+    match leaves {
+        Leaves::Merged => assert!(largest <= MAX_LEAF, "leaf of {largest}"),
+        Leaves::Single => assert!(largest <= 1, "leaf of {largest} in a one-per-leaf tree"),
+    }
     bvh
 }
 
@@ -80,7 +85,12 @@ fn closest(bvh: &WideBvh, tris: &[Tri], ray: &Ray) -> Option<(u32, f32)> {
 }
 
 fn assert_matches(what: &str, tris: &[Tri], rays: &[Ray]) {
-    let bvh = build(tris);
+    assert_matches_with(what, tris, rays, Leaves::Merged);
+    assert_matches_with(what, tris, rays, Leaves::Single);
+}
+
+fn assert_matches_with(what: &str, tris: &[Tri], rays: &[Ray], leaves: Leaves) {
+    let bvh = build_with(tris, leaves);
     for (i, ray) in rays.iter().enumerate() {
         let got = closest(&bvh, tris, ray);
         let want = brute(tris, ray, f32::INFINITY);
@@ -100,7 +110,7 @@ fn assert_matches(what: &str, tris: &[Tri], rays: &[Ray]) {
 }
 
 #[test]
-fn bvh4_matches_brute_force() {
+fn wide_bvh_matches_brute_force() {
     for (seed, n) in [(1, 1), (2, 3), (3, 5), (4, 100), (5, 2000)] {
         let tris = soup(seed, n, 1.0, Vec3A::ZERO, false);
         assert_matches(&format!("soup of {n}"), &tris, &rays(seed, 2000, &tris));
@@ -108,7 +118,7 @@ fn bvh4_matches_brute_force() {
 }
 
 #[test]
-fn bvh4_degenerate_inputs() {
+fn wide_bvh_degenerate_inputs() {
     let empty = WideBvh::build(&[]);
     assert!(
         empty
