@@ -28,10 +28,7 @@ pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<Probl
             continue;
         };
         let (path, text) = (path.trim(), text.trim());
-        let value = match ron::from_str::<ron::Value>(text)
-            .map_err(|e| e.to_string())
-            .and_then(|v| serde_json::to_value(v).map_err(|e| e.to_string()))
-        {
+        let value = match parse_value(text) {
             Ok(v) => v,
             Err(e) => {
                 problems.push(
@@ -64,6 +61,43 @@ pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<Probl
             )
             .help("check the value's type: numbers, `(r, g, b)` colours, `\"strings\"`"),
         ]),
+    }
+}
+
+/// RON text to the JSON shape serde gives the scene types. `ron::Value`
+/// drops enum variant names (`Sobol` parses as a unit, `Path(max_depth: 8)`
+/// as a bare map), so a leading identifier is kept as the externally tagged
+/// variant it names: `Sobol` → `"Sobol"`, `Path(max_depth: 8)` →
+/// `{"Path": {"max_depth": 8}}`; `Some(x)` is `x` and `None` is null.
+fn parse_value(text: &str) -> Result<Value, String> {
+    let plain = |t: &str| {
+        ron::from_str::<ron::Value>(t)
+            .map_err(|e| e.to_string())
+            .and_then(|v| serde_json::to_value(v).map_err(|e| e.to_string()))
+    };
+    let end = text
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .unwrap_or(text.len());
+    let (ident, rest) = text.split_at(end);
+    if !ident.starts_with(|c: char| c.is_ascii_alphabetic()) || matches!(ident, "true" | "false") {
+        return plain(text);
+    }
+    let rest = rest.trim();
+    let body = || match plain(rest)? {
+        // `(x)`: a newtype variant's one value.
+        Value::Array(mut a) if a.len() == 1 => Ok(a.remove(0)),
+        v => Ok(v),
+    };
+    match (ident, rest) {
+        ("None", "") => Ok(Value::Null),
+        (_, "") => Ok(Value::String(ident.to_string())),
+        (_, r) if r.starts_with('(') && r.ends_with(')') => match ident {
+            "Some" => body(),
+            _ => Ok(Value::Object(
+                [(ident.to_string(), body()?)].into_iter().collect(),
+            )),
+        },
+        _ => plain(text),
     }
 }
 
@@ -164,4 +198,26 @@ fn node_mut<'v>(root: &'v mut Value, path: &str) -> Result<&'v mut Value, Proble
         }
     }
     Ok(node)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_value;
+    use serde_json::json;
+
+    #[test]
+    fn enum_variants_keep_their_names() {
+        let v = |t: &str| parse_value(t).unwrap_or_else(|e| panic!("{t}: {e}"));
+        assert_eq!(v("Sobol"), json!("Sobol"));
+        assert_eq!(
+            v("Path(max_depth: 8, rr_depth: 5)"),
+            json!({"Path": {"max_depth": 8, "rr_depth": 5}})
+        );
+        assert_eq!(v("Some(3.5)"), json!(3.5));
+        assert_eq!(v("None"), json!(null));
+        assert_eq!(v("true"), json!(true));
+        assert_eq!(v("256"), json!(256));
+        assert_eq!(v("(0.2, 0.2, 0.2)"), json!([0.2, 0.2, 0.2]));
+        assert_eq!(v("\"box.obj\""), json!("box.obj"));
+    }
 }
