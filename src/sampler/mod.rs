@@ -74,7 +74,13 @@ impl Sampler {
     pub fn next_f32(&mut self) -> f32 {
         match self.kind {
             SamplerKind::Independent => self.rng.next_f32(),
-            _ => self.next_vec2().x,
+            // The x of the 2-D point `next_vec2` would give, without its y.
+            SamplerKind::Sobol => {
+                let h = self.dim_hash();
+                let i = permutation_element(self.index, self.spp.next_power_of_two(), h as u32);
+                to_unit(sobol::owen_scramble_reversed(i, (h >> 32) as u32))
+            }
+            SamplerKind::Stratified => self.next_vec2().x,
         }
     }
 
@@ -102,9 +108,9 @@ impl Sampler {
             SamplerKind::Sobol => {
                 let h = self.dim_hash();
                 let i = permutation_element(self.index, self.spp.next_power_of_two(), h as u32);
-                let (a, b) = sobol::sample_2d(i);
-                let x = sobol::owen_scramble(a, (h >> 32) as u32);
-                let y = sobol::owen_scramble(b, (mix64(h) >> 32) as u32);
+                let (a, b) = sobol::sample_2d_reversed(i);
+                let x = sobol::owen_scramble_reversed(a, (h >> 32) as u32);
+                let y = sobol::owen_scramble_reversed(b, (mix64(h) >> 32) as u32);
                 Vec2::new(to_unit(x), to_unit(y))
             }
         }
@@ -153,7 +159,9 @@ pub fn permutation_element(mut i: u32, n: u32, seed: u32) -> u32 {
             break;
         }
     }
-    (i.wrapping_add(seed)) % l
+    // A power of two (Sobol's case) needs no division.
+    let j = i.wrapping_add(seed);
+    if l.is_power_of_two() { j & (l - 1) } else { j % l }
 }
 
 #[cfg(test)]

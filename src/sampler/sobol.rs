@@ -1,21 +1,31 @@
 //! The first two dimensions of the Sobol sequence and hash-based Owen
 //! scrambling (Burley 2020, <https://jcgt.org/published/0009/04/01/>).
 
-/// Point `i` of the 2-D Sobol (0,2)-sequence as 32-bit fixed point.
+/// Point `i` of the 2-D Sobol (0,2)-sequence as 32-bit fixed point (the
+/// sampler uses the reversed form below; this one states what it computes).
+#[cfg(test)]
+pub fn sample_2d(i: u32) -> (u32, u32) {
+    let (x, y) = sample_2d_reversed(i);
+    (x.reverse_bits(), y.reverse_bits())
+}
+
+/// [`sample_2d`] with the bits of each coordinate reversed. Owen scrambling
+/// works on reversed bits, and x86 has no bit-reversal instruction (each
+/// `reverse_bits` is a dozen shifts and masks), so the sampler stays in this
+/// form until the end: two reversals per 2-D point instead of six.
 #[inline]
-pub fn sample_2d(mut i: u32) -> (u32, u32) {
-    // Dimension 0 is the van der Corput sequence: bit reversal.
-    let x = i.reverse_bits();
+pub fn sample_2d_reversed(mut i: u32) -> (u32, u32) {
+    // Dimension 0 is the van der Corput sequence: reversed, the index.
+    let x = i;
     // Dimension 1: generator matrix of the polynomial x + 1, whose columns
-    // are built by v ← v ⊕ (v >> 1) from the top bit.
+    // are built by v ← v ⊕ (v >> 1) from the top bit; reversed, v ← v ⊕
+    // (v << 1) from the bottom one. Branch-free: the index bits are random.
     let mut y = 0u32;
-    let mut v = 1u32 << 31;
+    let mut v = 1u32;
     while i != 0 {
-        if i & 1 != 0 {
-            y ^= v;
-        }
+        y ^= v & (i & 1).wrapping_neg();
         i >>= 1;
-        v ^= v >> 1;
+        v ^= v << 1;
     }
     (x, y)
 }
@@ -23,10 +33,15 @@ pub fn sample_2d(mut i: u32) -> (u32, u32) {
 /// Laine–Karras style hash acting as a nested uniform scramble on
 /// bit-reversed values: each bit is flipped depending only on the bits above
 /// it, which is exactly Owen scrambling.
-#[inline]
+#[cfg(test)]
 pub fn owen_scramble(x: u32, seed: u32) -> u32 {
-    let mut v = x.reverse_bits();
-    v = v.wrapping_add(seed);
+    owen_scramble_reversed(x.reverse_bits(), seed)
+}
+
+/// [`owen_scramble`] of the value whose reversed bits are `r`.
+#[inline]
+pub fn owen_scramble_reversed(r: u32, seed: u32) -> u32 {
+    let mut v = r.wrapping_add(seed);
     v ^= v.wrapping_mul(0x6c50_b47c);
     v ^= v.wrapping_mul(0xb82f_1e52);
     v ^= v.wrapping_mul(0xc7af_e638);
@@ -37,6 +52,26 @@ pub fn owen_scramble(x: u32, seed: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn reversed_form_matches_the_plain_generator() {
+        // The generator as first written: columns from the top bit down.
+        let plain = |mut i: u32| {
+            let x = i.reverse_bits();
+            let (mut y, mut v) = (0u32, 1u32 << 31);
+            while i != 0 {
+                if i & 1 != 0 {
+                    y ^= v;
+                }
+                i >>= 1;
+                v ^= v >> 1;
+            }
+            (x, y)
+        };
+        for i in (0..4096).chain([u32::MAX, 0x8000_0001, 123_456_789]) {
+            assert_eq!(sample_2d(i), plain(i), "point {i}");
+        }
+    }
 
     #[test]
     fn sobol_first_16_points_are_a_0_4_2_net() {
