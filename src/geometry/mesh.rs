@@ -29,8 +29,9 @@ pub struct Mesh {
     pub slots: Vec<u32>,
     /// Number of slots (≥ 1).
     pub slot_count: u32,
-    /// Vertices of each triangle in leaf order, one [`Tri4`] SoA block per
-    /// BVH leaf, plus 3 spare floats; filled by `prepare`.
+    /// Vertices of each triangle in leaf order, as [`Tri4`] SoA blocks of up
+    /// to four (one or two per BVH leaf), plus 3 spare floats; filled by
+    /// `prepare`.
     tris: Vec<f32>,
     blas: Option<WideBvh>,
 }
@@ -78,10 +79,14 @@ impl Mesh {
         let mut tris = vec![0.0; FLOATS * self.indices.len() + 3];
         let mut rest = tris.as_mut_slice();
         let mut jobs = Vec::with_capacity(starts.len());
+        let mut next = 0;
         for &(first, count) in &starts {
+            // The leaves tile the slots, so the blocks tile the array.
+            debug_assert_eq!(first, next, "leaf blocks leave a gap");
             let (block, tail) = rest.split_at_mut(FLOATS * count as usize);
             jobs.push((block, first, count));
             rest = tail;
+            next = first + count;
         }
         jobs.into_par_iter().for_each(|(block, first, count)| {
             for i in 0..count {

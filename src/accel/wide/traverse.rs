@@ -9,8 +9,8 @@
 //! level pushes at most `WIDTH - 1` entries beyond the one it pops, so
 //! `(WIDTH - 1) · MAX_DEPTH + 1` never overflows.
 //! It is left uninitialised: zeroing the 1.5 KB stack of the 4-wide tree per
-//! ray was 4–6% of the time of
-//! a render or a benchmark, and only the entries below `sp` are ever read.
+//! ray was 4–6% of the time of a render or a benchmark, and only the entries
+//! below `sp` are ever read.
 
 use super::{EMPTY, LEAF, WIDTH, WideBvh, WideNode, leaf_range};
 use crate::accel::aabb::{FAR_SCALE, safe_inv_dir};
