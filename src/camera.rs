@@ -36,7 +36,7 @@ impl Camera {
         }
     }
 
-    /// Ray through film position `film` ∈ [0,1]² (x right, y down) for an
+    /// Ray through film position `film` ∈ `[0, 1]²` (x right, y down) for an
     /// image of aspect `width / height`; `u_lens` samples the aperture.
     #[inline]
     pub fn ray(&self, film: Vec2, aspect: f32, u_lens: Vec2) -> Ray {

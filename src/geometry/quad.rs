@@ -1,4 +1,4 @@
-//! Parallelogram `corner + s·u + t·v`, s,t ∈ [0,1]; also the shape of area
+//! Parallelogram `corner + s·u + t·v`, s,t ∈ `[0, 1]`; also the shape of area
 //! lights.
 
 use super::Hit;

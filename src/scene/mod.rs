@@ -1,5 +1,5 @@
 //! The scene pipeline: read → parse ([`desc`]) → [`validate`] → [`build`] →
-//! runtime [`Scene`]. [`load`] runs them all and turns each stage's problems
+//! runtime [`Scene`]. [`load()`] runs them all and turns each stage's problems
 //! into located diagnostics.
 
 pub mod build;

@@ -3,10 +3,10 @@
 //!
 //! The main thread owns the filesystem watcher: a change cancels the render
 //! in flight at once, then, once the files have been quiet for a moment
-//! ([`debounce`]), reloads and validates. A valid scene goes to the render
-//! worker ([`progressive`]), which writes a quick pass and then refines it;
+//! (`debounce`), reloads and validates. A valid scene goes to the render
+//! worker (`progressive`), which writes a quick pass and then refines it;
 //! an invalid one prints its diagnostics and leaves the image on disk alone.
-//! Folders are watched rather than files ([`watched`]), and the set is
+//! Folders are watched rather than files (`watched`), and the set is
 //! re-derived after every reload, so adding or renaming an OBJ re-arms it.
 
 mod debounce;

@@ -1,9 +1,12 @@
-//! Bounding volume hierarchy over primitive bounds.
+//! Binary bounding volume hierarchy over primitive bounds: the build stage
+//! of the 8-wide [`super::WideBvh`] every ray traverses.
 //!
 //! Built once from one box per primitive ([`Bvh::build`], binned SAH, see
-//! `build.rs`); traversed with a closure that intersects a primitive by its
-//! index in the caller's array (`traverse.rs`). The BVH never sees shapes, so
-//! triangles, analytic shapes and SDF bounds all share it.
+//! `build.rs`). Its own closure-based traversal (`traverse.rs`) is no longer
+//! on the render path; it stays as the simple reference the builder's tests
+//! (brute force, degenerate inputs, depth budget) check the tree through.
+//! The BVH never sees shapes, so triangles, analytic shapes and SDF bounds
+//! all share it.
 //!
 //! Inputs must be NaN-free. Boxes may be flat (zero thickness on an axis, as
 //! for axis-aligned triangles) or huge; empty boxes ([`Aabb::EMPTY`]) are

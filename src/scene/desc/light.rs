@@ -20,7 +20,7 @@ pub enum LightDesc {
         #[serde(default)]
         falloff_degrees: f32,
     },
-    /// Parallelogram `corner + s·edge_u + t·edge_v`, s,t ∈ [0,1], emitting
+    /// Parallelogram `corner + s·edge_u + t·edge_v`, s,t ∈ `[0, 1]`, emitting
     /// `radiance` (W/(m²·sr)) from the side its normal `normalize(edge_u ×
     /// edge_v)` points to. Visible to camera rays.
     Quad {

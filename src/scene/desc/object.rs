@@ -94,7 +94,7 @@ pub enum ObjectDesc {
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
-    /// Parallelogram `corner + s·edge_u + t·edge_v`, s,t ∈ [0,1].
+    /// Parallelogram `corner + s·edge_u + t·edge_v`, s,t ∈ `[0, 1]`.
     Quad {
         corner: V3,
         edge_u: V3,
