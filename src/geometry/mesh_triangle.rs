@@ -1,9 +1,8 @@
 //! One triangle of a small mesh placed directly in the scene BVH.
 //!
 //! Going through an instance costs a ray transform, a second traversal
-//! setup and a second stack; for a 12-triangle Cornell block that overhead
-//! was most of what a ray spent on the block (flattening made the Cornell
-//! render 7% faster). Meshes of at most [`FLATTEN_MAX`] triangles that are
+//! setup and a second stack, which a 12-triangle Cornell block does not
+//! repay (flattening made the Cornell render 7% faster). Meshes of at most [`FLATTEN_MAX`] triangles that are
 //! baked into world space (a scene's `Mesh` object, not a shared
 //! `Instance`) therefore put each triangle in the top level, and keep their
 //! [`super::Instance`] only for shading (normals, UVs, material slots).

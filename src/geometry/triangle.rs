@@ -95,7 +95,7 @@ impl WatertightRay {
 /// Floats per triangle in a [`Tri4`] leaf block.
 pub const FLOATS: usize = 9;
 
-/// A leaf's triangles, tested four at a time. The block is the leaf's
+/// Up to four of a leaf's triangles, tested at once. The block holds its
 /// `count` triangles in SoA order: component `k` (vertex `k / 3`, axis
 /// `k % 3`) of lane `i` is `soa[k * count + i]`. A 4-lane load of a
 /// component of a short leaf reads the next component's values into the
