@@ -89,12 +89,12 @@ impl Mesh {
             next = first + count;
         }
         jobs.into_par_iter().for_each(|(block, first, count)| {
-            for i in 0..count {
-                let (a, b, c) = self.corners(first + i);
-                for (k, x) in [a, b, c].iter().flat_map(|p| p.to_array()).enumerate() {
-                    block[k * count as usize + i as usize] = x;
-                }
+            let mut corners = [[Vec3A::ZERO; 3]; 4];
+            for (i, c) in corners.iter_mut().take(count as usize).enumerate() {
+                let (a, b, v) = self.corners(first + i as u32);
+                *c = [a, b, v];
             }
+            Tri4::pack(block, &corners[..count as usize]);
         });
         self.tris = tris;
         self.blas = Some(blas);

@@ -107,6 +107,16 @@ pub struct Tri4<'a> {
 }
 
 impl Tri4<'_> {
+    /// Writes `tris` (at most four) into `block` in the layout above.
+    pub fn pack(block: &mut [f32], tris: &[[Vec3A; 3]]) {
+        let c = tris.len();
+        for (i, t) in tris.iter().enumerate() {
+            for (k, x) in t.iter().flat_map(|p| p.to_array()).enumerate() {
+                block[k * c + i] = x;
+            }
+        }
+    }
+
     /// Triangle `i` of the block.
     #[inline]
     fn corners(&self, i: usize) -> [Vec3A; 3] {
@@ -269,13 +279,8 @@ mod tests {
 
     /// Packs `tris` as one `Tri4` block (plus the 3 spare floats).
     fn pack(tris: &[[Vec3A; 3]]) -> Vec<f32> {
-        let c = tris.len();
-        let mut soa = vec![f32::NAN; FLOATS * c + 3];
-        for (i, t) in tris.iter().enumerate() {
-            for (k, x) in t.iter().flat_map(|p| p.to_array()).enumerate() {
-                soa[k * c + i] = x;
-            }
-        }
+        let mut soa = vec![f32::NAN; FLOATS * tris.len() + 3];
+        Tri4::pack(&mut soa, tris);
         soa
     }
 

@@ -142,20 +142,12 @@ fn build_rec(
     };
     let (left, right) = refs.split_at_mut(mid);
     let second_first = first + mid as u32;
+    let limits = (budget.saturating_sub(1), max_leaf);
     if n >= PARALLEL_MIN {
         let mut right_nodes = Vec::new();
         rayon::join(
-            || build_rec(left, first, lb, lcb, (budget.saturating_sub(1), max_leaf), out),
-            || {
-                build_rec(
-                    right,
-                    second_first,
-                    rb,
-                    rcb,
-                    (budget.saturating_sub(1), max_leaf),
-                    &mut right_nodes,
-                )
-            },
+            || build_rec(left, first, lb, lcb, limits, out),
+            || build_rec(right, second_first, rb, rcb, limits, &mut right_nodes),
         );
         let shift = out.len() as u32;
         out[me] = Node::interior(b, shift);
@@ -166,16 +158,9 @@ fn build_rec(
             node
         }));
     } else {
-        build_rec(left, first, lb, lcb, (budget.saturating_sub(1), max_leaf), out);
+        build_rec(left, first, lb, lcb, limits, out);
         out[me] = Node::interior(b, out.len() as u32);
-        build_rec(
-            right,
-            second_first,
-            rb,
-            rcb,
-            (budget.saturating_sub(1), max_leaf),
-            out,
-        );
+        build_rec(right, second_first, rb, rcb, limits, out);
     }
 }
 
