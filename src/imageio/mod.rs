@@ -6,7 +6,7 @@ pub mod metrics;
 pub mod read;
 pub mod write;
 
-pub use metrics::{Comparison, compare};
+pub use metrics::{Block, Comparison, blocks, compare};
 pub use read::read_image;
 pub use write::write_image;
 

@@ -1,7 +1,7 @@
 //! Direct lighting: emission seen by the camera plus one bounce of light from
 //! every light, estimated by light sampling with shadow rays.
 
-use super::{Counters, emitted, shadow_extent, spawn};
+use super::{Counters, emitted, shadow_ray};
 use crate::geometry::Hit;
 use crate::lights::Light;
 use crate::materials::{Bsdf, Bxdf};
@@ -73,9 +73,9 @@ pub(crate) fn all_lights(
             if f == Rgb::ZERO {
                 continue;
             }
-            let shadow = spawn(hit, ls.wi);
+            let (shadow, extent) = shadow_ray(hit, &ls);
             counters.rays += 1;
-            if !scene.occluded(&shadow, shadow_extent(hit, &shadow, ls.dist)) {
+            if !scene.occluded(&shadow, extent) {
                 sum += f * ls.li * wi.z.abs() / ls.pdf;
             }
         }

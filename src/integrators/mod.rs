@@ -10,7 +10,7 @@ pub use path::Path;
 pub use whitted::Whitted;
 
 use crate::geometry::{Hit, NO_LIGHT};
-use crate::lights::Light;
+use crate::lights::{Light, LightSample};
 use crate::math::{Ray, Rgb, ray_epsilon};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -52,22 +52,47 @@ pub(crate) fn emitted(scene: &Scene, hit: &Hit, ray_dir: Vec3A) -> Rgb {
     }
 }
 
-/// A ray leaving `hit` toward `w`, nudged off the surface along the
-/// geometric normal on `w`'s side so it cannot re-hit its own surface.
+/// A ray leaving `hit` toward `w`, its origin moved off the surface along
+/// the geometric normal on `w`'s side so it cannot re-hit its own surface.
 #[inline]
 pub(crate) fn spawn(hit: &Hit, w: Vec3A) -> Ray {
-    let off = hit.ng * ray_epsilon(hit.p);
-    let o = if hit.ng.dot(w) >= 0.0 {
-        hit.p + off
-    } else {
-        hit.p - off
-    };
-    Ray::new(o, w)
+    Ray::new(offset_origin(hit.p, hit.ng, w), w)
 }
 
-/// Shadow-ray extent toward a point `dist` away from `hit.p`, stopping just
-/// short of the light's own surface.
+/// `p` moved off its surface (normal `n`) by [`ray_epsilon`] to the side
+/// `w` points into. The offset is along the normal, so the moved point is off
+/// the surface's plane by the full margin whatever the angle of `w`.
 #[inline]
-pub(crate) fn shadow_extent(hit: &Hit, shadow: &Ray, dist: f32) -> f32 {
-    (dist - (shadow.o - hit.p).length()) * (1.0 - 1e-4)
+fn offset_origin(p: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
+    let off = n * ray_epsilon(p);
+    if n.dot(w) >= 0.0 { p + off } else { p - off }
+}
+
+/// The shadow ray from `hit` to the point `ls` sampled on a light, and its
+/// extent: the segment between the two points, each moved off its own
+/// surface (pbrt-v4's `SpawnRayTo` between two interactions).
+///
+/// Direction and extent are measured from the moved origin to the moved
+/// target, so the segment lies on the open side of both surfaces' planes and
+/// cannot touch either, at any angle and any distance from the origin. (Before
+/// this, the direction and extent were those of the unmoved points: at
+/// grazing angles the ray then crossed the light's own plane before its
+/// extent ended, and a floor beyond about 60° from a quad light went black.)
+/// Delta lights have no surface (`ls.n` is zero); their point is the target.
+/// The extent stops a relative 1e-4 short of the target.
+#[inline]
+pub(crate) fn shadow_ray(hit: &Hit, ls: &LightSample) -> (Ray, f32) {
+    let o = offset_origin(hit.p, hit.ng, ls.wi);
+    let target = if ls.n == Vec3A::ZERO {
+        ls.p
+    } else {
+        offset_origin(ls.p, ls.n, o - ls.p)
+    };
+    let d = target - o;
+    let len = d.length();
+    if !(len > 0.0 && len.is_finite()) {
+        // The two ends coincide: nothing can lie between them.
+        return (Ray::new(o, ls.wi), 0.0);
+    }
+    (Ray::new(o, d / len), len * (1.0 - 1e-4))
 }

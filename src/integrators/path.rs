@@ -14,7 +14,7 @@
 //! count fully, since light sampling cannot produce those paths. Each path
 //! therefore counts every emitter exactly once.
 
-use super::{Counters, emitted, shadow_extent, spawn};
+use super::{Counters, emitted, shadow_ray, spawn};
 use crate::geometry::NO_LIGHT;
 use crate::lights::{Light, LightPicker};
 use crate::materials::Bxdf;
@@ -83,9 +83,9 @@ impl Path {
                     let wi = frame.to_local(ls.wi);
                     let f = bsdf.eval(wo, wi) * wi.z.abs();
                     if f != Rgb::ZERO {
-                        let shadow = spawn(&hit, ls.wi);
+                        let (shadow, extent) = shadow_ray(&hit, &ls);
                         counters.rays += 1;
-                        if !scene.occluded(&shadow, shadow_extent(&hit, &shadow, ls.dist)) {
+                        if !scene.occluded(&shadow, extent) {
                             let light_pdf = pmf * ls.pdf;
                             let w = if ls.delta {
                                 1.0

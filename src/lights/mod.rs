@@ -26,8 +26,14 @@ pub enum Light {
 pub struct LightSample {
     /// Unit direction from the shading point toward the light.
     pub wi: Vec3A,
-    /// Distance to the sampled point (the shadow ray's extent).
+    /// Distance from the shading point to the sampled point.
     pub dist: f32,
+    /// The sampled point on the light.
+    pub p: Vec3A,
+    /// Unit surface normal at `p` on the emitting side, or zero for lights
+    /// without a surface (points, spots): shadow rays stop short of a
+    /// surface by leaving it along this normal (`integrators::shadow_ray`).
+    pub n: Vec3A,
     /// Incident radiance (area lights) or `I/r²` (delta lights), to be
     /// divided by `pdf`.
     pub li: Rgb,

@@ -23,6 +23,8 @@ impl PointLight {
         Some(LightSample {
             wi: d / dist,
             dist,
+            p: self.position,
+            n: Vec3A::ZERO,
             li: self.intensity / dist2,
             pdf: 1.0,
             delta: true,

@@ -54,6 +54,8 @@ impl QuadLight {
         Some(LightSample {
             wi,
             dist,
+            p: q,
+            n: self.n,
             li: self.radiance,
             pdf: dist2 / (cos_l * self.area),
             delta: false,

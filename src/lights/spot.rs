@@ -67,6 +67,8 @@ impl SpotLight {
         Some(LightSample {
             wi,
             dist,
+            p: self.position,
+            n: Vec3A::ZERO,
             li: self.intensity * f / dist2,
             pdf: 1.0,
             delta: true,
