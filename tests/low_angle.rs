@@ -159,3 +159,94 @@ fn path_lights_a_floor_at_every_angle_and_distance_from_the_origin() {
 fn whitted_lights_a_floor_at_every_angle_and_distance_from_the_origin() {
     check("Whitted(max_depth: 1, light_samples: 1)", 8192);
 }
+
+/// Rays leaving a hit at grazing angles (0.001° to 5° above the tangent
+/// plane) on convex shapes — sphere, rect, plane and a box mesh — placed
+/// 0.1 to 1000 units from the origin must not hit their own surface again.
+#[test]
+fn grazing_bounce_rays_do_not_re_hit_their_own_surface() {
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
+    let block = assets.join("tall_block.obj");
+    // Each shape, moved to `b` by its last transform step.
+    let shapes: [(&str, &dyn Fn(&str) -> String); 4] = [
+        ("sphere", &|b| {
+            format!("Sphere(center: (0, 0, 0), radius: 0.7, material: \"m\", transform: [Translate({b})])")
+        }),
+        ("rect", &|b| {
+            format!(
+                "Rect(center: (0, 0, 0), half_u: (0.9, 0.1, 0), half_v: (0, 0.2, 0.6), material: \"m\", transform: [Translate({b})])"
+            )
+        }),
+        ("plane", &|b| {
+            format!(
+                "Plane(point: (0, 0, 0), normal: (0.2, 1, 0.1), material: \"m\", transform: [Translate({b})])"
+            )
+        }),
+        ("box mesh", &|b| {
+            format!(
+                "Mesh(file: {:?}, material: \"m\", transform: [Translate((0, 0.4, 0.35)), Translate({b})])",
+                block.display()
+            )
+        }),
+    ];
+    let mut failures = Vec::new();
+    for dist in DISTANCES {
+        let b = base(dist);
+        for (name, object) in &shapes {
+            let text = format!(
+                r#"Scene(
+                camera: (eye: (0, 0, 5), target: (0, 0, 0), fov_y_degrees: 30),
+                materials: {{ "m": Lambert(albedo: (0.5, 0.5, 0.5)) }},
+                lights: [Point(position: (0, 5, 0), intensity: (1, 1, 1))],
+                objects: [{}],
+            )"#,
+                object(&v(b))
+            );
+            let s = match load_str(Path::new("grazing.ron"), &text, &Overrides::default()) {
+                Ok(l) => l.scene,
+                Err(e) => panic!("{name}: {e}\n{text}"),
+            };
+            let centre = Vec3A::new(b.x as f32, b.y as f32, b.z as f32);
+            let mut rng = Pcg32::new(7, dist as u64);
+            let mut hits = 0;
+            for case in 0..1000 {
+                let u = |r: &mut Pcg32| r.next_f32() * 2.0 - 1.0;
+                let from =
+                    centre + Vec3A::new(u(&mut rng), u(&mut rng), u(&mut rng)).normalize_or(Vec3A::Y) * 3.0;
+                let to = centre + 0.3 * Vec3A::new(u(&mut rng), u(&mut rng), u(&mut rng));
+                let Some(hit) = s.intersect(&Ray::new(from, (to - from).normalize()), f32::INFINITY) else {
+                    continue;
+                };
+                hits += 1;
+                // The side the ray came from, and a tangent on it.
+                let n = if hit.ng.dot(from - hit.p) > 0.0 {
+                    hit.ng
+                } else {
+                    -hit.ng
+                };
+                let t = n.any_orthonormal_vector();
+                let t = (t * rng.next_f32().mul_add(2.0, -1.0) + n.cross(t)).normalize();
+                let degrees = [0.001f32, 0.01, 0.1, 1.0, 5.0][case % 5];
+                let a = degrees.to_radians();
+                let w = (t * a.cos() + n * a.sin()).normalize();
+                let ray = ronray::integrators::spawn(&hit, w);
+                if let Some(again) = s.intersect(&ray, f32::INFINITY) {
+                    failures.push(format!(
+                        "{name} at {dist} from the origin, {degrees}° above the surface: re-hit at t = {}",
+                        again.t
+                    ));
+                }
+            }
+            assert!(
+                hits > 100,
+                "{name} at {dist}: only {hits} of 1000 set-up rays hit"
+            );
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} re-hits:\n{}",
+        failures.len(),
+        failures[..failures.len().min(20)].join("\n")
+    );
+}

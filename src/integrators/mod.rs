@@ -55,7 +55,7 @@ pub(crate) fn emitted(scene: &Scene, hit: &Hit, ray_dir: Vec3A) -> Rgb {
 /// A ray leaving `hit` toward `w`, its origin moved off the surface along
 /// the geometric normal on `w`'s side so it cannot re-hit its own surface.
 #[inline]
-pub(crate) fn spawn(hit: &Hit, w: Vec3A) -> Ray {
+pub fn spawn(hit: &Hit, w: Vec3A) -> Ray {
     Ray::new(offset_origin(hit.p, hit.ng, w), w)
 }
 
@@ -81,7 +81,7 @@ fn offset_origin(p: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
 /// Delta lights have no surface (`ls.n` is zero); their point is the target.
 /// The extent stops a relative 1e-4 short of the target.
 #[inline]
-pub(crate) fn shadow_ray(hit: &Hit, ls: &LightSample) -> (Ray, f32) {
+pub fn shadow_ray(hit: &Hit, ls: &LightSample) -> (Ray, f32) {
     let o = offset_origin(hit.p, hit.ng, ls.wi);
     let target = if ls.n == Vec3A::ZERO {
         ls.p
