@@ -160,6 +160,9 @@ fn whitted_lights_a_floor_at_every_angle_and_distance_from_the_origin() {
     check("Whitted(max_depth: 1, light_samples: 1)", 8192);
 }
 
+/// An object's RON text, given where to move it.
+type Placed = dyn Fn(&str) -> String;
+
 /// Rays leaving a hit at grazing angles (0.001° to 5° above the tangent
 /// plane) on convex shapes — sphere, rect, plane and a box mesh — placed
 /// 0.1 to 1000 units from the origin must not hit their own surface again.
@@ -168,7 +171,7 @@ fn grazing_bounce_rays_do_not_re_hit_their_own_surface() {
     let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
     let block = assets.join("tall_block.obj");
     // Each shape, moved to `b` by its last transform step.
-    let shapes: [(&str, &dyn Fn(&str) -> String); 4] = [
+    let shapes: [(&str, &Placed); 4] = [
         ("sphere", &|b| {
             format!("Sphere(center: (0, 0, 0), radius: 0.7, material: \"m\", transform: [Translate({b})])")
         }),
