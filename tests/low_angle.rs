@@ -161,7 +161,7 @@ fn whitted_lights_a_floor_at_every_angle_and_distance_from_the_origin() {
 }
 
 /// An object's RON text, given where to move it.
-type Placed = dyn Fn(&str) -> String;
+type Placed<'a> = dyn Fn(&str) -> String + 'a;
 
 /// Rays leaving a hit at grazing angles (0.001° to 5° above the tangent
 /// plane) on convex shapes — sphere, rect, plane and a box mesh — placed
@@ -171,7 +171,7 @@ fn grazing_bounce_rays_do_not_re_hit_their_own_surface() {
     let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
     let block = assets.join("tall_block.obj");
     // Each shape, moved to `b` by its last transform step.
-    let shapes: [(&str, &Placed); 4] = [
+    let shapes: [(&str, &Placed<'_>); 4] = [
         ("sphere", &|b| {
             format!("Sphere(center: (0, 0, 0), radius: 0.7, material: \"m\", transform: [Translate({b})])")
         }),
