@@ -13,15 +13,14 @@
 //! not. The threshold is the scene's `test.tolerance` (default
 //! [`DEFAULT_TOLERANCE`]).
 
+use crate::desc::TestDesc;
 use crate::imageio::{Image, compare, metrics, read_image, srgb_decode, srgb8, write_image};
+use crate::load::{LoadError, Overrides, load_with};
 use crate::render::{RenderOptions, render};
-use crate::scene::desc::TestDesc;
-use crate::scene::{LoadError, Overrides, load_with};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-/// Default largest relative MSE against a golden image.
-pub const DEFAULT_TOLERANCE: f32 = 0.02;
+pub use crate::desc::DEFAULT_TOLERANCE;
 /// Box-downsampling factor applied before comparing.
 pub const COMPARE_FACTOR: u32 = 4;
 
@@ -128,6 +127,7 @@ pub fn render_test(scene: &Path, threads: Option<usize>) -> Result<(Image, TestD
     let loaded = load_with(scene, &o)?;
     let (img, _) = render(
         &loaded.scene,
+        &loaded.view,
         &RenderOptions {
             threads,
             ..Default::default()

@@ -1,23 +1,26 @@
 //! ronray: a physically based renderer driven by hand-written RON scene files.
 //!
-//! The pipeline is read → parse → validate → build → render; each stage is
-//! its own module under [`scene`], and the renderer only ever sees the runtime
-//! [`scene::Scene`].
+//! The pipeline is read → parse ([`desc`]) → check → build ([`load`]) →
+//! render ([`render`]). The loader returns the runtime [`scene::Scene`] (what
+//! rays query) and the [`view::View`] beside it (camera, film, integrator);
+//! the renderer sees only those two.
 
 pub mod accel;
-pub mod bench;
 pub mod camera;
 pub mod check;
 pub mod cli;
+pub mod desc;
 pub mod diagnostic;
 pub mod geometry;
 pub mod imageio;
 pub mod integrators;
 pub mod lights;
+pub mod load;
 pub mod materials;
 pub mod math;
 pub mod render;
 pub mod sampler;
 pub mod scene;
 pub mod schema;
+pub mod view;
 pub mod watch;

@@ -9,6 +9,7 @@ use crate::integrators::Counters;
 use crate::math::Rgb;
 use crate::sampler::Sampler;
 use crate::scene::Scene;
+use crate::view::View;
 use glam::Vec2;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -50,23 +51,28 @@ impl RenderStats {
 
 /// Renders the whole image; the returned pixels are the mean over the
 /// rendered samples.
-pub fn render(scene: &Scene, opts: &RenderOptions) -> (Image, RenderStats) {
-    render_cancellable(scene, opts, &AtomicBool::new(false))
+pub fn render(scene: &Scene, view: &View, opts: &RenderOptions) -> (Image, RenderStats) {
+    render_cancellable(scene, view, opts, &AtomicBool::new(false))
 }
 
 /// As [`render`], but gives up early (returning `cancelled: true`) once
 /// `cancel` is set; tiles already started finish first.
-pub fn render_cancellable(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBool) -> (Image, RenderStats) {
+pub fn render_cancellable(
+    scene: &Scene,
+    view: &View,
+    opts: &RenderOptions,
+    cancel: &AtomicBool,
+) -> (Image, RenderStats) {
     let start = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.threads.unwrap_or(0))
         .build();
-    let work = || render_tiles(scene, opts, cancel, None);
+    let work = || render_tiles(scene, view, opts, cancel, None);
     let (mut image, counters, samples) = match pool {
         Ok(pool) => pool.install(work),
         Err(_) => work(),
     };
-    let spp = opts.sample_range.map_or(scene.film.spp, |(_, n)| n);
+    let spp = opts.sample_range.map_or(view.film.spp, |(_, n)| n);
     for p in &mut image.pixels {
         *p /= spp as f32;
     }
@@ -87,16 +93,17 @@ pub fn render_cancellable(scene: &Scene, opts: &RenderOptions, cancel: &AtomicBo
 /// `sums` untouched.
 pub fn render_accumulate(
     scene: &Scene,
+    view: &View,
     opts: &RenderOptions,
     cancel: &AtomicBool,
     sums: &mut Image,
 ) -> RenderStats {
-    debug_assert_eq!((sums.width, sums.height), (scene.film.width, scene.film.height));
+    debug_assert_eq!((sums.width, sums.height), (view.film.width, view.film.height));
     let start = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.threads.unwrap_or(0))
         .build();
-    let work = || render_tiles(scene, opts, cancel, Some(&*sums));
+    let work = || render_tiles(scene, view, opts, cancel, Some(&*sums));
     let (image, counters, samples) = match pool {
         Ok(pool) => pool.install(work),
         Err(_) => work(),
@@ -116,11 +123,12 @@ pub fn render_accumulate(
 /// Per-pixel sample sums, continuing from `prefix` when given.
 fn render_tiles(
     scene: &Scene,
+    view: &View,
     opts: &RenderOptions,
     cancel: &AtomicBool,
     prefix: Option<&Image>,
 ) -> (Image, Counters, u64) {
-    let film = scene.film;
+    let film = view.film;
     let (w, h) = (film.width, film.height);
     let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx, ty)))
@@ -156,8 +164,8 @@ fn render_tiles(
                         let jitter = sampler.next_vec2();
                         let film_pos =
                             Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
-                        let ray = scene.camera.ray(film_pos, aspect, sampler.next_vec2());
-                        let li = scene.integrator.li(scene, &ray, &mut sampler, &mut counters);
+                        let ray = view.camera.ray(film_pos, aspect, sampler.next_vec2());
+                        let li = view.integrator.li(scene, &ray, &mut sampler, &mut counters);
                         // A non-finite sample (a numerical bug, caught by
                         // debug asserts) must not poison the pixel in release.
                         if li.is_finite() {

@@ -2,7 +2,7 @@
 //! cannot drift from what the loader accepts (a test compares it with the
 //! committed `schema/scene.schema.json`).
 
-use crate::scene::desc::SceneDesc;
+use crate::desc::SceneDesc;
 
 /// The schema as pretty-printed JSON, newline-terminated.
 pub fn schema_json() -> String {

@@ -1,33 +1,14 @@
 //! Integrators against closed-form answers.
 
+mod common;
+
 use glam::Vec3A;
-use ronray::integrators::Counters;
-use ronray::math::{Pcg32, Ray};
-use ronray::sampler::Sampler;
-use ronray::scene::{Overrides, load_str};
+use ronray::load::{Overrides, load_str};
+use ronray::math::Ray;
 use std::f32::consts::PI;
 use std::path::Path;
 
-fn scene(text: &str) -> ronray::scene::Scene {
-    match load_str(Path::new("analytic.ron"), text, &Overrides::default()) {
-        Ok(l) => l.scene,
-        Err(e) => panic!(
-            "test scene must load: {e}\n{}",
-            e.report().map(|r| r.to_string()).unwrap_or_default()
-        ),
-    }
-}
-
-/// Mean radiance along `ray` over `n` independent estimates.
-fn mean_li(scene: &ronray::scene::Scene, ray: Ray, n: u32) -> Vec3A {
-    let mut sum = Vec3A::ZERO;
-    let mut c = Counters::default();
-    for i in 0..n {
-        let mut sampler = Sampler::independent(Pcg32::for_sample(0, 0, i, 99));
-        sum += scene.integrator.li(scene, &ray, &mut sampler, &mut c);
-    }
-    sum / n as f32
-}
+use common::{load_text as scene, mean_li};
 
 #[test]
 fn direct_point_light_on_lambert_plane_matches_closed_form() {
@@ -43,7 +24,7 @@ fn direct_point_light_on_lambert_plane_matches_closed_form() {
     )"#,
     );
     // The pixel at the image centre sees the origin, straight below the light.
-    let (img, _) = ronray::render::render(&s, &Default::default());
+    let (img, _) = ronray::render::render(&s.scene, &s.view, &Default::default());
     let got = img.get(16, 16);
     let expected = 0.5 / PI * 10.0 * 1.0 / 4.0;
     for c in 0..3 {
@@ -205,7 +186,7 @@ fn whitted_equals_direct_without_specular_surfaces() {
             ..Default::default()
         };
         let l = load_str(&path, &t, &o).expect("scene loads");
-        ronray::render::render(&l.scene, &Default::default()).0
+        ronray::render::render(&l.scene, &l.view, &Default::default()).0
     };
     let direct = render("integrator: Direct(light_samples: 2)");
     let whitted = render("integrator: Whitted(max_depth: 5, light_samples: 2)");

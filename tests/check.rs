@@ -1,27 +1,16 @@
 //! `ronray check`: golden-image regression checks.
 
+mod common;
+
+use common::{ronray_in, root};
 use ronray::check::{DEFAULT_TOLERANCE, golden_error};
 use ronray::imageio::read_image;
-use std::path::{Path, PathBuf};
-use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn ronray(args: &[&str], dir: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ronray"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("ronray runs")
-}
 
 /// Every shipped scene matches its golden image (this is `ronray check
 /// scenes`, run by `cargo test`).
 #[test]
 fn shipped_scenes_match_their_goldens() {
-    let o = ronray(&["check", "scenes"], &root());
+    let o = ronray_in(&root(), &["check", "scenes"]);
     assert!(
         o.status.success(),
         "regressions:\n{}{}",
@@ -61,7 +50,7 @@ fn golden_tolerance_is_above_reseeded_noise() {
             } else {
                 "16"
             };
-            let o = ronray(&[&args[..], &["--spp", spp, "--seed", seed]].concat(), &root());
+            let o = ronray_in(&root(), &[&args[..], &["--spp", spp, "--seed", seed]].concat());
             assert!(o.status.success());
             read_image(&out).expect("png")
         };
@@ -89,12 +78,12 @@ fn check_catches_material_change_and_bless_rewrites_only_failures() {
     std::fs::write(d.join("scenes/a.ron"), &cornell).expect("write");
     std::fs::write(d.join("scenes/b.ron"), &cornell).expect("write");
 
-    let first = ronray(&["check", "scenes"], d);
+    let first = ronray_in(d, &["check", "scenes"]);
     assert_eq!(first.status.code(), Some(1), "missing goldens fail");
     assert!(String::from_utf8_lossy(&first.stdout).contains("MISSING"));
-    assert!(ronray(&["check", "scenes", "--bless"], d).status.success());
+    assert!(ronray_in(d, &["check", "scenes", "--bless"]).status.success());
     assert!(
-        ronray(&["check", "scenes"], d).status.success(),
+        ronray_in(d, &["check", "scenes"]).status.success(),
         "blessed goldens pass"
     );
 
@@ -104,7 +93,7 @@ fn check_catches_material_change_and_bless_rewrites_only_failures() {
     std::fs::write(d.join("scenes/b.ron"), changed).expect("write");
     let golden_a = std::fs::read(d.join("scenes/golden/a.png")).expect("golden a");
     let golden_b = std::fs::read(d.join("scenes/golden/b.png")).expect("golden b");
-    let o = ronray(&["check", "scenes"], d);
+    let o = ronray_in(d, &["check", "scenes"]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(1), "the change must be caught:\n{out}");
     assert!(
@@ -122,7 +111,7 @@ fn check_catches_material_change_and_bless_rewrites_only_failures() {
         .and_then(|m| m.modified())
         .expect("mtime");
     std::thread::sleep(std::time::Duration::from_millis(20));
-    assert!(ronray(&["check", "scenes", "--bless"], d).status.success());
+    assert!(ronray_in(d, &["check", "scenes", "--bless"]).status.success());
     let after_a = std::fs::metadata(d.join("scenes/golden/a.png"))
         .and_then(|m| m.modified())
         .expect("mtime");
@@ -137,5 +126,5 @@ fn check_catches_material_change_and_bless_rewrites_only_failures() {
         !d.join("scenes/golden/b.new.png").exists(),
         "by-products are cleaned up"
     );
-    assert!(ronray(&["check", "scenes"], d).status.success());
+    assert!(ronray_in(d, &["check", "scenes"]).status.success());
 }

@@ -1,18 +1,9 @@
 //! The `ronray` binary as a user drives it.
 
+mod common;
+
+use common::{ronray, root};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn ronray(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ronray"))
-        .args(args)
-        .output()
-        .expect("ronray binary runs")
-}
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 fn tempdir() -> tempfile::TempDir {
     tempfile::tempdir().expect("temp dir")

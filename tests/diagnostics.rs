@@ -1,7 +1,7 @@
 //! Broken scene files give located, helpful diagnostics — all of them at once.
 
 use ronray::diagnostic::Diagnostic;
-use ronray::scene::{LoadError, load};
+use ronray::load::{LoadError, load};
 use std::path::{Path, PathBuf};
 
 fn fixture(name: &str) -> PathBuf {

@@ -116,7 +116,7 @@ fn mesh_is_watertight_at_edges_and_vertices() {
 fn mesh_bvh_matches_brute_force_on_bunny() {
     let mut mesh = load_obj(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/bunny.obj")).expect("bunny");
     mesh.prepare();
-    let rays = ronray::bench::incoherent_rays(&mesh, 5000, 3);
+    let rays = ronray::geometry::ray_sets::incoherent_rays(&mesh, 5000, 3);
     let mut hits = 0;
     for (i, ray) in rays.iter().enumerate() {
         let got = mesh.closest(ray, f32::INFINITY);
@@ -166,7 +166,7 @@ fn instance_matches_baked_mesh() {
         b.contains(&baked.bounds()),
         "instance bounds {b:?} miss the baked mesh"
     );
-    let rays = ronray::bench::incoherent_rays(&baked, 4000, 9);
+    let rays = ronray::geometry::ray_sets::incoherent_rays(&baked, 4000, 9);
     for (i, ray) in rays.iter().enumerate() {
         let (got, want) = (
             inst.closest(ray, f32::INFINITY, &meshes),
@@ -208,7 +208,7 @@ fn mesh_smooth_normals_are_area_weighted() {
 /// A scene with the tall Cornell block, written as a baked `Mesh` object
 /// (`object`) or as an identity `Instance` of a shared mesh.
 fn block_scene(object: &str) -> ronray::scene::Scene {
-    use ronray::scene::{Overrides, load_str};
+    use ronray::load::{Overrides, load_str};
     let text = format!(
         r#"Scene(
             camera: (eye: (0, 0, 3.9), target: (0, 0, 0), up: (0, 1, 0), fov_y_degrees: 37.5),

@@ -1,6 +1,6 @@
 //! Scene composition with `include`.
 
-use ronray::scene::{LoadError, Overrides, load_with};
+use ronray::load::{LoadError, Overrides, load_with};
 use std::path::Path;
 
 fn write(dir: &Path, name: &str, text: &str) {

@@ -6,9 +6,9 @@
 
 use glam::{DVec3, Vec3A};
 use ronray::integrators::Counters;
+use ronray::load::{Loaded, Overrides, load_str};
 use ronray::math::{Pcg32, Ray};
 use ronray::sampler::Sampler;
-use ronray::scene::{Overrides, Scene, load_str};
 use std::path::Path;
 
 const ALBEDO: f64 = 0.5;
@@ -30,7 +30,7 @@ fn v(p: DVec3) -> String {
     format!("({}, {}, {})", p.x, p.y, p.z)
 }
 
-fn scene(integrator: &str, light: &str, b: DVec3) -> Scene {
+fn scene(integrator: &str, light: &str, b: DVec3) -> Loaded {
     let text = format!(
         r#"Scene(
         camera: (eye: {eye}, target: {b}, fov_y_degrees: 30),
@@ -43,7 +43,7 @@ fn scene(integrator: &str, light: &str, b: DVec3) -> Scene {
         b = v(b),
     );
     match load_str(Path::new("low_angle.ron"), &text, &Overrides::default()) {
-        Ok(l) => l.scene,
+        Ok(l) => l,
         Err(e) => panic!("test scene must load: {e}\n{text}"),
     }
 }
@@ -107,14 +107,14 @@ fn point_expected(x: DVec3) -> f64 {
 }
 
 /// Mean radiance seen along a ray straight down onto `x`.
-fn mean_li(s: &Scene, x: DVec3, n: u32) -> f64 {
+fn mean_li(s: &Loaded, x: DVec3, n: u32) -> f64 {
     let o = x + DVec3::new(0.0, 1.0, 0.0);
     let ray = Ray::new(Vec3A::new(o.x as f32, o.y as f32, o.z as f32), Vec3A::NEG_Y);
     let mut c = Counters::default();
     let mut sum = 0.0f64;
     for i in 0..n {
         let mut sampler = Sampler::independent(Pcg32::for_sample(3, 7, i, 19));
-        sum += s.integrator.li(s, &ray, &mut sampler, &mut c).x as f64;
+        sum += s.view.integrator.li(&s.scene, &ray, &mut sampler, &mut c).x as f64;
     }
     sum / n as f64
 }

@@ -2,9 +2,12 @@
 //! SOURCES.md) loads and renders through a small generated scene, and broken
 //! OBJ files — generated here — fail with a located error, never a panic.
 
+mod common;
+
+use common::message;
 use ronray::geometry::obj::load_obj_data;
+use ronray::load::{LoadError, Overrides, load_str};
 use ronray::render::{RenderOptions, render};
-use ronray::scene::{LoadError, Overrides, load_str};
 use std::path::{Path, PathBuf};
 
 fn corpus() -> PathBuf {
@@ -55,13 +58,9 @@ fn scene_for(obj: &Path, extra: &str) -> String {
     )
 }
 
-fn load(obj: &Path, extra: &str) -> Result<ronray::scene::Loaded, LoadError> {
+fn load(obj: &Path, extra: &str) -> Result<ronray::load::Loaded, LoadError> {
     let scene = obj.with_file_name("generated.ron");
     load_str(&scene, &scene_for(obj, extra), &Overrides::default())
-}
-
-fn message(e: &LoadError) -> String {
-    e.report().map_or_else(|| e.to_string(), |r| r.render(false))
 }
 
 #[test]
@@ -72,7 +71,7 @@ fn obj_corpus_loads_and_renders() {
     assert_eq!(files.len(), 11, "corpus files found: {files:?}");
     for f in &files {
         let loaded = load(f, "").unwrap_or_else(|e| panic!("{} failed: {}", f.display(), message(&e)));
-        let (img, _) = render(&loaded.scene, &RenderOptions::default());
+        let (img, _) = render(&loaded.scene, &loaded.view, &RenderOptions::default());
         assert!(
             img.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0),
             "{}: non-finite or negative pixels",
@@ -80,7 +79,7 @@ fn obj_corpus_loads_and_renders() {
         );
         // MTL colours may be black (Kd 0); in red the mesh must show.
         let red = load(f, r#", material: "red""#).expect("loads with an override");
-        let (img, _) = render(&red.scene, &RenderOptions::default());
+        let (img, _) = render(&red.scene, &red.view, &RenderOptions::default());
         let lit = img.pixels.iter().filter(|p| p.max_element() > 0.0).count();
         assert!(lit > 0, "{}: the mesh is not visible in the image", f.display());
     }
@@ -170,7 +169,7 @@ fn obj_broken_files_fail_cleanly() {
         match load(&obj, "") {
             Ok(loaded) => {
                 // Whatever loads must render.
-                let (img, _) = render(&loaded.scene, &RenderOptions::default());
+                let (img, _) = render(&loaded.scene, &loaded.view, &RenderOptions::default());
                 assert!(
                     img.pixels.iter().all(|p| p.is_finite()),
                     "{name}: non-finite pixels"

@@ -11,14 +11,12 @@
 //! the reference moved the whole-image RMSE less than the noise), so every
 //! 8 × 8 block is judged too: see [`check_blocks`].
 
-use ronray::imageio::{Image, blocks, compare, read_image};
-use ronray::render::render;
-use ronray::scene::{Overrides, load_with};
-use std::path::PathBuf;
+mod common;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use common::root;
+use ronray::imageio::{Image, blocks, compare, read_image};
+use ronray::load::{Overrides, load_with};
+use ronray::render::render;
 
 fn render_at(scene: &str, spp: u32, seed: u64) -> Image {
     let o = Overrides {
@@ -28,7 +26,7 @@ fn render_at(scene: &str, spp: u32, seed: u64) -> Image {
         ..Default::default()
     };
     let loaded = load_with(&root().join("scenes").join(scene), &o).unwrap_or_else(|e| panic!("{scene}: {e}"));
-    render(&loaded.scene, &Default::default()).0
+    render(&loaded.scene, &loaded.view, &Default::default()).0
 }
 
 fn check(scene: &str, reference: &str, spp: u32) {
@@ -152,7 +150,7 @@ fn sobol_beats_independent_on_cornell() {
         read_image(&root().join("tests/fixtures/refs/cornell_diffuse_64.pfm")).expect("fixture");
     let rmse = |text: &str| {
         let path = root().join("scenes/cornell.ron");
-        let loaded = ronray::scene::load_str(
+        let loaded = ronray::load::load_str(
             &path,
             text,
             &Overrides {
@@ -164,7 +162,7 @@ fn sobol_beats_independent_on_cornell() {
         )
         .expect("scene loads");
         compare(
-            &render(&loaded.scene, &Default::default()).0,
+            &render(&loaded.scene, &loaded.view, &Default::default()).0,
             &reference_img,
             None,
         )

@@ -1,22 +1,12 @@
 //! Scenes as code: schema, JSON scenes, overrides, machine-readable
 //! validation and formatting.
 
+mod common;
+
+use common::{ronray, root};
+use ronray::load::{LoadError, Overrides, load_with};
 use ronray::render::render;
-use ronray::scene::{LoadError, Overrides, load_with};
 use std::path::PathBuf;
-use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn ronray(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ronray"))
-        .args(args)
-        .current_dir(root())
-        .output()
-        .expect("ronray runs")
-}
 
 fn scenes() -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(root().join("scenes"))
@@ -46,7 +36,7 @@ fn every_scene_validates_against_the_schema() {
     files.push(root().join("tests/fixtures/cornell.json"));
     for p in files {
         let text = std::fs::read_to_string(&p).expect("read");
-        let desc = ronray::scene::load::parse(&p, &text).unwrap_or_else(|r| panic!("{}: {r}", p.display()));
+        let desc = ronray::load::pipeline::parse(&p, &text).unwrap_or_else(|r| panic!("{}: {r}", p.display()));
         let value = serde_json::to_value(&desc).expect("to JSON");
         let errors: Vec<String> = validator
             .iter_errors(&value)
@@ -77,8 +67,8 @@ fn json_scene_renders_the_same_image_as_its_ron_twin() {
     let ron = load_with(&root().join("scenes/cornell.ron"), &o).expect("RON loads");
     let json = load_with(&root().join("tests/fixtures/cornell.json"), &o).expect("JSON loads");
     assert_eq!(
-        render(&ron.scene, &Default::default()).0,
-        render(&json.scene, &Default::default()).0
+        render(&ron.scene, &ron.view, &Default::default()).0,
+        render(&json.scene, &json.view, &Default::default()).0
     );
 }
 

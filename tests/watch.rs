@@ -324,16 +324,22 @@ fn render_accumulate_matches_render_bit_for_bit() {
     let dir = tempfile::tempdir().expect("temp dir");
     std::fs::write(dir.path().join("tri.obj"), TRIANGLE).expect("obj");
     let path: &Path = &dir.path().join("s.ron");
-    let loaded = ronray::scene::load_str(path, &scene("0.8, 0.2, 0.2", 0.4, "tri.obj"), &Default::default())
+    let loaded = ronray::load::load_str(path, &scene("0.8, 0.2, 0.2", 0.4, "tri.obj"), &Default::default())
         .expect("scene loads");
-    let (full, _) = render(&loaded.scene, &RenderOptions::default());
+    let (full, _) = render(&loaded.scene, &loaded.view, &RenderOptions::default());
     let mut sums = ronray::imageio::Image::new(48, 48);
     for (first, n) in [(0, 1), (1, 1), (2, 2), (4, 4)] {
         let opts = RenderOptions {
             sample_range: Some((first, n)),
             ..Default::default()
         };
-        render_accumulate(&loaded.scene, &opts, &AtomicBool::new(false), &mut sums);
+        render_accumulate(
+            &loaded.scene,
+            &loaded.view,
+            &opts,
+            &AtomicBool::new(false),
+            &mut sums,
+        );
     }
     let mean: Vec<_> = sums.pixels.iter().map(|&s| s / 8.0).collect();
     assert!(

@@ -1,8 +1,8 @@
 //! `ronray check` (golden-image regressions) and `ronray gallery`.
 use super::{print_load_error, print_out};
 use crate::imageio::write_image;
+use crate::load::{Overrides, load_with};
 use crate::render::{RenderOptions, render};
-use crate::scene::{Overrides, load_with};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -104,6 +104,7 @@ pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Opti
         let target = out.join(format!("{stem}.png"));
         let (img, stats) = render(
             &loaded.scene,
+            &loaded.view,
             &RenderOptions {
                 progress: std::io::stderr().is_terminal(),
                 ..Default::default()

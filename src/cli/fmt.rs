@@ -11,7 +11,7 @@ pub(super) fn cmd_fmt(
     json: bool,
     drop_comments: bool,
 ) -> ExitCode {
-    use crate::scene::format::{has_comments, to_json, to_ron};
+    use crate::load::format::{has_comments, to_json, to_ron};
     let mut failed = false;
     for p in paths {
         let text = match std::fs::read_to_string(p) {
@@ -22,7 +22,7 @@ pub(super) fn cmd_fmt(
                 continue;
             }
         };
-        let desc = match crate::scene::load::parse(p, &text) {
+        let desc = match crate::load::pipeline::parse(p, &text) {
             Ok(d) => d,
             Err(r) => {
                 eprint!("{}", r.render(std::io::stderr().is_terminal()));

@@ -1,16 +1,16 @@
 //! Subcommands. No rendering logic here: each command calls the library and
 //! turns its results into messages and exit codes.
 
+mod bench;
 mod check;
 mod diff;
 mod fmt;
 mod render;
 mod validate;
 
-pub use render::output_path;
 pub use validate::json_lines;
 
-use crate::scene::{LoadError, Overrides};
+use crate::load::{LoadError, Overrides};
 use check::{cmd_check, cmd_gallery};
 use clap::{Args, Parser, Subcommand};
 use diff::cmd_diff;
@@ -220,7 +220,8 @@ pub fn run(cli: Cli) -> ExitCode {
         } => crate::watch::run(crate::watch::WatchArgs {
             scene,
             output,
-            settings,
+            overrides: settings.overrides(),
+            threads: settings.threads,
             serve,
         }),
         Command::Diff {
@@ -230,7 +231,7 @@ pub fn run(cli: Cli) -> ExitCode {
             max_rmse,
             mask,
         } => cmd_diff(&a, &b, heatmap.as_deref(), max_rmse, mask.as_deref()),
-        Command::Bench { obj, threads } => crate::bench::run(&obj, threads).map_or_else(
+        Command::Bench { obj, threads } => bench::run(&obj, threads).map_or_else(
             |e| {
                 eprintln!("error: {e}");
                 ExitCode::FAILURE

@@ -1,26 +1,11 @@
 //! `ronray render`: load, render, write atomically, summarise.
 use super::{RenderSettings, print_load_error};
 use crate::imageio::write_image;
+use crate::load::load_with;
 use crate::render::{RenderOptions, render};
-use crate::scene::load_with;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-/// Where a render goes: `-o`, else the scene's `film.output`, else
-/// `<scene stem>.png` in the current folder.
-pub fn output_path(scene_path: &Path, cli: Option<PathBuf>, from_scene: &Path) -> PathBuf {
-    cli.or_else(|| (!from_scene.as_os_str().is_empty()).then(|| from_scene.to_path_buf()))
-        .unwrap_or_else(|| {
-            PathBuf::from(format!(
-                "{}.png",
-                scene_path
-                    .file_stem()
-                    .and_then(|s| s.to_str())
-                    .unwrap_or("render")
-            ))
-        })
-}
 
 pub(super) fn cmd_render(
     path: &Path,
@@ -36,7 +21,7 @@ pub(super) fn cmd_render(
             return ExitCode::FAILURE;
         }
     };
-    let out = output_path(path, output, &loaded.scene.output);
+    let out = loaded.view.output_path(path, output);
     let ext = out
         .extension()
         .and_then(|e| e.to_str())
@@ -49,13 +34,13 @@ pub(super) fn cmd_render(
         );
         return ExitCode::FAILURE;
     }
-    let f = loaded.scene.film;
+    let f = loaded.view.film;
     let opts = RenderOptions {
         threads: settings.threads,
         progress: std::io::stderr().is_terminal(),
         sample_range: None,
     };
-    let (image, stats) = render(&loaded.scene, &opts);
+    let (image, stats) = render(&loaded.scene, &loaded.view, &opts);
     if let Err(e) = write_image(&image, &out) {
         eprintln!("error: {e}");
         return ExitCode::FAILURE;

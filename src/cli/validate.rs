@@ -1,6 +1,6 @@
 //! `ronray validate`: every diagnostic, for people or as JSON lines.
 use super::{print_load_error, print_out};
-use crate::scene::{LoadError, Overrides, load_with};
+use crate::load::{LoadError, Overrides, load_with};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 

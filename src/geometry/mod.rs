@@ -14,6 +14,7 @@ pub mod mesh_triangle;
 pub mod obj;
 pub mod plane;
 pub mod quad;
+pub mod ray_sets;
 pub mod sdf;
 pub mod sdf_object;
 pub mod sphere;

@@ -17,10 +17,9 @@ mod server;
 mod status;
 mod watched;
 
-use crate::cli::{RenderSettings, output_path};
-use crate::scene::desc::ObjectDesc;
-use crate::scene::load::{load_str_with_meshes, parse};
-use crate::scene::{LoadError, Overrides};
+use crate::desc::ObjectDesc;
+use crate::load::pipeline::{load_str_with_meshes, parse};
+use crate::load::{LoadError, Overrides};
 use debounce::Debounce;
 use mesh_cache::MeshCache;
 use notify::{RecommendedWatcher, RecursiveMode, Watcher};
@@ -39,7 +38,10 @@ use watched::WatchSet;
 pub struct WatchArgs {
     pub scene: PathBuf,
     pub output: Option<PathBuf>,
-    pub settings: RenderSettings,
+    /// Overrides from the command line (`--spp`, `--set`, …).
+    pub overrides: Overrides,
+    /// Worker threads; `None` uses every core.
+    pub threads: Option<usize>,
     /// `Some("")` serves on the default address.
     pub serve: Option<String>,
 }
@@ -88,9 +90,9 @@ pub fn run(args: WatchArgs) -> ExitCode {
     };
     eprintln!("watching {} (Ctrl-C to stop)", args.scene.display());
     let (jobs, queue) = mpsc::channel();
-    let worker = progressive::spawn(queue, reporter.clone(), args.settings.threads);
+    let worker = progressive::spawn(queue, reporter.clone(), args.threads);
     let mut session = Session {
-        overrides: args.settings.overrides(),
+        overrides: args.overrides,
         scene: args.scene,
         output: args.output,
         reporter: reporter.clone(),
@@ -188,7 +190,7 @@ impl Session {
         let (load_time, reused) = (t0.elapsed(), self.cache.take_hits());
         self.cache.retain(&loaded.files);
         self.rearm(WatchSet::new(&loaded.files));
-        let output = output_path(&self.scene, self.output.clone(), &loaded.scene.output);
+        let output = loaded.view.output_path(&self.scene, self.output.clone());
         let ext = output.extension().and_then(|e| e.to_str()).unwrap_or("");
         if !ext.eq_ignore_ascii_case("png") && !ext.eq_ignore_ascii_case("exr") {
             let msg = format!("error: output {} must end in .png or .exr", output.display());
@@ -201,6 +203,7 @@ impl Session {
         self.cancel = Arc::new(Cancel::default());
         let job = Job {
             scene: loaded.scene,
+            view: loaded.view,
             output,
             cancel: self.cancel.clone(),
             generation,

@@ -11,6 +11,7 @@ use super::status::{PassInfo, Reporter};
 use crate::imageio::{Image, write_image};
 use crate::render::{RenderOptions, render_accumulate};
 use crate::scene::Scene;
+use crate::view::View;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::Receiver;
@@ -40,6 +41,7 @@ impl Cancel {
 /// One successfully loaded version of the scene.
 pub struct Job {
     pub scene: Scene,
+    pub view: View,
     pub output: PathBuf,
     pub cancel: Arc<Cancel>,
     pub generation: u64,
@@ -71,7 +73,7 @@ pub fn spawn(jobs: Receiver<Job>, reporter: Arc<Reporter>, threads: Option<usize
 }
 
 fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
-    let film = job.scene.film;
+    let film = job.view.film;
     let targets = schedule(film.spp);
     let passes = targets.len();
     let mut sums = Image::new(film.width, film.height);
@@ -89,7 +91,7 @@ fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
             progress: false,
             sample_range: Some((done, target - done)),
         };
-        let stats = render_accumulate(&job.scene, &opts, &job.cancel.flag, &mut sums);
+        let stats = render_accumulate(&job.scene, &job.view, &opts, &job.cancel.flag, &mut sums);
         // Checked again after the pass: a superseded scene writes nothing.
         if stats.cancelled || job.cancel.is_set() {
             reporter.cancelled(pass, passes, stopped());

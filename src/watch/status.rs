@@ -4,7 +4,7 @@
 //! JSON for the web page.
 
 use super::hub::{Hub, Kind, json_str};
-use crate::scene::LoadError;
+use crate::load::LoadError;
 use std::io::Write;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, Ordering};

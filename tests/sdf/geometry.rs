@@ -4,6 +4,7 @@
 use super::{render_seed, scene};
 use glam::Vec3A;
 use ronray::imageio::{Image, compare};
+use ronray::load::Loaded;
 use ronray::math::{Pcg32, Ray, ray_epsilon, sampling::uniform_sphere};
 use ronray::scene::Scene;
 
@@ -15,7 +16,7 @@ const ANALYTIC_SPHERE: &str = r#"Sphere(center: (0.1, 0.2, 0), radius: 0.8, mate
 
 /// A sphere (`object`), checker-textured to test UVs too; `full` adds a
 /// floor and an area light (whose quad is a shape), else only the sphere.
-fn sphere_scene(object: &str, full: bool) -> Scene {
+fn sphere_scene(object: &str, full: bool) -> Loaded {
     let (floor, light) = if full {
         (
             r#"Plane(point: (0, -0.6, 0), normal: (0, 1, 0), material: "floor"),"#,
@@ -91,8 +92,8 @@ fn sdf_sphere_hits_where_analytic_sphere_does() {
         // √(2r·δ) for a surface δ off: only hit-or-miss is ill-posed there.
         let tangent = (miss - RADIUS).abs() < 1e-3 * RADIUS;
         match (
-            sdf.intersect(&ray, f32::INFINITY),
-            ana.intersect(&ray, f32::INFINITY),
+            sdf.scene.intersect(&ray, f32::INFINITY),
+            ana.scene.intersect(&ray, f32::INFINITY),
         ) {
             (Some(s), Some(a)) => {
                 hits += 1;
@@ -115,7 +116,7 @@ fn sdf_sphere_hits_where_analytic_sphere_does() {
                     s.uv,
                     a.uv
                 );
-                spawned += check_spawn(&sdf, &s, &mut rng);
+                spawned += check_spawn(&sdf.scene, &s, &mut rng);
             }
             (None, None) => {}
             _ if tangent => grazing += 1,

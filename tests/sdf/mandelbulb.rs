@@ -12,7 +12,7 @@ use ronray::math::{Ray, ray_epsilon};
 
 const EYE: &str = "(1.9, 1.3, 2.4)";
 
-fn bulb() -> ronray::scene::Scene {
+fn bulb() -> ronray::load::Loaded {
     scene(&format!(
         r#"Scene(
         camera: (eye: {EYE}, target: (0, 0, 0), fov_y_degrees: 44),
@@ -32,20 +32,22 @@ fn mandelbulb_has_no_self_shadowing() {
     for y in 0..n {
         for x in 0..n {
             let film = (Vec2::new(x as f32, y as f32) + 0.5) / n as f32;
-            let ray = s.camera.ray(film, 1.0, Vec2::ZERO);
-            let Some(h) = s.intersect(&ray, f32::INFINITY) else {
+            let ray = s.view.camera.ray(film, 1.0, Vec2::ZERO);
+            let Some(h) = s.scene.intersect(&ray, f32::INFINITY) else {
                 continue;
             };
             hits += 1;
-            let to_eye = s.camera.eye - h.p;
+            let to_eye = s.view.camera.eye - h.p;
             if h.ng.dot(to_eye) <= 0.0 {
                 backfacing += 1;
                 continue;
             }
             // Spawned like the integrators' shadow rays.
             let o = h.p + h.ng * ray_epsilon(h.p);
-            let d = (s.camera.eye - o).length();
-            if s.occluded(&Ray::new(o, (s.camera.eye - o) / d), d * (1.0 - 1e-4)) {
+            let d = (s.view.camera.eye - o).length();
+            if s.scene
+                .occluded(&Ray::new(o, (s.view.camera.eye - o) / d), d * (1.0 - 1e-4))
+            {
                 occluded += 1;
             }
         }

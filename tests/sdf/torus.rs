@@ -4,7 +4,8 @@
 use super::{render_seed, scene_in};
 use glam::{Vec2, Vec3A};
 use ronray::imageio::{Image, compare};
-use ronray::scene::{Overrides, Scene};
+use ronray::load::Loaded;
+use ronray::load::Overrides;
 use std::fmt::Write as _;
 
 /// A torus of major radius 1 and minor 0.35 as an OBJ, `n_u × n_v` quads,
@@ -38,7 +39,7 @@ fn true_torus(p: Vec3A) -> f32 {
     glam::Vec2::new(glam::Vec2::new(q.x, q.z).length() - 1.0, q.y).length() - 0.35
 }
 
-fn torus_scene(dir: &std::path::Path, object: &str) -> Scene {
+fn torus_scene(dir: &std::path::Path, object: &str) -> Loaded {
     let text = format!(
         r#"Scene(
         camera: (eye: (0, 2.2, 3.2), target: (0, 0, 0), fov_y_degrees: 40),
@@ -59,7 +60,7 @@ fn sdf_torus_grazing_rays_match_a_fine_mesh() {
     // The scene completes either object's fields.
     let mut sdf = torus_scene(dir.path(), "Sdf(shape: Torus(major: 1, minor: 0.35),");
     let mut mesh = torus_scene(dir.path(), "Mesh(file: \"torus.obj\",");
-    let cam = sdf.camera;
+    let cam = sdf.view.camera;
     // Rays on a 256² grid: every disagreement must be a grazing ray, or a
     // crack between the mesh's triangles with the SDF hit on the true torus.
     let (n, mut both, mut grazing, mut cracks) = (256, 0, 0, 0);
@@ -68,8 +69,8 @@ fn sdf_torus_grazing_rays_match_a_fine_mesh() {
             let film = (Vec2::new(x as f32, y as f32) + 0.5) / n as f32;
             let ray = cam.ray(film, 1.0, Vec2::ZERO);
             let (s, m) = (
-                sdf.intersect(&ray, f32::INFINITY),
-                mesh.intersect(&ray, f32::INFINITY),
+                sdf.scene.intersect(&ray, f32::INFINITY),
+                mesh.scene.intersect(&ray, f32::INFINITY),
             );
             // Surfaces 2e-4 apart along the normal: hits about that far apart
             // along it, whatever the angle.

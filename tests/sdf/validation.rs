@@ -1,7 +1,7 @@
 //! Bad SDF objects give diagnostics whose paths follow the scene's own tree
 //! and whose line:column land on the offending value.
 
-use ronray::scene::{LoadError, Overrides, load_str};
+use ronray::load::{LoadError, Overrides, load_str};
 use std::path::Path;
 
 /// One mistake per object; each line is `(object, expected path, the text

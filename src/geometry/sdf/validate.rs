@@ -14,7 +14,7 @@
 //! [`Sdf`]: super::Sdf
 
 use super::node::SdfNode;
-use crate::scene::problem::Problem;
+use crate::diagnostic::Problem;
 use glam::Vec3A;
 
 /// All problems of the tree at `nodes[root]`, located under `path`.

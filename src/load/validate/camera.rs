@@ -2,7 +2,7 @@
 
 use super::Checker;
 use super::*;
-use crate::scene::desc::{CameraDesc, FilmDesc, IntegratorDesc};
+use crate::desc::{CameraDesc, FilmDesc, IntegratorDesc};
 use glam::Vec3;
 
 impl Checker {

@@ -4,7 +4,7 @@
 //! file that has comments would silently drop them; `fmt` refuses unless
 //! told to drop them.
 
-use super::desc::SceneDesc;
+use crate::desc::SceneDesc;
 
 /// Canonical RON: fields in declaration order, four-space indentation, small
 /// values (vectors, colours, list elements) kept on one line.

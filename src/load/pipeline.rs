@@ -2,17 +2,19 @@
 //! into located diagnostics.
 
 use super::build::{BuildStats, build_with};
-use super::desc::SceneDesc;
-use super::problem::{Problem, suggest};
-use super::runtime::Scene;
 use super::spans::Spans;
 use super::validate::validate;
+use crate::desc::SceneDesc;
 use crate::diagnostic::{Diagnostic, Report, offset_of};
+use crate::diagnostic::{Problem, suggest};
+use crate::scene::Scene;
+use crate::view::View;
 use std::path::{Path, PathBuf};
 
 /// A scene ready to render, with what produced it.
 pub struct Loaded {
     pub scene: Scene,
+    pub view: View,
     pub desc: SceneDesc,
     pub stats: BuildStats,
     /// Every file the scene depends on (itself, meshes…), for watch mode.
@@ -108,18 +110,19 @@ pub fn load_str_with_meshes(
     if !problems.is_empty() {
         return Err(LoadError::Invalid(composition.locate(&problems)));
     }
-    let (scene, stats) =
+    let (scene, view, stats) =
         build_with(&desc, base, load_mesh).map_err(|p| LoadError::Invalid(composition.locate(&p)))?;
     let mut files: Vec<PathBuf> = composition.sources.iter().map(|(p, _)| p.clone()).collect();
     files.extend(stats.texture_files.iter().cloned());
     for o in &desc.objects {
-        if let super::desc::ObjectDesc::Mesh { file, .. } = o {
+        if let crate::desc::ObjectDesc::Mesh { file, .. } = o {
             files.push(base.join(file));
         }
     }
     files.extend(desc.meshes.values().map(|m| base.join(&m.file)));
     Ok(Loaded {
         scene,
+        view,
         desc,
         stats,
         files,

@@ -5,8 +5,8 @@ mod camera;
 mod material;
 mod object;
 
-use super::desc::{Color, ObjectDesc, SceneDesc, V3};
-use super::problem::{Problem, suggest};
+use crate::desc::{Color, ObjectDesc, SceneDesc, V3};
+use crate::diagnostic::{Problem, suggest};
 use glam::Vec3;
 
 /// Largest accepted image side, in pixels.

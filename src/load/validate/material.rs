@@ -1,7 +1,7 @@
 //! Material and colour-parameter checks.
 
 use super::Checker;
-use crate::scene::desc::{ColorDesc, FresnelDesc, MaterialDesc};
+use crate::desc::{ColorDesc, FresnelDesc, MaterialDesc};
 
 impl Checker {
     /// A colour parameter: constants are range-checked; textures are

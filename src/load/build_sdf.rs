@@ -4,7 +4,7 @@
 //! checked by `validate_sdf`) wraps the root as one `Transform` node, so the
 //! runtime [`Sdf`] is already in world space.
 
-use super::desc::{MarchDesc, SceneDesc, SdfDesc};
+use crate::desc::{MarchDesc, SceneDesc, SdfDesc};
 use crate::geometry::Shape;
 use crate::geometry::sdf::{MarchParams, Sdf, SdfNode};
 use crate::geometry::sdf_object::{MIN_EPS, SdfObject};

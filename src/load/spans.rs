@@ -3,7 +3,7 @@
 //! serde forgets positions once a value is parsed, yet a semantic error must
 //! point at the line that caused it. This is a small structural scan of the
 //! RON text (it does not interpret values) that records the byte range of
-//! every value under the same path syntax [`super::problem::Problem`] uses:
+//! every value under the same path syntax [`crate::diagnostic::Problem`] uses:
 //! `objects[3].material`, `materials.white.albedo`. Enum variant and struct
 //! names are transparent, as they are in the paths.
 

@@ -11,8 +11,8 @@
 
 use super::build::{compose, is_similarity};
 use super::build_sdf::{leaf, operator};
-use super::desc::{MarchDesc, SdfDesc, TransformDesc};
-use super::problem::Problem;
+use crate::desc::{MarchDesc, SdfDesc, TransformDesc};
+use crate::diagnostic::Problem;
 use crate::geometry::sdf::{SdfNode, validate_node};
 use glam::Vec3;
 

@@ -8,8 +8,8 @@
 //! skipped, as in diagnostics (`materials.floor.albedo`, not
 //! `materials.floor.Lambert.albedo`).
 
-use super::desc::SceneDesc;
-use super::problem::{Problem, suggest};
+use crate::desc::SceneDesc;
+use crate::diagnostic::{Problem, suggest};
 use serde_json::Value;
 
 /// Applies every `path=value` in order; all problems are reported together.

@@ -15,9 +15,9 @@
 //! the code does when it gets the cores it asked for.
 
 use crate::camera::Camera;
-use crate::geometry::Mesh;
 use crate::geometry::obj::load_obj;
-use crate::math::{Pcg32, Ray, sampling};
+use crate::geometry::ray_sets::incoherent_rays;
+use crate::math::Ray;
 use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
 use std::path::Path;
@@ -26,7 +26,7 @@ use std::time::Instant;
 /// `println!` that ignores a closed pipe (`ronray bench … | head`).
 macro_rules! out {
     ($($arg:tt)*) => {
-        crate::cli::print_out(&format!("{}\n", format_args!($($arg)*)))
+        super::print_out(&format!("{}\n", format_args!($($arg)*)))
     };
 }
 
@@ -88,13 +88,7 @@ pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
             cam.ray(px, 1.0, Vec2::ZERO)
         })
         .collect();
-    let mut rng = Pcg32::new(2024, 1);
-    let incoherent: Vec<Ray> = (0..1 << 20)
-        .map(|_| {
-            let u = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
-            Ray::new(b.min + u * b.extent(), sampling::uniform_sphere(rng.next_vec2()))
-        })
-        .collect();
+    let incoherent = incoherent_rays(&mesh, 1 << 20, 2024);
     out!("| rays | hit % | 1 thread Mrays/s | per CPU s | {n} threads Mrays/s | per CPU s |");
     out!("|---|---|---|---|---|---|");
     for (name, rays) in [("primary", &primary), ("incoherent", &incoherent)] {
@@ -143,16 +137,4 @@ fn load_average() -> String {
         .ok()
         .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
         .unwrap_or_else(|| "unknown".into())
-}
-
-/// A mesh's ray sets for tests: `n` incoherent rays as above.
-pub fn incoherent_rays(mesh: &Mesh, n: usize, seed: u64) -> Vec<Ray> {
-    let b = mesh.bounds();
-    let mut rng = Pcg32::new(seed, 1);
-    (0..n)
-        .map(|_| {
-            let u = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32());
-            Ray::new(b.min + u * b.extent(), sampling::uniform_sphere(rng.next_vec2()))
-        })
-        .collect()
 }

@@ -12,9 +12,9 @@
 //! Every merged entry remembers where it came from, so a problem found in
 //! the composed scene is reported in the file and at the line that wrote it.
 
-use super::desc::{ColorDesc, IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
-use super::problem::Problem;
 use super::spans::Spans;
+use crate::desc::{ColorDesc, IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
+use crate::diagnostic::Problem;
 use crate::diagnostic::{Diagnostic, Report, offset_of};
 use std::path::{Path, PathBuf};
 

@@ -1,36 +1,19 @@
-//! The runtime scene the renderer sees: glam types, u32 indices, no names,
-//! no options, no serde. Built once by `build`, never mutated while rendering.
+//! The runtime scene: what rays query — shapes and their BVHs, materials,
+//! textures and lights — with glam types and u32 indices; no names, no
+//! options, no serde. Camera, film and integrator are the [`crate::view::View`]
+//! beside it (pbrt keeps the aggregate apart from camera and film too). Built
+//! once by [`crate::load`], never mutated while rendering.
 
 use crate::accel::WideBvh;
-use crate::camera::Camera;
 use crate::geometry::MeshHit;
 use crate::geometry::triangle::WatertightRay;
 use crate::geometry::{Geometry, Hit, Shape};
-use crate::integrators::Integrator;
 use crate::lights::{Light, LightPicker};
 use crate::materials::{Material, Texture};
 use crate::math::Ray;
-use crate::sampler::SamplerKind;
 use glam::Vec2;
-use std::path::PathBuf;
-
-/// Image size and sampling.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Film {
-    pub width: u32,
-    pub height: u32,
-    pub spp: u32,
-    pub seed: u64,
-    pub sampler: SamplerKind,
-}
 
 pub struct Scene {
-    pub camera: Camera,
-    pub film: Film,
-    /// Where `render` writes when no `-o` is given (resolved against the
-    /// scene file's folder).
-    pub output: PathBuf,
-    pub integrator: Integrator,
     pub materials: Vec<Material>,
     pub textures: Vec<Texture>,
     pub lights: Vec<Light>,

@@ -1,8 +1,8 @@
 //! Material descriptions → runtime materials, loading image textures once
 //! each (a file used by several materials is decoded once).
 
-use super::desc::{ColorDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
-use super::problem::Problem;
+use crate::desc::{ColorDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
+use crate::diagnostic::Problem;
 use crate::materials::{ColorTex, DielectricFresnel, Distribution, Fresnel, Material, Metal, Texture};
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};

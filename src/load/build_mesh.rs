@@ -7,8 +7,8 @@
 //! MTL material (see `build_mtl.rs`), then a grey default (with a note).
 
 use super::build_mtl::MtlMaterials;
-use super::desc::{ObjectDesc, SceneDesc};
-use super::problem::{Problem, suggest};
+use crate::desc::{ObjectDesc, SceneDesc};
+use crate::diagnostic::{Problem, suggest};
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::{ObjData, ObjGroup};
 use crate::geometry::{Geometry, Instance, MeshTriangle, Shape};

@@ -1,8 +1,8 @@
 //! Light and object checks.
 
 use super::Checker;
-use crate::scene::desc::{LightDesc, ObjectDesc, TransformDesc, V3};
-use crate::scene::problem::{Problem, suggest};
+use crate::desc::{LightDesc, ObjectDesc, TransformDesc, V3};
+use crate::diagnostic::{Problem, suggest};
 use glam::Vec3;
 
 impl Checker {

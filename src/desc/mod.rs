@@ -13,7 +13,7 @@
 //!     lights: [Point(position: (0, 3, 0), intensity: (10, 10, 10))],
 //!     objects: [Sphere(center: (0, 0, 0), radius: 1, material: "white")],
 //! )"#;
-//! let scene: ronray::scene::desc::SceneDesc = ron::from_str(text).unwrap();
+//! let scene: ronray::desc::SceneDesc = ron::from_str(text).unwrap();
 //! assert_eq!(scene.objects.len(), 1);
 //! ```
 
@@ -110,8 +110,12 @@ fn test_width() -> u32 {
 fn test_spp() -> u32 {
     16
 }
+/// Default largest relative MSE of a regression render against its golden
+/// image (`test.tolerance`; the metric is `crate::check`'s).
+pub const DEFAULT_TOLERANCE: f32 = 0.02;
+
 fn test_tolerance() -> f32 {
-    crate::check::DEFAULT_TOLERANCE
+    DEFAULT_TOLERANCE
 }
 
 impl Default for TestDesc {
@@ -146,12 +150,12 @@ mod tests {
             let a: SceneDesc = opts
                 .from_str(&text)
                 .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            let ron_text = crate::scene::format::to_ron(&a).expect("serialise");
+            let ron_text = crate::load::format::to_ron(&a).expect("serialise");
             let b: SceneDesc = opts
                 .from_str(&ron_text)
                 .unwrap_or_else(|e| panic!("{}: {e}\n{ron_text}", p.display()));
             assert_eq!(a, b, "{} changed through RON", p.display());
-            let json = crate::scene::format::to_json(&a).expect("json");
+            let json = crate::load::format::to_json(&a).expect("json");
             let c: SceneDesc = serde_json::from_str(&json).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
             assert_eq!(a, c, "{} changed through JSON", p.display());
             n += 1;

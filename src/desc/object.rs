@@ -16,7 +16,7 @@
 //!         Instance(mesh: "bunny", transform: [Translate((-1, 0, 0))]),
 //!     ],
 //! )"#;
-//! let scene: ronray::scene::desc::SceneDesc = ron::from_str(text).unwrap();
+//! let scene: ronray::desc::SceneDesc = ron::from_str(text).unwrap();
 //! assert_eq!(scene.objects.len(), 4);
 //! ```
 

@@ -23,7 +23,7 @@
 //!     material: "gold",
 //!     march: (max_steps: 256),
 //! )"#;
-//! let o: ronray::scene::desc::ObjectDesc = ron::from_str(text).unwrap();
+//! let o: ronray::desc::ObjectDesc = ron::from_str(text).unwrap();
 //! assert_eq!(o.material(), Some("gold"));
 //! ```
 

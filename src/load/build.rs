@@ -4,19 +4,20 @@
 
 use super::build_mesh::MeshBuilder;
 use super::build_mtl::MtlMaterials;
-use super::desc::{
-    IntegratorDesc, LightDesc, LightSelectionDesc, ObjectDesc, SamplerDesc, SceneDesc, TransformDesc,
-};
-use super::problem::Problem;
-use super::runtime::{Film, Scene};
 use crate::accel::{Aabb, Leaves, WideBvh};
 use crate::camera::Camera;
+use crate::desc::{
+    IntegratorDesc, LightDesc, LightSelectionDesc, ObjectDesc, SamplerDesc, SceneDesc, TransformDesc,
+};
+use crate::diagnostic::Problem;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
 use crate::lights::{Light, LightPicker, PointLight, QuadLight, SpotLight};
 use crate::materials::Material;
 use crate::sampler::SamplerKind;
+use crate::scene::Scene;
+use crate::view::{Film, View};
 use glam::{Mat4, Vec3, Vec3A};
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -39,7 +40,7 @@ pub struct BuildStats {
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
 /// the folder relative paths resolve against.
-pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, BuildStats), Vec<Problem>> {
+pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, View, BuildStats), Vec<Problem>> {
     build_with(desc, base, &crate::geometry::obj::load_obj_data)
 }
 
@@ -49,7 +50,7 @@ pub fn build_with(
     desc: &SceneDesc,
     base: &Path,
     load_obj: &dyn Fn(&Path) -> Result<ObjData, String>,
-) -> Result<(Scene, BuildStats), Vec<Problem>> {
+) -> Result<(Scene, View, BuildStats), Vec<Problem>> {
     let t0 = Instant::now();
     let mut problems = Vec::new();
     let super::build_material::Materials {
@@ -229,7 +230,7 @@ pub fn build_with(
         }),
     };
     let f = &desc.film;
-    let scene = Scene {
+    let view = View {
         camera,
         film: Film {
             width: f.width,
@@ -242,6 +243,10 @@ pub fn build_with(
                 SamplerDesc::Sobol => SamplerKind::Sobol,
             },
         },
+        output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
+        integrator,
+    };
+    let scene = Scene {
         light_picker: LightPicker::new(
             &lights,
             matches!(
@@ -252,8 +257,6 @@ pub fn build_with(
                 }
             ),
         ),
-        output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
-        integrator,
         materials,
         textures,
         lights,
@@ -271,7 +274,7 @@ pub fn build_with(
         instances: scene.geometry.instances.len(),
         mesh_accel_bytes: scene.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),
     };
-    Ok((scene, stats))
+    Ok((scene, view, stats))
 }
 
 fn push_quad_light(lights: &mut Vec<Light>, shapes: &mut Vec<Shape>, material: u32, q: QuadLight) {

@@ -1,0 +1,48 @@
+//! What [`crate::render::render`] needs beside the [`crate::scene::Scene`]:
+//! the camera, the film, the integrator and where the image goes. Kept apart
+//! from the scene so that integrators, geometry and lights see only what rays
+//! query, and one scene can be rendered through several views.
+
+use crate::camera::Camera;
+use crate::integrators::Integrator;
+use crate::sampler::SamplerKind;
+use std::path::{Path, PathBuf};
+
+/// Image size and sampling.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Film {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub seed: u64,
+    pub sampler: SamplerKind,
+}
+
+/// Camera, film, integrator and output of one render.
+#[derive(Clone, Debug)]
+pub struct View {
+    pub camera: Camera,
+    pub film: Film,
+    pub integrator: Integrator,
+    /// The scene's `film.output`, resolved against the scene file's folder;
+    /// empty when the scene names none.
+    pub output: PathBuf,
+}
+
+impl View {
+    /// Where a render of the scene at `scene_path` goes: `cli` (`-o`), else
+    /// the scene's `film.output`, else `<scene stem>.png` in the current
+    /// folder.
+    pub fn output_path(&self, scene_path: &Path, cli: Option<PathBuf>) -> PathBuf {
+        cli.or_else(|| (!self.output.as_os_str().is_empty()).then(|| self.output.clone()))
+            .unwrap_or_else(|| {
+                PathBuf::from(format!(
+                    "{}.png",
+                    scene_path
+                        .file_stem()
+                        .and_then(|s| s.to_str())
+                        .unwrap_or("render")
+                ))
+            })
+    }
+}

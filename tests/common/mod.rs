@@ -1,0 +1,72 @@
+//! Helpers shared by the end-to-end tests: the crate root, the `ronray`
+//! binary, loading scene text and rendering it. Each test binary uses a
+//! different subset, hence the `dead_code` allowance.
+#![allow(dead_code)]
+
+use glam::Vec3A;
+use ronray::imageio::Image;
+use ronray::integrators::Counters;
+use ronray::load::{LoadError, Loaded, Overrides, load_str};
+use ronray::math::{Pcg32, Ray};
+use ronray::render::{RenderOptions, render};
+use ronray::sampler::Sampler;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs the `ronray` binary in `dir`.
+pub fn ronray_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ronray"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the ronray binary runs")
+}
+
+/// Runs the `ronray` binary in the repository root.
+pub fn ronray(args: &[&str]) -> Output {
+    ronray_in(&root(), args)
+}
+
+/// A load error as the user sees it: the rendered report, or the message.
+pub fn message(e: &LoadError) -> String {
+    e.report().map_or_else(|| e.to_string(), |r| r.render(false))
+}
+
+/// Loads scene text as if it were the file `dir/test.ron`, panicking with
+/// the report.
+pub fn load_in(dir: &Path, text: &str, overrides: &Overrides) -> Loaded {
+    load_str(&dir.join("test.ron"), text, overrides)
+        .unwrap_or_else(|e| panic!("test scene must load: {}\n{text}", message(&e)))
+}
+
+/// [`load_in`] the repository root, without overrides.
+pub fn load_text(text: &str) -> Loaded {
+    load_in(&root(), text, &Overrides::default())
+}
+
+/// Renders a loaded scene with default options; every pixel must be finite.
+pub fn render_loaded(l: &Loaded) -> Image {
+    let img = render(&l.scene, &l.view, &RenderOptions::default()).0;
+    assert!(
+        img.pixels.iter().all(|p| p.is_finite()),
+        "a render has NaN or infinite pixels"
+    );
+    img
+}
+
+/// Mean radiance along `ray` over `n` independent estimates of the scene's
+/// integrator, with a fixed seed.
+pub fn mean_li(l: &Loaded, ray: Ray, n: u32) -> Vec3A {
+    let mut sum = Vec3A::ZERO;
+    let mut c = Counters::default();
+    for i in 0..n {
+        let mut sampler = Sampler::independent(Pcg32::for_sample(0, 0, i, 99));
+        sum += l.view.integrator.li(&l.scene, &ray, &mut sampler, &mut c);
+    }
+    sum / n as f32
+}
