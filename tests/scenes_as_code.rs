@@ -36,7 +36,8 @@ fn every_scene_validates_against_the_schema() {
     files.push(root().join("tests/fixtures/cornell.json"));
     for p in files {
         let text = std::fs::read_to_string(&p).expect("read");
-        let desc = ronray::load::pipeline::parse(&p, &text).unwrap_or_else(|r| panic!("{}: {r}", p.display()));
+        let desc =
+            ronray::load::pipeline::parse(&p, &text).unwrap_or_else(|r| panic!("{}: {r}", p.display()));
         let value = serde_json::to_value(&desc).expect("to JSON");
         let errors: Vec<String> = validator
             .iter_errors(&value)
