@@ -92,18 +92,7 @@ impl Bxdf for BlinnPhong {
             let w = sampling::cosine_hemisphere(u);
             Vec3A::new(w.x, w.y, w.z.copysign(wo.z))
         };
-        let pdf = self.pdf(wo, wi);
-        if pdf <= 0.0 {
-            return None;
-        }
-        let weight = self.eval(wo, wi) * wi.z.abs() / pdf;
-        Some(BsdfSample {
-            wi,
-            weight,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
+        BsdfSample::from_f(wi, self.eval(wo, wi), self.pdf(wo, wi))
     }
 }
 

@@ -61,22 +61,19 @@ impl Bxdf for CookTorrance {
             return None;
         }
         let pdf = self.distribution.pdf_wm(wo_up, wm) / (4.0 * cos_om);
-        if !pdf.is_finite() || pdf <= 0.0 {
+        // Model-specific guard, on top of from_f's pdf ≤ 0: refuse a density
+        // that overflowed rather than return a zero or NaN weight.
+        if !pdf.is_finite() {
             return None;
         }
-        let weight = self.f(wo_up, wi, wm) * wi.z / pdf;
+        let f = self.f(wo_up, wi, wm);
+        // Back to wo's side; |wi.z| is unchanged, so the weight is too.
         let wi = if wo.z < 0.0 {
             Vec3A::new(wi.x, wi.y, -wi.z)
         } else {
             wi
         };
-        Some(BsdfSample {
-            wi,
-            weight,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
+        BsdfSample::from_f(wi, f, pdf)
     }
 }
 

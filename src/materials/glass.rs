@@ -43,15 +43,12 @@ impl Bxdf for Glass {
             return None;
         }
         let f = self.fresnel.eval(cos_o, self.ior);
-        let reflection = BsdfSample {
-            wi: Vec3A::new(-wo.x, -wo.y, wo.z),
-            weight: Rgb::ONE,
-            pdf: f,
-            delta: true,
-            eta: 1.0,
-        };
+        // Reflection has throughput F; chosen with probability `prob` (F, or 1
+        // under total internal reflection) its weight is 1 either way.
+        let mirrored = Vec3A::new(-wo.x, -wo.y, wo.z);
+        let reflection = |prob| Some(BsdfSample::delta(mirrored, Rgb::ONE, prob, 1.0));
         if u_lobe < f {
-            return Some(reflection);
+            return reflection(f);
         }
         // Relative IOR η_to/η_from and the normal on wo's side.
         let (eta, n) = if cos_o > 0.0 {
@@ -64,20 +61,11 @@ impl Bxdf for Glass {
         let sin2_t = (1.0 - cos_o * cos_o) / (eta * eta);
         if sin2_t >= 1.0 {
             // Total internal reflection (F is already 1 here; guard rounding).
-            return Some(BsdfSample {
-                pdf: 1.0,
-                ..reflection
-            });
+            return reflection(1.0);
         }
         let cos_t = (1.0 - sin2_t).sqrt();
         let wi = (-wo / eta + (cos_o / eta - cos_t) * n).normalize();
-        Some(BsdfSample {
-            wi,
-            weight: self.tint / (eta * eta),
-            pdf: 1.0 - f,
-            delta: true,
-            eta,
-        })
+        Some(BsdfSample::delta(wi, self.tint / (eta * eta), 1.0 - f, eta))
     }
 
     fn is_delta(&self) -> bool {

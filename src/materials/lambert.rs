@@ -32,16 +32,8 @@ impl Bxdf for Lambert {
             wi.z = -wi.z;
         }
         let pdf = sampling::cosine_hemisphere_pdf(wi.z.abs());
-        if pdf <= 0.0 {
-            return None;
-        }
-        Some(BsdfSample {
-            wi,
-            weight: self.albedo,
-            pdf,
-            delta: false,
-            eta: 1.0,
-        })
+        // (albedo/π)·cos / (cos/π) = albedo exactly: pass the weight, not f.
+        BsdfSample::from_weight(wi, self.albedo, pdf)
     }
 }
 

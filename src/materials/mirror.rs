@@ -26,13 +26,7 @@ impl Bxdf for Mirror {
             return None;
         }
         let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
-        Some(BsdfSample {
-            wi,
-            weight: self.tint,
-            pdf: 1.0,
-            delta: true,
-            eta: 1.0,
-        })
+        Some(BsdfSample::delta(wi, self.tint, 1.0, 1.0))
     }
 
     fn is_delta(&self) -> bool {

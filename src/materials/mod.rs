@@ -75,6 +75,64 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
+/// The tail of every `sample`, written once. The models differ in how they
+/// choose `wi`, not in how they package it: one of these builds the result.
+impl BsdfSample {
+    /// A sample from a non-delta reflection lobe with BSDF value `f = f(wo, wi)`
+    /// and solid-angle density `pdf`: weight `f · |wi.z| / pdf`, evaluated in
+    /// that order. The order is part of the contract: it is the one every
+    /// model used before this constructor existed, and regrouping it (e.g.
+    /// `f · (cos / pdf)`) would change rendered images in the last bit.
+    ///
+    /// `None` when `pdf ≤ 0`: `wi` lies where the model does not scatter
+    /// (across the horizon, on it, or outside a clipped lobe), and dividing
+    /// by that pdf would make an infinite or NaN weight. A NaN or infinite
+    /// pdf is not refused here (as before); a model that can produce one
+    /// checks it itself (see `CookTorrance::sample`).
+    #[inline]
+    pub fn from_f(wi: Vec3A, f: Rgb, pdf: f32) -> Option<Self> {
+        // A pdf ≤ 0 makes an inf/NaN weight here, which from_weight discards.
+        Self::from_weight(wi, f * wi.z.abs() / pdf, pdf)
+    }
+
+    /// As [`BsdfSample::from_f`] for a model that knows its weight in closed
+    /// form (Lambert's cosine sampling makes it exactly the albedo): the
+    /// shortcut is both cheaper and rounds differently from `f·|cos|/pdf`, so
+    /// such models pass their own weight rather than their `f`.
+    /// `None` when `pdf ≤ 0`, for the same reason.
+    #[inline]
+    pub fn from_weight(wi: Vec3A, weight: Rgb, pdf: f32) -> Option<Self> {
+        if pdf <= 0.0 {
+            return None;
+        }
+        Some(Self {
+            wi,
+            weight,
+            pdf,
+            delta: false,
+            eta: 1.0,
+        })
+    }
+
+    /// A sample from a Dirac lobe (mirror, smooth glass). There is no
+    /// density to divide by: `weight` is the lobe's throughput over `prob`,
+    /// the probability with which the model chose this lobe (1 for a single
+    /// lobe), and `eta` is the relative IOR crossed by `wi` (1 when
+    /// reflecting). It cannot fail: a model only returns a lobe it chose, and
+    /// it chose it with probability > 0.
+    #[inline]
+    pub fn delta(wi: Vec3A, weight: Rgb, prob: f32, eta: f32) -> Self {
+        debug_assert!(prob > 0.0, "a chosen delta lobe has probability {prob}");
+        Self {
+            wi,
+            weight,
+            pdf: prob,
+            delta: true,
+            eta,
+        }
+    }
+}
+
 /// The contract every scattering model implements, so tests can be generic.
 pub trait Bxdf {
     fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb;
@@ -252,6 +310,56 @@ pub(crate) fn flip_up(wo: Vec3A, wi: Vec3A) -> (Vec3A, Vec3A) {
 #[cfg(test)]
 mod material_tests {
     use super::*;
+
+    #[test]
+    fn bsdf_sample_refuses_a_pdf_that_is_not_positive() {
+        let (wi, f) = (Vec3A::new(0.6, 0.0, 0.8), Rgb::ONE);
+        for pdf in [0.0, -0.0, -1.0, f32::NEG_INFINITY] {
+            let s = BsdfSample::from_f(wi, f, pdf);
+            assert!(s.is_none(), "from_f with pdf {pdf}: expected None, got {s:?}");
+            let s = BsdfSample::from_weight(wi, f, pdf);
+            assert!(
+                s.is_none(),
+                "from_weight with pdf {pdf}: expected None, got {s:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn bsdf_sample_from_f_weighs_by_cosine_over_pdf() {
+        // Below the surface, so the |cos| matters; values chosen so that no
+        // step rounds exactly.
+        let (wi, f, pdf) = (Vec3A::new(0.6, 0.0, -0.8), Rgb::new(0.3, 0.7, 1.1), 0.37);
+        let s = BsdfSample::from_f(wi, f, pdf).expect("pdf > 0 gives a sample");
+        // Bit for bit the documented order, not merely close to it.
+        assert_eq!(s.weight, f * wi.z.abs() / pdf);
+        let want = Rgb::new(0.3 * 0.8 / 0.37, 0.7 * 0.8 / 0.37, 1.1 * 0.8 / 0.37);
+        assert!(
+            (s.weight - want).abs().max_element() < 1e-6,
+            "weight {} ≠ f·|cos|/pdf {want}",
+            s.weight
+        );
+        assert_eq!((s.wi, s.pdf, s.delta, s.eta), (wi, pdf, false, 1.0));
+    }
+
+    #[test]
+    fn bsdf_sample_from_weight_keeps_the_given_weight() {
+        let (wi, weight) = (Vec3A::new(0.0, 0.6, 0.8), Rgb::new(0.2, 0.4, 0.6));
+        let s =
+            BsdfSample::from_weight(wi, weight, 0.8 / std::f32::consts::PI).expect("pdf > 0 gives a sample");
+        assert_eq!((s.wi, s.weight, s.delta, s.eta), (wi, weight, false, 1.0));
+    }
+
+    #[test]
+    fn bsdf_sample_delta_keeps_weight_probability_and_eta() {
+        let (wi, weight) = (Vec3A::new(-0.6, 0.0, -0.8), Rgb::splat(0.25));
+        let s = BsdfSample::delta(wi, weight, 0.96, 1.5);
+        assert_eq!(
+            (s.wi, s.weight, s.pdf, s.delta, s.eta),
+            (wi, weight, 0.96, true, 1.5),
+            "delta must store its arguments unchanged"
+        );
+    }
 
     #[test]
     fn only_texture_parameters_make_a_material_textured() {
