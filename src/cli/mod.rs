@@ -250,6 +250,13 @@ pub fn print_load_error(e: &LoadError) {
 }
 
 /// Prints to stdout, ignoring a closed pipe (`ronray diff … | head`).
+/// What the build repaired or defaulted, on stderr.
+pub(crate) fn print_notes(notes: &[String]) {
+    for n in notes {
+        eprintln!("note: {n}");
+    }
+}
+
 pub(crate) fn print_out(text: &str) {
     use std::io::Write;
     let _ = std::io::stdout().lock().write_all(text.as_bytes());

@@ -21,6 +21,7 @@ pub(super) fn cmd_render(
             return ExitCode::FAILURE;
         }
     };
+    super::print_notes(&loaded.stats.notes);
     let out = loaded.view.output_path(path, output);
     let ext = out
         .extension()

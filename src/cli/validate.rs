@@ -9,7 +9,10 @@ pub(super) fn cmd_validate(paths: &[PathBuf], json: bool) -> ExitCode {
     for p in paths {
         match load_with(p, &Overrides::default()) {
             Ok(_) if json => {}
-            Ok(_) => print_out(&format!("{}: ok\n", p.display())),
+            Ok(l) => {
+                super::print_notes(&l.stats.notes);
+                print_out(&format!("{}: ok\n", p.display()));
+            }
             Err(e) => {
                 failed += 1;
                 if json {

@@ -106,7 +106,7 @@ pub fn load_str_with_meshes(
     }
     overrides.apply(&mut desc);
     let base = path.parent().unwrap_or(Path::new("."));
-    let problems = validate(&desc);
+    let problems = validate(&desc, base);
     if !problems.is_empty() {
         return Err(LoadError::Invalid(composition.locate(&problems)));
     }

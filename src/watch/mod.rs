@@ -187,6 +187,7 @@ impl Session {
                 return self.rearm(next);
             }
         };
+        self.reporter.notes(&loaded.stats.notes);
         let (load_time, reused) = (t0.elapsed(), self.cache.take_hits());
         self.cache.retain(&loaded.files);
         self.rearm(WatchSet::new(&loaded.files));

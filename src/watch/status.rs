@@ -95,6 +95,14 @@ impl Reporter {
         ));
     }
 
+    /// What the build repaired or defaulted; kept on screen like diagnostics.
+    pub fn notes(&self, notes: &[String]) {
+        let text: String = notes.iter().map(|n| format!("note: {n}\n")).collect();
+        if !text.is_empty() {
+            self.block(&text);
+        }
+    }
+
     /// An edit that does not load: every diagnostic, and the old image stays.
     pub fn invalid(&self, generation: u64, e: &LoadError) {
         let plain = match e.report() {

@@ -9,8 +9,8 @@
 //! unbounded SDF would spend every one of its `max_steps` finding out, and a
 //! floor is better served by the analytic `Plane` object.
 
-use super::build::{compose, is_similarity};
-use super::build_sdf::{leaf, operator};
+use super::super::object::{compose, is_similarity};
+use super::build::{leaf, operator};
 use crate::desc::{MarchDesc, SdfDesc, TransformDesc};
 use crate::diagnostic::Problem;
 use crate::geometry::sdf::{SdfNode, validate_node};

@@ -1,26 +1,29 @@
 //! Desc → runtime for implicit surfaces: the hand-written [`SdfDesc`] tree
 //! becomes the engine's post-order [`SdfNode`] arena, `of: [...]` lists fold
 //! left into binary operators, and the object's `transform` (a similarity,
-//! checked by `validate_sdf`) wraps the root as one `Transform` node, so the
+//! checked by `check.rs`) wraps the root as one `Transform` node, so the
 //! runtime [`Sdf`] is already in world space.
 
 use crate::desc::{MarchDesc, SceneDesc, SdfDesc};
+use crate::load::build::BuildContext;
 use crate::geometry::Shape;
 use crate::geometry::sdf::{MarchParams, Sdf, SdfNode};
 use crate::geometry::sdf_object::{MIN_EPS, SdfObject};
 use glam::{Mat3, Mat4, Quat, Vec3, Vec3A};
 
-/// Builds one validated SDF object, appends it to `sdfs` and returns its
+/// Builds one validated SDF object into `ctx`'s geometry and returns its
 /// shape with whether it is bounded (BVH) or not (tested by every ray).
-/// `scene` gives the pixel size for the default hit threshold.
-pub fn build_sdf(
-    scene: &SceneDesc,
+/// The scene's camera and film give the pixel size for the default hit
+/// threshold.
+pub(in crate::load) fn build_sdf(
+    ctx: &mut BuildContext,
     shape: &SdfDesc,
     march: &MarchDesc,
     world_from_object: &Mat4,
     material: u32,
-    sdfs: &mut Vec<SdfObject>,
 ) -> (Shape, bool) {
+    let sdfs = &mut ctx.geometry.sdfs;
+    let scene = ctx.desc;
     let mut nodes = Vec::new();
     let mut root = lower(shape, &mut nodes);
     if *world_from_object != Mat4::IDENTITY {

@@ -1,9 +1,14 @@
-//! Camera, film and integrator checks.
+//! Camera, film and integrator: their checks, and the [`View`] they build
+//! (what `render()` needs beside the scene).
 
-use super::Checker;
-use super::*;
-use crate::desc::{CameraDesc, FilmDesc, IntegratorDesc};
+use super::validate::{Checker, MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_RESOLUTION, MAX_SPP};
+use crate::camera::Camera;
+use crate::desc::{CameraDesc, FilmDesc, IntegratorDesc, SamplerDesc, SceneDesc};
+use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
+use crate::sampler::SamplerKind;
+use crate::view::{Film, View};
 use glam::Vec3;
+use std::path::Path;
 
 impl Checker {
     pub(super) fn camera(&mut self, c: &CameraDesc) {
@@ -121,5 +126,48 @@ impl Checker {
                 }
             }
         }
+    }
+}
+
+/// The view of a checked scene; `base` resolves `film.output`.
+pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
+    let c = &desc.camera;
+    let mut camera = Camera::look_at(c.eye.into(), c.target.into(), c.up.into(), c.fov_y_degrees);
+    camera.aperture_radius = c.aperture_radius;
+    if let Some(f) = c.focus_distance {
+        camera.focus_distance = f;
+    }
+    let integrator = match desc.integrator {
+        IntegratorDesc::Direct { light_samples } => Integrator::Direct(Direct { light_samples }),
+        IntegratorDesc::Whitted {
+            max_depth,
+            light_samples,
+        } => Integrator::Whitted(Whitted {
+            max_depth,
+            light_samples,
+        }),
+        IntegratorDesc::Path {
+            max_depth, rr_depth, ..
+        } => Integrator::Path(PathTracer {
+            max_depth: u32::try_from(max_depth).unwrap_or(u32::MAX),
+            rr_depth,
+        }),
+    };
+    let f = &desc.film;
+    View {
+        camera,
+        film: Film {
+            width: f.width,
+            height: f.height,
+            spp: f.spp,
+            seed: f.seed,
+            sampler: match f.sampler {
+                SamplerDesc::Independent => SamplerKind::Independent,
+                SamplerDesc::Stratified => SamplerKind::Stratified,
+                SamplerDesc::Sobol => SamplerKind::Sobol,
+            },
+        },
+        integrator,
+        output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
     }
 }

@@ -1,0 +1,236 @@
+//! The mesh part of `build`: OBJ files loaded (each `meshes` entry once),
+//! `Mesh` objects baked into world space, `Instance`s placed by transform,
+//! and every OBJ group given a scene material.
+//!
+//! A group's material is, first match wins: `materials: { "group or MTL
+//! name": "scene material" }`, then the object's `material`, then the group's
+//! MTL material (see `mtl.rs`), then a grey default (with a note).
+//!
+//! The check step only makes sure each OBJ file exists (`Checker::file`);
+//! parsing the file is the build's work, and its problems are reported at
+//! the object or `meshes` entry that names it.
+
+use super::build::BuildContext;
+use super::validate::Checker;
+use crate::desc::{MeshDesc, ObjectDesc};
+use crate::diagnostic::{Problem, suggest};
+use crate::geometry::mesh_triangle::FLATTEN_MAX;
+use crate::geometry::obj::{ObjData, ObjGroup};
+use crate::geometry::{Instance, MeshTriangle, Shape};
+use crate::materials::{ColorTex, Material};
+use crate::math::Rgb;
+use glam::{Affine3A, Mat4, Vec3};
+use std::collections::{BTreeMap, HashMap};
+
+impl Checker {
+    /// An entry of the scene's `meshes` section.
+    pub(super) fn mesh_entry(&mut self, path: &str, m: &MeshDesc) {
+        self.file(&format!("{path}.file"), &m.file, "OBJ");
+    }
+}
+
+/// A mesh in `Geometry::meshes` with what material resolution needs.
+#[derive(Clone)]
+struct LoadedMesh {
+    mesh: u32,
+    groups: Vec<ObjGroup>,
+    /// Scene material of each MTL material of the file.
+    mtl: Vec<u32>,
+}
+
+/// What the mesh build step keeps from one object to the next.
+#[derive(Default)]
+pub(super) struct MeshState {
+    /// `meshes` entries already loaded, by name (`None`: it failed).
+    shared: HashMap<String, Option<LoadedMesh>>,
+    /// The grey default material, created on first use.
+    grey: Option<u32>,
+}
+
+/// Adds object `i` (a `Mesh` or an `Instance`) as one [`Shape::Instance`],
+/// or, for a small baked mesh, as its triangles (see `mesh_triangle.rs`).
+pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_object: Mat4) {
+    let path = format!("objects[{i}]");
+    let mut flatten = false;
+    let (loaded, transform) = match o {
+        ObjectDesc::Mesh { file, smooth, .. } => {
+            let Some(mut data) = load(ctx, file, *smooth, &format!("{path}.file")) else {
+                return;
+            };
+            // Baked: the mesh is this object's alone.
+            bake(&mut data, world_from_object);
+            flatten = data.mesh.triangle_count() <= FLATTEN_MAX;
+            data.mesh.prepare();
+            (push_mesh(ctx, data, file), Affine3A::IDENTITY)
+        }
+        ObjectDesc::Instance { mesh, .. } => {
+            let Some(l) = shared(ctx, mesh) else {
+                return;
+            };
+            (l, Affine3A::from_mat4(world_from_object))
+        }
+        _ => return,
+    };
+    let overrides = o.material_overrides().cloned().unwrap_or_default();
+    let materials = resolve(ctx, &path, &loaded, o.material(), &overrides);
+    let id = ctx.geometry.instances.len() as u32;
+    ctx.geometry.instances.push(Instance::new(
+        loaded.mesh,
+        transform,
+        materials.into_boxed_slice(),
+    ));
+    let mesh = &ctx.geometry.meshes[loaded.mesh as usize];
+    ctx.triangles += mesh.triangle_count();
+    if flatten {
+        ctx.shapes.extend((0..mesh.triangle_count() as u32).map(|tri| {
+            let (a, b, c) = mesh.corners(tri);
+            Shape::Triangle(MeshTriangle {
+                p: [a.into(), b.into(), c.into()],
+                instance: id,
+                tri,
+            })
+        }));
+    } else {
+        ctx.shapes.push(Shape::Instance(id));
+    }
+}
+
+/// The `meshes` entry `name`, loaded on first use.
+fn shared(ctx: &mut BuildContext, name: &str) -> Option<LoadedMesh> {
+    if !ctx.mesh_state.shared.contains_key(name) {
+        let entry = ctx.desc.meshes.get(name).and_then(|m| {
+            let mut data = load(ctx, &m.file, m.smooth, &format!("meshes.{name}.file"))?;
+            data.mesh.prepare();
+            Some(push_mesh(ctx, data, &m.file))
+        });
+        ctx.mesh_state.shared.insert(name.to_string(), entry);
+    }
+    ctx.mesh_state.shared.get(name).cloned().flatten()
+}
+
+fn load(ctx: &mut BuildContext, file: &str, smooth: bool, at: &str) -> Option<ObjData> {
+    let path = ctx.base.join(file);
+    match (ctx.load_obj)(&path) {
+        Ok(mut data) => {
+            ctx.notes.append(&mut data.warnings);
+            if smooth {
+                data.mesh.compute_smooth_normals();
+            }
+            Some(data)
+        }
+        Err(msg) => {
+            let help = if path.exists() {
+                "check that the file is a Wavefront OBJ with `v` and `f` lines".to_string()
+            } else {
+                format!(
+                    "no file at {} (paths are relative to the scene file's folder)",
+                    path.display()
+                )
+            };
+            ctx.problems.push(Problem::new(at, msg).help(help));
+            None
+        }
+    }
+}
+
+fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str) -> LoadedMesh {
+    let obj = ctx.base.join(file);
+    let dir = obj.parent().unwrap_or(ctx.base);
+    let mtl = data
+        .materials
+        .iter()
+        .map(|m| ctx.mtl.add(m, dir, &mut ctx.notes))
+        .collect();
+    ctx.geometry.meshes.push(data.mesh);
+    LoadedMesh {
+        mesh: ctx.geometry.meshes.len() as u32 - 1,
+        groups: data.groups,
+        mtl,
+    }
+}
+
+/// Scene material of each slot; unknown override keys are problems.
+fn resolve(
+    ctx: &mut BuildContext,
+    path: &str,
+    l: &LoadedMesh,
+    material: Option<&str>,
+    overrides: &BTreeMap<String, String>,
+) -> Vec<u32> {
+    let mtl_names: Vec<Option<String>> = l
+        .groups
+        .iter()
+        .map(|g| g.material.and_then(|m| ctx.mtl.name(l.mtl[m])))
+        .collect();
+    let names: Vec<String> = l
+        .groups
+        .iter()
+        .zip(&mtl_names)
+        .flat_map(|(g, m)| std::iter::once(g.name.clone()).chain(m.clone()))
+        .collect();
+    for key in overrides.keys().filter(|k| !names.contains(k)) {
+        let mut p = Problem::new(
+            format!("{path}.materials.{key}"),
+            format!("the OBJ has no group or material `{key}`"),
+        );
+        p = match suggest(key, names.iter().map(String::as_str)) {
+            Some(s) => p.help(format!("did you mean `{s}`?")),
+            None => p.help(format!("its groups and materials are: {}", quoted(&names))),
+        };
+        ctx.problems.push(p);
+    }
+    l.groups
+        .iter()
+        .zip(&mtl_names)
+        .map(|(g, mtl_name)| {
+            let scene = |n: &str| ctx.material_index.get(n).copied();
+            let by_name = overrides
+                .get(&g.name)
+                .or_else(|| mtl_name.as_ref().and_then(|m| overrides.get(m)));
+            if let Some(m) = by_name.and_then(|n| scene(n)).or_else(|| material.and_then(scene)) {
+                return m;
+            }
+            if let Some(m) = g.material {
+                return l.mtl[m];
+            }
+            grey(ctx, path, &g.name)
+        })
+        .collect()
+}
+
+/// The grey default for a group that has no material from anywhere.
+fn grey(ctx: &mut BuildContext, path: &str, group: &str) -> u32 {
+    if let Some(g) = ctx.mesh_state.grey {
+        return g;
+    }
+    ctx.notes.push(format!(
+        "{path}: OBJ group `{group}` has no material and the scene gives none; using grey Lambert (0.5)"
+    ));
+    let g = ctx.mtl.push(Material::Lambert {
+        albedo: ColorTex::Const(Rgb::splat(0.5)),
+    });
+    ctx.mesh_state.grey = Some(g);
+    g
+}
+
+fn quoted(names: &[String]) -> String {
+    names
+        .iter()
+        .map(|n| format!("`{n}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Transforms positions and normals of `data` into world space.
+fn bake(data: &mut ObjData, m: Mat4) {
+    let normal_m = m.inverse().transpose();
+    for p in &mut data.mesh.positions {
+        *p = m.transform_point3(Vec3::from(*p)).into();
+    }
+    for n in &mut data.mesh.normals {
+        *n = normal_m
+            .transform_vector3(Vec3::from(*n))
+            .normalize_or_zero()
+            .into();
+    }
+}

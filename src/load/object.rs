@@ -1,0 +1,253 @@
+//! Objects: the checks of each `objects` entry (shape parameters, the names
+//! it refers to, its transform) and the build step that places the analytic
+//! shapes. `Mesh` and `Instance` objects are built by `mesh.rs`, `Sdf`
+//! objects by `sdf/`; the transform helpers here serve all of them.
+
+use super::build::BuildContext;
+use super::validate::Checker;
+use crate::desc::{ObjectDesc, SceneDesc, TransformDesc};
+use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
+use glam::{Mat4, Vec3, Vec3A};
+
+impl Checker {
+    /// Object `path` (`objects[i]`) of `scene`: its own parameters, the
+    /// materials and mesh it names, and its transform.
+    pub(super) fn object(&mut self, path: &str, o: &ObjectDesc, scene: &SceneDesc) {
+        self.object_refs(path, o, scene);
+        self.shape(path, o);
+        self.transform(path, o);
+    }
+
+    fn object_refs(&mut self, path: &str, o: &ObjectDesc, scene: &SceneDesc) {
+        if let Some(name) = o.material() {
+            let at = format!("{path}.material");
+            self.name_ref(&at, "material", name, scene.materials.keys(), "materials");
+        }
+        for (key, name) in o.material_overrides().into_iter().flatten() {
+            let at = format!("{path}.materials.{key}");
+            self.name_ref(&at, "material", name, scene.materials.keys(), "materials");
+        }
+        if let ObjectDesc::Instance { mesh, .. } = o {
+            let at = format!("{path}.mesh");
+            self.name_ref(&at, "mesh", mesh, scene.meshes.keys(), "meshes");
+        }
+    }
+
+    fn shape(&mut self, path: &str, o: &ObjectDesc) {
+        match o {
+            ObjectDesc::Sdf {
+                shape,
+                march,
+                transform,
+                ..
+            } => (self.problems).extend(super::sdf::validate_sdf(path, shape, march, transform)),
+            ObjectDesc::Sphere { center, radius, .. } => {
+                self.finite(&format!("{path}.center"), center);
+                if !(*radius > 0.0 && radius.is_finite()) {
+                    self.push(
+                        &format!("{path}.radius"),
+                        format!("sphere radius {radius} must be > 0"),
+                        "give a positive radius in scene units",
+                    );
+                }
+            }
+            ObjectDesc::Plane { point, normal, .. } => {
+                self.finite(&format!("{path}.point"), point);
+                self.nonzero(&format!("{path}.normal"), normal, "`normal`");
+            }
+            ObjectDesc::Quad {
+                corner,
+                edge_u,
+                edge_v,
+                ..
+            } => {
+                self.finite(&format!("{path}.corner"), corner);
+                self.parallelogram(path, "edge_u", edge_u, "edge_v", edge_v);
+            }
+            ObjectDesc::Rect {
+                center,
+                half_u,
+                half_v,
+                ..
+            } => {
+                self.finite(&format!("{path}.center"), center);
+                self.parallelogram(path, "half_u", half_u, "half_v", half_v);
+            }
+            ObjectDesc::Mesh { file, .. } => self.file(&format!("{path}.file"), file, "OBJ"),
+            ObjectDesc::Instance { .. } => {}
+        }
+    }
+
+    fn transform(&mut self, path: &str, o: &ObjectDesc) {
+        for (k, t) in o.transform().iter().enumerate() {
+            let tp = format!("{path}.transform[{k}]");
+            match t {
+                TransformDesc::Translate(v) => {
+                    self.finite(&tp, v);
+                }
+                TransformDesc::Rotate { axis, degrees } => {
+                    self.nonzero(&format!("{tp}.axis"), axis, "the rotation axis");
+                    if !degrees.is_finite() {
+                        self.push(
+                            &format!("{tp}.degrees"),
+                            "non-finite angle",
+                            "use a finite angle in degrees",
+                        );
+                    }
+                }
+                TransformDesc::Scale(s) => {
+                    if self.finite(&tp, s) && s.contains(&0.0) {
+                        self.push(
+                            &tp,
+                            format!("scale {s:?} has a zero factor"),
+                            "a zero scale flattens the object; use non-zero factors",
+                        );
+                    }
+                }
+                TransformDesc::Matrix(m) => {
+                    let flat: Vec<f32> = m.iter().flatten().copied().collect();
+                    if self.finite(&tp, &flat) && matrix(m).determinant().abs() < 1e-12 {
+                        self.push(&tp, "matrix is singular", "a transform matrix must be invertible");
+                    }
+                }
+            }
+        }
+        if let ObjectDesc::Sphere { transform, .. } = o
+            && !transform.is_empty()
+            && !is_similarity(&compose(transform))
+        {
+            self.push(
+                &format!("{path}.transform"),
+                "a sphere's transform must keep it round",
+                "use equal scale factors on all axes (or a Mesh for an ellipsoid)",
+            );
+        }
+    }
+}
+
+/// Adds object `i` of the scene to `ctx`: analytic shapes here, meshes,
+/// instances and SDFs through their own build steps.
+pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
+    let material = o
+        .material()
+        .and_then(|n| ctx.material_index.get(n))
+        .copied()
+        .unwrap_or(0);
+    let m = compose(o.transform());
+    let point = |p: &[f32; 3]| Vec3A::from(m.transform_point3(Vec3::from(*p)));
+    let vector = |v: &[f32; 3]| Vec3A::from(m.transform_vector3(Vec3::from(*v)));
+    let shape = match o {
+        ObjectDesc::Sdf { shape, march, .. } => {
+            let (s, bounded) = super::sdf::build_sdf(ctx, shape, march, &m, material);
+            if !bounded {
+                ctx.unbounded.push(s);
+                return;
+            }
+            s
+        }
+        ObjectDesc::Sphere { center, radius, .. } => {
+            let scale = m.transform_vector3(Vec3::X).length();
+            Shape::Sphere(Sphere {
+                center: point(center),
+                radius: radius * scale,
+                material,
+            })
+        }
+        ObjectDesc::Plane { point: p, normal, .. } => {
+            let n = m
+                .inverse()
+                .transpose()
+                .transform_vector3(Vec3::from(*normal))
+                .normalize();
+            ctx.unbounded.push(Shape::Plane(Plane {
+                point: point(p),
+                normal: n.into(),
+                material,
+            }));
+            return;
+        }
+        ObjectDesc::Quad {
+            corner,
+            edge_u,
+            edge_v,
+            ..
+        } => Shape::Quad(Quad::new(
+            point(corner),
+            vector(edge_u),
+            vector(edge_v),
+            material,
+            NO_LIGHT,
+        )),
+        ObjectDesc::Rect {
+            center,
+            half_u,
+            half_v,
+            ..
+        } => {
+            let (u, v) = (vector(half_u), vector(half_v));
+            Shape::Quad(Quad::new(point(center) - u - v, 2.0 * u, 2.0 * v, material, NO_LIGHT))
+        }
+        ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => return super::mesh::add(ctx, i, o, m),
+    };
+    ctx.shapes.push(shape);
+}
+
+/// A 4×4 matrix written as rows.
+pub fn matrix(rows: &[[f32; 4]; 4]) -> Mat4 {
+    Mat4::from_cols_array_2d(rows).transpose()
+}
+
+/// The steps in written order: the first is applied to the object first.
+pub fn compose(steps: &[TransformDesc]) -> Mat4 {
+    steps.iter().fold(Mat4::IDENTITY, |acc, t| {
+        let step = match t {
+            TransformDesc::Translate(v) => Mat4::from_translation(Vec3::from(*v)),
+            TransformDesc::Rotate { axis, degrees } => {
+                Mat4::from_axis_angle(Vec3::from(*axis).normalize(), degrees.to_radians())
+            }
+            TransformDesc::Scale(s) => Mat4::from_scale(Vec3::from(*s)),
+            TransformDesc::Matrix(m) => matrix(m),
+        };
+        step * acc
+    })
+}
+
+/// Rotation, uniform scale and translation only (keeps spheres spheres).
+pub fn is_similarity(m: &Mat4) -> bool {
+    let (x, y, z) = (
+        m.transform_vector3(Vec3::X),
+        m.transform_vector3(Vec3::Y),
+        m.transform_vector3(Vec3::Z),
+    );
+    let s = x.length();
+    let tol = 1e-4 * s.max(1e-12);
+    (y.length() - s).abs() < tol
+        && (z.length() - s).abs() < tol
+        && x.dot(y).abs() < tol * s
+        && y.dot(z).abs() < tol * s
+        && x.dot(z).abs() < tol * s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn compose_applies_steps_in_written_order() {
+        let m = compose(&[
+            TransformDesc::Scale([2.0, 2.0, 2.0]),
+            TransformDesc::Translate([1.0, 0.0, 0.0]),
+        ]);
+        // scale first, then translate: (1,0,0) → (2,0,0) → (3,0,0)
+        assert!((m.transform_point3(Vec3::X) - Vec3::new(3.0, 0.0, 0.0)).length() < 1e-6);
+        let r = compose(&[TransformDesc::Rotate {
+            axis: [0.0, 1.0, 0.0],
+            degrees: 90.0,
+        }]);
+        assert!(
+            (r.transform_vector3(Vec3::X) - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-6,
+            "right-handed about y"
+        );
+        assert!(is_similarity(&r) && !is_similarity(&compose(&[TransformDesc::Scale([1.0, 2.0, 1.0])])));
+    }
+}

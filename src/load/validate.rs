@@ -1,0 +1,215 @@
+//! Semantic checks on a parsed scene, before anything is built. Returns
+//! every problem at once, each with its path in the scene, so a user fixes a
+//! file in one round trip. The limits below are documented in the README;
+//! raising one is a one-line change here.
+
+use crate::desc::{Color, SceneDesc, TestDesc, V3};
+use crate::diagnostic::{Problem, suggest};
+use glam::Vec3;
+use std::path::{Path, PathBuf};
+
+/// Largest accepted image side, in pixels.
+pub const MAX_RESOLUTION: u32 = 16_384;
+/// Largest accepted samples per pixel.
+pub const MAX_SPP: u32 = 1 << 20;
+/// Largest accepted shadow rays per area light.
+pub const MAX_LIGHT_SAMPLES: u32 = 4096;
+/// Largest accepted Whitted recursion depth.
+pub const MAX_DEPTH: u32 = 64;
+
+/// Every problem of `scene`, found before anything is built: values out of
+/// range, unknown names, and files that are missing (paths resolve against
+/// `base`, the scene file's folder). Each kind of thing checks itself in its
+/// own file (`view.rs`, `material.rs`, `light.rs`, `object.rs`, `mesh.rs`,
+/// `sdf/`).
+pub fn validate(scene: &SceneDesc, base: &Path) -> Vec<Problem> {
+    let mut v = Checker {
+        problems: Vec::new(),
+        base: base.to_path_buf(),
+    };
+    v.camera(&scene.camera);
+    v.film(&scene.film);
+    v.integrator(&scene.integrator);
+    if let Some(t) = &scene.test {
+        v.test(t);
+    }
+    for (name, m) in &scene.materials {
+        v.material(&format!("materials.{name}"), m);
+    }
+    let names: Vec<&str> = scene.materials.keys().map(String::as_str).collect();
+    for (i, l) in scene.lights.iter().enumerate() {
+        v.light(&format!("lights[{i}]"), l, &names);
+    }
+    for (i, o) in scene.objects.iter().enumerate() {
+        v.object(&format!("objects[{i}]"), o, scene);
+    }
+    for (name, m) in &scene.meshes {
+        v.mesh_entry(&format!("meshes.{name}"), m);
+    }
+    v.problems
+}
+
+/// Collects problems; each kind adds its own `impl Checker` block in its
+/// file, with the shared helpers below.
+pub(super) struct Checker {
+    pub(super) problems: Vec<Problem>,
+    /// The scene file's folder, which relative file names resolve against.
+    pub(super) base: PathBuf,
+}
+
+impl Checker {
+    /// `name` must be one of `known` (the keys of the scene's `section`).
+    pub(super) fn name_ref<'a>(
+        &mut self,
+        path: &str,
+        what: &str,
+        name: &str,
+        known: impl Iterator<Item = &'a String> + Clone,
+        section: &str,
+    ) {
+        if known.clone().any(|k| k == name) {
+            return;
+        }
+        let mut p = Problem::new(path, format!("unknown {what} `{name}`"));
+        let names: Vec<&str> = known.map(String::as_str).collect();
+        p = match suggest(name, names.iter().copied()) {
+            Some(s) => p.help(format!("did you mean `{s}`?")),
+            None if names.is_empty() => p.help(format!("define it under `{section}: {{ ... }}`")),
+            None => p.help(format!(
+                "the {section} defined are: {}",
+                names
+                    .iter()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
+        };
+        self.problems.push(p);
+    }
+
+    /// The regression-test settings (`test`).
+    fn test(&mut self, t: &TestDesc) {
+        if t.width == 0 || t.width > 4096 || t.height.is_some_and(|h| h == 0 || h > 4096) {
+            self.push(
+                "test.width",
+                "test image size is outside 1..=4096",
+                "regression renders are small, e.g. 64 pixels wide",
+            );
+        }
+        if t.spp == 0 || t.spp > MAX_SPP {
+            self.push(
+                "test.spp",
+                format!("{} samples per pixel is outside 1..={MAX_SPP}", t.spp),
+                "use 4–64 for regression renders",
+            );
+        }
+        if !(t.tolerance > 0.0 && t.tolerance.is_finite()) {
+            self.push(
+                "test.tolerance",
+                format!("tolerance {} must be > 0", t.tolerance),
+                "it is the largest accepted relative MSE, e.g. 0.02",
+            );
+        }
+    }
+
+    /// `file` (relative to the scene's folder) must be a readable regular
+    /// file: a missing OBJ or texture is reported with the other mistakes,
+    /// not after them when the build would read it.
+    pub(super) fn file(&mut self, path: &str, file: &str, what: &str) {
+        if file.trim().is_empty() {
+            self.push(
+                path,
+                format!("empty {what} path"),
+                format!("give the path of the {what} file, relative to the scene file"),
+            );
+            return;
+        }
+        let full = self.base.join(file);
+        match std::fs::metadata(&full) {
+            Ok(m) if m.is_file() => {}
+            Ok(_) => self.push(
+                path,
+                format!("{what} `{file}` is not a regular file"),
+                format!("{} is a folder, a device or a pipe", full.display()),
+            ),
+            Err(e) => self.push(
+                path,
+                format!("cannot read {what} `{file}`: {e}"),
+                format!(
+                    "the path resolves to {} (paths are relative to the scene file's folder)",
+                    full.display()
+                ),
+            ),
+        }
+    }
+
+    pub(super) fn range(&mut self, path: &str, x: f32, lo: f32, hi: f32, what: &str, help: &str) {
+        if !(x >= lo && x <= hi) {
+            self.push(path, format!("{what} {x} is outside [{lo}, {hi}]"), help);
+        }
+    }
+
+    pub(super) fn parallelogram(&mut self, path: &str, un: &str, u: &V3, vn: &str, v: &V3) {
+        if self.finite(&format!("{path}.{un}"), u)
+            && self.finite(&format!("{path}.{vn}"), v)
+            && Vec3::from(*u).cross(Vec3::from(*v)).length() <= 1e-12
+        {
+            self.push(
+                &format!("{path}.{vn}"),
+                format!("zero-area quad: `{un}` {u:?} and `{vn}` {v:?} are parallel or zero"),
+                "give the two edges non-zero, non-parallel directions",
+            );
+        }
+    }
+
+    pub(super) fn push(&mut self, path: &str, msg: impl Into<String>, help: impl Into<String>) {
+        self.problems.push(Problem::new(path, msg).help(help));
+    }
+
+    /// Finite components; false (after reporting) if not.
+    pub(super) fn finite(&mut self, path: &str, v: &[f32]) -> bool {
+        if v.iter().all(|x| x.is_finite()) {
+            return true;
+        }
+        self.push(
+            path,
+            format!("non-finite number in {v:?}"),
+            "use finite numbers (no inf or NaN)",
+        );
+        false
+    }
+
+    pub(super) fn color(&mut self, path: &str, c: &Color, upper: Option<f32>) {
+        if !self.finite(path, c) {
+            return;
+        }
+        if c.iter().any(|&x| x < 0.0) {
+            self.push(
+                path,
+                format!("negative colour {c:?}"),
+                "colour channels are linear RGB values ≥ 0",
+            );
+        } else if let Some(max) = upper.filter(|&m| c.iter().any(|&x| x > m)) {
+            self.push(
+                path,
+                format!("colour {c:?} has a channel above {max}"),
+                "a reflectance above 1 reflects more light than it receives; use values in [0, 1]",
+            );
+        }
+    }
+
+    pub(super) fn nonzero(&mut self, path: &str, v: &V3, what: &str) -> bool {
+        if !self.finite(path, v) {
+            return false;
+        }
+        if Vec3::from(*v).length_squared() == 0.0 {
+            self.push(
+                path,
+                format!("{what} is the zero vector"),
+                format!("give {what} a non-zero length"),
+            );
+            return false;
+        }
+        true
+    }
+}
