@@ -106,3 +106,23 @@ pub enum MetalDesc {
     Copper,
     Aluminium,
 }
+
+impl MaterialDesc {
+    /// Every colour parameter, so that code which rewrites texture paths
+    /// (includes resolve them against their own folder) does not need a
+    /// match over the models: a new material lists its parameters here.
+    pub fn color_params_mut(&mut self) -> Vec<&mut ColorDesc> {
+        match self {
+            MaterialDesc::Lambert { albedo } | MaterialDesc::OrenNayar { albedo, .. } => vec![albedo],
+            MaterialDesc::Phong {
+                diffuse, specular, ..
+            }
+            | MaterialDesc::BlinnPhong {
+                diffuse, specular, ..
+            } => vec![diffuse, specular],
+            MaterialDesc::MetalPlastic { base_color, .. } => vec![base_color],
+            MaterialDesc::Mirror { tint } | MaterialDesc::Glass { tint, .. } => vec![tint],
+            MaterialDesc::CookTorrance { .. } => Vec::new(),
+        }
+    }
+}

@@ -129,37 +129,3 @@ impl Default for TestDesc {
         }
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// parse → serialise → parse gives the same scene, for every shipped one.
-    #[test]
-    fn scene_desc_round_trips_through_ron_and_json() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-        let mut n = 0;
-        for e in std::fs::read_dir(dir).expect("scenes/").flatten() {
-            let p = e.path();
-            if p.extension().is_none_or(|x| x != "ron") {
-                continue;
-            }
-            let text = std::fs::read_to_string(&p).expect("read");
-            let opts =
-                ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-            let a: SceneDesc = opts
-                .from_str(&text)
-                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            let ron_text = crate::load::format::to_ron(&a).expect("serialise");
-            let b: SceneDesc = opts
-                .from_str(&ron_text)
-                .unwrap_or_else(|e| panic!("{}: {e}\n{ron_text}", p.display()));
-            assert_eq!(a, b, "{} changed through RON", p.display());
-            let json = crate::load::format::to_json(&a).expect("json");
-            let c: SceneDesc = serde_json::from_str(&json).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            assert_eq!(a, c, "{} changed through JSON", p.display());
-            n += 1;
-        }
-        assert!(n >= 4);
-    }
-}

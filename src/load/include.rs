@@ -13,7 +13,7 @@
 //! the composed scene is reported in the file and at the line that wrote it.
 
 use super::spans::Spans;
-use crate::desc::{ColorDesc, IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
+use crate::desc::{ColorDesc, IncludeDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::Problem;
 use crate::diagnostic::{Diagnostic, Report, offset_of};
 use std::path::{Path, PathBuf};
@@ -243,7 +243,11 @@ fn include(
         }
     };
     for (name, mut m) in std::mem::take(&mut inc_desc.materials) {
-        for_each_image(&mut m, fix);
+        for c in m.color_params_mut() {
+            if let ColorDesc::Image(file) = c {
+                fix(file);
+            }
+        }
         if let Some((first_file, first_path)) = defined.get(&name) {
             let first = location(c, *first_file, first_path);
             let mut d = Diagnostic::new(
@@ -285,29 +289,6 @@ fn include(
             original: format!("objects[{i}]"),
         });
         merged.objects.push(o);
-    }
-}
-
-fn for_each_image(m: &mut MaterialDesc, mut f: impl FnMut(&mut String)) {
-    let mut one = |c: &mut ColorDesc| {
-        if let ColorDesc::Image(file) = c {
-            f(file);
-        }
-    };
-    match m {
-        MaterialDesc::Lambert { albedo } | MaterialDesc::OrenNayar { albedo, .. } => one(albedo),
-        MaterialDesc::Phong {
-            diffuse, specular, ..
-        }
-        | MaterialDesc::BlinnPhong {
-            diffuse, specular, ..
-        } => {
-            one(diffuse);
-            one(specular);
-        }
-        MaterialDesc::MetalPlastic { base_color, .. } => one(base_color),
-        MaterialDesc::Mirror { tint } | MaterialDesc::Glass { tint, .. } => one(tint),
-        MaterialDesc::CookTorrance { .. } => {}
     }
 }
 

@@ -139,6 +139,7 @@ pub(super) fn build_light(ctx: &mut BuildContext, l: &LightDesc) {
 
 fn push_quad_light(ctx: &mut BuildContext, material: u32, q: QuadLight) {
     let id = ctx.lights.len() as u32;
-    ctx.shapes.push(Shape::Quad(Quad::new(q.corner, q.u, q.v, material, id)));
+    ctx.shapes
+        .push(Shape::Quad(Quad::new(q.corner, q.u, q.v, material, id)));
     ctx.lights.push(Light::Quad(q));
 }

@@ -55,23 +55,7 @@ impl Checker {
                 diffuse,
                 specular,
                 exponent,
-            } => {
-                self.color_param(&p("diffuse"), diffuse, Some(1.0));
-                self.color_param(&p("specular"), specular, Some(1.0));
-                self.range(
-                    &p("exponent"),
-                    *exponent,
-                    0.0,
-                    100_000.0,
-                    "exponent",
-                    "the lobe sharpness: 1 is broad, 1000 is nearly a mirror",
-                );
-                if let (ColorDesc::Rgb(d), ColorDesc::Rgb(s)) = (diffuse, specular)
-                    && d.iter().zip(s).any(|(a, b)| a + b > 1.0 + 1e-6)
-                {
-                    self.push(&p("specular"), format!("diffuse {d:?} + specular {s:?} exceeds 1 in a channel"), "keep diffuse + specular ≤ 1 per channel so the surface reflects no more light than it receives");
-                }
-            }
+            } => self.phong_lobes(path, diffuse, specular, *exponent),
             MaterialDesc::CookTorrance {
                 roughness, fresnel, ..
             } => {
@@ -83,21 +67,7 @@ impl Checker {
                     "roughness",
                     "0 is polished, 1 is very rough (α = roughness²)",
                 );
-                match fresnel {
-                    FresnelDesc::Conductor { eta, k } => {
-                        self.color(&p("fresnel.eta"), eta, None);
-                        self.color(&p("fresnel.k"), k, None);
-                        if eta.contains(&0.0) {
-                            self.push(
-                                &p("fresnel.eta"),
-                                "a conductor's η must be > 0",
-                                "use a preset such as `Metal(Gold)`",
-                            );
-                        }
-                    }
-                    FresnelDesc::Schlick { f0 } => self.color(&p("fresnel.f0"), f0, Some(1.0)),
-                    FresnelDesc::Metal(_) => {}
-                }
+                self.fresnel(&p("fresnel"), fresnel);
             }
             MaterialDesc::MetalPlastic {
                 base_color,
@@ -135,6 +105,49 @@ impl Checker {
             }
         }
     }
+
+    /// The diffuse and specular lobes shared by `Phong` and `BlinnPhong`.
+    fn phong_lobes(&mut self, path: &str, diffuse: &ColorDesc, specular: &ColorDesc, exponent: f32) {
+        let p = |f: &str| format!("{path}.{f}");
+        self.color_param(&p("diffuse"), diffuse, Some(1.0));
+        self.color_param(&p("specular"), specular, Some(1.0));
+        self.range(
+            &p("exponent"),
+            exponent,
+            0.0,
+            100_000.0,
+            "exponent",
+            "the lobe sharpness: 1 is broad, 1000 is nearly a mirror",
+        );
+        if let (ColorDesc::Rgb(d), ColorDesc::Rgb(s)) = (diffuse, specular)
+            && d.iter().zip(s).any(|(a, b)| a + b > 1.0 + 1e-6)
+        {
+            self.push(
+                &p("specular"),
+                format!("diffuse {d:?} + specular {s:?} exceeds 1 in a channel"),
+                "keep diffuse + specular ≤ 1 per channel so the surface reflects no more light than it receives",
+            );
+        }
+    }
+
+    /// A conductor's Fresnel term (`CookTorrance`'s `fresnel`).
+    fn fresnel(&mut self, path: &str, fresnel: &FresnelDesc) {
+        match fresnel {
+            FresnelDesc::Conductor { eta, k } => {
+                self.color(&format!("{path}.eta"), eta, None);
+                self.color(&format!("{path}.k"), k, None);
+                if eta.contains(&0.0) {
+                    self.push(
+                        &format!("{path}.eta"),
+                        "a conductor's η must be > 0",
+                        "use a preset such as `Metal(Gold)`",
+                    );
+                }
+            }
+            FresnelDesc::Schlick { f0 } => self.color(&format!("{path}.f0"), f0, Some(1.0)),
+            FresnelDesc::Metal(_) => {}
+        }
+    }
 }
 
 /// The runtime materials (in name order), the textures they use, and the
@@ -161,73 +174,7 @@ pub fn build_materials(
     let mut index = HashMap::new();
     for (name, m) in descs {
         index.insert(name.clone(), materials.len() as u32);
-        let p = |field: &str| format!("materials.{name}.{field}");
-        let mat = match m {
-            MaterialDesc::Lambert { albedo } => Material::Lambert {
-                albedo: b.color(albedo, &p("albedo")),
-            },
-            MaterialDesc::OrenNayar { albedo, sigma } => Material::OrenNayar {
-                albedo: b.color(albedo, &p("albedo")),
-                sigma: *sigma,
-            },
-            MaterialDesc::Phong {
-                diffuse,
-                specular,
-                exponent,
-            } => Material::Phong {
-                kd: b.color(diffuse, &p("diffuse")),
-                ks: b.color(specular, &p("specular")),
-                exponent: *exponent,
-            },
-            MaterialDesc::BlinnPhong {
-                diffuse,
-                specular,
-                exponent,
-            } => Material::BlinnPhong {
-                kd: b.color(diffuse, &p("diffuse")),
-                ks: b.color(specular, &p("specular")),
-                exponent: *exponent,
-            },
-            MaterialDesc::CookTorrance {
-                distribution,
-                roughness,
-                fresnel,
-            } => Material::CookTorrance {
-                distribution: match distribution {
-                    DistributionDesc::Ggx => Distribution::Ggx,
-                    DistributionDesc::Beckmann => Distribution::Beckmann,
-                },
-                roughness: *roughness,
-                fresnel: match fresnel {
-                    FresnelDesc::Conductor { eta, k } => Fresnel::Conductor {
-                        eta: (*eta).into(),
-                        k: (*k).into(),
-                    },
-                    FresnelDesc::Metal(m) => metal(*m).fresnel(),
-                    FresnelDesc::Schlick { f0 } => Fresnel::Schlick { f0: (*f0).into() },
-                },
-            },
-            MaterialDesc::MetalPlastic {
-                base_color,
-                roughness,
-                metalness,
-            } => Material::MetalPlastic {
-                base_color: b.color(base_color, &p("base_color")),
-                roughness: *roughness,
-                metalness: *metalness,
-            },
-            MaterialDesc::Mirror { tint } => Material::Mirror {
-                tint: b.color(tint, &p("tint")),
-            },
-            MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass {
-                ior: *ior,
-                tint: b.color(tint, &p("tint")),
-                fresnel: match fresnel {
-                    DielectricFresnelDesc::Exact => DielectricFresnel::Exact,
-                    DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
-                },
-            },
-        };
+        let mat = build_material(&mut b, name, m);
         materials.push(mat);
     }
     if !b.problems.is_empty() {
@@ -240,6 +187,77 @@ pub fn build_materials(
         index,
         files,
     })
+}
+
+/// The runtime material of entry `name`; its textures are read through `b`.
+fn build_material(b: &mut Builder, name: &str, m: &MaterialDesc) -> Material {
+    let p = |field: &str| format!("materials.{name}.{field}");
+    match m {
+        MaterialDesc::Lambert { albedo } => Material::Lambert {
+            albedo: b.color(albedo, &p("albedo")),
+        },
+        MaterialDesc::OrenNayar { albedo, sigma } => Material::OrenNayar {
+            albedo: b.color(albedo, &p("albedo")),
+            sigma: *sigma,
+        },
+        MaterialDesc::Phong {
+            diffuse,
+            specular,
+            exponent,
+        } => Material::Phong {
+            kd: b.color(diffuse, &p("diffuse")),
+            ks: b.color(specular, &p("specular")),
+            exponent: *exponent,
+        },
+        MaterialDesc::BlinnPhong {
+            diffuse,
+            specular,
+            exponent,
+        } => Material::BlinnPhong {
+            kd: b.color(diffuse, &p("diffuse")),
+            ks: b.color(specular, &p("specular")),
+            exponent: *exponent,
+        },
+        MaterialDesc::CookTorrance {
+            distribution,
+            roughness,
+            fresnel,
+        } => Material::CookTorrance {
+            distribution: match distribution {
+                DistributionDesc::Ggx => Distribution::Ggx,
+                DistributionDesc::Beckmann => Distribution::Beckmann,
+            },
+            roughness: *roughness,
+            fresnel: match fresnel {
+                FresnelDesc::Conductor { eta, k } => Fresnel::Conductor {
+                    eta: (*eta).into(),
+                    k: (*k).into(),
+                },
+                FresnelDesc::Metal(m) => metal(*m).fresnel(),
+                FresnelDesc::Schlick { f0 } => Fresnel::Schlick { f0: (*f0).into() },
+            },
+        },
+        MaterialDesc::MetalPlastic {
+            base_color,
+            roughness,
+            metalness,
+        } => Material::MetalPlastic {
+            base_color: b.color(base_color, &p("base_color")),
+            roughness: *roughness,
+            metalness: *metalness,
+        },
+        MaterialDesc::Mirror { tint } => Material::Mirror {
+            tint: b.color(tint, &p("tint")),
+        },
+        MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass {
+            ior: *ior,
+            tint: b.color(tint, &p("tint")),
+            fresnel: match fresnel {
+                DielectricFresnelDesc::Exact => DielectricFresnel::Exact,
+                DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
+            },
+        },
+    }
 }
 
 pub fn metal(m: MetalDesc) -> Metal {

@@ -187,7 +187,10 @@ fn resolve(
             let by_name = overrides
                 .get(&g.name)
                 .or_else(|| mtl_name.as_ref().and_then(|m| overrides.get(m)));
-            if let Some(m) = by_name.and_then(|n| scene(n)).or_else(|| material.and_then(scene)) {
+            if let Some(m) = by_name
+                .and_then(|n| scene(n))
+                .or_else(|| material.and_then(scene))
+            {
                 return m;
             }
             if let Some(m) = g.material {

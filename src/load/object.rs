@@ -185,7 +185,13 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             ..
         } => {
             let (u, v) = (vector(half_u), vector(half_v));
-            Shape::Quad(Quad::new(point(center) - u - v, 2.0 * u, 2.0 * v, material, NO_LIGHT))
+            Shape::Quad(Quad::new(
+                point(center) - u - v,
+                2.0 * u,
+                2.0 * v,
+                material,
+                NO_LIGHT,
+            ))
         }
         ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => return super::mesh::add(ctx, i, o, m),
     };

@@ -5,10 +5,10 @@
 //! runtime [`Sdf`] is already in world space.
 
 use crate::desc::{MarchDesc, SceneDesc, SdfDesc};
-use crate::load::build::BuildContext;
 use crate::geometry::Shape;
 use crate::geometry::sdf::{MarchParams, Sdf, SdfNode};
 use crate::geometry::sdf_object::{MIN_EPS, SdfObject};
+use crate::load::build::BuildContext;
 use glam::{Mat3, Mat4, Quat, Vec3, Vec3A};
 
 /// Builds one validated SDF object into `ctx`'s geometry and returns its
