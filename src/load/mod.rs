@@ -14,5 +14,6 @@ pub mod set;
 pub mod spans;
 pub mod validate;
 pub mod validate_sdf;
+pub mod warnings;
 
 pub use pipeline::{LoadError, Loaded, Overrides, load, load_str, load_with};

@@ -196,6 +196,7 @@ impl Session {
             let msg = format!("error: output {} must end in .png or .exr", output.display());
             return self.reporter.problem(generation, &msg);
         }
+        self.reporter.warnings(&loaded.warnings);
         let name = self.scene.display().to_string();
         let watched = self.set.file_count();
         self.reporter

@@ -4,6 +4,7 @@
 //! JSON for the web page.
 
 use super::hub::{Hub, Kind, json_str};
+use crate::diagnostic::Report;
 use crate::load::LoadError;
 use std::io::Write;
 use std::path::PathBuf;
@@ -93,6 +94,15 @@ impl Reporter {
             "change {generation}: loaded {scene} in {:.1} ms ({reused} meshes reused, {watched} files watched)",
             load.as_secs_f64() * 1e3
         ));
+    }
+
+    /// Warnings of a scene that loaded (it renders anyway): kept on screen
+    /// above the status line, like errors. The page is not told: it shows
+    /// only errors, as a reason the image is stale.
+    pub fn warnings(&self, warnings: &Report) {
+        if !warnings.diagnostics.is_empty() {
+            self.block(&warnings.render(self.tty));
+        }
     }
 
     /// An edit that does not load: every diagnostic, and the old image stays.
