@@ -5,8 +5,39 @@ use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
+/// How much a diagnostic matters. Errors stop the load; warnings and notes
+/// describe a scene that loads but will probably not look as intended, so
+/// commands print them and carry on (`validate --deny-warnings` refuses them).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Severity {
+    #[default]
+    Error,
+    Warning,
+    Note,
+}
+
+impl Severity {
+    /// The lowercase word compilers print (`error`, `warning`, `note`), also
+    /// the `severity` field of `validate --format json`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+            Severity::Note => "note",
+        }
+    }
+}
+
+impl fmt::Display for Severity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Diagnostic {
+    /// [`Severity::Error`] unless the producer says otherwise.
+    pub severity: Severity,
     pub file: PathBuf,
     /// Byte range in the file, when the problem could be located.
     pub span: Option<Range<usize>>,
@@ -25,6 +56,7 @@ impl Diagnostic {
     pub fn new(file: &Path, source: &str, span: Option<Range<usize>>, message: String) -> Self {
         let (line, column) = span.as_ref().map_or((0, 0), |s| line_col(source, s.start));
         Self {
+            severity: Severity::Error,
             file: file.to_path_buf(),
             span,
             line,
@@ -46,7 +78,7 @@ impl Diagnostic {
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: error: ", self.location())?;
+        write!(f, "{}: {}: ", self.location(), self.severity)?;
         if let Some(p) = &self.path {
             write!(f, "{p}: ")?;
         }
@@ -91,6 +123,20 @@ pub struct Report {
 }
 
 impl Report {
+    /// The same report with every diagnostic at `severity` (the loader's
+    /// warning pass locates its problems like errors, then marks them).
+    pub fn with_severity(mut self, severity: Severity) -> Self {
+        for d in &mut self.diagnostics {
+            d.severity = severity;
+        }
+        self
+    }
+
+    /// How many diagnostics have `severity`.
+    pub fn count(&self, severity: Severity) -> usize {
+        self.diagnostics.iter().filter(|d| d.severity == severity).count()
+    }
+
     /// Renders every diagnostic with the source line and a caret (colour only
     /// when asked: terminals yes, files and pipes no).
     pub fn render(&self, color: bool) -> String {
@@ -112,7 +158,14 @@ impl Report {
                 Some(p) => format!("{p}: {}", d.message),
                 None => d.message.clone(),
             };
-            let mut b = ariadne::Report::build(ReportKind::Error, (name.clone(), span.clone()))
+            let kind = match d.severity {
+                Severity::Error => ReportKind::Error,
+                Severity::Warning => ReportKind::Warning,
+                // ariadne's own word for a note. (`Custom("Note", …)` would
+                // colour the header even when colour is off, in ariadne 0.6.)
+                Severity::Note => ReportKind::Advice,
+            };
+            let mut b = ariadne::Report::build(kind, (name.clone(), span.clone()))
                 .with_config(
                     Config::default()
                         .with_color(color)
@@ -181,4 +234,35 @@ pub fn suggest<'a>(found: &str, candidates: impl IntoIterator<Item = &'a str>) -
         .filter(|&(d, c)| d <= 2.max(c.len() / 3))
         .min_by_key(|&(d, _)| d)
         .map(|(_, c)| c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each severity reaches both renderings; existing sites stay errors.
+    #[test]
+    fn diagnostic_severity_is_rendered() {
+        let text = "Scene(\n    camera: 1,\n)\n";
+        let file = Path::new("s.ron");
+        let d = Diagnostic::new(file, text, Some(11..17), "odd".into());
+        assert_eq!(d.severity, Severity::Error, "the default");
+        for (severity, word, kind) in [
+            (Severity::Error, "error", "Error"),
+            (Severity::Warning, "warning", "Warning"),
+            (Severity::Note, "note", "Advice"),
+        ] {
+            let d = Diagnostic {
+                severity,
+                ..d.clone()
+            };
+            assert_eq!(d.to_string(), format!("s.ron:2:5: {word}: odd"));
+            let r = Report {
+                diagnostics: vec![d],
+                sources: vec![(file.to_path_buf(), text.to_string())],
+            };
+            let shown = r.render(false);
+            assert!(shown.starts_with(&format!("{kind}: odd")), "{severity}: {shown}");
+        }
+    }
 }

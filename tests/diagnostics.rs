@@ -99,3 +99,173 @@ fn misspelled_field_suggests_the_right_one() {
     let help = d[0].help.clone().unwrap_or_default();
     assert!(help.contains("did you mean `radius`?"), "help: {help}");
 }
+
+// ---- Warnings: scenes that load but will surprise (issue 12) ----
+
+fn warning_fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/warnings")
+        .join(name)
+}
+
+/// The warnings of a fixture that must load, and their rendered text.
+fn warnings_of(name: &str) -> (Vec<Diagnostic>, String) {
+    match load(&warning_fixture(name)) {
+        Ok(l) => (l.warnings.diagnostics.clone(), l.warnings.render(false)),
+        Err(e) => panic!("{name} should load (it only warrants warnings), got {e}"),
+    }
+}
+
+/// `name` gives exactly one warning, at `path`, `line`:`column`.
+fn one_warning(name: &str, path: &str, line: usize, column: usize) -> Diagnostic {
+    use ronray::diagnostic::Severity;
+    let (d, text) = warnings_of(name);
+    assert_eq!(d.len(), 1, "{name}: expected one warning, got:\n{text}");
+    assert_eq!(d[0].severity, Severity::Warning, "{}", d[0]);
+    assert_eq!(d[0].path.as_deref(), Some(path), "{}", d[0]);
+    assert_eq!((d[0].line, d[0].column), (line, column), "{}", d[0]);
+    assert!(
+        text.contains("Warning") && text.contains(&format!("{name}:{line}:{column}")),
+        "rendered as a located warning:\n{text}"
+    );
+    d[0].clone()
+}
+
+#[test]
+fn scene_without_lights_warns_at_scene_start() {
+    let d = one_warning("no_light.ron", "lights", 3, 1);
+    assert!(d.message.contains("no lights"), "{d}");
+    assert!(d.help.as_deref().is_some_and(|h| h.contains("lights: [")), "{d}");
+    assert!(
+        d.to_string().contains(": warning: "),
+        "Display names the severity: {d}"
+    );
+}
+
+#[test]
+fn lights_of_zero_power_warn_at_lights() {
+    let d = one_warning("dark_lights.ron", "lights", 6, 13);
+    assert!(d.message.contains("zero intensity or radiance"), "{d}");
+}
+
+#[test]
+fn mirror_and_glass_under_default_direct_warn_at_each_used_material() {
+    let (d, text) = warnings_of("mirror_direct.ron");
+    let at: Vec<_> = d
+        .iter()
+        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
+        .collect();
+    assert_eq!(
+        at,
+        [
+            ("materials.chrome".to_string(), 7, 19),
+            ("materials.window".to_string(), 8, 19)
+        ],
+        "the unused `spare` glass is not warned about:\n{text}"
+    );
+    assert!(
+        d[0].message.contains("perfect mirror") && d[0].message.contains("Direct"),
+        "{}",
+        d[0]
+    );
+    let help = d[1].help.clone().unwrap_or_default();
+    assert!(help.contains("Path") && help.contains("Whitted"), "help: {help}");
+}
+
+#[test]
+fn area_light_facing_away_from_every_object_warns_with_swap_help() {
+    let d = one_warning("light_facing_away.ron", "lights[1]", 11, 9);
+    assert!(
+        d.message.contains("(0.000, 1.000, 0.000)"),
+        "names the normal: {d}"
+    );
+    assert_eq!(
+        d.help.as_deref(),
+        Some("a light emits on the side of `edge_u × edge_v`; swap `edge_u` and `edge_v` to flip it")
+    );
+}
+
+#[test]
+fn field_of_view_under_five_degrees_warns_it_is_degrees() {
+    let d = one_warning("narrow_fov.ron", "camera.fov_y_degrees", 3, 64);
+    let help = d.help.clone().unwrap_or_default();
+    assert!(
+        help.contains("in degrees") && help.contains("40.1"),
+        "offers the radian reading: {help}"
+    );
+}
+
+#[test]
+fn albedo_on_a_0_255_scale_is_an_error_that_says_divide_by_255() {
+    let (d, text) = diagnostics("byte_albedo.ron");
+    assert_eq!(d.len(), 2, "{text}");
+    assert_eq!(d[0].path.as_deref(), Some("materials.brick.albedo"));
+    assert_eq!((d[0].line, d[0].column), (4, 34), "{}", d[0]);
+    assert_eq!(
+        d[0].help.as_deref(),
+        Some("the channels look like 0–255 values; divide by 255: (0.698, 0.133, 0.133)")
+    );
+    // Just above 1 is a slip, not bytes: the ordinary help.
+    assert_eq!(d[1].path.as_deref(), Some("materials.hot.albedo"));
+    assert!(!d[1].help.clone().unwrap_or_default().contains("255"), "{}", d[1]);
+}
+
+#[test]
+fn shipped_scenes_give_no_warnings() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("scenes/")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ron"))
+        .collect();
+    scenes.sort();
+    assert!(scenes.len() >= 4, "found {scenes:?}");
+    for p in &scenes {
+        match load(p) {
+            Ok(l) => assert!(
+                l.warnings.diagnostics.is_empty(),
+                "{} warns:\n{}",
+                p.display(),
+                l.warnings.render(false)
+            ),
+            Err(e) => panic!("{}: {e}", p.display()),
+        }
+    }
+}
+
+#[test]
+fn validate_passes_warnings_unless_denied() {
+    let scene = warning_fixture("narrow_fov.ron");
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_ronray"))
+            .arg("validate")
+            .args(extra)
+            .arg(&scene)
+            .output()
+            .expect("the ronray binary runs")
+    };
+    let plain = run(&[]);
+    let stderr = String::from_utf8_lossy(&plain.stderr);
+    assert_eq!(plain.status.code(), Some(0), "warnings alone pass:\n{stderr}");
+    assert!(
+        stderr.contains("Warning") && stderr.contains("narrow_fov.ron:3:64"),
+        "{stderr}"
+    );
+    let denied = run(&["--deny-warnings"]);
+    assert_eq!(
+        denied.status.code(),
+        Some(1),
+        "--deny-warnings fails:\n{}",
+        String::from_utf8_lossy(&denied.stderr)
+    );
+    let json = run(&["--format", "json"]);
+    assert_eq!(json.status.code(), Some(0));
+    let line: serde_json::Value =
+        serde_json::from_str(String::from_utf8_lossy(&json.stdout).trim()).expect("one JSON line");
+    assert_eq!(line["severity"], "warning", "{line}");
+    assert_eq!(
+        (line["line"].as_u64(), line["column"].as_u64()),
+        (Some(3), Some(64))
+    );
+}

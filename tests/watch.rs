@@ -381,3 +381,27 @@ fn watch_stops_cleanly_on_ctrl_c() {
     assert!(status.success(), "exit status {status}");
     w.wait_until("the goodbye", |log| log.last().is_some_and(|l| l == "stopped"));
 }
+
+#[test]
+fn watch_prints_warnings_and_still_renders() {
+    let w = Watch::start();
+    let before = w.log().len();
+    // Radians by habit: loads, warns, renders.
+    let narrow = scene("0.8, 0.2, 0.2", 0.4, "tri.obj").replace("fov_y_degrees: 40", "fov_y_degrees: 0.7");
+    std::fs::write(w.path("scene.ron"), narrow).expect("edit");
+    w.wait_finals(2);
+    let log = w.log();
+    let new = &log[before..];
+    assert!(
+        new.iter()
+            .any(|l| l.contains("Warning") && l.contains("field of view")),
+        "the warning is shown:\n{}",
+        new.join("\n")
+    );
+    assert!(
+        new.iter().any(|l| l.contains("scene.ron:2:64")),
+        "located:\n{}",
+        new.join("\n")
+    );
+    assert_eq!(w.image(), w.reference(), "and the scene renders as written");
+}

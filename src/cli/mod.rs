@@ -10,6 +10,7 @@ mod validate;
 
 pub use validate::json_lines;
 
+use crate::diagnostic::Report;
 use crate::load::{LoadError, Overrides};
 use check::{cmd_check, cmd_gallery};
 use clap::{Args, Parser, Subcommand};
@@ -68,6 +69,10 @@ pub enum Command {
         /// file, line, column, path, severity, message, suggestion).
         #[arg(long, default_value = "human", value_parser = ["human", "json"])]
         format: String,
+        /// Count warnings (scenes that load but will surprise) as errors:
+        /// exit 1 if any scene has one.
+        #[arg(long)]
+        deny_warnings: bool,
     },
     /// Rewrite scenes in canonical form (stable field order and layout).
     Fmt {
@@ -189,7 +194,11 @@ pub fn run(cli: Cli) -> ExitCode {
             settings,
             stats,
         } => cmd_render(&scene, output, &settings, stats),
-        Command::Validate { scenes, format } => cmd_validate(&scenes, format == "json"),
+        Command::Validate {
+            scenes,
+            format,
+            deny_warnings,
+        } => cmd_validate(&scenes, format == "json", deny_warnings),
         Command::Fmt {
             scenes,
             check,
@@ -249,14 +258,14 @@ pub fn print_load_error(e: &LoadError) {
     }
 }
 
-/// Prints to stdout, ignoring a closed pipe (`ronray diff … | head`).
-/// What the build repaired or defaulted, on stderr.
-pub(crate) fn print_notes(notes: &[String]) {
-    for n in notes {
-        eprintln!("note: {n}");
+/// Prints a loaded scene's warnings with context (nothing if it has none).
+pub fn print_warnings(warnings: &Report) {
+    if !warnings.diagnostics.is_empty() {
+        eprint!("{}", warnings.render(std::io::stderr().is_terminal()));
     }
 }
 
+/// Prints to stdout, ignoring a closed pipe (`ronray diff … | head`).
 pub(crate) fn print_out(text: &str) {
     use std::io::Write;
     let _ = std::io::stdout().lock().write_all(text.as_bytes());

@@ -1,5 +1,5 @@
 //! `ronray render`: load, render, write atomically, summarise.
-use super::{RenderSettings, print_load_error};
+use super::{RenderSettings, print_load_error, print_warnings};
 use crate::imageio::write_image;
 use crate::load::load_with;
 use crate::render::{RenderOptions, render};
@@ -21,7 +21,8 @@ pub(super) fn cmd_render(
             return ExitCode::FAILURE;
         }
     };
-    super::print_notes(&loaded.stats.notes);
+    // Warnings are printed, not fatal: the scene renders as written.
+    print_warnings(&loaded.warnings);
     let out = loaded.view.output_path(path, output);
     let ext = out
         .extension()

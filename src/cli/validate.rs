@@ -1,17 +1,40 @@
 //! `ronray validate`: every diagnostic, for people or as JSON lines.
-use super::{print_load_error, print_out};
+//!
+//! Errors fail a scene. Warnings (a scene that loads but will surprise) are
+//! printed and pass, unless `--deny-warnings` asks CI to refuse them too.
+use super::{print_load_error, print_out, print_warnings};
+use crate::diagnostic::{Report, Severity};
 use crate::load::{LoadError, Overrides, load_with};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-pub(super) fn cmd_validate(paths: &[PathBuf], json: bool) -> ExitCode {
+pub(super) fn cmd_validate(paths: &[PathBuf], json: bool, deny_warnings: bool) -> ExitCode {
     let mut failed = 0;
     for p in paths {
         match load_with(p, &Overrides::default()) {
-            Ok(_) if json => {}
-            Ok(l) => {
-                super::print_notes(&l.stats.notes);
-                print_out(&format!("{}: ok\n", p.display()));
+            Ok(loaded) => {
+                let warnings = &loaded.warnings;
+                let n = warnings.count(Severity::Warning);
+                let denied = deny_warnings && n > 0;
+                failed += usize::from(denied);
+                if json {
+                    print_out(&report_lines(warnings));
+                    continue;
+                }
+                print_warnings(warnings);
+                let counted = match n {
+                    0 => String::new(),
+                    1 => " (1 warning)".into(),
+                    n => format!(" ({n} warnings)"),
+                };
+                if denied {
+                    eprintln!(
+                        "error: {}: warnings are denied (--deny-warnings){counted}",
+                        p.display()
+                    );
+                } else {
+                    print_out(&format!("{}: ok{counted}\n", p.display()));
+                }
             }
             Err(e) => {
                 failed += 1;
@@ -31,28 +54,36 @@ pub(super) fn cmd_validate(paths: &[PathBuf], json: bool) -> ExitCode {
     }
 }
 
-/// One JSON object per diagnostic, for editors and CI.
+/// One JSON object per diagnostic of a failed load, for editors and CI.
 pub fn json_lines(scene: &Path, e: &LoadError) -> String {
-    let items: Vec<serde_json::Value> = match e.report() {
-        Some(r) => r
-            .diagnostics
-            .iter()
-            .map(|d| {
-                serde_json::json!({
-                    "file": d.file.display().to_string(),
-                    "line": d.line,
-                    "column": d.column,
-                    "path": d.path,
-                    "severity": "error",
-                    "message": d.message,
-                    "suggestion": d.help,
-                })
-            })
-            .collect(),
-        None => vec![serde_json::json!({
-            "file": scene.display().to_string(), "line": 0, "column": 0, "path": null,
-            "severity": "error", "message": e.to_string(), "suggestion": null,
-        })],
-    };
-    items.iter().map(|v| format!("{v}\n")).collect()
+    match e.report() {
+        Some(r) => report_lines(r),
+        None => {
+            let v = serde_json::json!({
+                "file": scene.display().to_string(), "line": 0, "column": 0, "path": null,
+                "severity": "error", "message": e.to_string(), "suggestion": null,
+            });
+            format!("{v}\n")
+        }
+    }
+}
+
+/// One JSON object per diagnostic, each with its own `severity` (`error`,
+/// `warning` or `note`).
+fn report_lines(r: &Report) -> String {
+    r.diagnostics
+        .iter()
+        .map(|d| {
+            let v = serde_json::json!({
+                "file": d.file.display().to_string(),
+                "line": d.line,
+                "column": d.column,
+                "path": d.path,
+                "severity": d.severity.as_str(),
+                "message": d.message,
+                "suggestion": d.help,
+            });
+            format!("{v}\n")
+        })
+        .collect()
 }

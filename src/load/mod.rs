@@ -22,5 +22,6 @@ pub mod set;
 pub mod spans;
 pub mod validate;
 mod view;
+pub mod warnings;
 
 pub use pipeline::{LoadError, Loaded, Overrides, load, load_str, load_with};

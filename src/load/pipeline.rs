@@ -19,6 +19,11 @@ pub struct Loaded {
     pub stats: BuildStats,
     /// Every file the scene depends on (itself, meshes…), for watch mode.
     pub files: Vec<PathBuf>,
+    /// Located [`Severity::Warning`](crate::diagnostic::Severity) diagnostics
+    /// for a scene that loads but will surprise (`load::warnings`), with the
+    /// sources they point into, so commands render them like errors; empty
+    /// when there is nothing to say. The library never prints them.
+    pub warnings: Report,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -110,8 +115,17 @@ pub fn load_str_with_meshes(
     if !problems.is_empty() {
         return Err(LoadError::Invalid(composition.locate(&problems)));
     }
+    let mut warnings = super::warnings::located(&composition, &super::warnings::warnings(&desc));
     let (scene, view, stats) =
         build_with(&desc, base, load_mesh).map_err(|p| LoadError::Invalid(composition.locate(&p)))?;
+    // What the build repaired or defaulted (OBJ fixes, a grey default) is
+    // reported beside the warnings, as notes.
+    warnings
+        .diagnostics
+        .extend(stats.notes.iter().map(|n| Diagnostic {
+            severity: crate::diagnostic::Severity::Note,
+            ..Diagnostic::new(path, "", None, n.clone())
+        }));
     let mut files: Vec<PathBuf> = composition.sources.iter().map(|(p, _)| p.clone()).collect();
     files.extend(stats.texture_files.iter().cloned());
     for o in &desc.objects {
@@ -126,6 +140,7 @@ pub fn load_str_with_meshes(
         desc,
         stats,
         files,
+        warnings,
     })
 }
 

@@ -49,6 +49,20 @@ pub fn validate(scene: &SceneDesc, base: &Path) -> Vec<Problem> {
     v.problems
 }
 
+/// The help for a reflectance written on a 0–255 scale, as image editors
+/// show colours: every channel within [0, 255] and at least one above 1.5
+/// (a channel just above 1 is more likely a slip than bytes).
+fn byte_scale_help(c: &Color) -> Option<String> {
+    let max = c.iter().copied().fold(0.0, f32::max);
+    if !(max > 1.5 && max <= 255.0) {
+        return None;
+    }
+    let [r, g, b] = c.map(|x| x / 255.0);
+    Some(format!(
+        "the channels look like 0–255 values; divide by 255: ({r:.3}, {g:.3}, {b:.3})"
+    ))
+}
+
 /// Collects problems; each kind adds its own `impl Checker` block in its
 /// file, with the shared helpers below.
 pub(super) struct Checker {
@@ -190,11 +204,10 @@ impl Checker {
                 "colour channels are linear RGB values ≥ 0",
             );
         } else if let Some(max) = upper.filter(|&m| c.iter().any(|&x| x > m)) {
-            self.push(
-                path,
-                format!("colour {c:?} has a channel above {max}"),
-                "a reflectance above 1 reflects more light than it receives; use values in [0, 1]",
-            );
+            let help = byte_scale_help(c).unwrap_or_else(|| {
+                "a reflectance above 1 reflects more light than it receives; use values in [0, 1]".into()
+            });
+            self.push(path, format!("colour {c:?} has a channel above {max}"), help);
         }
     }
 

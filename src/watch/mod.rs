@@ -187,7 +187,6 @@ impl Session {
                 return self.rearm(next);
             }
         };
-        self.reporter.notes(&loaded.stats.notes);
         let (load_time, reused) = (t0.elapsed(), self.cache.take_hits());
         self.cache.retain(&loaded.files);
         self.rearm(WatchSet::new(&loaded.files));
@@ -197,6 +196,7 @@ impl Session {
             let msg = format!("error: output {} must end in .png or .exr", output.display());
             return self.reporter.problem(generation, &msg);
         }
+        self.reporter.warnings(&loaded.warnings);
         let name = self.scene.display().to_string();
         let watched = self.set.file_count();
         self.reporter

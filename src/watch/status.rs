@@ -4,6 +4,7 @@
 //! JSON for the web page.
 
 use super::hub::{Hub, Kind, json_str};
+use crate::diagnostic::Report;
 use crate::load::LoadError;
 use std::io::Write;
 use std::path::PathBuf;
@@ -95,11 +96,12 @@ impl Reporter {
         ));
     }
 
-    /// What the build repaired or defaulted; kept on screen like diagnostics.
-    pub fn notes(&self, notes: &[String]) {
-        let text: String = notes.iter().map(|n| format!("note: {n}\n")).collect();
-        if !text.is_empty() {
-            self.block(&text);
+    /// Warnings of a scene that loaded (it renders anyway): kept on screen
+    /// above the status line, like errors. The page is not told: it shows
+    /// only errors, as a reason the image is stale.
+    pub fn warnings(&self, warnings: &Report) {
+        if !warnings.diagnostics.is_empty() {
+            self.block(&warnings.render(self.tty));
         }
     }
 

@@ -1,0 +1,201 @@
+//! Warnings: scenes that load but will surprise (issue 12).
+//!
+//! Validation rejects what cannot be rendered; this pass looks at a scene that
+//! passed it and names what will render, but almost certainly not as meant.
+//! Each rule errs on the side of silence: a warning that fires on a scene
+//! that was fine teaches people to ignore warnings. The rules:
+//!
+//! - **No light.** Nothing emits (no `lights`, or all of zero power): the
+//!   image is black. [`emits`] is the one place that knows what emits.
+//! - **Specular under `Direct`.** An object, mesh override or area light
+//!   surface uses a material that is perfectly specular ([`specular_kind`]),
+//!   and the integrator is `Direct` (the default), which never follows a
+//!   specular bounce: those surfaces come out black.
+//! - **Area light facing away.** A `Quad`/`Rect` light emits only on the side
+//!   its normal (`edge_u × edge_v`, `half_u × half_v`) points to; it warns
+//!   when every receiver lies behind or in that plane (`facing`).
+//!   Receivers whose extent is not known without loading files or building
+//!   trees (meshes, instances, SDFs) count as lit, so they never cause a
+//!   warning.
+//! - **Field of view under 5°.** `fov_y_degrees` written in radians by habit
+//!   (`0.7`) still validates and zooms in about 57 times.
+//!
+//! Reflectances written on a 0–255 scale are not here: any reflectance
+//! channel above 1 is already an error (`validate::Checker::color`), whose
+//! help says "divide by 255" when the colour looks like bytes.
+//!
+//! The functions are pure on the checked description; the loader locates
+//! their problems like errors ([`located`]) and marks them warnings.
+
+mod facing;
+
+use super::include::Composition;
+use super::spans::Spans;
+use crate::desc::{CameraDesc, IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc};
+use crate::diagnostic::{Diagnostic, Problem, Report, Severity};
+use std::collections::BTreeSet;
+
+/// Narrowest field of view that is not suspicious, in degrees. Real long
+/// lenses go below it (a 600 mm lens on full frame is about 2.3°), but a
+/// scene file with such a camera is far rarer than `fov_y_degrees: 0.7`.
+pub const MIN_FOV_DEGREES: f32 = 5.0;
+
+/// Every warning for a scene that passed validation, in a stable order:
+/// lights, materials, area lights in file order, camera.
+pub fn warnings(desc: &SceneDesc) -> Vec<Problem> {
+    let mut out = Vec::new();
+    out.extend(no_light(desc));
+    out.extend(specular_under_direct(desc));
+    out.extend(facing::lights_facing_away(desc));
+    out.extend(narrow_fov(&desc.camera));
+    out
+}
+
+/// Locates warnings as [`Composition::locate`] locates errors (through
+/// includes), marked [`Severity::Warning`]. A warning about something the
+/// top file does not write at all (no `lights:`) points at the start of the
+/// scene rather than at no line.
+pub fn located(composition: &Composition, problems: &[Problem]) -> Report {
+    let mut report = composition.locate(problems).with_severity(Severity::Warning);
+    let Some((top, text)) = composition.sources.first() else {
+        return report;
+    };
+    let Some(root) = Spans::scan(text).get("") else {
+        return report;
+    };
+    // The scene's first line (`Scene(` or `{`), not the whole file.
+    let line_end = text[root.start..].find('\n').map_or(root.end, |n| root.start + n);
+    let start = root.start..line_end.min(root.end).max(root.start + 1);
+    for d in report.diagnostics.iter_mut() {
+        if d.span.is_none() && d.file == *top {
+            let mut at = Diagnostic::new(top, text, Some(start.clone()), d.message.clone());
+            at.severity = d.severity;
+            at.path = d.path.take();
+            at.help = d.help.take();
+            *d = at;
+        }
+    }
+    report
+}
+
+/// Whether anything in the scene emits light. Today only `lights` do (OBJ
+/// `Ke` is not supported, see `build_mtl`); emissive shapes or an
+/// environment, when they come, must be counted here.
+pub fn emits(desc: &SceneDesc) -> bool {
+    desc.lights.iter().any(|l| {
+        let power = match l {
+            LightDesc::Point { intensity, .. } | LightDesc::Spot { intensity, .. } => intensity,
+            LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => radiance,
+        };
+        power.iter().any(|&c| c > 0.0)
+    })
+}
+
+fn no_light(desc: &SceneDesc) -> Option<Problem> {
+    if emits(desc) {
+        return None;
+    }
+    let message = if desc.lights.is_empty() {
+        "the scene has no lights: it will render black"
+    } else {
+        "every light has zero intensity or radiance: the scene will render black"
+    };
+    Some(Problem::new("lights", message).help(
+        "add a light with a positive intensity or radiance, e.g. \
+         `lights: [Rect(center: (0, 3, 0), half_u: (1, 0, 0), half_v: (0, 0, 1), radiance: (5, 5, 5))]`",
+    ))
+}
+
+/// Why `m` is perfectly specular, or `None` if it has a lobe that direct
+/// lighting can see. Mirror and Glass are delta distributions; a microfacet
+/// model at roughness 0 is clamped to α = 10⁻³ (`microfacet::MIN_ALPHA`),
+/// a mirror in effect, and MetalPlastic only if also fully metallic (else its
+/// diffuse base is lit).
+pub fn specular_kind(m: &MaterialDesc) -> Option<&'static str> {
+    match m {
+        MaterialDesc::Mirror { .. } => Some("a perfect mirror"),
+        MaterialDesc::Glass { .. } => Some("smooth glass"),
+        MaterialDesc::CookTorrance { roughness, .. } if *roughness <= 0.0 => {
+            Some("a microfacet reflector at roughness 0 (a mirror in effect)")
+        }
+        MaterialDesc::MetalPlastic {
+            roughness, metalness, ..
+        } if *roughness <= 0.0 && *metalness >= 1.0 => {
+            Some("a polished metal (roughness 0, metalness 1: a mirror in effect)")
+        }
+        _ => None,
+    }
+}
+
+/// One warning per specular material that something uses, located at the
+/// material (the integrator is often not written: `Direct` is the default).
+/// Mirrors and glass that meshes take from their MTL files are not seen.
+fn specular_under_direct(desc: &SceneDesc) -> Vec<Problem> {
+    if !matches!(desc.integrator, IntegratorDesc::Direct { .. }) {
+        return Vec::new();
+    }
+    let lights = desc.lights.iter().filter_map(|l| match l {
+        LightDesc::Quad { material, .. } | LightDesc::Rect { material, .. } => material.as_deref(),
+        _ => None,
+    });
+    let overrides = desc.objects.iter().flat_map(|o| {
+        o.material_overrides()
+            .into_iter()
+            .flatten()
+            .map(|(_, m)| m.as_str())
+    });
+    let used: BTreeSet<&str> = desc
+        .objects
+        .iter()
+        .filter_map(ObjectDesc::material)
+        .chain(overrides)
+        .chain(lights)
+        .collect();
+    desc.materials
+        .iter()
+        .filter(|(name, _)| used.contains(name.as_str()))
+        .filter_map(|(name, m)| {
+            let kind = specular_kind(m)?;
+            Some(
+                Problem::new(
+                    format!("materials.{name}"),
+                    format!(
+                        "material `{name}` is {kind}, but the `Direct` integrator (the default) \
+                         does not follow specular bounces: it will look black"
+                    ),
+                )
+                .help("use `integrator: Path(max_depth: 8)` or `integrator: Whitted(max_depth: 5)`"),
+            )
+        })
+        .collect()
+}
+
+/// A field of view under [`MIN_FOV_DEGREES`]; the help offers the radian
+/// reading when it would be a valid angle.
+fn narrow_fov(camera: &CameraDesc) -> Option<Problem> {
+    let f = camera.fov_y_degrees;
+    if f >= MIN_FOV_DEGREES {
+        return None;
+    }
+    let help = if f < std::f32::consts::PI {
+        format!(
+            "`fov_y_degrees` is in degrees; if {f} was meant in radians, write {:.1}",
+            f.to_degrees()
+        )
+    } else {
+        "`fov_y_degrees` is the full vertical angle in degrees; typical values are 30–90".to_string()
+    };
+    Some(
+        Problem::new(
+            "camera.fov_y_degrees",
+            format!(
+                "a field of view of {f}° is very narrow (under {MIN_FOV_DEGREES}°): \
+                 the image will show a tiny, magnified part of the scene"
+            ),
+        )
+        .help(help),
+    )
+}
+
+#[cfg(test)]
+mod tests;
