@@ -54,7 +54,7 @@ pub struct FilmDesc {
     #[serde(default)]
     pub seed: u64,
     /// Default output path (relative to the scene file); `.png` or `.exr`.
-    /// Defaults to the scene's file name with `.png`.
+    /// Defaults to the scene's file name with `.png`, in the current folder.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<String>,
     /// How sample positions are drawn.

@@ -29,8 +29,9 @@ pub enum LightDesc {
         /// Full opening angle of the cone, in degrees, in (0, 180); no light leaves
         /// outside it.
         cone_degrees: f32,
-        /// Width of the soft edge, in degrees, in [0, `cone_degrees`] (default 0, a
-        /// hard edge): the outer part of the cone over which the light fades to zero.
+        /// Soft edge, in degrees, in [0, `cone_degrees`] (default 0, a hard edge):
+        /// full intensity within the full angle `cone_degrees − falloff_degrees`,
+        /// fading smoothly to zero at `cone_degrees`.
         #[serde(default)]
         falloff_degrees: f32,
     },
