@@ -1,7 +1,7 @@
 //! Desc → runtime: names become indices, defaults are filled, meshes are
 //! loaded and transformed, the BVH is built. Each kind of thing builds itself
 //! in its own file (`material.rs`, `light.rs`, `object.rs`, `mesh.rs`,
-//! `sdf/`, `view.rs`) into one [`BuildContext`]; this file runs them in
+//! `sdf/`, `view.rs`) into one `BuildContext`; this file runs them in
 //! order and assembles the [`Scene`]. Problems found here (an OBJ that does
 //! not parse) are reported like validation problems.
 
