@@ -4,6 +4,8 @@ use super::{Image, ImageError, srgb_decode};
 use crate::math::Rgb;
 use std::path::Path;
 
+/// Reads `path` into linear RGB, choosing the format by extension: `.png`
+/// (sRGB-decoded), `.exr` or `.pfm` (linear as stored).
 pub fn read_image(path: &Path) -> Result<Image, ImageError> {
     let ext = path
         .extension()

@@ -1,7 +1,7 @@
 //! Desc → runtime: names become indices, defaults are filled, meshes are
 //! loaded and transformed, the BVH is built. Each kind of thing builds itself
 //! in its own file (`material.rs`, `light.rs`, `object.rs`, `mesh.rs`,
-//! `sdf/`, `view.rs`) into one [`BuildContext`]; this file runs them in
+//! `sdf/`, `view.rs`) into one `BuildContext`; this file runs them in
 //! order and assembles the [`Scene`]. Problems found here (an OBJ that does
 //! not parse) are reported like validation problems.
 
@@ -23,14 +23,18 @@ use std::time::{Duration, Instant};
 /// What building cost, for `--stats` and the render summary.
 #[derive(Clone, Debug, Default)]
 pub struct BuildStats {
+    /// Time to build the top-level (scene) BVH.
     pub bvh_time: Duration,
+    /// Time for everything before it: materials and textures, lights, objects, OBJ
+    /// files read and each mesh's own BVH built.
     pub load_time: Duration,
     /// Triangles over all placed meshes (instances counted each time).
     pub triangles: usize,
     /// Texture files read while building (watch mode re-reads on change).
     pub texture_files: Vec<PathBuf>,
-    /// Distinct meshes held in memory, and their placements.
+    /// Distinct meshes held in memory.
     pub meshes: usize,
+    /// Placements of those meshes (`Mesh` and `Instance` objects).
     pub instances: usize,
     /// Bytes of the meshes' BVHs and inline triangles (each mesh once).
     pub mesh_accel_bytes: usize,

@@ -153,13 +153,19 @@ impl Checker {
 /// The runtime materials (in name order), the textures they use, and the
 /// index of each name.
 pub struct Materials {
+    /// The runtime materials, in the name order of the scene's `materials`.
     pub materials: Vec<Material>,
+    /// Decoded image textures, indexed by [`ColorTex::Image`].
     pub textures: Vec<Texture>,
+    /// Index in `materials` of each scene material name.
     pub index: HashMap<String, u32>,
     /// Image files read, for watch mode.
     pub files: Vec<PathBuf>,
 }
 
+/// Builds every entry of the scene's `materials`, resolving texture files against
+/// `base` (the scene file's folder) and decoding each file once. All texture problems
+/// come back together.
 pub fn build_materials(
     descs: &BTreeMap<String, MaterialDesc>,
     base: &Path,
@@ -260,6 +266,7 @@ fn build_material(b: &mut Builder, name: &str, m: &MaterialDesc) -> Material {
     }
 }
 
+/// The runtime conductor preset of a scene's `Metal(...)` name.
 pub fn metal(m: MetalDesc) -> Metal {
     match m {
         MetalDesc::Gold => Metal::Gold,
