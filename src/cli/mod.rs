@@ -22,26 +22,32 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use validate::cmd_validate;
 
+/// The command line (clap); `main` parses it and hands it to [`run`].
 #[derive(Parser, Debug)]
 #[command(
     name = "ronray",
     version,
-    about = "A physically based renderer for hand-written RON scenes"
+    about = "A physically based renderer for hand-written RON scenes",
+    long_about = None
 )]
 pub struct Cli {
+    /// The command to run.
     #[command(subcommand)]
     pub command: Command,
 }
 
+/// The commands; each is one file of `cli/`.
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Render a scene to PNG (8-bit sRGB) or EXR (linear float).
     Render {
+        /// The scene file (RON, or JSON by its extension).
         scene: PathBuf,
         /// Output image; defaults to the scene's `film.output`, else
         /// `<scene name>.png` in the current folder.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        #[allow(missing_docs)]
         #[command(flatten)]
         settings: RenderSettings,
         /// Print build and traversal statistics.
@@ -50,10 +56,12 @@ pub enum Command {
     },
     /// Re-render progressively whenever the scene or a file it uses changes.
     Watch {
+        /// The scene file to watch (RON or JSON).
         scene: PathBuf,
         /// Output image, as for `render`; rewritten after every pass.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        #[allow(missing_docs)]
         #[command(flatten)]
         settings: RenderSettings,
         /// Serve a live page (default 127.0.0.1:8765 or the next free port;
@@ -63,6 +71,7 @@ pub enum Command {
     },
     /// Check scenes without rendering; prints every problem found.
     Validate {
+        /// Scene files to check.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
         /// `human` (source excerpts) or `json` (one JSON object per line:
@@ -76,6 +85,7 @@ pub enum Command {
     },
     /// Rewrite scenes in canonical form (stable field order and layout).
     Fmt {
+        /// Scene files to format.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
         /// Only report files that are not canonical (exit 1 if any).
@@ -104,6 +114,7 @@ pub enum Command {
         /// Image width (the height keeps each scene's aspect).
         #[arg(long, default_value_t = 320)]
         width: u32,
+        /// Samples per pixel (default: each scene's own).
         #[arg(long)]
         spp: Option<u32>,
     },
@@ -115,6 +126,7 @@ pub enum Command {
         /// Rewrite the goldens that fail or are missing, on purpose.
         #[arg(long)]
         bless: bool,
+        /// Worker threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
     },
@@ -136,6 +148,7 @@ pub enum Command {
     },
     /// Time BVH build and closest-hit throughput on an OBJ mesh.
     Bench {
+        /// The Wavefront OBJ mesh to measure.
         obj: PathBuf,
         /// Threads for the multi-threaded figures (default: all cores).
         #[arg(long)]
@@ -152,6 +165,7 @@ pub struct RenderSettings {
     /// Image size, `WIDTHxHEIGHT`.
     #[arg(long, value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
+    /// Seed of the random streams (same seed, same image).
     #[arg(long)]
     pub seed: Option<u64>,
     /// Worker threads (default: all cores). The image does not depend on it.
@@ -164,6 +178,7 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
+    /// The settings the loader applies to the scene.
     pub fn overrides(&self) -> Overrides {
         Overrides {
             spp: self.spp,
@@ -186,6 +201,7 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((p(w)?, p(h)?))
 }
 
+/// Runs one command; the exit code says whether it succeeded.
 pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Render {

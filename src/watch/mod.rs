@@ -36,7 +36,9 @@ use watched::WatchSet;
 /// What `ronray watch` was asked to do.
 #[derive(Clone, Debug)]
 pub struct WatchArgs {
+    /// The scene file to watch.
     pub scene: PathBuf,
+    /// `-o`: where each pass is written (default as for `render`).
     pub output: Option<PathBuf>,
     /// Overrides from the command line (`--spp`, `--set`, …).
     pub overrides: Overrides,
@@ -51,6 +53,7 @@ enum Msg {
     Quit,
 }
 
+/// Watches and re-renders until interrupted (Ctrl-C).
 pub fn run(args: WatchArgs) -> ExitCode {
     let hub = args.serve.is_some().then(|| Arc::new(hub::Hub::default()));
     let reporter = Arc::new(Reporter::new(std::io::stderr().is_terminal(), hub.clone()));
