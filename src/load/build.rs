@@ -60,6 +60,8 @@ pub(super) struct BuildContext<'a> {
     /// scene's own.
     pub mtl: MtlMaterials,
     pub lights: Vec<Light>,
+    /// Index in `lights` of the environment, once built.
+    pub environment: Option<u32>,
     /// Bounded shapes (they go in the BVH), in the order built.
     pub shapes: Vec<Shape>,
     /// Unbounded shapes (planes, unbounded SDFs): every ray tests them.
@@ -102,6 +104,7 @@ pub fn build_with(
         emitter,
         mtl: MtlMaterials::new(materials.len() as u32, textures.len() as u32),
         lights: Vec::new(),
+        environment: None,
         shapes: Vec::new(),
         unbounded: Vec::new(),
         geometry: Geometry::default(),
@@ -110,8 +113,8 @@ pub fn build_with(
         problems: Vec::new(),
         notes: Vec::new(),
     };
-    for l in &desc.lights {
-        super::light::build_light(&mut ctx, l);
+    for (i, l) in desc.lights.iter().enumerate() {
+        super::light::build_light(&mut ctx, i, l);
     }
     for (i, o) in desc.objects.iter().enumerate() {
         super::object::build_object(&mut ctx, i, o);
@@ -126,6 +129,13 @@ pub fn build_with(
     let t1 = Instant::now();
     let (shapes, bounded, bvh) = bvh_and_leaf_order(ctx.shapes, ctx.unbounded, &ctx.geometry);
     let bvh_time = t1.elapsed();
+    // The environment's power (for light selection) is its flux through the
+    // scene's bounding disk.
+    if let Some(Light::Environment(env)) = ctx.environment.map(|i| &mut ctx.lights[i as usize]) {
+        let b = bvh.bounds();
+        let r = 0.5 * (b.max - b.min).length();
+        env.scene_radius = if r.is_finite() && r > 0.0 { r } else { 1.0 };
+    }
 
     let stats = BuildStats {
         bvh_time,
@@ -149,6 +159,7 @@ pub fn build_with(
         materials,
         textures,
         lights: ctx.lights,
+        environment: ctx.environment,
         shapes,
         bounded,
         geometry: ctx.geometry,

@@ -271,7 +271,10 @@ fn include(
         });
         merged.materials.insert(name, m);
     }
-    for (i, l) in inc_desc.lights.into_iter().enumerate() {
+    for (i, mut l) in inc_desc.lights.into_iter().enumerate() {
+        if let Some(f) = l.file_mut() {
+            fix(f);
+        }
         c.origins.push(Origin {
             merged: format!("lights[{}]", merged.lights.len()),
             file,

@@ -1,14 +1,21 @@
 //! Lights: the checks of each `lights` entry and the build step that turns
 //! them into runtime [`Light`]s. An area light is also a shape in the
-//! scene's BVH (camera rays see it), so it adds its quad to the shapes.
+//! scene's BVH (camera rays see it), so it adds its quad to the shapes. An
+//! environment reads its map here (`.exr` or `.hdr` through the `image`
+//! crate) and builds its sampling tables.
 
 use super::build::BuildContext;
 use super::validate::Checker;
 use crate::desc::LightDesc;
 use crate::diagnostic::{Problem, suggest};
 use crate::geometry::{Quad, Shape};
-use crate::lights::{Light, PointLight, QuadLight, SpotLight};
+use crate::lights::{EnvMap, EnvironmentLight, Light, PointLight, QuadLight, SpotLight};
+use crate::math::Rgb;
 use glam::Vec3A;
+use std::path::Path;
+
+/// File extensions an environment map may have: linear formats only.
+const MAP_EXTENSIONS: [&str; 2] = ["exr", "hdr"];
 
 impl Checker {
     pub(super) fn light(&mut self, path: &str, l: &LightDesc, materials: &[&str]) {
@@ -76,12 +83,104 @@ impl Checker {
                 self.color(&p("radiance"), radiance, None);
                 surface(self, material);
             }
+            LightDesc::Environment {
+                radiance,
+                map,
+                strength,
+                rotation_degrees,
+                visible,
+                background,
+            } => {
+                self.environment(path, radiance.as_ref(), map.as_deref(), *strength);
+                if !rotation_degrees.is_finite() {
+                    self.push(
+                        &p("rotation_degrees"),
+                        "non-finite angle",
+                        "use a finite angle in degrees",
+                    );
+                }
+                if let Some(b) = background {
+                    self.color(&p("background"), b, None);
+                    if *visible {
+                        self.push(
+                            &p("background"),
+                            "`background` is only seen when `visible` is false",
+                            "add `visible: false` to hide the environment behind the scene, or remove `background`",
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// An environment's source (exactly one of `radiance` and `map`) and strength.
+    fn environment(&mut self, path: &str, radiance: Option<&[f32; 3]>, map: Option<&str>, strength: f32) {
+        let p = |f: &str| format!("{path}.{f}");
+        match (radiance, map) {
+            (None, None) => self.push(
+                path,
+                "an environment needs `radiance` or `map`",
+                "give a constant `radiance: (0.8, 0.9, 1.0)` or an equirectangular `map: \"sky.exr\"`",
+            ),
+            (Some(_), Some(_)) => self.push(
+                &p("radiance"),
+                "an environment takes `radiance` or `map`, not both",
+                "remove one; `strength` scales a map",
+            ),
+            _ => {}
+        }
+        if let Some(c) = radiance {
+            self.color(&p("radiance"), c, None);
+        }
+        if let Some(f) = map {
+            let ext = Path::new(f)
+                .extension()
+                .and_then(|e| e.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase();
+            if MAP_EXTENSIONS.contains(&ext.as_str()) {
+                self.file(&p("map"), f, "environment map");
+            } else {
+                self.push(
+                    &p("map"),
+                    format!("environment map `{f}` is not a linear HDR image"),
+                    "use an OpenEXR (`.exr`) or Radiance (`.hdr`) file: 8-bit images clip the sun and sky",
+                );
+            }
+        }
+        if !(strength >= 0.0 && strength.is_finite()) {
+            self.push(
+                &p("strength"),
+                format!("strength {strength} must be ≥ 0 and finite"),
+                "it multiplies the radiance or map; 1 keeps it as given",
+            );
+        }
+    }
+
+    /// At most one environment among all lights (includes counted): the second
+    /// and later ones are errors.
+    pub(super) fn one_environment(&mut self, lights: &[LightDesc]) {
+        let mut envs = lights
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| matches!(l, LightDesc::Environment { .. }))
+            .map(|(i, _)| i);
+        let Some(first) = envs.next() else {
+            return;
+        };
+        for i in envs {
+            self.push(
+                &format!("lights[{i}]"),
+                format!("a scene has one environment, and lights[{first}] is already one"),
+                "merge them into one `Environment`",
+            );
         }
     }
 }
 
-/// Adds the runtime light of `l` (and the quad of an area light) to `ctx`.
-pub(super) fn build_light(ctx: &mut BuildContext, l: &LightDesc) {
+/// Adds the runtime light of `l`, entry `i` of the scene's lights (and the quad
+/// of an area light), to `ctx`.
+pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
     // An area light's surface is black unless the scene gives it a material.
     let surface = |ctx: &BuildContext, m: &Option<String>| {
         m.as_ref()
@@ -134,7 +233,50 @@ pub(super) fn build_light(ctx: &mut BuildContext, l: &LightDesc) {
             let m = surface(ctx, material);
             push_quad_light(ctx, m, q);
         }
+        LightDesc::Environment {
+            radiance,
+            map,
+            strength,
+            rotation_degrees,
+            visible,
+            background,
+        } => {
+            let env = match (radiance, map) {
+                (_, Some(file)) => match read_map(&ctx.base.join(file)) {
+                    Ok(m) => EnvironmentLight::from_map(m, *strength, *rotation_degrees),
+                    Err(e) => {
+                        let at = format!("lights[{i}].map");
+                        ctx.problems.push(Problem::new(at, e).help(
+                            "the file must be an equirectangular image in linear OpenEXR or Radiance HDR",
+                        ));
+                        return;
+                    }
+                },
+                (c, None) => EnvironmentLight::constant(Rgb::from(c.unwrap_or_default()) * *strength),
+            };
+            let mut env = Box::new(env);
+            env.visible = *visible;
+            env.background = background.map_or(Rgb::ZERO, Rgb::from);
+            ctx.environment = Some(ctx.lights.len() as u32);
+            ctx.lights.push(Light::Environment(env));
+        }
     }
+}
+
+/// Reads an environment map into linear RGB floats (`.exr` or `.hdr`).
+pub fn read_map(path: &Path) -> Result<EnvMap, String> {
+    let img = image::open(path)
+        .map_err(|e| format!("cannot read environment map {}: {e}", path.display()))?
+        .into_rgb32f();
+    let (width, height) = img.dimensions();
+    if width == 0 || height == 0 {
+        return Err(format!("environment map {} is empty", path.display()));
+    }
+    Ok(EnvMap {
+        width,
+        height,
+        rgb: img.into_raw(),
+    })
 }
 
 fn push_quad_light(ctx: &mut BuildContext, material: u32, q: QuadLight) {

@@ -3,6 +3,7 @@
 //! number generator.
 
 pub mod frame;
+pub mod piecewise;
 pub mod ray;
 pub mod rng;
 pub mod sampling;
