@@ -136,6 +136,11 @@ fn path_matches_mitsuba_cornell_dof() {
 }
 
 #[test]
+fn path_matches_mitsuba_emissive_shapes() {
+    check("emissive_shapes.ron", "emissive_shapes", 64);
+}
+
+#[test]
 fn downsampled_fixture_keeps_the_reference_mean() {
     // Guards the fixture itself: box downsampling preserves the mean.
     let img = read_image(&root().join("tests/fixtures/refs/cornell_diffuse_64.pfm")).expect("fixture");
