@@ -269,3 +269,77 @@ fn validate_passes_warnings_unless_denied() {
         (Some(3), Some(64))
     );
 }
+
+// ---- Environments and emissive shapes (issue 14) ----
+
+#[test]
+fn environment_and_emission_mistakes_are_located_together() {
+    let (d, text) = diagnostics("light_mistakes.ron");
+    let at: Vec<_> = d
+        .iter()
+        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
+        .collect();
+    let want = [
+        ("lights[0].map", 5, 26),
+        ("lights[0].strength", 5, 55),
+        ("lights[1].background", 6, 54),
+        ("lights[2].map", 7, 26),
+        ("lights[3]", 8, 9),
+        ("lights[1]", 6, 9),
+        ("lights[2]", 7, 9),
+        ("lights[3]", 8, 9),
+        ("objects[0].emission", 11, 81),
+        ("objects[1].emission.radiance", 12, 88),
+    ]
+    .map(|(p, l, c)| (p.to_string(), l, c));
+    assert_eq!(at, want, "rendered:\n{text}");
+    let message = |i: usize| d[i].message.as_str();
+    // A missing map names the path it resolved to.
+    let resolved = fixture("sky/nowhere.exr").display().to_string();
+    assert!(message(0).contains("cannot read environment map `sky/nowhere.exr`"), "{}", d[0]);
+    assert!(d[0].help.as_deref().is_some_and(|h| h.contains(&resolved)), "{}", d[0]);
+    assert!(message(1).contains("strength -2 must be ≥ 0"), "{}", d[1]);
+    assert!(message(2).contains("only seen when `visible` is false"), "{}", d[2]);
+    assert!(message(3).contains("`sky.png` is not a linear HDR image"), "{}", d[3]);
+    assert!(d[3].help.as_deref().is_some_and(|h| h.contains(".exr") && h.contains(".hdr")));
+    assert!(message(4).contains("needs `radiance` or `map`"), "{}", d[4]);
+    assert!(message(5).contains("one environment, and lights[0] is already one"), "{}", d[5]);
+    assert!(message(8).contains("infinite plane cannot emit"), "{}", d[8]);
+    assert!(message(9).contains("negative colour"), "{}", d[9]);
+}
+
+#[test]
+fn unreadable_environment_map_is_located_at_map() {
+    let (d, text) = diagnostics("bad_map.ron");
+    assert_eq!(d.len(), 1, "{text}");
+    assert_eq!(d[0].path.as_deref(), Some("lights[0].map"));
+    assert_eq!((d[0].line, d[0].column), (4, 31), "{}", d[0]);
+    assert!(d[0].message.contains("cannot read environment map"), "{}", d[0]);
+    assert!(
+        d[0].help.as_deref().is_some_and(|h| h.contains("OpenEXR")),
+        "{}",
+        d[0]
+    );
+}
+
+#[test]
+fn emissive_objects_and_environments_count_as_light() {
+    use ronray::load::load_str;
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/t.ron");
+    let scene = |extra: &str| {
+        format!(
+            r#"Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+            materials: {{ "w": Lambert(albedo: 0.5) }}, {extra})"#
+        )
+    };
+    let warnings = |text: &str| match load_str(&base, text, &Default::default()) {
+        Ok(l) => l.warnings.diagnostics.len(),
+        Err(e) => panic!("{e}\n{text}"),
+    };
+    let glow = r#"objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w", emission: (radiance: (1, 1, 1)))]"#;
+    assert_eq!(warnings(&scene(glow)), 0, "an emissive sphere lights the scene");
+    let sky = r#"lights: [Environment(radiance: (0.5, 0.6, 0.8))], objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w")]"#;
+    assert_eq!(warnings(&scene(sky)), 0, "a sky lights the scene");
+    let dark = r#"lights: [Environment(radiance: (1, 1, 1), strength: 0)], objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w", emission: (radiance: (0, 0, 0)))]"#;
+    assert_eq!(warnings(&scene(dark)), 1, "zero strength and zero emission are dark");
+}
