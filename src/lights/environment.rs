@@ -69,20 +69,30 @@ impl EnvMap {
         top * (1.0 - fy) + bottom * fy
     }
 
-    /// Luminance of the mean bilinear radiance over the cell of pixel
-    /// `(i, j)`: weights ⅛, ¾, ⅛ over its neighbours in each direction.
-    fn cell_luminance(&self, i: usize, j: usize) -> f32 {
+    /// Luminance of the mean bilinear radiance over each cell of row `j`, into
+    /// `out`: weights ⅛, ¾, ⅛ over the neighbours in each direction (columns
+    /// wrap, rows clamp), computed separably from the three rows' luminances.
+    fn cell_luminance_row(&self, j: usize, out: &mut [f32]) {
         const K: [f32; 3] = [0.125, 0.75, 0.125];
         let (w, h) = (self.width as usize, self.height as usize);
-        let mut sum = 0.0;
+        // Vertical pass: a weighted sum of the luminances of rows j−1, j, j+1.
+        out.fill(0.0);
         for (b, kb) in K.iter().enumerate() {
             let jj = (j + b).saturating_sub(1).min(h - 1);
-            for (a, ka) in K.iter().enumerate() {
-                let ii = (i + w + a - 1) % w;
-                sum += ka * kb * luminance(self.pixel(ii, jj)).max(0.0);
+            let row = &self.rgb[3 * jj * w..3 * (jj + 1) * w];
+            for (o, px) in out.iter_mut().zip(row.chunks_exact(3)) {
+                *o += kb * luminance(Rgb::new(px[0], px[1], px[2])).max(0.0);
             }
         }
-        sum
+        // Horizontal pass, wrapping around the seam.
+        let (first, last) = (out[0], out[w - 1]);
+        let mut prev = last;
+        for i in 0..w {
+            let next = if i + 1 < w { out[i + 1] } else { first };
+            let here = out[i];
+            out[i] = K[0] * prev + K[1] * here + K[2] * next;
+            prev = here;
+        }
     }
 }
 
@@ -140,7 +150,11 @@ impl EnvironmentLight {
     pub fn from_map(map: EnvMap, strength: f32, rotation_degrees: f32) -> Self {
         let (w, h) = (map.width as usize, map.height as usize);
         let sin_row = |j: usize| (PI * (j as f32 + 0.5) / h as f32).sin();
-        let distribution = PiecewiseConstant2d::new(w, h, |i, j| map.cell_luminance(i, j) * sin_row(j));
+        let distribution = PiecewiseConstant2d::new(w, h, |j, row| {
+            map.cell_luminance_row(j, row);
+            let s = sin_row(j);
+            row.iter_mut().for_each(|x| *x *= s);
+        });
         // ∫ L dω ≈ Σ L(pixel) · sin θ · (2π/W)(π/H).
         let sum: [f64; 3] = map
             .rgb
@@ -268,6 +282,11 @@ impl EnvironmentLight {
     /// π·R²·∫L dω (pbrt-v4's `ImageInfiniteLight::Phi`), W per channel.
     pub fn power(&self) -> Rgb {
         PI * self.scene_radius * self.scene_radius * self.radiant_exitance
+    }
+
+    /// The image, if the environment has one (not a constant).
+    pub fn map(&self) -> Option<&EnvMap> {
+        self.map.as_ref()
     }
 
     /// Heap bytes of the sampling tables (the image itself not included).

@@ -38,6 +38,10 @@ pub struct BuildStats {
     pub instances: usize,
     /// Bytes of the meshes' BVHs and inline triangles (each mesh once).
     pub mesh_accel_bytes: usize,
+    /// Time to read the environment map (zero without one).
+    pub env_read_time: Duration,
+    /// Time to build the environment's sampling tables.
+    pub env_table_time: Duration,
     /// What the build repaired or defaulted (an OBJ group without a
     /// material, an MTL feature not supported), for the commands to show.
     pub notes: Vec<String>,
@@ -72,6 +76,8 @@ pub(super) struct BuildContext<'a> {
     pub triangles: usize,
     pub problems: Vec<Problem>,
     pub notes: Vec<String>,
+    /// Environment map read and table build times, for the stats.
+    pub env_times: (Duration, Duration),
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
@@ -112,6 +118,7 @@ pub fn build_with(
         triangles: 0,
         problems: Vec::new(),
         notes: Vec::new(),
+        env_times: Default::default(),
     };
     for (i, l) in desc.lights.iter().enumerate() {
         super::light::build_light(&mut ctx, i, l);
@@ -146,6 +153,8 @@ pub fn build_with(
         instances: ctx.geometry.instances.len(),
         mesh_accel_bytes: ctx.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),
         notes: ctx.notes,
+        env_read_time: ctx.env_times.0,
+        env_table_time: ctx.env_times.1,
     };
     let uniform = matches!(
         desc.integrator,

@@ -241,9 +241,15 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             visible,
             background,
         } => {
+            let t0 = std::time::Instant::now();
             let env = match (radiance, map) {
                 (_, Some(file)) => match read_map(&ctx.base.join(file)) {
-                    Ok(m) => EnvironmentLight::from_map(m, *strength, *rotation_degrees),
+                    Ok(m) => {
+                        let t1 = std::time::Instant::now();
+                        let env = EnvironmentLight::from_map(m, *strength, *rotation_degrees);
+                        ctx.env_times = (t1 - t0, t1.elapsed());
+                        env
+                    }
                     Err(e) => {
                         let at = format!("lights[{i}].map");
                         ctx.problems.push(Problem::new(at, e).help(
@@ -263,15 +269,54 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
     }
 }
 
-/// Reads an environment map into linear RGB floats (`.exr` or `.hdr`).
+/// Reads an environment map into linear RGB floats: `.exr` through the `exr`
+/// crate (blocks decompressed on all cores, pixels written straight into the
+/// map), `.hdr` through `image`.
 pub fn read_map(path: &Path) -> Result<EnvMap, String> {
-    let img = image::open(path)
-        .map_err(|e| format!("cannot read environment map {}: {e}", path.display()))?
-        .into_rgb32f();
-    let (width, height) = img.dimensions();
-    if width == 0 || height == 0 {
+    let is_exr = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    let map = if is_exr { read_exr(path) } else { read_hdr(path) }
+        .map_err(|e| format!("cannot read environment map {}: {e}", path.display()))?;
+    if map.width == 0 || map.height == 0 {
         return Err(format!("environment map {} is empty", path.display()));
     }
+    Ok(map)
+}
+
+fn read_exr(path: &Path) -> Result<EnvMap, String> {
+    use exr::prelude::{ReadChannels, ReadLayers};
+    let image = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |size, _| EnvMap {
+                width: size.width() as u32,
+                height: size.height() as u32,
+                rgb: vec![0.0; 3 * size.area()],
+            },
+            |m: &mut EnvMap, pos, (r, g, b, _): (f32, f32, f32, f32)| {
+                let k = 3 * (pos.y() * m.width as usize + pos.x());
+                m.rgb[k..k + 3].copy_from_slice(&[r, g, b]);
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| e.to_string())?;
+    Ok(image.layer_data.channel_data.pixels)
+}
+
+/// Radiance RGBE. Files that begin `#?RGBE` (Mitsuba, some HDR tools) are read
+/// as `#?RADIANCE`, the only signature `image` accepts; the format is the same.
+fn read_hdr(path: &Path) -> Result<EnvMap, String> {
+    let mut bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    if bytes.starts_with(b"#?") && !bytes.starts_with(b"#?RADIANCE") {
+        let end = bytes.iter().position(|&b| b == b'\n').unwrap_or(0);
+        bytes.splice(..end, b"#?RADIANCE".iter().copied());
+    }
+    let img = image::load_from_memory_with_format(&bytes, image::ImageFormat::Hdr)
+        .map_err(|e| e.to_string())?
+        .into_rgb32f();
+    let (width, height) = img.dimensions();
     Ok(EnvMap {
         width,
         height,

@@ -27,10 +27,11 @@ pub struct PiecewiseConstant2d {
 }
 
 impl PiecewiseConstant2d {
-    /// Builds the tables from `weight(i, j)` of column `i`, row `j`, evaluated on
-    /// all cores (rows in parallel). Negative or non-finite weights count as 0;
-    /// all-zero rows (or an all-zero grid) sample uniformly.
-    pub fn new(width: usize, height: usize, weight: impl Fn(usize, usize) -> f32 + Sync) -> Self {
+    /// Builds the tables from cell weights, on all cores (rows in parallel):
+    /// `fill_row(j, weights)` writes the `width` weights of row `j`. Negative or
+    /// non-finite weights count as 0; all-zero rows (or an all-zero grid)
+    /// sample uniformly.
+    pub fn new(width: usize, height: usize, fill_row: impl Fn(usize, &mut [f32]) + Sync) -> Self {
         assert!(width > 0 && height > 0, "an empty grid has no distribution");
         let stride = width + 1;
         let mut conditional = vec![0.0f32; stride * height];
@@ -38,27 +39,25 @@ impl PiecewiseConstant2d {
             .par_chunks_mut(stride)
             .enumerate()
             .map(|(j, cdf)| {
-                // Running sums in f64, stored normalised.
+                // The weights go where the CDF will be, then become running
+                // sums (accumulated in f64) and are normalised in place.
+                fill_row(j, &mut cdf[1..]);
                 let mut acc = 0.0f64;
-                cdf[0] = 0.0;
-                let mut sums = Vec::with_capacity(width);
-                for i in 0..width {
-                    let w = weight(i, j);
-                    acc += if w.is_finite() && w > 0.0 { w as f64 } else { 0.0 };
-                    sums.push(acc);
+                for c in cdf[1..].iter_mut() {
+                    acc += if c.is_finite() && *c > 0.0 { *c as f64 } else { 0.0 };
+                    *c = acc as f32;
                 }
-                normalise(&mut cdf[1..], &sums, acc);
+                normalise(&mut cdf[1..], acc);
                 acc
             })
             .collect();
-        let mut sums = Vec::with_capacity(height);
-        let mut acc = 0.0f64;
-        for s in &row_sums {
-            acc += s;
-            sums.push(acc);
-        }
         let mut marginal = vec![0.0f32; height + 1];
-        normalise(&mut marginal[1..], &sums, acc);
+        let mut acc = 0.0f64;
+        for (m, s) in marginal[1..].iter_mut().zip(&row_sums) {
+            acc += s;
+            *m = acc as f32;
+        }
+        normalise(&mut marginal[1..], acc);
         Self {
             width,
             height,
@@ -98,12 +97,13 @@ impl PiecewiseConstant2d {
     }
 }
 
-/// `out[k] = sums[k] / total`, the last exactly 1; uniform steps if `total` is 0.
-fn normalise(out: &mut [f32], sums: &[f64], total: f64) {
+/// Running sums `out` divided by their `total`, the last exactly 1; uniform
+/// steps if `total` is 0.
+fn normalise(out: &mut [f32], total: f64) {
     let n = out.len();
     for (k, o) in out.iter_mut().enumerate() {
         *o = if total > 0.0 {
-            (sums[k] / total) as f32
+            (*o as f64 / total) as f32
         } else {
             (k + 1) as f32 / n as f32
         };
@@ -140,7 +140,11 @@ mod tests {
             (0, _) | (_, 3) => 0.0,
             _ => 1.0 + (i + 2 * j) as f32,
         };
-        let d = PiecewiseConstant2d::new(6, 4, w);
+        let d = PiecewiseConstant2d::new(6, 4, |j, row| {
+            for (i, x) in row.iter_mut().enumerate() {
+                *x = w(i, j);
+            }
+        });
         let total: f32 = (0..6)
             .flat_map(|i| (0..4).map(move |j| (i, j)))
             .map(|(i, j)| w(i, j))
@@ -169,7 +173,7 @@ mod tests {
 
     #[test]
     fn piecewise_of_zeros_is_uniform() {
-        let d = PiecewiseConstant2d::new(3, 2, |_, _| 0.0);
+        let d = PiecewiseConstant2d::new(3, 2, |_, row| row.fill(0.0));
         assert!((d.pdf(Vec2::new(0.9, 0.1)) - 1.0).abs() < 1e-6);
         let (p, pdf) = d.sample(Vec2::new(0.5, 0.5));
         assert!((pdf - 1.0).abs() < 1e-6 && p.x < 1.0 && p.y < 1.0);
