@@ -223,7 +223,11 @@ fn diffuse_sphere_under_constant_environment_has_radiance_rho_l() {
         ("Whitted(max_depth: 5, light_samples: 4)", 20_000),
     ] {
         let s = scene(&text(integrator));
-        for target in [Vec3A::ZERO, Vec3A::new(0.7, 0.5, 0.2), Vec3A::new(-0.2, -0.9, 0.1)] {
+        for target in [
+            Vec3A::ZERO,
+            Vec3A::new(0.7, 0.5, 0.2),
+            Vec3A::new(-0.2, -0.9, 0.1),
+        ] {
             let got = mean_li(&s, Ray::new(o, (target - o).normalize()), n);
             for c in 0..3 {
                 assert!(
@@ -235,7 +239,10 @@ fn diffuse_sphere_under_constant_environment_has_radiance_rho_l() {
             }
         }
         let miss = mean_li(&s, Ray::new(o, Vec3A::new(0.0, 0.8, -1.0).normalize()), 1);
-        assert!((miss - Vec3A::splat(0.8)).length() < 1e-6, "{integrator}: the sky is {miss}");
+        assert!(
+            (miss - Vec3A::splat(0.8)).length() < 1e-6,
+            "{integrator}: the sky is {miss}"
+        );
     }
 }
 
@@ -260,10 +267,17 @@ fn diffuse_sphere_under_uniform_map_has_radiance_rho_l() {
     let o = Vec3A::new(0.0, 0.0, 4.0);
     for target in [Vec3A::ZERO, Vec3A::new(0.6, -0.6, 0.3)] {
         let got = mean_li(&s, Ray::new(o, (target - o).normalize()), 20_000);
-        assert!((got.x - 0.8).abs() < 0.008, "toward {target}: expected 0.8, got {}", got.x);
+        assert!(
+            (got.x - 0.8).abs() < 0.008,
+            "toward {target}: expected 0.8, got {}",
+            got.x
+        );
     }
     let miss = mean_li(&s, Ray::new(o, Vec3A::Y), 1);
-    assert!((miss - Vec3A::new(0.1, 0.2, 0.3)).length() < 1e-6, "background {miss}");
+    assert!(
+        (miss - Vec3A::new(0.1, 0.2, 0.3)).length() < 1e-6,
+        "background {miss}"
+    );
 }
 
 /// An emissive sphere of radiance L and radius r, entirely above a point of
@@ -289,7 +303,11 @@ fn emissive_sphere_gives_closed_form_irradiance_on_a_plane() {
     let c = Vec3A::new(0.2, 1.5, -0.3);
     for integrator in ["Direct(light_samples: 4)", "Path(max_depth: 2, rr_depth: 5)"] {
         let s = scene(&text(integrator));
-        for x in [Vec3A::ZERO, Vec3A::new(1.2, 0.0, 0.5), Vec3A::new(-0.4, 0.0, -1.5)] {
+        for x in [
+            Vec3A::ZERO,
+            Vec3A::new(1.2, 0.0, 0.5),
+            Vec3A::new(-0.4, 0.0, -1.5),
+        ] {
             let to_c = c - x;
             let d2 = to_c.length_squared();
             let e = PI * 3.0 * 0.16 * (to_c.y / d2.sqrt()) / d2;
@@ -306,7 +324,10 @@ fn emissive_sphere_gives_closed_form_irradiance_on_a_plane() {
         // Seen directly, the sphere shows its radiance.
         let o = Vec3A::new(0.0, 1.5, 3.0);
         let got = mean_li(&s, Ray::new(o, (c - o).normalize()), 1);
-        assert!((got - Vec3A::new(3.0, 2.0, 1.0)).length() < 1e-5, "{integrator}: {got}");
+        assert!(
+            (got - Vec3A::new(3.0, 2.0, 1.0)).length() < 1e-5,
+            "{integrator}: {got}"
+        );
     }
 }
 
@@ -340,7 +361,12 @@ fn hdr_and_exr_of_the_same_map_render_the_same_image() {
         );
         common::render_loaded(&common::load_in(dir.path(), &text, &Overrides::default()))
     };
+    // The same RGBE file with the `#?RGBE` signature some tools write.
+    let hdr = std::fs::read(dir.path().join("map.hdr")).expect("read hdr");
+    let rest = &hdr[hdr.iter().position(|&b| b == b'\n').expect("a header line")..];
+    std::fs::write(dir.path().join("rgbe.hdr"), [b"#?RGBE".as_slice(), rest].concat()).expect("write");
     let (exr, hdr) = (render("map.exr"), render("map.hdr"));
     assert!(exr.pixels.iter().any(|p| p.x > 0.0), "the image is not black");
     assert_eq!(exr, hdr, "the .hdr and .exr maps give different images");
+    assert_eq!(render("rgbe.hdr"), hdr, "a `#?RGBE` file reads like a `#?RADIANCE` one");
 }
