@@ -296,14 +296,38 @@ fn environment_and_emission_mistakes_are_located_together() {
     let message = |i: usize| d[i].message.as_str();
     // A missing map names the path it resolved to.
     let resolved = fixture("sky/nowhere.exr").display().to_string();
-    assert!(message(0).contains("cannot read environment map `sky/nowhere.exr`"), "{}", d[0]);
-    assert!(d[0].help.as_deref().is_some_and(|h| h.contains(&resolved)), "{}", d[0]);
+    assert!(
+        message(0).contains("cannot read environment map `sky/nowhere.exr`"),
+        "{}",
+        d[0]
+    );
+    assert!(
+        d[0].help.as_deref().is_some_and(|h| h.contains(&resolved)),
+        "{}",
+        d[0]
+    );
     assert!(message(1).contains("strength -2 must be ≥ 0"), "{}", d[1]);
-    assert!(message(2).contains("only seen when `visible` is false"), "{}", d[2]);
-    assert!(message(3).contains("`sky.png` is not a linear HDR image"), "{}", d[3]);
-    assert!(d[3].help.as_deref().is_some_and(|h| h.contains(".exr") && h.contains(".hdr")));
+    assert!(
+        message(2).contains("only seen when `visible` is false"),
+        "{}",
+        d[2]
+    );
+    assert!(
+        message(3).contains("`sky.png` is not a linear HDR image"),
+        "{}",
+        d[3]
+    );
+    assert!(
+        d[3].help
+            .as_deref()
+            .is_some_and(|h| h.contains(".exr") && h.contains(".hdr"))
+    );
     assert!(message(4).contains("needs `radiance` or `map`"), "{}", d[4]);
-    assert!(message(5).contains("one environment, and lights[0] is already one"), "{}", d[5]);
+    assert!(
+        message(5).contains("one environment, and lights[0] is already one"),
+        "{}",
+        d[5]
+    );
     assert!(message(8).contains("infinite plane cannot emit"), "{}", d[8]);
     assert!(message(9).contains("negative colour"), "{}", d[9]);
 }
@@ -336,10 +360,15 @@ fn emissive_objects_and_environments_count_as_light() {
         Ok(l) => l.warnings.diagnostics.len(),
         Err(e) => panic!("{e}\n{text}"),
     };
-    let glow = r#"objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w", emission: (radiance: (1, 1, 1)))]"#;
+    let glow =
+        r#"objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w", emission: (radiance: (1, 1, 1)))]"#;
     assert_eq!(warnings(&scene(glow)), 0, "an emissive sphere lights the scene");
     let sky = r#"lights: [Environment(radiance: (0.5, 0.6, 0.8))], objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w")]"#;
     assert_eq!(warnings(&scene(sky)), 0, "a sky lights the scene");
     let dark = r#"lights: [Environment(radiance: (1, 1, 1), strength: 0)], objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w", emission: (radiance: (0, 0, 0)))]"#;
-    assert_eq!(warnings(&scene(dark)), 1, "zero strength and zero emission are dark");
+    assert_eq!(
+        warnings(&scene(dark)),
+        1,
+        "zero strength and zero emission are dark"
+    );
 }

@@ -227,7 +227,11 @@ fn mtl_ke_lights_the_cornell_box_with_no_light_in_the_scene() {
     let mean = img.pixels.iter().map(|p| p.x).sum::<f32>() / img.pixels.len() as f32;
     assert!(mean > 0.1, "the box is lit by its own light: mean red {mean}");
     // Replacing the light's material replaces its emission too.
-    let dark = common::load_in(&dir, &text(r#", materials: { "light": "red" }"#), &Overrides::default());
+    let dark = common::load_in(
+        &dir,
+        &text(r#", materials: { "light": "red" }"#),
+        &Overrides::default(),
+    );
     assert!(dark.scene.lights.is_empty(), "an overridden group keeps no Ke");
     // An object's `emission` wins over Ke for every group.
     let all = common::load_in(
