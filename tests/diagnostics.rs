@@ -399,6 +399,20 @@ fn set_error_points_at_the_argument() {
         "{}",
         d[0]
     );
+    // With a broken file: the good overrides still apply (spp 0 is fixed),
+    // the bad one is blamed on itself, and the file's mistakes come too.
+    let o = Overrides {
+        sets: vec!["film.spp=4".into(), "camera.up=(0, 1)".into()],
+        ..Default::default()
+    };
+    let d = match load_with(&fixture("three_mistakes.ron"), &o) {
+        Err(LoadError::Invalid(r)) => r.diagnostics,
+        _ => panic!("three_mistakes.ron is broken"),
+    };
+    let places: Vec<String> = d.iter().map(|d| d.location()).collect();
+    assert_eq!(places.len(), 3, "{}", list(&d));
+    assert_eq!(places[0], "--set camera.up=(0, 1)");
+    assert!(places[1].ends_with("three_mistakes.ron:2:53") && places[2].ends_with("three_mistakes.ron:6:43"));
 }
 
 #[test]
@@ -412,5 +426,22 @@ fn missing_scene_file_is_reported_once() {
             1,
             "`ronray {command}` printed:\n{err}"
         );
+    }
+}
+
+/// Cut anywhere, including inside a multi-byte character's neighbourhood,
+/// a file gives diagnostics and renders them: nothing in parsing, section
+/// splitting or rendering panics on non-ASCII or unfinished text.
+#[test]
+fn truncated_files_never_panic() {
+    let ron = std::fs::read_to_string(fixture("non_ascii.ron")).expect("read");
+    for (name, text) in [("cut.ron", ron.as_str()), ("cut.json", JSON_MISTAKES)] {
+        for (end, _) in text.char_indices().skip(1) {
+            let cut = &text[..end];
+            if let Err(LoadError::Invalid(r)) = load_str(Path::new(name), cut, &Overrides::default()) {
+                assert!(!r.diagnostics.is_empty(), "{name} cut at {end}");
+                let _ = (r.render(true), r.render(false), r.to_string());
+            }
+        }
     }
 }

@@ -144,13 +144,12 @@ fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<(SceneDesc, C
         r
     })?;
     found.extend(composition.diagnostics.iter().cloned());
-    let mut report = match super::set::apply_sets(&mut desc, &overrides.sets) {
-        Err(problems) => command_line(&problems),
-        Ok(()) => {
-            overrides.apply(&mut desc);
-            composition.locate(&super::validate::validate(&desc))
-        }
-    };
+    let bad_sets = super::set::apply_sets(&mut desc, &overrides.sets)
+        .err()
+        .unwrap_or_default();
+    found.extend(command_line(&bad_sets).diagnostics);
+    overrides.apply(&mut desc);
+    let mut report = composition.locate(&super::validate::validate(&desc));
     report.diagnostics.append(&mut found);
     if report.diagnostics.is_empty() {
         return Ok((desc, composition));

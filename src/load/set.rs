@@ -22,7 +22,8 @@ pub struct SetProblem {
 
 /// Applies every `path=value` in order; all problems are reported together.
 /// Each override is type-checked as it is applied, so a value that does not
-/// fit is blamed on its own argument.
+/// fit is blamed on its own argument. The overrides that fit are applied even
+/// when others do not, so the scene is still checked as the user meant it.
 pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<SetProblem>> {
     if sets.is_empty() {
         return Ok(());
@@ -40,12 +41,15 @@ pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<SetPr
             Err(p) => problems.push(blame(s, p)),
         }
     }
-    if !problems.is_empty() {
-        return Err(problems);
+    // Every override kept has type-checked the whole tree.
+    if let Ok(d) = serde_json::from_value::<SceneDesc>(tree) {
+        *desc = d;
     }
-    *desc = serde_json::from_value::<SceneDesc>(tree)
-        .map_err(|e| vec![blame(&sets.join(" "), Problem::new("", e.to_string()))])?;
-    Ok(())
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(problems)
+    }
 }
 
 /// `tree` with the override `s` applied, if it names a field and its value
@@ -80,7 +84,10 @@ fn apply_one(tree: &Value, s: &str) -> Result<Value, Problem> {
 fn parse_value(text: &str) -> Result<Value, String> {
     let plain = |t: &str| {
         ron::from_str::<ron::Value>(t)
-            .map_err(|e| e.to_string())
+            .map_err(|e| {
+                let at = crate::diagnostic::offset_of(t, e.span.start.line, e.span.start.col);
+                super::words::ron_error(&e.code, &t[at..]).0
+            })
             .and_then(|v| serde_json::to_value(v).map_err(|e| e.to_string()))
     };
     let end = text

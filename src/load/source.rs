@@ -77,8 +77,12 @@ impl Format {
                     Ok(v) => return Ok(v),
                     Err(e) => e,
                 };
-                let start = offset_of(slice, e.span.start.line, e.span.start.col);
+                let mut start = offset_of(slice, e.span.start.line, e.span.start.col);
                 let end = offset_of(slice, e.span.end.line, e.span.end.col).max(start);
+                // ron points past the sign of a negative number it rejects.
+                if e.code == ron::Error::IntegerOutOfBounds && slice[..start].ends_with('-') {
+                    start -= 1;
+                }
                 (start..end, words::ron_error(&e.code, &slice[start..]))
             }
             Format::Json => {
@@ -158,7 +162,7 @@ fn without_bom(text: &str) -> Cow<'_, str> {
 pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
     let clean = without_bom(text);
     let format = Format::of(path, &clean);
-    let whole = match format.read::<T>(&clean, 0..clean.len()) {
+    let mut whole = match format.read::<T>(&clean, 0..clean.len()) {
         Ok(desc) => {
             let (gaps, diagnostics) = (Gaps::default(), Vec::new());
             return Ok(Parsed {
@@ -169,6 +173,10 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
         }
         Err(slip) => slip,
     };
+    if clean.trim().is_empty() {
+        let help = Some("a scene is written `Scene(camera: (…), objects: […])`".to_string());
+        whole = Slip::new(0..0, "the file is empty".into(), help);
+    }
     let spans = Spans::scan(&clean);
     let located = |slips: Vec<Slip>| -> Vec<Diagnostic> {
         slips

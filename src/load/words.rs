@@ -29,7 +29,7 @@ pub(super) fn ron_error(e: &ron::Error, at: &str) -> (String, Option<String>) {
         E::MissingStructField { field, outer } => missing(field, &within(outer)),
         E::DuplicateStructField { field, .. } => twice(field),
         E::ExpectedComma if decimal_at(at) => (
-            format!("`{}` is not a whole number", token(at)),
+            "expected a whole number, found a decimal point".into(),
             Some("this field counts something: write it without a decimal point".into()),
         ),
         E::ExpectedComma => (
