@@ -445,3 +445,24 @@ fn truncated_files_never_panic() {
         }
     }
 }
+
+/// Mistakes in the file's frame (its name, a missing or unknown top-level
+/// field) come with those inside its sections.
+#[test]
+fn frame_mistakes_come_with_the_sections_ones() {
+    let text = "Scen(\n  objects: [Sphere(center: (0, 0, 0), raduis: 1, material: \"x\")],\n  objcts: [],\n)";
+    let d = diagnostics_of("a.ron", text);
+    let messages: Vec<&str> = d.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(
+        messages,
+        [
+            "expected `Scene(…)`, found `Scen`",
+            "missing field `camera`",
+            "unknown field `raduis` in `Sphere`",
+            "unknown field `objcts`"
+        ],
+        "{}",
+        list(&d)
+    );
+    assert_eq!((d[1].line, d[1].column), (1, 5), "at the `(`: {}", d[1]);
+}

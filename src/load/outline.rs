@@ -23,8 +23,8 @@ pub(super) struct Entry {
 
 #[derive(Debug)]
 pub(super) struct Outline {
-    /// The struct name or opening bracket of the file's value, where a
-    /// missing field is reported.
+    /// The opening bracket of the file's value, where a missing field is
+    /// reported.
     pub open: Range<usize>,
     pub fields: Vec<Entry>,
     /// Where a `,` is missing between two fields, elements or entries.
@@ -44,7 +44,7 @@ impl Outline {
         {
             i = 1;
         }
-        let open = toks.first()?.1.start..toks.get(i)?.1.end;
+        let open = toks.get(i)?.1.clone();
         if !matches!(toks[i].0, Tok::Open('(') | Tok::Open('{')) {
             return None;
         }

@@ -66,8 +66,14 @@ pub(super) fn read<T: Document>(
     for name in broken.into_iter().flatten() {
         r.gaps.stand_in(name);
     }
-    if r.slips.is_empty() {
-        r.slips.push(whole);
+    // The whole file's first error is kept when no section explains it: it
+    // is then about the file's own frame (`Scen(`, text after the end).
+    let in_a_section = outline.fields.iter().any(|f| {
+        f.value.contains(&whole.span.start) || f.key.as_ref().is_some_and(|k| k.1.contains(&whole.span.start))
+    });
+    let told = r.slips.iter().any(|s| s.message == whole.message);
+    if r.slips.is_empty() || !(in_a_section || told) {
+        r.push(whole);
     }
     (T::assemble(s), r.gaps, r.slips)
 }
