@@ -55,17 +55,6 @@ pub(super) fn read<T: Document>(
             r.gaps.stand_in(name.to_string());
         }
     }
-    let failed = |name: &str, got: bool| (!got && r.seen.contains(&name)).then(|| name.to_string());
-    let broken = [
-        failed("camera", s.camera.is_some()),
-        failed("film", s.film.is_some()),
-        failed("integrator", s.integrator.is_some()),
-        failed("test", s.test.is_some()),
-        failed("include", s.include.is_some()),
-    ];
-    for name in broken.into_iter().flatten() {
-        r.gaps.stand_in(name);
-    }
     // The whole file's first error is kept when no section explains it: it
     // is then about the file's own frame (`Scen(`, text after the end).
     let in_a_section = outline.fields.iter().any(|f| {
@@ -117,17 +106,27 @@ impl Reader<'_> {
         }
         self.seen.push(known);
         match known {
-            "include" => s.include = self.one(&field.value),
-            "camera" => s.camera = self.one(&field.value),
-            "film" => s.film = self.one(&field.value),
-            "integrator" => s.integrator = self.one(&field.value),
-            "test" => s.test = self.one::<Option<TestDesc>>(&field.value).flatten(),
+            "include" => s.include = self.section(known, &field.value),
+            "camera" => s.camera = self.section(known, &field.value),
+            "film" => s.film = self.section(known, &field.value),
+            "integrator" => s.integrator = self.section(known, &field.value),
+            "test" => s.test = self.section::<Option<TestDesc>>(known, &field.value).flatten(),
             "materials" => s.materials = self.map(field, "materials", stand_in_material),
             "meshes" => s.meshes = self.map(field, "meshes", stand_in_mesh),
             "lights" => s.lights = self.list(field, "lights"),
             "objects" => s.objects = self.list(field, "objects"),
             _ => {}
         }
+    }
+
+    /// A top-level field read as one value; when broken, the document gets
+    /// a stand-in (or the default) that nothing is reported on.
+    fn section<V: DeserializeOwned>(&mut self, name: &'static str, value: &Range<usize>) -> Option<V> {
+        let v = self.one(value);
+        if v.is_none() {
+            self.gaps.stand_in(name.to_string());
+        }
+        v
     }
 
     fn one<V: DeserializeOwned>(&mut self, value: &Range<usize>) -> Option<V> {
