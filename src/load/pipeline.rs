@@ -113,8 +113,8 @@ pub fn load_str_with_meshes(
 ) -> Result<Loaded, LoadError> {
     let (desc, composition) = check(path, text, overrides).map_err(|r| LoadError::Invalid(r.sorted()))?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let (scene, view, stats) =
-        build_with(&desc, base, load_mesh).map_err(|p| LoadError::Invalid(composition.locate(&p)))?;
+    let (scene, view, stats) = build_with(&desc, base, load_mesh)
+        .map_err(|p| LoadError::Invalid(composition.locate(&p).sorted()))?;
     let mut files: Vec<PathBuf> = composition.sources.iter().map(|(p, _)| p.clone()).collect();
     files.extend(stats.texture_files.iter().cloned());
     for o in &desc.objects {

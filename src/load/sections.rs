@@ -34,11 +34,7 @@ pub(super) fn read<T: Document>(
     };
     for at in &outline.missing_commas {
         let help = "separate fields, elements and entries with commas";
-        r.push(Slip::new(
-            at.clone(),
-            "expected `,` before this".into(),
-            Some(help.into()),
-        ));
+        r.push(Slip::new(at.clone(), "expected `,`".into(), Some(help.into())));
     }
     let mut s = Sections::default();
     for field in &outline.fields {

@@ -34,7 +34,7 @@ pub(super) fn ron_error(e: &ron::Error, at: &str) -> (String, Option<String>) {
         ),
         E::ExpectedComma => (
             "expected `,`".into(),
-            Some("separate fields and elements with commas".into()),
+            Some("separate fields, elements and entries with commas".into()),
         ),
         E::Eof => (
             "unexpected end of the text".into(),
