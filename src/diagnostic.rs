@@ -137,6 +137,21 @@ impl Report {
         self.diagnostics.iter().filter(|d| d.severity == severity).count()
     }
 
+    /// The diagnostics in the order a reader meets them: those about no file
+    /// (command-line overrides) first, then by file in the order of
+    /// `sources`, then by position.
+    pub fn sorted(mut self) -> Self {
+        let file_index = |d: &Diagnostic| self.sources.iter().position(|(p, _)| *p == d.file);
+        let mut keyed: Vec<_> = self
+            .diagnostics
+            .drain(..)
+            .map(|d| ((file_index(&d), d.span.as_ref().map(|s| s.start)), d))
+            .collect();
+        keyed.sort_by_key(|(k, _)| *k);
+        self.diagnostics = keyed.into_iter().map(|(_, d)| d).collect();
+        self
+    }
+
     /// Renders every diagnostic with the source line and a caret (colour only
     /// when asked: terminals yes, files and pipes no).
     pub fn render(&self, color: bool) -> String {
@@ -153,7 +168,10 @@ impl Report {
                 continue;
             };
             let name = d.file.display().to_string();
-            let span = span.start.min(src.len())..span.end.min(src.len()).max(span.start.min(src.len()));
+            // On character boundaries: a span from a parser may fall inside
+            // a multi-byte character.
+            let start = src.floor_char_boundary(span.start.min(src.len()));
+            let span = start..src.ceil_char_boundary(span.end.clamp(start, src.len()));
             let msg = match &d.path {
                 Some(p) => format!("{p}: {}", d.message),
                 None => d.message.clone(),

@@ -151,3 +151,55 @@ fn duplicate_name_across_includes_shows_both_locations() {
         "first definition located in the help: {help}"
     );
 }
+
+/// An included file is parsed like the scene: each mistake in it gets the
+/// same did-you-mean, points into that file, and comes in the same run as
+/// the including file's own mistakes. Its broken material keeps its name.
+#[test]
+fn mistakes_in_an_include_are_all_reported_with_the_scene_ones() {
+    let d = tempfile::tempdir().expect("tmp");
+    write(
+        d.path(),
+        "parts.ron",
+        "Include(\n  materials: {\n    \"glass\": Glas(ior: 1.5),\n  },\n  objects: [\n    Sphere(center: (0, 0, 0), radius: 1, material: \"glass\"),\n    Sphere(center: (0, 0, 0), raduis: 1, material: \"glass\"),\n    Sphere(center: (0, 0, 0), radius: -3, material: \"glass\"),\n  ],\n)\n",
+    );
+    write(
+        d.path(),
+        "scene.ron",
+        &format!(
+            "Scene(include: [\"parts.ron\"], {CAMERA},\n  objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"glas\")],\n)"
+        ),
+    );
+    let diags = diagnostics(&d.path().join("scene.ron"));
+    let all: String = diags.iter().map(|d| format!("{d}\n")).collect();
+    assert_eq!(diags.len(), 4, "{all}");
+    let in_parts: Vec<_> = diags.iter().filter(|d| d.file.ends_with("parts.ron")).collect();
+    assert_eq!(in_parts.len(), 3, "{all}");
+    let variant = in_parts
+        .iter()
+        .find(|d| d.message.contains("unknown variant `Glas`"))
+        .unwrap_or_else(|| panic!("{all}"));
+    assert_eq!(
+        (variant.line, variant.help.as_deref()),
+        (3, Some("did you mean `Glass`?"))
+    );
+    let field = in_parts
+        .iter()
+        .find(|d| d.message.contains("unknown field `raduis`"))
+        .unwrap_or_else(|| panic!("{all}"));
+    assert_eq!(
+        (field.line, field.help.as_deref()),
+        (7, Some("did you mean `radius`?"))
+    );
+    let radius = in_parts
+        .iter()
+        .find(|d| d.path.as_deref() == Some("objects[2].radius"))
+        .unwrap_or_else(|| panic!("the written index survives the dropped element:\n{all}"));
+    assert_eq!(radius.line, 8, "{radius}");
+    let top = diags
+        .iter()
+        .find(|d| d.file.ends_with("scene.ron"))
+        .unwrap_or_else(|| panic!("{all}"));
+    assert_eq!(top.path.as_deref(), Some("objects[0].material"), "{top}");
+    assert_eq!(top.help.as_deref(), Some("did you mean `glass`?"), "{top}");
+}

@@ -266,12 +266,13 @@ pub fn run(cli: Cli) -> ExitCode {
     }
 }
 
-/// Prints a load failure with full context.
-pub fn print_load_error(e: &LoadError) {
-    match e.report() {
-        Some(r) => eprint!("{}", r.render(std::io::stderr().is_terminal())),
-        None => eprintln!("error: {e}"),
+/// Prints a load failure with full context: every diagnostic, then one
+/// summary line ending in `then` (an I/O error is that line alone).
+pub fn print_load_error(e: &LoadError, then: &str) {
+    if let Some(r) = e.report() {
+        eprint!("{}", r.render(std::io::stderr().is_terminal()));
     }
+    eprintln!("error: {e}{then}");
 }
 
 /// Prints a loaded scene's warnings with context (nothing if it has none).

@@ -16,8 +16,7 @@ pub(super) fn cmd_render(
     let loaded = match load_with(path, &settings.overrides()) {
         Ok(l) => l,
         Err(e) => {
-            print_load_error(&e);
-            eprintln!("error: {e}; nothing was written");
+            print_load_error(&e, "; nothing was written");
             return ExitCode::FAILURE;
         }
     };

@@ -12,10 +12,11 @@
 //! Every merged entry remembers where it came from, so a problem found in
 //! the composed scene is reported in the file and at the line that wrote it.
 
+use super::document::Gaps;
+use super::source;
 use super::spans::Spans;
 use crate::desc::{ColorDesc, IncludeDesc, ObjectDesc, SceneDesc};
-use crate::diagnostic::Problem;
-use crate::diagnostic::{Diagnostic, Report, offset_of};
+use crate::diagnostic::{Diagnostic, Problem, Report};
 use std::path::{Path, PathBuf};
 
 /// Where a path of the composed scene was written.
@@ -30,30 +31,39 @@ struct Origin {
 #[derive(Debug, Default)]
 pub struct Composition {
     pub sources: Vec<(PathBuf, String)>,
+    /// What each source's partial read left out (parallel to `sources`).
+    gaps: Vec<Gaps>,
     origins: Vec<Origin>,
+    /// Mistakes in included files that did not stop the composition.
+    pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Composition {
     /// A scene without includes: everything is in file 0.
-    pub fn single(path: &Path, text: &str) -> Self {
+    pub fn single(path: &Path, text: &str, gaps: Gaps) -> Self {
         Self {
             sources: vec![(path.to_path_buf(), text.to_string())],
-            origins: Vec::new(),
+            gaps: vec![gaps],
+            ..Self::default()
         }
     }
 
-    /// Turns problems of the composed scene into diagnostics in the right file.
+    /// Turns problems of the composed scene into diagnostics in the file and
+    /// at the entry that wrote them. Problems inside a stand-in for a broken
+    /// entry are dropped: that entry's parse error is already reported.
     pub fn locate(&self, problems: &[Problem]) -> Report {
         let spans: Vec<Spans> = self.sources.iter().map(|(_, t)| Spans::scan(t)).collect();
         let diagnostics = problems
             .iter()
-            .map(|p| {
+            .filter_map(|p| {
                 let (file, path) = self.origin_of(&p.path);
+                let path = self
+                    .gaps
+                    .get(file)
+                    .map_or(Some(path.clone()), |g| g.original(&path))?;
                 let (fpath, text) = &self.sources[file];
-                let mut d = Diagnostic::new(fpath, text, spans[file].find(&path), p.message.clone());
-                d.path = Some(path);
-                d.help = p.help.clone();
-                d
+                let p = Problem { path, ..p.clone() };
+                Some(source::locate(fpath, text, &spans[file], &p))
             })
             .collect();
         Report {
@@ -78,9 +88,12 @@ impl Composition {
     }
 }
 
-/// Merges `desc.include` (recursively) into `desc`.
-pub fn compose(path: &Path, text: &str, desc: &mut SceneDesc) -> Result<Composition, Report> {
-    let mut c = Composition::single(path, text);
+/// Merges `desc.include` (recursively) into `desc`. Mistakes inside an
+/// included file are collected in [`Composition::diagnostics`] and the rest
+/// of it is merged; a file that cannot be read, an include cycle or a name
+/// defined twice is an `Err`.
+pub fn compose(path: &Path, text: &str, gaps: Gaps, desc: &mut SceneDesc) -> Result<Composition, Report> {
+    let mut c = Composition::single(path, text, gaps);
     if desc.include.is_empty() {
         return Ok(c);
     }
@@ -105,6 +118,7 @@ pub fn compose(path: &Path, text: &str, desc: &mut SceneDesc) -> Result<Composit
         );
     }
     if !errors.is_empty() {
+        errors.append(&mut c.diagnostics);
         return Err(Report {
             diagnostics: errors,
             sources: c.sources,
@@ -161,10 +175,12 @@ fn include(
     let full = top_dir.join(&rel);
     let err = |c: &Composition, msg: String, help: String| {
         let (p, t) = &c.sources[at.file];
-        let mut d = Diagnostic::new(p, t, Spans::scan(t).find(&at.path), msg);
-        d.path = Some(at.path.clone());
-        d.help = Some(help);
-        d
+        source::locate(
+            p,
+            t,
+            &Spans::scan(t),
+            &Problem::new(at.path.clone(), msg).help(help),
+        )
     };
     let key = canonical(&full);
     if let Some(k) = stack.iter().position(|s| *s == key) {
@@ -202,27 +218,15 @@ fn include(
     };
     let file = c.sources.len();
     c.sources.push((full.clone(), text.clone()));
-    let opts = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    let parsed = if full.extension().is_some_and(|e| e == "json") {
-        serde_json::from_str::<IncludeDesc>(&text)
-            .map_err(|e| (offset_of(&text, e.line(), e.column()), e.to_string()))
-    } else {
-        opts.from_str::<IncludeDesc>(&text).map_err(|e| {
-            (
-                offset_of(&text, e.span.start.line, e.span.start.col),
-                e.code.to_string(),
-            )
-        })
-    };
-    let mut inc_desc = match parsed {
-        Ok(d) => d,
-        Err((off, msg)) => {
-            errors.push(Diagnostic::new(
-                &full,
-                &text,
-                Some(off..(off + 1).min(text.len())),
-                msg,
-            ));
+    c.gaps.push(Gaps::default());
+    let mut inc_desc = match source::read::<IncludeDesc>(&full, &text) {
+        Ok(parsed) => {
+            c.gaps[file] = parsed.gaps;
+            c.diagnostics.extend(parsed.diagnostics);
+            parsed.desc
+        }
+        Err(broken) => {
+            errors.extend(broken.diagnostics);
             return;
         }
     };
@@ -250,17 +254,14 @@ fn include(
         }
         if let Some((first_file, first_path)) = defined.get(&name) {
             let first = location(c, *first_file, first_path);
-            let mut d = Diagnostic::new(
-                &full,
-                &text,
-                Spans::scan(&text).find(&format!("materials.{name}")),
+            let p = Problem::new(
+                format!("materials.{name}"),
                 format!("material `{name}` is defined in two included files"),
-            );
-            d.path = Some(format!("materials.{name}"));
-            d.help = Some(format!(
+            )
+            .help(format!(
                 "it is first defined at {first}; rename one, or define it in the including scene to choose"
             ));
-            errors.push(d);
+            errors.push(source::locate(&full, &text, &Spans::scan(&text), &p));
             continue;
         }
         defined.insert(name.clone(), (file, format!("materials.{name}")));
