@@ -62,14 +62,23 @@ impl Gaps {
 /// its own; `None` when absent or broken.
 #[derive(Default)]
 pub struct Sections {
+    /// `include: [...]`.
     pub include: Option<Vec<String>>,
+    /// `camera: (...)`.
     pub camera: Option<CameraDesc>,
+    /// `film: (...)`.
     pub film: Option<FilmDesc>,
+    /// `integrator: ...`.
     pub integrator: Option<IntegratorDesc>,
+    /// `test: (...)`.
     pub test: Option<TestDesc>,
+    /// The `materials` entries that read; broken ones are stand-ins.
     pub materials: BTreeMap<String, MaterialDesc>,
+    /// The `meshes` entries that read; broken ones are stand-ins.
     pub meshes: BTreeMap<String, MeshDesc>,
+    /// The `lights` elements that read (broken ones are left out).
     pub lights: Vec<LightDesc>,
+    /// The `objects` elements that read (broken ones are left out).
     pub objects: Vec<ObjectDesc>,
 }
 
@@ -79,6 +88,7 @@ pub trait Document: DeserializeOwned {
     const FIELDS: &'static [&'static str];
     /// Required fields (stand-ins are used when they are missing or broken).
     const REQUIRED: &'static [&'static str];
+    /// The document made of the sections that were read.
     fn assemble(s: Sections) -> Self;
 }
 

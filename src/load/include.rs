@@ -30,6 +30,7 @@ struct Origin {
 /// The files a composed scene was read from, and where each entry came from.
 #[derive(Debug, Default)]
 pub struct Composition {
+    /// Every file read (the scene first, then its includes) with its text.
     pub sources: Vec<(PathBuf, String)>,
     /// What each source's partial read left out (parallel to `sources`).
     gaps: Vec<Gaps>,

@@ -13,9 +13,14 @@ use std::path::{Path, PathBuf};
 
 /// A scene ready to render, with what produced it.
 pub struct Loaded {
+    /// What rays query.
     pub scene: Scene,
+    /// Camera, film, integrator and output.
     pub view: View,
+    /// The checked description the scene was built from (includes composed,
+    /// overrides applied).
     pub desc: SceneDesc,
+    /// What building cost, and its notes.
     pub stats: BuildStats,
     /// Every file the scene depends on (itself, meshes…), for watch mode.
     pub files: Vec<PathBuf>,
@@ -26,10 +31,18 @@ pub struct Loaded {
     pub warnings: Report,
 }
 
+/// Why a scene did not load.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
+    /// The scene file itself could not be read.
     #[error("cannot read scene file {}: {source}", path.display())]
-    Io { path: PathBuf, source: std::io::Error },
+    Io {
+        /// The file, as given.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// The scene has mistakes: every one found, located.
     #[error("{} in {}", plural(.0.diagnostics.len()), files(.0))]
     Invalid(Report),
 }
@@ -55,6 +68,7 @@ fn plural(n: usize) -> String {
 }
 
 impl LoadError {
+    /// The located diagnostics, for an invalid scene.
     pub fn report(&self) -> Option<&Report> {
         match self {
             LoadError::Invalid(r) => Some(r),
@@ -67,14 +81,19 @@ impl LoadError {
 /// same validation.
 #[derive(Clone, Debug, Default)]
 pub struct Overrides {
+    /// `--spp`: samples per pixel.
     pub spp: Option<u32>,
+    /// `--size`: width and height in pixels.
     pub size: Option<(u32, u32)>,
+    /// `--seed`.
     pub seed: Option<u64>,
     /// `path=value` typed overrides (`--set`), applied before the others.
     pub sets: Vec<String>,
 }
 
 impl Overrides {
+    /// Writes `--spp`, `--size` and `--seed` into the description (`--set`
+    /// is applied earlier, by `set.rs`).
     pub fn apply(&self, desc: &mut SceneDesc) {
         if let Some(spp) = self.spp {
             desc.film.spp = spp;

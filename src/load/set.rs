@@ -16,7 +16,9 @@ use serde_json::Value;
 /// the diagnostic can point at it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SetProblem {
+    /// The `--set` argument as the user wrote it.
     pub arg: String,
+    /// What is wrong with it.
     pub problem: Problem,
 }
 

@@ -25,15 +25,20 @@ use std::path::Path;
 
 /// How a file is written: RON (with the extensions it enables) or JSON.
 pub enum Format {
+    /// RON, with the options (extensions) the file enables.
     Ron(ron::Options),
+    /// JSON (chosen by the `.json` extension).
     Json,
 }
 
 /// A parse mistake located in the file's text.
 #[derive(Clone, Debug)]
 pub struct Slip {
+    /// Byte range of the mistake in the file.
     pub span: Range<usize>,
+    /// What is wrong.
     pub message: String,
+    /// The likely fix.
     pub help: Option<String>,
 }
 
@@ -41,8 +46,12 @@ pub struct Slip {
 /// what was left out of it, and the mistakes found on the way. A partial
 /// description is only for checking; there is a diagnostic for every gap.
 pub struct Parsed<T> {
+    /// What was read (stand-ins where entries were broken).
     pub desc: T,
+    /// The entries left out or replaced, so later problems keep the
+    /// indices the user wrote.
     pub gaps: Gaps,
+    /// The parse mistakes found.
     pub diagnostics: Vec<Diagnostic>,
 }
 
@@ -134,6 +143,7 @@ fn widen(text: &str, span: Range<usize>) -> Range<usize> {
 }
 
 impl Slip {
+    /// A mistake at `span`.
     pub fn new(span: Range<usize>, message: String, help: Option<String>) -> Self {
         Self { span, message, help }
     }

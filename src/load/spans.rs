@@ -11,6 +11,7 @@ use super::tokens::{Tok, skip_value, tokenize};
 use std::collections::HashMap;
 use std::ops::Range;
 
+/// Byte ranges of a document's values by scene path.
 #[derive(Debug, Default)]
 pub struct Spans {
     map: HashMap<String, Range<usize>>,
