@@ -3,10 +3,10 @@
 //! diagnostic.
 //!
 //! A file that parses as a whole is done in one step. One that does not is
-//! checked for unbalanced brackets ([`super::brackets`]), the only mistake
+//! checked for unbalanced brackets (`brackets.rs`), the only mistake
 //! that stops reading; otherwise it is read section by section
-//! ([`super::sections`]) so that every mistake in it is reported at once,
-//! in the user's words ([`super::words`]).
+//! (`sections.rs`) so that every mistake in it is reported at once,
+//! in the user's words (`words.rs`).
 
 use super::brackets;
 use super::document::{Document, Gaps};
