@@ -115,7 +115,7 @@ pub fn load(path: &Path) -> Result<Loaded, LoadError> {
 
 /// As [`load`], with command-line overrides.
 pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Loaded, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
+    let text = super::source::read_text(path).map_err(|source| LoadError::Io {
         path: path.to_path_buf(),
         source,
     })?;

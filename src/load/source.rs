@@ -166,6 +166,38 @@ fn without_bom(text: &str) -> Cow<'_, str> {
     }
 }
 
+/// Largest scene or included file read, in bytes. Hand-written scenes are
+/// kilobytes; raise it here for generated ones.
+pub const MAX_SCENE_FILE_BYTES: u64 = 64 << 20;
+
+/// Reads a scene or included file as text. Regular files only: a FIFO or a
+/// device would block or never end (`metadata` does not open the file, so
+/// asking cannot block). Larger than [`MAX_SCENE_FILE_BYTES`] is an error.
+pub fn read_text(path: &Path) -> std::io::Result<String> {
+    use std::io::{Error, ErrorKind, Read};
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    if meta.len() > MAX_SCENE_FILE_BYTES {
+        return Err(Error::new(
+            ErrorKind::InvalidData,
+            format!("larger than {} MiB", MAX_SCENE_FILE_BYTES >> 20),
+        ));
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(MAX_SCENE_FILE_BYTES + 1)
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > MAX_SCENE_FILE_BYTES {
+        return Err(Error::new(
+            ErrorKind::InvalidData,
+            format!("larger than {} MiB", MAX_SCENE_FILE_BYTES >> 20),
+        ));
+    }
+    Ok(text)
+}
+
 /// Reads a scene or included file. Only a broken structure (unbalanced
 /// brackets, or no recognisable top level) is an `Err`; every other mistake
 /// is in [`Parsed::diagnostics`], beside what could be read.
