@@ -1,0 +1,197 @@
+//! Hostile input is normal input (issue 13): scenes that validate never
+//! panic and never put a NaN or an infinity on the film, whatever their
+//! numbers; files that are not regular files are refused without blocking.
+
+mod common;
+
+use common::root;
+use ronray::load::{Loaded, Overrides, load_str};
+use ronray::math::Pcg32;
+use ronray::render::{RenderOptions, render};
+use std::path::Path;
+
+fn load_tiny(dir: &Path, text: &str) -> Option<Loaded> {
+    let o = Overrides {
+        size: Some((8, 8)),
+        spp: Some(1),
+        ..Default::default()
+    };
+    load_str(&dir.join("gen.ron"), text, &o).ok()
+}
+
+/// Renders and asserts every pixel is finite.
+fn assert_finite(l: &Loaded, what: &str) {
+    let img = render(&l.scene, &l.view, &RenderOptions::default()).0;
+    if let Some(p) = img.pixels.iter().find(|p| !p.is_finite()) {
+        panic!("{what}: a pixel is {p}");
+    }
+}
+
+const HEAD: &str = r#"camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+    materials: { "m": Lambert(albedo: (0.5, 0.5, 0.5)), "g": Glass(ior: 1.5), "c": CookTorrance(roughness: 0.3, fresnel: Metal(Gold)) },
+    meshes: { "b": (file: "block.obj") },"#;
+
+/// Scenes that once validated and then panicked in `render` with huge but
+/// finite numbers — an instance scaled by 2e19, an SDF sphere of radius 2e19
+/// around the camera, a mesh scaled by 3e37 — are now refused with a located
+/// error (coordinates beyond ±1e15 overflow f32 when squared); a thin lens at
+/// 1e7 focused 1e-6 away renders finite pixels.
+#[test]
+fn huge_but_finite_numbers_are_refused_or_render_finite() {
+    let dir = root().join("tests/fixtures/hardening");
+    let cases = [
+        "Instance(mesh: \"b\", material: \"m\", transform: [Scale((2e19, 2e19, 2e19))])",
+        "Sdf(shape: Sphere(radius: 2e19), material: \"m\")",
+        "Mesh(file: \"block.obj\", material: \"m\", transform: [Scale((3e37, 3e37, 3e37))])",
+    ];
+    for object in cases {
+        let text = format!(
+            "Scene({HEAD} lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))], objects: [{object}])"
+        );
+        let o = Overrides::default();
+        match load_str(&dir.join("gen.ron"), &text, &o) {
+            Err(e) => {
+                let r = e.report().expect("diagnostics");
+                assert!(
+                    r.diagnostics
+                        .iter()
+                        .any(|d| d.message.contains("beyond") && d.line > 0),
+                    "{}",
+                    r.render(false)
+                );
+            }
+            Ok(_) => panic!("{object} loaded"),
+        }
+    }
+    let lens = format!(
+        "Scene({} lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))], objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"m\")])",
+        HEAD.replace(
+            "camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40)",
+            "camera: (eye: (1e7, 1, 4), target: (0, 0, 0), fov_y_degrees: 40, aperture_radius: 0.5, focus_distance: 1e-6)"
+        )
+    );
+    assert_finite(&load_tiny(&dir, &lens).expect("validates"), "thin lens at 1e7");
+}
+
+/// A number from 1e-30 to 1e16 (either sign, so some are past the limit),
+/// or a plain one.
+fn extreme(rng: &mut Pcg32) -> f32 {
+    let r = rng.next_f32();
+    if r < 0.3 {
+        return (rng.next_f32() * 4.0 - 2.0).round();
+    }
+    let mag = 10f32.powf(rng.next_f32() * 46.0 - 30.0);
+    if rng.next_f32() < 0.5 { -mag } else { mag }
+}
+
+fn v3(rng: &mut Pcg32) -> String {
+    format!("({:e}, {:e}, {:e})", extreme(rng), extreme(rng), extreme(rng))
+}
+
+/// A few hundred generated scenes with extreme coordinates, sizes, scales
+/// and light strengths: each one that validates renders without a panic and
+/// with every pixel finite.
+#[test]
+fn generated_extreme_scenes_render_finite_pixels() {
+    let dir = root().join("tests/fixtures/hardening");
+    let mut rng = Pcg32::new(13, 1);
+    let mut rendered = 0;
+    for case in 0..300 {
+        let s = |rng: &mut Pcg32| extreme(rng).abs();
+        let object = match case % 6 {
+            0 => format!(
+                "Sphere(center: {}, radius: {:e}, material: \"m\")",
+                v3(&mut rng),
+                s(&mut rng)
+            ),
+            1 => format!(
+                "Rect(center: {}, half_u: {}, half_v: {}, material: \"c\")",
+                v3(&mut rng),
+                v3(&mut rng),
+                v3(&mut rng)
+            ),
+            2 => format!(
+                "Plane(point: {}, normal: {}, material: \"m\")",
+                v3(&mut rng),
+                v3(&mut rng)
+            ),
+            3 => format!(
+                "Instance(mesh: \"b\", material: \"g\", transform: [Scale(({e:e}, {e:e}, {e:e})), Translate({})])",
+                v3(&mut rng),
+                e = s(&mut rng)
+            ),
+            4 => format!(
+                "Sdf(shape: Torus(major: {:e}, minor: {:e}), material: \"m\")",
+                s(&mut rng),
+                s(&mut rng)
+            ),
+            _ => format!(
+                "Sphere(center: {}, radius: {:e}, material: \"g\")",
+                v3(&mut rng),
+                s(&mut rng)
+            ),
+        };
+        let light = if case % 2 == 0 {
+            format!(
+                "Point(position: {}, intensity: ({e:e}, {e:e}, {e:e}))",
+                v3(&mut rng),
+                e = s(&mut rng)
+            )
+        } else {
+            format!(
+                "Rect(center: {}, half_u: {}, half_v: {}, radiance: ({e:e}, {e:e}, {e:e}))",
+                v3(&mut rng),
+                v3(&mut rng),
+                v3(&mut rng),
+                e = s(&mut rng)
+            )
+        };
+        let camera = format!(
+            "camera: (eye: {}, target: {}, fov_y_degrees: 40)",
+            v3(&mut rng),
+            v3(&mut rng)
+        );
+        let integrator = [
+            "Direct(light_samples: 1)",
+            "Path(max_depth: 4)",
+            "Whitted(max_depth: 3, light_samples: 1)",
+        ][case % 3];
+        let text = format!(
+            "Scene({} integrator: {integrator}, lights: [{light}], objects: [{object}, Sphere(center: (0, 0, 0), radius: 1, material: \"m\")])",
+            HEAD.replace(
+                "camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40)",
+                &camera
+            )
+        );
+        if let Some(l) = load_tiny(&dir, &text) {
+            assert_finite(&l, &text);
+            rendered += 1;
+        }
+    }
+    assert!(
+        rendered >= 100,
+        "only {rendered} of 300 generated scenes validated"
+    );
+}
+
+/// Every shipped scene, at a tiny size: every pixel finite.
+#[test]
+fn shipped_scenes_render_finite_pixels() {
+    for e in std::fs::read_dir(root().join("scenes"))
+        .expect("scenes/")
+        .flatten()
+    {
+        let p = e.path();
+        if p.extension().is_none_or(|x| x != "ron") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).expect("read");
+        let o = Overrides {
+            size: Some((16, 16)),
+            spp: Some(2),
+            ..Default::default()
+        };
+        let l = load_str(&p, &text, &o).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        assert_finite(&l, &p.display().to_string());
+    }
+}
