@@ -195,3 +195,116 @@ fn shipped_scenes_render_finite_pixels() {
         assert_finite(&l, &p.display().to_string());
     }
 }
+
+/// 16,000 mistakes in one file are all reported, and printing them is
+/// linear in their number (it took 25 s when each diagnostic re-indexed the
+/// file's lines; the bound here is a hang guard, far above the real time).
+#[test]
+fn sixteen_thousand_errors_print_in_linear_time() {
+    let objects: String = (0..16_000)
+        .map(|i| format!("    Sphere(center: ({i}, 0, 0), radius: 1, material: \"nope{i}\"),\n"))
+        .collect();
+    let text = format!(
+        "Scene(\n  camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),\n  lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))],\n  objects: [\n{objects}  ],\n)"
+    );
+    let e = match load_str(Path::new("many.ron"), &text, &Overrides::default()) {
+        Err(e) => e,
+        Ok(_) => panic!("loaded"),
+    };
+    let r = e.report().expect("diagnostics");
+    assert_eq!(r.diagnostics.len(), 16_000);
+    let t = std::time::Instant::now();
+    let printed = r.render(false);
+    assert!(printed.contains("nope15999"));
+    assert!(t.elapsed().as_secs() < 10, "printing took {:?}", t.elapsed());
+}
+
+/// A roulette depth of u32::MAX (minutes per sample) is refused, located.
+#[test]
+fn roulette_depth_has_an_upper_bound() {
+    let text = "Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40), integrator: Path(max_depth: -1, rr_depth: 4294967295), lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))])";
+    let e = load_str(Path::new("rr.ron"), text, &Overrides::default())
+        .err()
+        .expect("refused");
+    let d = &e.report().expect("diagnostics").diagnostics;
+    assert!(
+        d.iter()
+            .any(|d| d.path.as_deref() == Some("integrator.rr_depth") && d.line == 1),
+        "{d:?}"
+    );
+}
+
+/// `--threads 100000` is refused by the command line, before any thread
+/// starts.
+#[test]
+fn thread_count_has_an_upper_bound() {
+    let o = common::ronray(&[
+        "render",
+        "scenes/cornell.ron",
+        "--threads",
+        "100000",
+        "-o",
+        "/nonexistent/x.png",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("1..=1024"));
+}
+
+/// A PFM of `w`×`h` RGB pixels all `v` (bottom row first, little-endian).
+fn pfm(w: u32, h: u32, v: f32) -> Vec<u8> {
+    let mut b = format!("PF\n{w} {h}\n-1.0\n").into_bytes();
+    for _ in 0..w * h * 3 {
+        b.extend_from_slice(&v.to_le_bytes());
+    }
+    b
+}
+
+/// `diff` on a PFM whose header claims a huge size is an error, not an
+/// overflow and an out-of-bounds index.
+#[test]
+fn diff_refuses_a_pfm_claiming_a_huge_size() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (a, b) = (dir.path().join("a.pfm"), dir.path().join("b.pfm"));
+    let mut huge = b"PF\n4294967295 4294967295\n-1.0\n".to_vec();
+    huge.extend_from_slice(&[0; 64]);
+    std::fs::write(&a, huge).expect("write");
+    std::fs::write(&b, pfm(2, 2, 0.5)).expect("write");
+    let o = common::ronray(&["diff", a.to_str().expect("utf-8"), b.to_str().expect("utf-8")]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("PFM"));
+}
+
+/// A NaN pixel makes the RMSE NaN: `--max-rmse` must fail, not pass.
+#[test]
+fn diff_gate_fails_on_a_nan_pixel() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let (a, b) = (dir.path().join("a.pfm"), dir.path().join("b.pfm"));
+    std::fs::write(&a, pfm(2, 2, f32::NAN)).expect("write");
+    std::fs::write(&b, pfm(2, 2, 0.5)).expect("write");
+    let o = common::ronray(&[
+        "diff",
+        a.to_str().expect("utf-8"),
+        b.to_str().expect("utf-8"),
+        "--max-rmse",
+        "0.1",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// `diff --heatmap` never overwrites one of the images it compares.
+#[test]
+fn diff_heatmap_does_not_overwrite_an_input() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let a = dir.path().join("a.png");
+    let img = ronray::imageio::Image::new(2, 2);
+    ronray::imageio::write_image(&img, &a).expect("write");
+    let before = std::fs::read(&a).expect("read");
+    let p = a.to_str().expect("utf-8");
+    let o = common::ronray(&["diff", p, p, "--heatmap", p]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        std::fs::read(&a).expect("read"),
+        before,
+        "the input was rewritten"
+    );
+}

@@ -126,8 +126,8 @@ pub enum Command {
         /// Rewrite the goldens that fail or are missing, on purpose.
         #[arg(long)]
         bless: bool,
-        /// Worker threads (default: all cores).
-        #[arg(long)]
+        /// Worker threads (default: all cores; at most 1024).
+        #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
     },
     /// Compare two images (PNG, EXR, PFM): RMSE, relative MSE, PSNR, means.
@@ -150,8 +150,9 @@ pub enum Command {
     Bench {
         /// The Wavefront OBJ mesh to measure.
         obj: PathBuf,
-        /// Threads for the multi-threaded figures (default: all cores).
-        #[arg(long)]
+        /// Threads for the multi-threaded figures (default: all cores; at
+        /// most 1024).
+        #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
     },
 }
@@ -168,8 +169,9 @@ pub struct RenderSettings {
     /// Seed of the random streams (same seed, same image).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 1024). The image does not
+    /// depend on it.
+    #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,
     /// Typed override `path=value` (value in RON), e.g.
     /// `--set film.spp=256 --set materials.floor.albedo=(0.2,0.2,0.2)`.
@@ -187,6 +189,21 @@ impl RenderSettings {
             sets: self.sets.clone(),
         }
     }
+}
+
+/// Most worker threads a command starts: beyond the cores, threads only
+/// cost memory (100,000 asked for would exhaust it). Raise it here.
+pub const MAX_THREADS: usize = 1024;
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let n: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a whole number"))?;
+    if n == 0 || n > MAX_THREADS {
+        return Err(format!("{n} threads is outside 1..={MAX_THREADS}"));
+    }
+    Ok(n)
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {

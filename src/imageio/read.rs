@@ -79,17 +79,34 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
         "Pf" => 1,
         other => return Err(format!("not a PFM file (magic `{other}`)")),
     };
+    let dim = |x: f64| {
+        if x.fract() == 0.0 && (1.0..=f64::from(u32::MAX)).contains(&x) {
+            Ok(x as u32)
+        } else {
+            Err(format!("bad PFM size {x}"))
+        }
+    };
     let parse = |s: &str| {
         s.parse::<f64>()
             .map_err(|_| format!("bad PFM header field `{s}`"))
     };
     let (w, h, scale) = (
-        parse(&fields[1])? as u32,
-        parse(&fields[2])? as u32,
+        dim(parse(&fields[1])?)?,
+        dim(parse(&fields[2])?)?,
         parse(&fields[3])?,
     );
-    let n = (w as usize) * (h as usize) * channels;
-    let data = bytes.get(i..i + 4 * n).ok_or("truncated PFM data")?;
+    // Checked: a header may claim any size; the data must be there before
+    // anything is allocated or indexed.
+    let n = (w as usize)
+        .checked_mul(h as usize)
+        .and_then(|p| p.checked_mul(channels))
+        .filter(|&n| n > 0)
+        .ok_or_else(|| format!("PFM size {w}×{h} is empty or too large"))?;
+    let end = n
+        .checked_mul(4)
+        .and_then(|b| b.checked_add(i))
+        .ok_or("PFM size too large")?;
+    let data = bytes.get(i..end).ok_or("truncated PFM data")?;
     let mut img = Image::new(w, h);
     let value = |k: usize| {
         let b = [data[4 * k], data[4 * k + 1], data[4 * k + 2], data[4 * k + 3]];

@@ -19,6 +19,10 @@ pub const MAX_LIGHT_SAMPLES: u32 = 4096;
 /// meshes are loaded and transformed). Squares of larger values overflow
 /// f32 in ray–shape tests.
 pub const MAX_COORD: f32 = 1e15;
+/// Largest accepted path depth before Russian roulette starts: without
+/// roulette a path in a closed white room never ends (u32::MAX took
+/// minutes per sample).
+pub const MAX_RR_DEPTH: u32 = 1024;
 /// Largest accepted Whitted recursion depth.
 pub const MAX_DEPTH: u32 = 64;
 

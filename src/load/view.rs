@@ -1,7 +1,7 @@
 //! Camera, film and integrator: their checks, and the [`View`] they build
 //! (what `render()` needs beside the scene).
 
-use super::validate::{Checker, MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_RESOLUTION, MAX_SPP};
+use super::validate::{Checker, MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_RESOLUTION, MAX_RR_DEPTH, MAX_SPP};
 use crate::camera::Camera;
 use crate::desc::{CameraDesc, FilmDesc, IntegratorDesc, SamplerDesc, SceneDesc};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
@@ -116,12 +116,21 @@ impl Checker {
                     );
                 }
             }
-            IntegratorDesc::Path { max_depth, .. } => {
+            IntegratorDesc::Path {
+                max_depth, rr_depth, ..
+            } => {
                 if *max_depth == 0 || *max_depth < -1 {
                     self.push(
                         "integrator.max_depth",
                         format!("max_depth {max_depth} is neither −1 nor ≥ 1"),
                         "it counts path segments: 1 = emitters only, 2 = direct lighting, 8 is typical, −1 = unlimited",
+                    );
+                }
+                if *rr_depth > MAX_RR_DEPTH {
+                    self.push(
+                        "integrator.rr_depth",
+                        format!("rr_depth {rr_depth} is above {MAX_RR_DEPTH}"),
+                        "Russian roulette is what ends long paths cheaply; 5 is typical",
                     );
                 }
             }
