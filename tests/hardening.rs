@@ -308,3 +308,46 @@ fn diff_heatmap_does_not_overwrite_an_input() {
         "the input was rewritten"
     );
 }
+
+/// The output may not be a file the scene reads (here its own OBJ): it is
+/// refused and the file is untouched.
+#[test]
+fn render_refuses_to_overwrite_an_input_of_the_scene() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::copy(
+        root().join("tests/fixtures/hardening/block.obj"),
+        dir.path().join("block.png"),
+    )
+    .expect("copy");
+    let scene = dir.path().join("s.ron");
+    std::fs::write(
+        &scene,
+        "Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40), film: (width: 8, height: 8, spp: 1), materials: { \"m\": Lambert(albedo: (0.5, 0.5, 0.5)) }, lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))], objects: [Mesh(file: \"block.png\", material: \"m\")])",
+    )
+    .expect("write");
+    let before = std::fs::read(dir.path().join("block.png")).expect("read");
+    let o = common::ronray_in(dir.path(), &["render", "s.ron", "-o", "block.png"]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("which the scene reads"));
+    assert_eq!(std::fs::read(dir.path().join("block.png")).expect("read"), before);
+}
+
+/// A scene's own `film.output` stays inside its folder: absolute paths and
+/// `..` are located errors (the command line's `-o` may go anywhere).
+#[test]
+fn film_output_may_not_leave_the_scene_folder() {
+    for out in ["/tmp/x.png", "../x.png", "a/../../x.png"] {
+        let text = format!(
+            "Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40), film: (output: \"{out}\"), lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))])"
+        );
+        let e = load_str(Path::new("o.ron"), &text, &Overrides::default())
+            .err()
+            .expect("refused");
+        let d = &e.report().expect("diagnostics").diagnostics;
+        assert!(
+            d.iter()
+                .any(|d| d.path.as_deref() == Some("film.output") && d.message.contains("leaves")),
+            "{out}: {d:?}"
+        );
+    }
+}

@@ -35,6 +35,14 @@ pub(super) fn cmd_render(
         );
         return ExitCode::FAILURE;
     }
+    if let Some(input) = loaded.input_at(&out) {
+        eprintln!(
+            "error: output {} is {}, which the scene reads; nothing was written",
+            out.display(),
+            input.display()
+        );
+        return ExitCode::FAILURE;
+    }
     let f = loaded.view.film;
     let opts = RenderOptions {
         threads: settings.threads,

@@ -88,6 +88,19 @@ impl Checker {
                     "end it in `.png` (8-bit sRGB) or `.exr` (linear float)",
                 );
             }
+            // A scene from someone else's repository must not write outside
+            // its own folder; the command line may (`-o`).
+            let p = std::path::Path::new(out);
+            if p.is_absolute()
+                || p.components()
+                    .any(|c| matches!(c, std::path::Component::ParentDir))
+            {
+                self.push(
+                    "film.output",
+                    format!("output `{out}` leaves the scene's folder"),
+                    "write a path relative to the scene file, without `..`; to write elsewhere, pass `-o PATH` on the command line",
+                );
+            }
         }
     }
 

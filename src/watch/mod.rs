@@ -199,6 +199,16 @@ impl Session {
             let msg = format!("error: output {} must end in .png or .exr", output.display());
             return self.reporter.problem(generation, &msg);
         }
+        if let Some(input) = loaded.input_at(&output) {
+            // Writing it would overwrite an input and trigger this reload
+            // again, for ever.
+            let msg = format!(
+                "error: output {} is {}, which the scene reads; keeping the last good image",
+                output.display(),
+                input.display()
+            );
+            return self.reporter.problem(generation, &msg);
+        }
         self.reporter.warnings(&loaded.warnings);
         let name = self.scene.display().to_string();
         let watched = self.set.file_count();
