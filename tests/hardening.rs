@@ -351,3 +351,57 @@ fn film_output_may_not_leave_the_scene_folder() {
         );
     }
 }
+
+/// CRC-32 (PNG's), for a hand-made header.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in bytes {
+        c ^= u32::from(b);
+        for _ in 0..8 {
+            c = if c & 1 != 0 {
+                0xEDB8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+/// A PNG whose header says `w`×`h` (8-bit RGB), with an empty data stream.
+fn png_header_only(w: u32, h: u32) -> Vec<u8> {
+    let mut out = vec![0x89];
+    out.extend_from_slice(b"PNG\r\n\x1a\n");
+    let mut chunk = |kind: &[u8], data: &[u8]| {
+        out.extend_from_slice(&(data.len() as u32).to_be_bytes());
+        let mut body = kind.to_vec();
+        body.extend_from_slice(data);
+        out.extend_from_slice(&body);
+        out.extend_from_slice(&crc32(&body).to_be_bytes());
+    };
+    let mut ihdr = Vec::new();
+    ihdr.extend_from_slice(&w.to_be_bytes());
+    ihdr.extend_from_slice(&h.to_be_bytes());
+    ihdr.extend_from_slice(&[8, 2, 0, 0, 0]);
+    chunk(b"IHDR", &ihdr);
+    chunk(b"IDAT", &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01]);
+    chunk(b"IEND", &[]);
+    out
+}
+
+/// An 11000 × 11000 texture (small on disk, 2.6 GB decoded) is refused from
+/// its header, with a located error, before anything is decoded.
+#[test]
+fn a_huge_texture_is_refused_before_decoding() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    std::fs::write(dir.path().join("big.png"), png_header_only(11_000, 11_000)).expect("write");
+    let text = "Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40), materials: { \"t\": Lambert(albedo: \"big.png\") }, lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))], objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"t\")])";
+    let e = load_str(&dir.path().join("s.ron"), text, &Overrides::default())
+        .err()
+        .expect("refused");
+    let d = &e.report().expect("diagnostics").diagnostics;
+    assert!(
+        d.iter().any(|d| d.message.contains("11000×11000") && d.line == 1),
+        "{d:?}"
+    );
+}

@@ -129,6 +129,47 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
     Ok(img)
 }
 
+/// Largest side of an image ronray decodes (textures, images to compare).
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+/// Largest number of pixels of a decoded texture: 8192 × 8192. A PNG of
+/// 11000 × 11000 is 375 KB on disk and 2.6 GB decoded, so the size is read
+/// from the header and refused before decoding. Raise it here.
+pub const MAX_TEXTURE_PIXELS: u64 = 8192 * 8192;
+
+/// Decodes an image file for use as a texture: regular files only, its size
+/// checked from the header against [`MAX_TEXTURE_PIXELS`] before anything is
+/// decoded, and the decoder's own allocation capped.
+pub fn decode_texture(path: &Path) -> Result<image::DynamicImage, String> {
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    if !meta.is_file() {
+        return Err(format!("{} is not a regular file", path.display()));
+    }
+    let open = || {
+        image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))
+    };
+    let (w, h) = open()?
+        .into_dimensions()
+        .map_err(|e| format!("cannot decode {}: {e}", path.display()))?;
+    if u64::from(w) * u64::from(h) > MAX_TEXTURE_PIXELS || w.max(h) > MAX_IMAGE_SIDE {
+        return Err(format!(
+            "{} is {w}×{h}: above the texture limit of {} pixels (8192×8192); scale it down",
+            path.display(),
+            MAX_TEXTURE_PIXELS
+        ));
+    }
+    let mut reader = open()?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(MAX_TEXTURE_PIXELS * 16);
+    reader.limits(limits);
+    reader
+        .decode()
+        .map_err(|e| format!("cannot decode {}: {e}", path.display()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
