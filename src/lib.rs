@@ -11,6 +11,7 @@ pub mod check;
 pub mod cli;
 pub mod desc;
 pub mod diagnostic;
+pub mod farm;
 pub mod geometry;
 pub mod imageio;
 pub mod integrators;

@@ -42,6 +42,21 @@ pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
             )
         }
     };
+    write_atomic(path, |w| dynimg.write_to(w, format).map_err(|e| e.to_string()))
+}
+
+/// Writes `path` atomically: `encode` writes into a temporary file in the
+/// target's folder, which is then renamed over the target (piece files use
+/// it too).
+pub fn write_atomic(
+    path: &Path,
+    encode: impl FnOnce(&mut BufWriter<&std::fs::File>) -> Result<(), String>,
+) -> Result<(), ImageError> {
+    let err = |reason: String| ImageError::Write {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -54,7 +69,7 @@ pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
         .map_err(|e| err(e.to_string()))?;
     {
         let mut w = BufWriter::new(tmp.as_file());
-        dynimg.write_to(&mut w, format).map_err(|e| err(e.to_string()))?;
+        encode(&mut w).map_err(err)?;
         w.flush().map_err(|e| err(e.to_string()))?;
     }
     // tempfile creates 0600 files; an image is a normal, readable file.
