@@ -2,7 +2,7 @@
 # Starts a one-node Slurm cluster on loopback for the scheduler tests:
 # munged, slurmctld and slurmd (2 CPUs), every file under one folder.
 #
-#   eval "$(.ci/slurm-up.sh DIR)"   # exports SLURM_CONF; DIR must be empty or absent
+#   eval "$(.ci/slurm-up.sh DIR)"   # exports SLURM_CONF; DIR empty or absent
 #   .ci/slurm-down.sh DIR           # stops the daemons, removes DIR
 #
 # Needs root and Debian's slurm-wlm and munge. No cgroups: processes are
@@ -60,7 +60,7 @@ PartitionName=ci Nodes=ronray-node Default=YES MaxTime=30 State=UP
 CONF
 export SLURM_CONF=$dir/slurm.conf
 
-slurmctld -f "$SLURM_CONF" -i >&2
+slurmctld -f "$SLURM_CONF" >&2
 slurmd -f "$SLURM_CONF" -N ronray-node >&2
 
 # Up when the node is idle; 60 s at most.
