@@ -13,7 +13,11 @@ set -euo pipefail
 dir=${1:?usage: slurm-up.sh DIR}
 mkdir -p "$dir"/{state,spool,munge}
 dir=$(cd "$dir" && pwd)
-chmod 700 "$dir/munge"
+chmod 755 "$dir/munge"
+logs() {
+    tail -n 30 "$dir"/slurmctld.log "$dir"/slurmd.log "$dir"/munge/munged.log >&2 2>/dev/null || true
+}
+trap 'echo "slurm-up: a daemon did not start" >&2; logs' ERR
 
 # munged with its own key and socket, so a system munged is left alone.
 dd if=/dev/urandom of="$dir/munge/munge.key" bs=1024 count=1 status=none
@@ -71,6 +75,7 @@ for _ in $(seq 120); do
     fi
     sleep 0.5
 done
+trap - ERR
 echo "slurm-up: the node did not become idle in 60 s (state: ${state:-no answer})" >&2
-tail -n 30 "$dir"/slurmctld.log "$dir"/slurmd.log "$dir"/munge/munged.log >&2 || true
+logs
 exit 1

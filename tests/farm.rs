@@ -52,7 +52,11 @@ fn assert_reassembles(dir: &Path, pieces: &[String]) {
     for ext in ["exr", "png"] {
         let out = format!("assembled.{ext}");
         let o = assemble(dir, pieces, &out);
-        assert!(o.status.success(), "assemble failed: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(
+            o.status.success(),
+            "assemble failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
         assert!(
             read(dir.join(&out)) == read(dir.join(format!("whole.{ext}"))),
             "{} assembled from {pieces:?} differs from the whole render",
@@ -88,7 +92,10 @@ fn seven_uneven_tiles_reassemble_byte_for_byte() {
     for i in [3, 0, 6, 1, 5, 2, 4] {
         let tile = format!("{i}/7");
         let threads = if i % 2 == 0 { "2" } else { "1" };
-        render(dir.path(), &["--tile", &tile, "-o", "tile-{tile}.exr", "--threads", threads]);
+        render(
+            dir.path(),
+            &["--tile", &tile, "-o", "tile-{tile}.exr", "--threads", threads],
+        );
         pieces.push(format!("tile-{i}.exr"));
     }
     assert_reassembles(dir.path(), &pieces);
@@ -103,7 +110,10 @@ fn three_way_sample_split_merges_to_the_whole_render_exactly() {
     let mut pieces = Vec::new();
     for (range, threads) in [("3..4", "1"), ("0..1", "2"), ("1..3", "1")] {
         let out = format!("samples-{range}.exr");
-        render(dir.path(), &["--samples", range, "-o", &out, "--threads", threads]);
+        render(
+            dir.path(),
+            &["--samples", range, "-o", &out, "--threads", threads],
+        );
         pieces.push(out);
     }
     assert_reassembles(dir.path(), &pieces);
@@ -115,7 +125,10 @@ fn three_way_sample_split_merges_to_the_whole_render_exactly() {
         .zip(&merged.pixels)
         .map(|(a, b)| (*a - *b).abs().max_element())
         .fold(0.0f32, f32::max);
-    assert_eq!(largest, 0.0, "merged samples differ from the whole render by up to {largest}");
+    assert_eq!(
+        largest, 0.0,
+        "merged samples differ from the whole render by up to {largest}"
+    );
 }
 
 #[test]
@@ -141,7 +154,10 @@ fn a_piece_holds_the_whole_renders_values_and_windows() {
     for y in 7..30 {
         for x in 5..40 {
             let (a, b) = (mean.get(x - 5, y - 7), whole.get(x, y));
-            assert!(a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits), "pixel ({x}, {y}): {a} vs {b}");
+            assert!(
+                a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits),
+                "pixel ({x}, {y}): {a} vs {b}"
+            );
         }
     }
 }
@@ -150,15 +166,30 @@ fn a_piece_holds_the_whole_renders_values_and_windows() {
 fn pieces_of_two_scenes_are_refused_naming_them() {
     let dir = tempfile::tempdir().expect("temp dir");
     render(dir.path(), &["--tile", "0/2", "-o", "a-0.exr"]);
-    render(dir.path(), &["--tile", "1/2", "-o", "b-1.exr", "--set", "camera.fov_y_degrees=30"]);
+    render(
+        dir.path(),
+        &[
+            "--tile",
+            "1/2",
+            "-o",
+            "b-1.exr",
+            "--set",
+            "camera.fov_y_degrees=30",
+        ],
+    );
     let o = assemble(dir.path(), &["a-0.exr".into(), "b-1.exr".into()], "out.png");
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(
-        e.contains("different scenes") && e.contains("a-0.exr has scene sha256:") && e.contains("b-1.exr has scene sha256:"),
+        e.contains("different scenes")
+            && e.contains("a-0.exr has scene sha256:")
+            && e.contains("b-1.exr has scene sha256:"),
         "expected both pieces named with their scene hashes, got:\n{e}"
     );
-    assert!(!dir.path().join("out.png").exists(), "a refused assembly wrote its output");
+    assert!(
+        !dir.path().join("out.png").exists(),
+        "a refused assembly wrote its output"
+    );
 }
 
 #[test]
@@ -196,10 +227,16 @@ fn a_missing_tile_is_refused_naming_the_tile_and_its_pixels() {
 fn png_pieces_are_refused_with_the_reason() {
     let dir = tempfile::tempdir().expect("temp dir");
     let s = scene();
-    let o = ronray_in(dir.path(), &["render", &s, "--size", SIZE, "--tile", "0/2", "-o", "piece.png"]);
+    let o = ronray_in(
+        dir.path(),
+        &["render", &s, "--size", SIZE, "--tile", "0/2", "-o", "piece.png"],
+    );
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{e}");
-    assert!(e.contains("PNG pieces are 8-bit and cannot be merged exactly"), "{e}");
+    assert!(
+        e.contains("PNG pieces are 8-bit and cannot be merged exactly"),
+        "{e}"
+    );
     assert!(!dir.path().join("piece.png").exists());
 }
 
@@ -208,15 +245,29 @@ fn resume_skips_a_finished_piece_and_redoes_a_different_one() {
     let dir = tempfile::tempdir().expect("temp dir");
     render(dir.path(), &["--tile", "1/3", "-o", "t.exr", "--resume"]);
     let again = render(dir.path(), &["--tile", "1/3", "-o", "t.exr", "--resume"]);
-    assert!(stderr(&again).contains("skipped t.exr: it already holds this piece"), "{}", stderr(&again));
-    let other = render(dir.path(), &["--tile", "1/3", "-o", "t.exr", "--resume", "--seed", "9"]);
-    assert!(stderr(&other).contains("re-rendering t.exr: it holds scene"), "{}", stderr(&other));
+    assert!(
+        stderr(&again).contains("skipped t.exr: it already holds this piece"),
+        "{}",
+        stderr(&again)
+    );
+    let other = render(
+        dir.path(),
+        &["--tile", "1/3", "-o", "t.exr", "--resume", "--seed", "9"],
+    );
+    assert!(
+        stderr(&other).contains("re-rendering t.exr: it holds scene"),
+        "{}",
+        stderr(&other)
+    );
 }
 
 #[test]
 fn progress_json_prints_one_line_per_tile() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let o = render(dir.path(), &["--tile", "0/2", "-o", "t.exr", "--progress", "json"]);
+    let o = render(
+        dir.path(),
+        &["--tile", "0/2", "-o", "t.exr", "--progress", "json"],
+    );
     let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&o.stdout)
         .lines()
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("`{l}` is not JSON: {e}")))
@@ -236,8 +287,19 @@ fn tile_auto_reads_the_schedulers_index_or_says_which_variables_it_reads() {
     let s = scene();
     let run = |var: Option<(&str, &str)>| {
         let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_ronray"));
-        c.args(["render", &s, "--size", SIZE, "--spp", "1", "--tile", "auto/4", "-o", "a{tile}.exr"])
-            .current_dir(dir.path());
+        c.args([
+            "render",
+            &s,
+            "--size",
+            SIZE,
+            "--spp",
+            "1",
+            "--tile",
+            "auto/4",
+            "-o",
+            "a{tile}.exr",
+        ])
+        .current_dir(dir.path());
         for v in ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX", "PARALLEL_SEQ"] {
             c.env_remove(v);
         }
@@ -248,9 +310,15 @@ fn tile_auto_reads_the_schedulers_index_or_says_which_variables_it_reads() {
     };
     assert!(run(Some(("SLURM_ARRAY_TASK_ID", "2"))).status.success());
     assert!(run(Some(("JOB_COMPLETION_INDEX", "0"))).status.success());
-    assert!(run(Some(("PARALLEL_SEQ", "2"))).status.success(), "GNU parallel's 2 is tile 1");
+    assert!(
+        run(Some(("PARALLEL_SEQ", "2"))).status.success(),
+        "GNU parallel's 2 is tile 1"
+    );
     for i in 0..3 {
-        assert!(dir.path().join(format!("a{i}.exr")).exists(), "tile {i} not written");
+        assert!(
+            dir.path().join(format!("a{i}.exr")).exists(),
+            "tile {i} not written"
+        );
     }
     let none = run(None);
     assert_eq!(none.status.code(), Some(2));

@@ -40,8 +40,15 @@ fn run_for(cmd: &mut Command, limit: Duration, on_timeout: impl FnOnce()) -> Out
 fn plain_render(dir: &Path) -> Duration {
     let scene = root().join("scenes/cornell.ron").display().to_string();
     let t = Instant::now();
-    let o = ronray_in(dir, &["render", &scene, "--size", SIZE, "--spp", SPP, "-o", "whole.exr"]);
-    assert!(o.status.success(), "plain render: {}", String::from_utf8_lossy(&o.stderr));
+    let o = ronray_in(
+        dir,
+        &["render", &scene, "--size", SIZE, "--spp", SPP, "-o", "whole.exr"],
+    );
+    assert!(
+        o.status.success(),
+        "plain render: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     t.elapsed()
 }
 
@@ -53,7 +60,11 @@ fn assert_tiles_make_the_plain_render(dir: &Path) {
     args.extend(tiles.iter().map(String::as_str));
     args.extend(["-o", "assembled.exr"]);
     let o = ronray_in(dir, &args);
-    assert!(o.status.success(), "assemble: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "assemble: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let read = |p: &str| std::fs::read(dir.join(p)).unwrap_or_else(|e| panic!("{p}: {e}"));
     assert!(
         read("assembled.exr") == read("whole.exr"),
@@ -69,7 +80,9 @@ fn slurm_cluster(test: &str) -> bool {
         || {},
     );
     let state = String::from_utf8_lossy(&o.stdout).trim().to_string();
-    if o.status.success() && (state.starts_with("idle") || state.starts_with("mix") || state.starts_with("alloc")) {
+    if o.status.success()
+        && (state.starts_with("idle") || state.starts_with("mix") || state.starts_with("alloc"))
+    {
         return true;
     }
     skip_or_fail(

@@ -83,7 +83,11 @@ pub fn tool_or_skip(tool: &str, test: &str, install: &str) -> Option<PathBuf> {
         .map(|d| d.join(tool))
         .find(|p| p.is_file());
     if found.is_none() {
-        skip_or_fail(test, &format!("`{tool}` is not installed ({install})"), "install it to run this test");
+        skip_or_fail(
+            test,
+            &format!("`{tool}` is not installed ({install})"),
+            "install it to run this test",
+        );
     }
     found
 }
