@@ -3,7 +3,8 @@
 //! The pipeline is read → parse ([`desc`]) → check → build ([`load`]) →
 //! render ([`render`]). The loader returns the runtime [`scene::Scene`] (what
 //! rays query) and the [`view::View`] beside it (camera, film, integrator);
-//! the renderer sees only those two.
+//! the renderer sees only those two. [`farm`] cuts a frame into pieces that
+//! render farms run on many machines, and assembles them bit for bit.
 
 pub mod accel;
 pub mod camera;

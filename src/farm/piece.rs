@@ -284,3 +284,63 @@ pub fn read_piece(path: &Path) -> Result<Piece, PieceError> {
     };
     Ok(Piece { meta, sums })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Rgb;
+
+    fn piece() -> (PieceMeta, SampleSums) {
+        let rect = PixelRect {
+            x0: 3,
+            y0: 2,
+            x1: 8,
+            y1: 6,
+        };
+        let meta = PieceMeta {
+            version: "0.1.0".into(),
+            scene: "sha256:00ff".into(),
+            seed: 7,
+            spp: 16,
+            samples: (4, 12),
+            tile: Some((1, 3)),
+            frame: (10, 9),
+            rect,
+        };
+        let mut sums = SampleSums::new(rect);
+        for (i, s) in sums.sums.iter_mut().enumerate() {
+            s.add_sample(Rgb::new(i as f32, 1e-7 * i as f32, 3.0e5));
+        }
+        (meta, sums)
+    }
+
+    #[test]
+    fn piece_files_round_trip_metadata_and_exact_sums() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("p.exr");
+        let (meta, sums) = piece();
+        write_piece(&path, &meta, &sums).expect("write");
+        let back = read_piece(&path).expect("read");
+        assert_eq!(back.meta, meta);
+        assert_eq!(back.sums, sums);
+        assert_eq!(read_piece_meta(&path).expect("header"), meta);
+        let again = dir.path().join("q.exr");
+        write_piece(&again, &meta, &sums).expect("write again");
+        assert!(
+            std::fs::read(&path).ok() == std::fs::read(&again).ok(),
+            "two writes of one piece differ in bytes"
+        );
+    }
+
+    #[test]
+    fn non_pieces_are_refused_with_the_reason() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let (meta, sums) = piece();
+        let png = write_piece(&dir.path().join("p.png"), &meta, &sums).unwrap_err();
+        assert!(png.reason.contains("cannot be merged exactly"), "{png}");
+        let plain = dir.path().join("plain.exr");
+        crate::imageio::write_image(&crate::imageio::Image::new(4, 4), &plain).expect("write");
+        let e = read_piece(&plain).unwrap_err();
+        assert!(e.reason.contains("no `ronray` attribute"), "{e}");
+    }
+}
