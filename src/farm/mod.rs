@@ -5,7 +5,7 @@
 //! Jobs, GNU parallel): `ronray render --tile auto/N` takes its index from
 //! the scheduler, writes an EXR piece ([`piece`]) that carries the scene
 //! content hash ([`scene_hash`]) and its sample range, and `ronray assemble`
-//! ([`assemble`]) refuses pieces that do not make one frame and otherwise
+//! ([`assemble()`]) refuses pieces that do not make one frame and otherwise
 //! writes exactly the image one machine would have rendered: the renderer's
 //! per-(pixel, sample, seed) random numbers and exact per-pixel sums
 //! ([`crate::math::ExactSum`]) make a pixel's value independent of who
