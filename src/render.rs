@@ -9,9 +9,11 @@
 //! there: pieces rendered on many machines reassemble bit for bit
 //! (`crate::farm`).
 
+pub use crate::imageio::SampleSums;
+
 use crate::imageio::{Image, PixelRect};
 use crate::integrators::Counters;
-use crate::math::ExactSum;
+use crate::math::{ExactSum, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::view::View;
@@ -55,52 +57,6 @@ impl RenderStats {
     }
 }
 
-/// Per-pixel sample sums over a rectangle of the frame: what a render
-/// produces before the division by the sample count, and what pieces of a
-/// frame add up.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SampleSums {
-    pub rect: PixelRect,
-    /// Row-major over `rect`.
-    pub sums: Vec<ExactSum>,
-}
-
-impl SampleSums {
-    pub fn new(rect: PixelRect) -> Self {
-        Self {
-            rect,
-            sums: vec![ExactSum::ZERO; rect.area() as usize],
-        }
-    }
-
-    /// The sum at pixel (x, y) in image coordinates.
-    #[inline]
-    pub fn get(&self, x: u32, y: u32) -> ExactSum {
-        self.sums[self.rect.index(x, y)]
-    }
-
-    /// Adds `other`'s sums at the pixels it covers, which must lie inside.
-    pub fn add(&mut self, other: &SampleSums) {
-        debug_assert!(self.rect.contains(&other.rect));
-        let r = other.rect;
-        for y in r.y0..r.y1 {
-            for x in r.x0..r.x1 {
-                let i = self.rect.index(x, y);
-                self.sums[i].add(&other.get(x, y));
-            }
-        }
-    }
-
-    /// The mean over `n` samples per pixel, as an image of `rect`'s size.
-    pub fn mean(&self, n: u32) -> Image {
-        Image {
-            width: self.rect.width(),
-            height: self.rect.height(),
-            pixels: self.sums.iter().map(|s| s.mean(n)).collect(),
-        }
-    }
-}
-
 /// A tile finished by [`render_sums`], for progress reports.
 #[derive(Clone, Copy, Debug)]
 pub struct TileDone {
@@ -126,10 +82,38 @@ pub fn render_cancellable(
     opts: &RenderOptions,
     cancel: &AtomicBool,
 ) -> (Image, RenderStats) {
-    let full = PixelRect::full(view.film.width, view.film.height);
-    let (sums, stats) = render_sums(scene, view, opts, full, cancel, &|_| {});
+    render_image(scene, view, opts, cancel, &|_| {})
+}
+
+/// As [`render_cancellable`], calling `on_tile` as each tile finishes (from
+/// worker threads). Each tile's sums become means as soon as it finishes, so
+/// the whole frame's exact sums are never held at once.
+pub fn render_image(
+    scene: &Scene,
+    view: &View,
+    opts: &RenderOptions,
+    cancel: &AtomicBool,
+    on_tile: &(dyn Fn(&TileDone) + Sync),
+) -> (Image, RenderStats) {
+    let (w, h) = (view.film.width, view.film.height);
     let spp = opts.sample_range.map_or(view.film.spp, |(_, n)| n);
-    (sums.mean(spp), stats)
+    let work = Work {
+        scene,
+        view,
+        opts,
+        rect: PixelRect::full(w, h),
+        cancel,
+        on_tile,
+    };
+    let (pixels, stats) = work.run(Rgb::ZERO, |s| s.mean(spp));
+    (
+        Image {
+            width: w,
+            height: h,
+            pixels,
+        },
+        stats,
+    )
 }
 
 /// Progressive refinement without rounding drift: `sums` holds per-pixel
@@ -163,22 +147,16 @@ pub fn render_sums(
     on_tile: &(dyn Fn(&TileDone) + Sync),
 ) -> (SampleSums, RenderStats) {
     debug_assert!(PixelRect::full(view.film.width, view.film.height).contains(&rect));
-    let start = Instant::now();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads.unwrap_or(0))
-        .build();
-    let work = || render_tiles(scene, view, opts, rect, cancel, on_tile, start);
-    let (sums, counters, samples) = match pool {
-        Ok(pool) => pool.install(work),
-        Err(_) => work(),
+    let work = Work {
+        scene,
+        view,
+        opts,
+        rect,
+        cancel,
+        on_tile,
     };
-    let stats = RenderStats {
-        elapsed: start.elapsed(),
-        samples,
-        rays: counters.rays,
-        cancelled: cancel.load(Ordering::Relaxed),
-    };
-    (sums, stats)
+    let (sums, stats) = work.run(ExactSum::ZERO, |s| s);
+    (SampleSums { rect, sums }, stats)
 }
 
 /// The tiles of `rect`, `TILE` pixels square, in reading order.
@@ -211,74 +189,113 @@ fn progress_bar(show: bool, tiles: usize) -> indicatif::ProgressBar {
     bar
 }
 
-/// Per-pixel sample sums over `rect`.
-fn render_tiles(
-    scene: &Scene,
-    view: &View,
-    opts: &RenderOptions,
+/// One render of the pixels in `rect`.
+struct Work<'a> {
+    scene: &'a Scene,
+    view: &'a View,
+    opts: &'a RenderOptions,
     rect: PixelRect,
-    cancel: &AtomicBool,
-    on_tile: &(dyn Fn(&TileDone) + Sync),
-    start: Instant,
-) -> (SampleSums, Counters, u64) {
-    let film = view.film;
-    let (w, h) = (film.width, film.height);
-    let tiles = tiles_of(rect);
-    let bar = progress_bar(opts.progress, tiles.len());
-    let finished = AtomicUsize::new(0);
-    let (s0, spp) = opts.sample_range.unwrap_or((0, film.spp));
-    let aspect = w as f32 / h as f32;
-    let rendered: Vec<(PixelRect, Vec<ExactSum>, Counters)> = tiles
-        .par_iter()
-        .map(|&tile| {
-            let mut counters = Counters::default();
-            let mut px = Vec::with_capacity(tile.area() as usize);
-            if cancel.load(Ordering::Relaxed) {
-                return (tile, px, counters);
+    cancel: &'a AtomicBool,
+    on_tile: &'a (dyn Fn(&TileDone) + Sync),
+}
+
+impl Work<'_> {
+    /// Renders every tile on the options' thread pool, turns each pixel's
+    /// exact sum into a `T` as its tile finishes (`empty` for pixels of tiles
+    /// skipped on cancel), and returns them row-major over `rect`.
+    fn run<T: Copy + Send>(&self, empty: T, finish: impl Fn(ExactSum) -> T + Sync) -> (Vec<T>, RenderStats) {
+        let start = Instant::now();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(self.opts.threads.unwrap_or(0))
+            .build();
+        let work = || self.tiles(start, &finish);
+        let (rendered, counters) = match pool {
+            Ok(pool) => pool.install(work),
+            Err(_) => work(),
+        };
+        let rect = self.rect;
+        let mut out = vec![empty; rect.area() as usize];
+        for (tile, px) in rendered {
+            for (i, p) in px.into_iter().enumerate() {
+                let (x, y) = (
+                    tile.x0 + i as u32 % tile.width(),
+                    tile.y0 + i as u32 / tile.width(),
+                );
+                out[rect.index(x, y)] = p;
             }
-            for y in tile.y0..tile.y1 {
-                for x in tile.x0..tile.x1 {
-                    let mut sum = ExactSum::ZERO;
-                    for s in s0..s0 + spp {
-                        let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
-                        let jitter = sampler.next_vec2();
-                        let film_pos =
-                            Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
-                        let ray = view.camera.ray(film_pos, aspect, sampler.next_vec2());
-                        let li = view.integrator.li(scene, &ray, &mut sampler, &mut counters);
-                        // A non-finite sample (a numerical bug, caught by
-                        // debug asserts) must not poison the pixel in release.
-                        if li.is_finite() {
-                            sum.add_sample(li);
-                        }
-                    }
-                    px.push(sum);
-                }
-            }
-            bar.inc(1);
-            on_tile(&TileDone {
-                rect: tile,
-                done: finished.fetch_add(1, Ordering::Relaxed) + 1,
-                total: tiles.len(),
-                elapsed: start.elapsed(),
-            });
-            (tile, px, counters)
-        })
-        .collect();
-    bar.finish_and_clear();
-    let mut sums = SampleSums::new(rect);
-    let mut total = Counters::default();
-    for (tile, px, c) in rendered {
-        total.rays += c.rays;
-        // A tile skipped on cancel has no pixels; its sums stay zero.
-        for (i, p) in px.into_iter().enumerate() {
-            let (x, y) = (
-                tile.x0 + i as u32 % tile.width(),
-                tile.y0 + i as u32 / tile.width(),
-            );
-            let k = rect.index(x, y);
-            sums.sums[k] = p;
         }
+        let spp = self.opts.sample_range.map_or(self.view.film.spp, |(_, n)| n);
+        let stats = RenderStats {
+            elapsed: start.elapsed(),
+            samples: rect.area() * spp as u64,
+            rays: counters.rays,
+            cancelled: self.cancel.load(Ordering::Relaxed),
+        };
+        (out, stats)
     }
-    (sums, total, rect.area() * spp as u64)
+
+    /// Each tile's pixels, finished; a tile skipped on cancel has none.
+    fn tiles<T: Send>(
+        &self,
+        start: Instant,
+        finish: &(impl Fn(ExactSum) -> T + Sync),
+    ) -> (Vec<(PixelRect, Vec<T>)>, Counters) {
+        let film = self.view.film;
+        let (w, h) = (film.width, film.height);
+        let tiles = tiles_of(self.rect);
+        let bar = progress_bar(self.opts.progress, tiles.len());
+        let finished = AtomicUsize::new(0);
+        let (s0, spp) = self.opts.sample_range.unwrap_or((0, film.spp));
+        let aspect = w as f32 / h as f32;
+        let rendered: Vec<(PixelRect, Vec<T>, Counters)> = tiles
+            .par_iter()
+            .map(|&tile| {
+                let mut counters = Counters::default();
+                let mut px = Vec::with_capacity(tile.area() as usize);
+                if self.cancel.load(Ordering::Relaxed) {
+                    return (tile, px, counters);
+                }
+                for y in tile.y0..tile.y1 {
+                    for x in tile.x0..tile.x1 {
+                        let mut sum = ExactSum::ZERO;
+                        for s in s0..s0 + spp {
+                            let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
+                            let jitter = sampler.next_vec2();
+                            let film_pos =
+                                Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
+                            let ray = self.view.camera.ray(film_pos, aspect, sampler.next_vec2());
+                            let li = self
+                                .view
+                                .integrator
+                                .li(self.scene, &ray, &mut sampler, &mut counters);
+                            // A non-finite sample (a numerical bug, caught by
+                            // debug asserts) must not poison the pixel in release.
+                            if li.is_finite() {
+                                sum.add_sample(li);
+                            }
+                        }
+                        px.push(finish(sum));
+                    }
+                }
+                bar.inc(1);
+                (self.on_tile)(&TileDone {
+                    rect: tile,
+                    done: finished.fetch_add(1, Ordering::Relaxed) + 1,
+                    total: tiles.len(),
+                    elapsed: start.elapsed(),
+                });
+                (tile, px, counters)
+            })
+            .collect();
+        bar.finish_and_clear();
+        let mut total = Counters::default();
+        let tiles = rendered
+            .into_iter()
+            .map(|(tile, px, c)| {
+                total.rays += c.rays;
+                (tile, px)
+            })
+            .collect();
+        (tiles, total)
+    }
 }

@@ -5,7 +5,7 @@ use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::{Existing, PieceSpec, Region, TileIndex, existing_piece, piece_meta, write_piece};
 use crate::imageio::{PixelRect, write_image};
 use crate::load::{Loaded, load_with};
-use crate::render::{RenderOptions, RenderStats, TileDone, render_sums};
+use crate::render::{RenderOptions, RenderStats, TileDone, render_image, render_sums};
 use clap::Args;
 use serde_json::json;
 use std::io::IsTerminal;
@@ -179,17 +179,16 @@ pub(super) fn cmd_render(
             }));
         }
     };
-    let (sums, stats) = render_sums(
-        &loaded.scene,
-        &loaded.view,
-        &opts,
-        spec.rect,
-        &AtomicBool::new(false),
-        &report,
-    );
-    let written = match &meta {
-        Some(m) => write_piece(&out, m, &sums).map_err(|e| e.to_string()),
-        None => write_image(&sums.mean(f.spp), &out).map_err(|e| e.to_string()),
+    let cancel = AtomicBool::new(false);
+    let (written, stats) = match &meta {
+        Some(m) => {
+            let (sums, stats) = render_sums(&loaded.scene, &loaded.view, &opts, spec.rect, &cancel, &report);
+            (write_piece(&out, m, &sums).map_err(|e| e.to_string()), stats)
+        }
+        None => {
+            let (image, stats) = render_image(&loaded.scene, &loaded.view, &opts, &cancel, &report);
+            (write_image(&image, &out).map_err(|e| e.to_string()), stats)
+        }
     };
     if let Err(e) = written {
         eprintln!("error: {e}");
