@@ -34,37 +34,56 @@ pub fn golden_error(new: &Image, golden: &Image) -> Result<f64, String> {
     .map(|c| c.rel_mse)
 }
 
+/// What checking one scene against its golden image found.
 #[derive(Debug)]
 pub enum Outcome {
+    /// The render matches its golden image within tolerance.
     Pass {
+        /// Relative MSE of the render against the golden image (see the module docs).
         error: f64,
+        /// The scene's `test.tolerance`: the largest relative MSE that passes.
         tolerance: f64,
     },
+    /// The render differs from its golden image by more than the tolerance.
     Fail {
+        /// Relative MSE of the render against the golden image.
         error: f64,
+        /// The scene's `test.tolerance`.
         tolerance: f64,
+        /// Where the new render was written (`golden/<name>.new.png`), for review.
         new: PathBuf,
+        /// Where the per-pixel error image was written (`golden/<name>.diff.png`).
         heatmap: PathBuf,
     },
     /// No golden yet (run with `--bless` to create it).
     Missing {
+        /// Where the new render was written (`golden/<name>.new.png`); bless it to
+        /// make it the golden.
         new: PathBuf,
     },
     /// Golden written by `--bless`.
     Blessed {
+        /// Error against the previous golden, if there was one.
         error: Option<f64>,
     },
+    /// The scene did not load (I/O error or invalid scene); nothing was rendered.
     Invalid(LoadError),
 }
 
+/// The result of checking one scene, one row of [`summary`].
 #[derive(Debug)]
 pub struct CheckResult {
+    /// The scene file checked.
     pub scene: PathBuf,
+    /// What the comparison found.
     pub outcome: Outcome,
+    /// Wall-clock time to load, render and compare the scene.
     pub time: Duration,
 }
 
 impl CheckResult {
+    /// True if the scene needs attention: a failed comparison, a missing golden or a
+    /// scene that does not load. What `ronray check` turns into its exit status.
     pub fn failed(&self) -> bool {
         matches!(
             self.outcome,
@@ -92,6 +111,7 @@ pub fn collect(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
+/// The golden image of `scene`: `golden/<scene file stem>.png` beside the scene file.
 pub fn golden_path(scene: &Path) -> PathBuf {
     let stem = scene.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
     scene

@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! ronray: a physically based renderer driven by hand-written RON scene files.
 //!
 //! The pipeline is read → parse ([`desc`]) → check → build ([`load`]) →

@@ -37,15 +37,22 @@ pub struct RenderOptions {
     pub sample_range: Option<(u32, u32)>,
 }
 
+/// What a render cost, for the summary line and benchmarks.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RenderStats {
+    /// Wall-clock time of the render.
     pub elapsed: Duration,
+    /// Camera samples taken (pixels × samples per pixel, fewer if cancelled).
     pub samples: u64,
+    /// Rays traced, camera, bounce and shadow rays together.
     pub rays: u64,
+    /// True if the render stopped early because it was cancelled.
     pub cancelled: bool,
 }
 
 impl RenderStats {
+    /// One line for the terminal: seconds, millions of samples and of rays per
+    /// second.
     pub fn summary(&self) -> String {
         let s = self.elapsed.as_secs_f64().max(1e-9);
         format!(
@@ -60,9 +67,11 @@ impl RenderStats {
 /// A tile finished by [`render_sums`], for progress reports.
 #[derive(Clone, Copy, Debug)]
 pub struct TileDone {
+    /// The tile's pixels.
     pub rect: PixelRect,
     /// Tiles finished so far, this one included.
     pub done: usize,
+    /// Tiles in the render.
     pub total: usize,
     /// Since the render started.
     pub elapsed: Duration,

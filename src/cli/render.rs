@@ -74,8 +74,7 @@ pub(super) fn cmd_render(
     let loaded = match load_with(path, &settings.overrides()) {
         Ok(l) => l,
         Err(e) => {
-            print_load_error(&e);
-            eprintln!("error: {e}; nothing was written");
+            print_load_error(&e, "; nothing was written");
             return ExitCode::FAILURE;
         }
     };
@@ -120,6 +119,14 @@ pub(super) fn cmd_render(
         eprintln!(
             "error: output {} must end in .png or .exr; nothing was written",
             out.display()
+        );
+        return ExitCode::FAILURE;
+    }
+    if let Some(input) = loaded.input_at(&out) {
+        eprintln!(
+            "error: output {} is {}, which the scene reads; nothing was written",
+            out.display(),
+            input.display()
         );
         return ExitCode::FAILURE;
     }

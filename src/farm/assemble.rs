@@ -19,6 +19,7 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[error("{}", .problems.join("\n"))]
 pub struct AssembleError {
+    /// Each problem as a sentence naming the pieces and pixels concerned.
     pub problems: Vec<String>,
 }
 

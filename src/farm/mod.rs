@@ -33,7 +33,9 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 #[error("{}: {reason}", path.display())]
 pub struct PieceError {
+    /// The piece file.
     pub path: PathBuf,
+    /// What is wrong with it, as a sentence.
     pub reason: String,
 }
 

@@ -29,6 +29,7 @@ pub struct PieceMeta {
     pub version: String,
     /// [`super::scene_hash`] of the scene.
     pub scene: String,
+    /// The scene's seed (`film.seed`).
     pub seed: u64,
     /// The frame's samples per pixel.
     pub spp: u32,
@@ -38,6 +39,7 @@ pub struct PieceMeta {
     pub tile: Option<(u32, u32)>,
     /// The whole frame, width × height.
     pub frame: (u32, u32),
+    /// The piece's pixels (its EXR data window).
     pub rect: PixelRect,
 }
 
@@ -107,7 +109,9 @@ impl PieceMeta {
 /// A piece as read back: what it is and its exact sums.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Piece {
+    /// What the piece is.
     pub meta: PieceMeta,
+    /// The exact sample sums of its pixels.
     pub sums: SampleSums,
 }
 

@@ -8,6 +8,7 @@ use crate::imageio::PixelRect;
 /// The pixels a render covers, as the command line says it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Region {
+    /// Every pixel (no `--crop`, `--pixels` or `--tile`).
     Whole,
     /// Fractions of the image in pbrt's order: x0, x1, y0, y1.
     Crop([f64; 4]),
@@ -15,7 +16,9 @@ pub enum Region {
     Pixels(PixelRect),
     /// Tile `index` of a `count`-tile split ([`tile_rect`]).
     Tile {
+        /// Which tile.
         index: TileIndex,
+        /// How many tiles the frame is split into.
         count: u32,
     },
 }
@@ -23,7 +26,9 @@ pub enum Region {
 /// The tile of `--tile I/N`: given, or read from the scheduler's variable.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TileIndex {
+    /// `--tile I/N`.
     Given(u32),
+    /// `--tile auto/N`: from [`INDEX_VARIABLES`].
     Auto,
 }
 
@@ -39,8 +44,11 @@ pub const INDEX_VARIABLES: [(&str, &str, u32); 3] = [
 /// `samples.0..samples.1`, and the tile it is when it came from `--tile`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PieceSpec {
+    /// The pixels, inside the film.
     pub rect: PixelRect,
+    /// Samples `samples.0..samples.1` of every pixel.
     pub samples: (u32, u32),
+    /// `(I, N)` for `--tile`.
     pub tile: Option<(u32, u32)>,
 }
 

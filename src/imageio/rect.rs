@@ -6,9 +6,13 @@ use std::fmt;
 /// Pixels `x0..x1` × `y0..y1` (ends excluded), row 0 at the top.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PixelRect {
+    /// First column.
     pub x0: u32,
+    /// First row.
     pub y0: u32,
+    /// One past the last column.
     pub x1: u32,
+    /// One past the last row.
     pub y1: u32,
 }
 
@@ -23,18 +27,22 @@ impl PixelRect {
         }
     }
 
+    /// Columns covered.
     pub fn width(&self) -> u32 {
         self.x1.saturating_sub(self.x0)
     }
 
+    /// Rows covered.
     pub fn height(&self) -> u32 {
         self.y1.saturating_sub(self.y0)
     }
 
+    /// Pixels covered.
     pub fn area(&self) -> u64 {
         self.width() as u64 * self.height() as u64
     }
 
+    /// Whether it covers no pixel.
     pub fn is_empty(&self) -> bool {
         self.area() == 0
     }

@@ -10,12 +10,14 @@ use crate::math::ExactSum;
 /// frame add up.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SampleSums {
+    /// The pixels summed.
     pub rect: PixelRect,
     /// Row-major over `rect`.
     pub sums: Vec<ExactSum>,
 }
 
 impl SampleSums {
+    /// Zero sums over `rect`.
     pub fn new(rect: PixelRect) -> Self {
         Self {
             rect,

@@ -6,6 +6,8 @@ use super::{Image, ImageError};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
+/// Writes `img` to `path` atomically, choosing the format by extension: `.png`
+/// (clamped, 8-bit sRGB) or `.exr` (linear float).
 pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
     let ext = path
         .extension()

@@ -32,6 +32,7 @@ const LIMIT: f32 = (1u32 << 30) as f32;
 pub struct ExactSum(pub [i128; 3]);
 
 impl ExactSum {
+    /// No samples yet.
     pub const ZERO: ExactSum = ExactSum([0; 3]);
 
     /// Adds one sample; non-finite channels must be filtered by the caller.
