@@ -1,6 +1,7 @@
 //! Subcommands. No rendering logic here: each command calls the library and
 //! turns its results into messages and exit codes.
 
+mod assemble;
 mod bench;
 mod check;
 mod diff;
@@ -10,13 +11,18 @@ mod validate;
 
 pub use validate::json_lines;
 
+/// Exit status of a command-line usage error (clap's too): bad arguments,
+/// or piece arguments that do not fit the scene.
+pub const USAGE: u8 = 2;
+
 use crate::diagnostic::Report;
 use crate::load::{LoadError, Overrides};
+use assemble::cmd_assemble;
 use check::{cmd_check, cmd_gallery};
 use clap::{Args, Parser, Subcommand};
 use diff::cmd_diff;
 use fmt::cmd_fmt;
-use render::cmd_render;
+use render::{PieceArgs, cmd_render};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -50,9 +56,24 @@ pub enum Command {
         #[allow(missing_docs)]
         #[command(flatten)]
         settings: RenderSettings,
+        #[allow(missing_docs)]
+        #[command(flatten)]
+        piece: PieceArgs,
         /// Print build and traversal statistics.
         #[arg(long)]
         stats: bool,
+    },
+    /// Put pieces of a frame (EXR files from `render --crop/--pixels/--tile/
+    /// --samples`) back together: tiles are placed, sample splits averaged by
+    /// sample count. Refuses pieces of different scenes or versions,
+    /// overlaps and gaps.
+    Assemble {
+        /// The piece files (EXR), in any order.
+        #[arg(required = true)]
+        pieces: Vec<PathBuf>,
+        /// Output image, PNG or EXR.
+        #[arg(short, long)]
+        output: PathBuf,
     },
     /// Re-render progressively whenever the scene or a file it uses changes.
     Watch {
@@ -225,8 +246,10 @@ pub fn run(cli: Cli) -> ExitCode {
             scene,
             output,
             settings,
+            piece,
             stats,
-        } => cmd_render(&scene, output, &settings, stats),
+        } => cmd_render(&scene, output, &settings, &piece, stats),
+        Command::Assemble { pieces, output } => cmd_assemble(&pieces, &output),
         Command::Validate {
             scenes,
             format,
