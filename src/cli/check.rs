@@ -44,7 +44,7 @@ pub(super) fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>
     for scene in &scenes {
         let r = check_scene(scene, bless, threads);
         match &r.outcome {
-            Outcome::Invalid(e) => print_load_error(e),
+            Outcome::Invalid(e) => print_load_error(e, ""),
             Outcome::Fail { new, heatmap, .. } => {
                 eprintln!(
                     "{}: regression; new render {}, heat map {}",
@@ -83,7 +83,7 @@ pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Opti
         let full = match load_with(scene, &Overrides::default()) {
             Ok(l) => l,
             Err(e) => {
-                print_load_error(&e);
+                print_load_error(&e, "");
                 failed = true;
                 continue;
             }

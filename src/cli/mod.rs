@@ -1,6 +1,7 @@
 //! Subcommands. No rendering logic here: each command calls the library and
 //! turns its results into messages and exit codes.
 
+mod assemble;
 mod bench;
 mod check;
 mod diff;
@@ -10,13 +11,18 @@ mod validate;
 
 pub use validate::json_lines;
 
+/// Exit status of a command-line usage error (clap's too): bad arguments,
+/// or piece arguments that do not fit the scene.
+pub const USAGE: u8 = 2;
+
 use crate::diagnostic::Report;
 use crate::load::{LoadError, Overrides};
+use assemble::cmd_assemble;
 use check::{cmd_check, cmd_gallery};
 use clap::{Args, Parser, Subcommand};
 use diff::cmd_diff;
 use fmt::cmd_fmt;
-use render::cmd_render;
+use render::{PieceArgs, cmd_render};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -50,9 +56,24 @@ pub enum Command {
         #[allow(missing_docs)]
         #[command(flatten)]
         settings: RenderSettings,
+        #[allow(missing_docs)]
+        #[command(flatten)]
+        piece: PieceArgs,
         /// Print build and traversal statistics.
         #[arg(long)]
         stats: bool,
+    },
+    /// Put pieces of a frame (EXR files from `render --crop/--pixels/--tile/
+    /// --samples`) back together: tiles are placed, sample splits averaged by
+    /// sample count. Refuses pieces of different scenes or versions,
+    /// overlaps and gaps.
+    Assemble {
+        /// The piece files (EXR), in any order.
+        #[arg(required = true)]
+        pieces: Vec<PathBuf>,
+        /// Output image, PNG or EXR.
+        #[arg(short, long)]
+        output: PathBuf,
     },
     /// Re-render progressively whenever the scene or a file it uses changes.
     Watch {
@@ -126,8 +147,8 @@ pub enum Command {
         /// Rewrite the goldens that fail or are missing, on purpose.
         #[arg(long)]
         bless: bool,
-        /// Worker threads (default: all cores).
-        #[arg(long)]
+        /// Worker threads (default: all cores; at most 1024).
+        #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
     },
     /// Compare two images (PNG, EXR, PFM): RMSE, relative MSE, PSNR, means.
@@ -150,8 +171,9 @@ pub enum Command {
     Bench {
         /// The Wavefront OBJ mesh to measure.
         obj: PathBuf,
-        /// Threads for the multi-threaded figures (default: all cores).
-        #[arg(long)]
+        /// Threads for the multi-threaded figures (default: all cores; at
+        /// most 1024).
+        #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
     },
 }
@@ -168,8 +190,9 @@ pub struct RenderSettings {
     /// Seed of the random streams (same seed, same image).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 1024). The image does not
+    /// depend on it.
+    #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,
     /// Typed override `path=value` (value in RON), e.g.
     /// `--set film.spp=256 --set materials.floor.albedo=(0.2,0.2,0.2)`.
@@ -187,6 +210,21 @@ impl RenderSettings {
             sets: self.sets.clone(),
         }
     }
+}
+
+/// Most worker threads a command starts: beyond the cores, threads only
+/// cost memory (100,000 asked for would exhaust it). Raise it here.
+pub const MAX_THREADS: usize = 1024;
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let n: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a whole number"))?;
+    if n == 0 || n > MAX_THREADS {
+        return Err(format!("{n} threads is outside 1..={MAX_THREADS}"));
+    }
+    Ok(n)
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -208,8 +246,10 @@ pub fn run(cli: Cli) -> ExitCode {
             scene,
             output,
             settings,
+            piece,
             stats,
-        } => cmd_render(&scene, output, &settings, stats),
+        } => cmd_render(&scene, output, &settings, &piece, stats),
+        Command::Assemble { pieces, output } => cmd_assemble(&pieces, &output),
         Command::Validate {
             scenes,
             format,
@@ -266,12 +306,13 @@ pub fn run(cli: Cli) -> ExitCode {
     }
 }
 
-/// Prints a load failure with full context.
-pub fn print_load_error(e: &LoadError) {
-    match e.report() {
-        Some(r) => eprint!("{}", r.render(std::io::stderr().is_terminal())),
-        None => eprintln!("error: {e}"),
+/// Prints a load failure with full context: every diagnostic, then one
+/// summary line ending in `then` (an I/O error is that line alone).
+pub fn print_load_error(e: &LoadError, then: &str) {
+    if let Some(r) = e.report() {
+        eprint!("{}", r.render(std::io::stderr().is_terminal()));
     }
+    eprintln!("error: {e}{then}");
 }
 
 /// Prints a loaded scene's warnings with context (nothing if it has none).

@@ -1,14 +1,19 @@
 //! Images in and out: a linear float RGB buffer, read from PNG/EXR/PFM,
 //! written to PNG (sRGB, 8-bit) or EXR (linear float) atomically, and
-//! compared by metrics.
+//! compared by metrics; [`PixelRect`] names a part of one and
+//! [`SampleSums`] holds its exact per-pixel sample sums.
 
 pub mod metrics;
 pub mod read;
+pub mod rect;
+pub mod sample_sums;
 pub mod write;
 
 pub use metrics::{Block, Comparison, blocks, compare};
 pub use read::read_image;
-pub use write::write_image;
+pub use rect::PixelRect;
+pub use sample_sums::SampleSums;
+pub use write::{write_atomic, write_image};
 
 use crate::math::Rgb;
 

@@ -7,6 +7,7 @@
 
 use super::mesh::MeshState;
 use super::mtl::MtlMaterials;
+use super::validate::MAX_COORD;
 use crate::accel::{Aabb, Leaves, WideBvh};
 use crate::desc::{IntegratorDesc, LightSelectionDesc, SceneDesc};
 use crate::diagnostic::Problem;
@@ -124,7 +125,9 @@ pub fn build_with(
         super::light::build_light(&mut ctx, i, l);
     }
     for (i, o) in desc.objects.iter().enumerate() {
+        let (shapes, unbounded) = (ctx.shapes.len(), ctx.unbounded.len());
         super::object::build_object(&mut ctx, i, o);
+        check_extent(&mut ctx, i, shapes, unbounded);
     }
     if !ctx.problems.is_empty() {
         return Err(ctx.problems);
@@ -175,6 +178,27 @@ pub fn build_with(
         bvh,
     };
     Ok((scene, super::view::build_view(desc, base), stats))
+}
+
+/// Object `i` (its shapes from `shapes` and `unbounded` on) must lie within
+/// ±[`MAX_COORD`] once placed: a mesh scaled by 1e37 validates (its file is
+/// not read by the checks) but its squared distances would overflow.
+fn check_extent(ctx: &mut BuildContext, i: usize, shapes: usize, unbounded: usize) {
+    let far = ctx.shapes[shapes..]
+        .iter()
+        .chain(&ctx.unbounded[unbounded..])
+        .filter_map(|s| s.bounds(&ctx.geometry))
+        .map(|b| b.min.abs().max(b.max.abs()).max_element())
+        .find(|m| m.is_nan() || *m > MAX_COORD);
+    if let Some(m) = far {
+        ctx.problems.push(
+            Problem::new(
+                format!("objects[{i}]"),
+                format!("the placed object reaches {m:e}, beyond ±{MAX_COORD:e}"),
+            )
+            .help("scene coordinates are 32-bit floats; scale the object or the scene down"),
+        );
+    }
 }
 
 /// The scene BVH over the bounded shapes, and every shape in the order the

@@ -293,7 +293,10 @@ impl Builder<'_> {
                 scale: *scale,
             },
             ColorDesc::Image(file) => {
+                // Keyed by the file itself, not its spelling: `x.png` and
+                // `./x.png` are decoded once.
                 let full = self.base.join(file);
+                let full = std::fs::canonicalize(&full).unwrap_or(full);
                 if let Some(&i) = self.by_path.get(&full) {
                     return ColorTex::Image(i);
                 }
@@ -319,10 +322,7 @@ impl Builder<'_> {
 
 /// Decodes an 8-bit image as sRGB-encoded colour.
 pub fn load_texture(path: &Path) -> Result<Texture, String> {
-    let img = image::open(path).map_err(|e| match e {
-        image::ImageError::IoError(io) => format!("cannot read texture {}: {io}", path.display()),
-        other => format!("cannot decode texture {}: {other}", path.display()),
-    })?;
+    let img = crate::imageio::read::decode_texture(path).map_err(|e| format!("texture: {e}"))?;
     let rgb = img.to_rgb8();
     Ok(Texture::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()))
 }
