@@ -55,11 +55,17 @@ impl EnvMap {
     #[inline]
     pub fn lookup(&self, uv: Vec2) -> Rgb {
         let (w, h) = (self.width as usize, self.height as usize);
-        let x = uv.x * w as f32 - 0.5;
+        // Columns wrap: left of the first centre blends the last column in.
+        let x = (uv.x * w as f32 - 0.5).clamp(-1.0, w as f32 - 1.0);
         let x0 = x.floor();
         let fx = x - x0;
-        let i0 = (x0 as i64).rem_euclid(w as i64) as usize;
-        let i1 = if i0 + 1 == w { 0 } else { i0 + 1 };
+        let (i0, i1) = if x0 < 0.0 {
+            (w - 1, 0)
+        } else {
+            let i0 = (x0 as usize).min(w - 1);
+            (i0, if i0 + 1 == w { 0 } else { i0 + 1 })
+        };
+        // Rows clamp at the poles.
         let y = (uv.y * h as f32 - 0.5).clamp(0.0, (h - 1) as f32);
         let j0 = y as usize;
         let j1 = (j0 + 1).min(h - 1);
