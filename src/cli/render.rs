@@ -252,7 +252,11 @@ fn print_stats(loaded: &Loaded, stats: &RenderStats) {
         b.mesh_accel_bytes as f64 / unique.max(1) as f64,
         geo.meshes.iter().map(|m| m.total_bytes()).sum::<usize>() as f64 / 1048576.0
     );
-    if let Some((env, map)) = loaded.scene.environment().and_then(|(_, e)| e.map().map(|m| (e, m))) {
+    if let Some((env, map)) = loaded
+        .scene
+        .environment()
+        .and_then(|(_, e)| e.map().map(|m| (e, m)))
+    {
         let px = (map.width as usize * map.height as usize) as f64;
         eprintln!(
             "environment: {}×{} map read in {:.1} ms, {:.1} MiB ({:.1} B/pixel); sampling tables built in {:.1} ms, {:.1} MiB ({:.2} B/pixel)",

@@ -69,13 +69,13 @@ impl MeshLight {
         let d = q - p;
         let dist2 = d.length_squared();
         let dist = dist2.sqrt();
-        if !(dist > 0.0) {
+        if dist.is_nan() || dist <= 0.0 {
             return None;
         }
         let wi = d / dist;
         let cos_l = -wi.dot(n);
         let cos_l = if self.two_sided { cos_l.abs() } else { cos_l };
-        if !(cos_l > 0.0) {
+        if cos_l.is_nan() || cos_l <= 0.0 {
             return None;
         }
         Some(LightSample {

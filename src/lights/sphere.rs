@@ -79,7 +79,7 @@ impl SphereLight {
         let q = self.center + n * self.radius;
         let d = q - p;
         let dist = d.length();
-        if !(dist > 0.0) {
+        if dist.is_nan() || dist <= 0.0 {
             return None;
         }
         Some(LightSample {

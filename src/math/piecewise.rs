@@ -159,10 +159,10 @@ mod tests {
             assert!((pdf - d.pdf(p)).abs() <= 1e-5 * pdf, "pdf {pdf} vs {}", d.pdf(p));
             counts[i][j] += 1;
         }
-        for i in 0..6 {
-            for j in 0..4 {
+        for (i, column) in counts.iter().enumerate() {
+            for (j, &count) in column.iter().enumerate() {
                 let want = w(i, j) / total;
-                let got = counts[i][j] as f32 / n as f32;
+                let got = count as f32 / n as f32;
                 assert!((got - want).abs() < 2e-3, "cell ({i}, {j}): {got} vs {want}");
                 // The density is the cell probability times the cell count.
                 let centre = Vec2::new((i as f32 + 0.5) / 6.0, (j as f32 + 0.5) / 4.0);
