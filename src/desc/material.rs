@@ -61,6 +61,35 @@ pub enum MaterialDesc {
         #[serde(default)]
         fresnel: DielectricFresnelDesc,
     },
+    /// Mitsuba 3's `roughplastic` (`nonlinear: false`): a `diffuse` base under
+    /// a rough dielectric coat of index `ior` (η coat / η outside), whose
+    /// reflection is scaled by `specular` (keep 1 for a physical coat).
+    /// `roughness` ∈ [0, 1] with α = roughness², as for `CookTorrance`: Mitsuba's
+    /// `alpha` a is `roughness: sqrt(a)` (α 0.1 → 0.3162).
+    RoughPlastic {
+        diffuse: ColorDesc,
+        #[serde(default = "white")]
+        specular: ColorDesc,
+        #[serde(default)]
+        distribution: DistributionDesc,
+        #[schemars(range(min = 0, max = 1))]
+        roughness: f32,
+        #[serde(default = "glass_ior")]
+        ior: f32,
+    },
+    /// Rough dielectric (Walter et al. 2007): frosted glass. `ior` = η inside /
+    /// η outside (≠ 1), `tint` colours transmitted light, `roughness` ∈ [0, 1]
+    /// with α = roughness².
+    RoughGlass {
+        #[serde(default = "glass_ior")]
+        ior: f32,
+        #[serde(default = "white")]
+        tint: ColorDesc,
+        #[serde(default)]
+        distribution: DistributionDesc,
+        #[schemars(range(min = 0, max = 1))]
+        roughness: f32,
+    },
 }
 
 fn white() -> ColorDesc {
@@ -123,6 +152,10 @@ impl MaterialDesc {
             MaterialDesc::MetalPlastic { base_color, .. } => vec![base_color],
             MaterialDesc::Mirror { tint } | MaterialDesc::Glass { tint, .. } => vec![tint],
             MaterialDesc::CookTorrance { .. } => Vec::new(),
+            MaterialDesc::RoughPlastic {
+                diffuse, specular, ..
+            } => vec![diffuse, specular],
+            MaterialDesc::RoughGlass { tint, .. } => vec![tint],
         }
     }
 }
