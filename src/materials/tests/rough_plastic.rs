@@ -22,7 +22,8 @@ fn chi2_agreement_energy(distribution: Distribution, seed: u64) {
         let c = coat(distribution, roughness);
         for wo in incidences() {
             let name = format!("rough plastic {distribution:?} r={roughness}");
-            check_all(&white(&c), wo, &name, seed);
+            let e = check_all(&white(&c), wo, &name, seed);
+            println!("{name}, white, θo {:.0}°: E = {e:.4}", wo.z.acos().to_degrees());
         }
     }
 }
@@ -48,6 +49,10 @@ fn rough_plastic_reference_blue_chi2_agreement_energy() {
     };
     for wo in incidences() {
         let e = check_all(&blue, wo, "blue rough plastic", 112);
+        println!(
+            "blue rough plastic, θo {:.0}°: E = {e:.4}",
+            wo.z.acos().to_degrees()
+        );
         assert!(e > 0.3, "the blue plastic reflects {e}");
     }
 }
@@ -57,10 +62,9 @@ fn rough_plastic_energy_sweep() {
     for distribution in [Distribution::Ggx, Distribution::Beckmann] {
         for roughness in [0.0, 0.1, 0.3, 0.5, 0.7, 1.0] {
             let c = coat(distribution, roughness);
-            assert_energy_sweep(
-                &white(&c),
-                &format!("rough plastic {distribution:?} r={roughness}"),
-            );
+            let name = format!("rough plastic {distribution:?} r={roughness}");
+            let worst = assert_energy_sweep(&white(&c), &name);
+            println!("{name}, white, θo 0°–89°: largest E = {worst:.4}");
         }
     }
 }
