@@ -25,6 +25,10 @@
 //!   `D cos`), then reflection with probability F, else refraction through
 //!   it; `pdf = pdf(wm)·F/(4|wo·wm|)` or `pdf(wm)·(1 − F)·|wi·wm|/(wi·wm + wo·wm/η')²`.
 //!   Under total internal reflection F = 1.
+//!
+//! Checked against Mitsuba 3's `roughdielectric` at 120 direction pairs on
+//! both sides: equal to f32 rounding once its G1·G1 replaces our G2, and the
+//! GGX pdf equal too (`rough_glass_matches_mitsuba_up_to_its_shadowing_term`).
 
 use super::{BsdfSample, Bxdf, Microfacet, fresnel, reflect};
 use crate::math::Rgb;

@@ -75,6 +75,71 @@ pub(crate) const MITSUBA_T: [f64; TABLE_POINTS] = [
 ];
 pub(crate) const MITSUBA_R_INT: f64 = 0.5518937115950011;
 
+/// One Mitsuba `eval`/`pdf` pair of `tests/fixtures/refs/rough_bsdfs.json`
+/// (made by `make_rough_bsdfs.py` there), in ronray's direction convention.
+pub(crate) struct MitsubaCase {
+    pub wo: Vec3A,
+    pub wi: Vec3A,
+    /// f·|cos θi|.
+    pub f_cos: crate::math::Rgb,
+    pub pdf: f32,
+}
+
+/// The fixture's models of one kind (`rough_plastic`, `rough_dielectric`):
+/// each with its distribution, α and its cases.
+pub(crate) fn mitsuba_bsdfs(kind: &str) -> Vec<(serde_json::Value, Vec<MitsubaCase>)> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/refs/rough_bsdfs.json"
+    );
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let json: serde_json::Value = serde_json::from_str(&text).expect("fixture is JSON");
+    let v = |x: &serde_json::Value| {
+        let a: Vec<f32> = x
+            .as_array()
+            .expect("array")
+            .iter()
+            .map(|c| c.as_f64().unwrap_or(0.0) as f32)
+            .collect();
+        Vec3A::new(a[0], a[1], a[2])
+    };
+    json[kind]
+        .as_array()
+        .expect("models")
+        .iter()
+        .map(|model| {
+            let cases = model["cases"]
+                .as_array()
+                .expect("cases")
+                .iter()
+                .map(|c| MitsubaCase {
+                    wo: v(&c["wo"]).normalize(),
+                    wi: v(&c["wi"]).normalize(),
+                    f_cos: v(&c["f_cos"]),
+                    pdf: c["pdf"].as_f64().unwrap_or(0.0) as f32,
+                })
+                .collect();
+            (model.clone(), cases)
+        })
+        .collect()
+}
+
+/// `distribution` and `alpha` of a fixture model.
+pub(crate) fn mitsuba_microfacet(model: &serde_json::Value) -> Microfacet {
+    Microfacet {
+        distribution: match model["distribution"].as_str() {
+            Some("beckmann") => Distribution::Beckmann,
+            _ => Distribution::Ggx,
+        },
+        alpha: model["alpha"].as_f64().unwrap_or(0.0) as f32,
+    }
+}
+
+/// Relative difference, with an absolute floor for values near 0.
+pub(crate) fn rel_diff(a: f32, b: f32) -> f32 {
+    (a - b).abs() / a.abs().max(b.abs()).max(1e-4)
+}
+
 fn ggx(alpha: f32) -> Microfacet {
     Microfacet {
         distribution: Distribution::Ggx,
@@ -183,8 +248,12 @@ fn rough_coat_albedo_agrees_with_monte_carlo() {
                 for _ in 0..n {
                     let wm = m.sample_wm(wo, rng.next_vec2());
                     let pdf = m.pdf_wm(wo, wm);
-                    // Visible-normal density over the sampler's.
-                    let visible = m.g1(wo) * wo.dot(wm).max(0.0) * m.d(wm) / wo.z;
+                    // Visible-normal density (exact G1, see albedo) over the sampler's.
+                    let g1 = match distribution {
+                        Distribution::Ggx => m.g1(wo),
+                        Distribution::Beckmann => beckmann_g1_exact(alpha as f64, mu as f64) as f32,
+                    };
+                    let visible = g1 * wo.dot(wm).max(0.0) * m.d(wm) / wo.z;
                     let x = if pdf > 0.0 {
                         (integrand(&m, wo, wm, eta, lobe) * visible / pdf) as f64
                     } else {
@@ -225,5 +294,35 @@ fn rough_coat_smooth_limit_is_one_minus_fresnel() {
                 "{distribution:?}: t({mu}) = {t}, 1 − F = {want}"
             );
         }
+    }
+}
+
+#[test]
+fn rough_coat_exact_beckmann_g1_is_walters_fit_within_its_error() {
+    // erfc against tabulated values (Abramowitz & Stegun, table 7.1).
+    for (x, want) in [
+        (0.0, 1.0),
+        (0.5, 0.4795001222),
+        (1.0, 0.1572992071),
+        (2.0, 0.004677734981),
+        (-1.0, 1.8427007929),
+    ] {
+        assert!(
+            (erfc(x) - want).abs() < 2e-7 * want.max(1e-3),
+            "erfc({x}) = {}, want {want}",
+            erfc(x)
+        );
+    }
+    let m = Microfacet {
+        distribution: Distribution::Beckmann,
+        alpha: 0.4,
+    };
+    for mu in [0.05f32, 0.2, 0.4, 0.7, 0.95, 1.0] {
+        let w = Vec3A::new((1.0 - mu * mu).sqrt(), 0.0, mu);
+        let (fit, exact) = (m.g1(w) as f64, beckmann_g1_exact(0.4, mu as f64));
+        assert!(
+            (fit - exact).abs() < 4e-3 * exact,
+            "μ {mu}: fit {fit}, exact {exact}"
+        );
     }
 }
