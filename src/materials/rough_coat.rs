@@ -1,6 +1,6 @@
 //! The rough dielectric coat of [`super::RoughPlastic`] and its two
-//! precomputed quantities, integrated once per coat at load exactly as
-//! Mitsuba 3's `roughplastic` does in `parameters_changed`
+//! precomputed quantities, integrated once per coat at load by the rule
+//! Mitsuba 3's `roughplastic` uses in `parameters_changed`
 //! (<https://github.com/mitsuba-renderer/mitsuba3/blob/master/src/bsdfs/roughplastic.cpp>,
 //! `eval_transmittance` / `eval_reflectance` in `include/mitsuba/render/microfacet.h`).
 //!
@@ -44,7 +44,7 @@
 //!   slope space is steepest; plain Monte Carlo over ronray's own samplers
 //!   agrees within its noise. Mitsuba's 64-point mean for R_int is 0.5–1.5 %
 //!   *below* the converged cosine-weighted average (0.5519 vs 0.5600 for the
-//!   reference coat), which makes the diffuse lobe up to 1.9 % darker. We
+//!   reference coat), which makes the diffuse lobe 0.5–2 % darker. We
 //!   keep Mitsuba's rule on purpose, so that ronray's rough plastic is
 //!   Mitsuba's and renders match its references (test
 //!   `rough_coat_rule_error_is_bounded` pins both figures).
@@ -52,9 +52,9 @@
 //!   and 3·10⁻³ (α ≤ 0.01 near grazing, or η < 1 near μ = 1); more only in
 //!   the first cell (within 0.9° of grazing), where the cosine hides it.
 //!
-//! Cost: 64 × (32² + 128²) ≈ 1.1 M integrand evaluations, 50–110 ms on two
-//! cores (the μ rows run on the rayon pool); the loader builds one coat per
-//! distinct (distribution, α, η) and materials share it.
+//! Cost: 64 × (32² + 128²) ≈ 1.1 M integrand evaluations (Beckmann 1.3 M),
+//! 50–110 ms on two cores (the μ rows run on the rayon pool); the loader
+//! builds one coat per distinct (distribution, α, η) and materials share it.
 
 use super::{Distribution, Microfacet, fresnel, reflect};
 use crate::math::sampling::concentric_disk;
