@@ -165,7 +165,9 @@ pub enum Bsdf<'a> {
     MetalPlastic(MetalPlastic),
     Mirror(Mirror),
     Glass(Glass),
+    /// Diffuse base under a rough dielectric coat (Mitsuba's `roughplastic`).
     RoughPlastic(RoughPlastic<'a>),
+    /// Rough dielectric boundary.
     RoughGlass(RoughGlass),
 }
 
@@ -253,17 +255,26 @@ pub enum Material {
     /// The surface of an area light: black and non-reflecting, as in the
     /// Mitsuba references.
     Emitter,
-    /// `coat` holds the tables integrated at load (shared by materials with
-    /// the same distribution, α and η).
+    /// Mitsuba's `roughplastic` (`nonlinear = false`); `coat` holds the tables
+    /// integrated at load (shared by materials with the same distribution,
+    /// α and η).
     RoughPlastic {
+        /// Reflectance of the diffuse base per channel, in [0, 1].
         diffuse: ColorTex,
+        /// Factor on the coat's reflection per channel (1 for a physical coat).
         specular: ColorTex,
+        /// The coat: distribution, α, η and its t(μ) and R_int tables.
         coat: std::sync::Arc<RoughCoat>,
     },
+    /// Rough dielectric boundary (Walter et al. 2007), sides as for `Glass`.
     RoughGlass {
+        /// Microfacet normal distribution.
         distribution: Distribution,
+        /// Perceptual roughness in [0, 1]; `alpha = roughness²`.
         roughness: f32,
+        /// Index of refraction η(inside)/η(outside), > 0 and ≠ 1.
         ior: f32,
+        /// Colour of transmitted light, applied once per refraction.
         tint: ColorTex,
     },
 }

@@ -64,8 +64,11 @@ use rayon::prelude::*;
 /// Points in the t(μ) table (Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`).
 pub const TABLE_POINTS: usize = 64;
 
+/// A rough dielectric coat and its tabulated transmittance t(μ) and internal
+/// reflectance R_int (see the module docs).
 #[derive(Clone, Debug)]
 pub struct RoughCoat {
+    /// The coat's microfacet distribution and α.
     pub microfacet: Microfacet,
     /// η(inside)/η(outside) of the coat.
     pub eta: f32,

@@ -34,11 +34,14 @@ use super::{BsdfSample, Bxdf, Microfacet, fresnel, reflect};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
+/// A rough dielectric boundary at one hit point (see the module docs).
 #[derive(Clone, Copy, Debug)]
 pub struct RoughGlass {
+    /// Microfacet distribution and α of the boundary.
     pub microfacet: Microfacet,
     /// η(inside)/η(outside).
     pub ior: f32,
+    /// Colour of transmitted light, once per crossing.
     pub tint: Rgb,
 }
 

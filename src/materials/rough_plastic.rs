@@ -32,12 +32,14 @@ use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
 
+/// Rough plastic at one hit point: resolved colours and the material's coat.
 #[derive(Clone, Copy, Debug)]
 pub struct RoughPlastic<'a> {
     /// ρ, the base's reflectance.
     pub diffuse: Rgb,
     /// s, a factor on the coat's reflection (1 for a physical coat).
     pub specular: Rgb,
+    /// The coat and its tables, built once per material at load.
     pub coat: &'a RoughCoat,
 }
 
