@@ -368,5 +368,9 @@ fn hdr_and_exr_of_the_same_map_render_the_same_image() {
     let (exr, hdr) = (render("map.exr"), render("map.hdr"));
     assert!(exr.pixels.iter().any(|p| p.x > 0.0), "the image is not black");
     assert_eq!(exr, hdr, "the .hdr and .exr maps give different images");
-    assert_eq!(render("rgbe.hdr"), hdr, "a `#?RGBE` file reads like a `#?RADIANCE` one");
+    assert_eq!(
+        render("rgbe.hdr"),
+        hdr,
+        "a `#?RGBE` file reads like a `#?RADIANCE` one"
+    );
 }
