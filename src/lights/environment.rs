@@ -5,12 +5,16 @@
 //! # Mapping
 //! The radiance arriving from unit direction `d` (pointing from the scene
 //! toward the sky), in the environment's own frame, is the image at
-//! `u = atan2(d.x, −d.z) / 2π` (wrapped to [0, 1)) and `v = acos(d.y) / π` (computed as `atan2(sin θ, d.y)`),
-//! bilinearly interpolated between pixel centres at `((i + ½)/W, (j + ½)/H)`:
-//! u = ½ looks along +z, ¼ along +x, the seam is at −z and row 0 is straight
-//! up (Mitsuba 3's `envmap`). Columns wrap; rows clamp at the poles. The
-//! environment's frame is the world's turned by `rotation` about +y
-//! (right-handed).
+//! `u = atan2(d.x, −d.z) / 2π` (wrapped to [0, 1)) and `v = acos(d.y) / π`
+//! (computed as `atan2(sin θ, d.y)`), bilinearly interpolated between pixels
+//! at `u = (i + ½)/W` and `v = j/(H − 1)`: u = ½ looks along +z, ¼ along +x,
+//! the seam is at −z; columns wrap across the seam, row 0 is exactly the
+//! zenith and row H − 1 the nadir. This is what Mitsuba 3.9.1's `envmap`
+//! evaluates (probed through its Python API: a map whose row j holds j
+//! returns `v·(H − 1)`); `shared/refs/README.md` gives row centres at
+//! `(j + ½)/H`, which stretches the sky's rows by H/(H − 1) less and left
+//! the floor of `env_spheres` 0.35% darker than Mitsuba's. The environment's
+//! frame is the world's turned by `rotation` about +y (right-handed).
 //!
 //! # Sampling
 //! An image is importance sampled by a piecewise-constant distribution over
@@ -19,7 +23,10 @@
 //! (weights ⅛, ¾, ⅛ over the 3 × 3 neighbourhood in each direction), so every
 //! cell the interpolated image lights has a non-zero probability and light
 //! sampling alone (`Direct`, `Whitted`) misses nothing; `sin θ` is the
-//! solid angle of the row. A point `(u, v)` of density `p(u, v)` is the
+//! solid angle of the row. (The distribution's H rows are equal bands of v,
+//! which the rows of the image, spaced 1/(H − 1) apart, straddle by less than
+//! a pixel: the 3-row blur still covers every band the image lights.) A
+//! point `(u, v)` of density `p(u, v)` is the
 //! direction of density `p(u, v) / (2π² sin θ)`. The tables take 4 bytes per
 //! pixel (CDFs only, see `math/piecewise.rs`), the image 12 (f32 RGB).
 //! A constant environment is sampled uniformly over the sphere.
@@ -51,7 +58,8 @@ impl EnvMap {
         Rgb::new(self.rgb[k], self.rgb[k + 1], self.rgb[k + 2])
     }
 
-    /// Bilinear lookup at `(u, v)` ∈ [0, 1]² between pixel centres.
+    /// Bilinear lookup at `(u, v)` ∈ [0, 1]²: columns centred at `(i + ½)/W`
+    /// (wrapping), rows at `j/(H − 1)` (see the module docs).
     #[inline]
     pub fn lookup(&self, uv: Vec2) -> Rgb {
         let (w, h) = (self.width as usize, self.height as usize);
@@ -65,8 +73,8 @@ impl EnvMap {
             let i0 = (x0 as usize).min(w - 1);
             (i0, if i0 + 1 == w { 0 } else { i0 + 1 })
         };
-        // Rows clamp at the poles.
-        let y = (uv.y * h as f32 - 0.5).clamp(0.0, (h - 1) as f32);
+        // Row 0 at the zenith, row H − 1 at the nadir.
+        let y = (uv.y * (h - 1) as f32).clamp(0.0, (h - 1) as f32);
         let j0 = y as usize;
         let j1 = (j0 + 1).min(h - 1);
         let fy = y - j0 as f32;
@@ -161,13 +169,30 @@ impl EnvironmentLight {
             let s = sin_row(j);
             row.iter_mut().for_each(|x| *x *= s);
         });
-        // ∫ L dω ≈ Σ L(pixel) · sin θ · (2π/W)(π/H).
+        // ∫ L dω of the bilinear image, exactly: (2π/W) Σ_j ω_j Σ_i L(i, j),
+        // with ω_j = ∫ sin θ of row j's hat function in θ (θj = πj/(H − 1)).
+        let row_weight = |j: usize| -> f64 {
+            if h == 1 {
+                return 2.0;
+            }
+            let step = std::f64::consts::PI / (h - 1) as f64;
+            // Over [a, a + step], ∫ t sin θ dθ with t rising 0 → 1, and the rest.
+            let rising = |a: f64| {
+                let b = a + step;
+                (b.sin() - a.sin()) / step - b.cos()
+            };
+            let falling = |a: f64| (a.cos() - (a + step).cos()) - rising(a);
+            let theta = j as f64 * step;
+            let below = if j + 1 < h { falling(theta) } else { 0.0 };
+            let above = if j > 0 { rising(theta - step) } else { 0.0 };
+            below + above
+        };
         let sum: [f64; 3] = map
             .rgb
             .par_chunks(3 * w)
             .enumerate()
             .map(|(j, row)| {
-                let s = sin_row(j) as f64;
+                let s = row_weight(j);
                 let mut acc = [0.0f64; 3];
                 for px in row.chunks_exact(3) {
                     for c in 0..3 {
@@ -177,7 +202,7 @@ impl EnvironmentLight {
                 acc
             })
             .reduce(|| [0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
-        let cell = 2.0 * std::f64::consts::PI * std::f64::consts::PI / (w * h) as f64;
+        let cell = 2.0 * std::f64::consts::PI / w as f64;
         let integral = Rgb::new(sum[0] as f32, sum[1] as f32, sum[2] as f32) * (cell as f32);
         let (s, c) = rotation_degrees.to_radians().sin_cos();
         Self {

@@ -192,7 +192,9 @@ fn test_map() -> EnvMap {
 #[test]
 fn environment_mapping_follows_the_reference_convention() {
     // A map whose pixel (i, j) is (i, j, 0): the bilinear lookup at a pixel
-    // centre returns it, so directions decode to pixel coordinates.
+    // returns it, so directions decode to pixel coordinates. Columns sit at
+    // (i + ½)/W, rows at j/(H − 1) (row 0 the zenith), as Mitsuba 3.9.1's
+    // `envmap` evaluates them.
     let (w, h) = (8u32, 4u32);
     let rgb = (0..h)
         .flat_map(|j| (0..w).flat_map(move |i| [i as f32, j as f32, 0.0]))
@@ -207,12 +209,12 @@ fn environment_mapping_follows_the_reference_convention() {
         0.0,
     );
     let centre = |i: f32, j: f32| {
-        let (u, v) = ((i + 0.5) / w as f32, (j + 0.5) / h as f32);
+        let (u, v) = ((i + 0.5) / w as f32, j / (h - 1) as f32);
         let (st, ct) = (PI * v).sin_cos();
         let (sp, cp) = (2.0 * PI * u).sin_cos();
         Vec3A::new(st * sp, ct, -st * cp)
     };
-    for (i, j) in [(0.0, 0.0), (3.0, 1.0), (6.0, 3.0)] {
+    for (i, j) in [(0.0, 0.5), (3.0, 1.0), (6.0, 2.9), (2.0, 2.5)] {
         let got = env.le(centre(i, j));
         assert!(
             (got - Vec3A::new(i, j, 0.0)).length() < 1e-3,
