@@ -64,7 +64,7 @@ impl EnvMap {
     pub fn lookup(&self, uv: Vec2) -> Rgb {
         let (w, h) = (self.width as usize, self.height as usize);
         // Columns wrap: left of the first centre blends the last column in.
-        let x = (uv.x * w as f32 - 0.5).clamp(-1.0, w as f32 - 1.0);
+        let x = (uv.x * w as f32 - 0.5).clamp(-1.0, w as f32 - 0.5);
         let x0 = x.floor();
         let fx = x - x0;
         let (i0, i1) = if x0 < 0.0 {
