@@ -310,4 +310,9 @@ fn included_environment_map_stays_relative_to_its_file() {
     let l = load_with(&d.path().join("scene.ron"), &Overrides::default()).expect("the sky is found");
     let (_, env) = l.scene.environment().expect("an environment");
     assert!((env.le(glam::Vec3A::Y) - glam::Vec3A::new(1.0, 1.2, 1.4)).length() < 1e-5);
+    assert!(
+        l.files.iter().any(|f| f.ends_with("rig/maps/sky.exr")),
+        "watch mode watches the map: {:?}",
+        l.files
+    );
 }

@@ -31,7 +31,8 @@ pub struct BuildStats {
     pub load_time: Duration,
     /// Triangles over all placed meshes (instances counted each time).
     pub triangles: usize,
-    /// Texture files read while building (watch mode re-reads on change).
+    /// Texture files and environment maps read while building (watch mode
+    /// re-reads on change).
     pub texture_files: Vec<PathBuf>,
     /// Distinct meshes held in memory.
     pub meshes: usize,
@@ -79,6 +80,8 @@ pub(super) struct BuildContext<'a> {
     pub notes: Vec<String>,
     /// Environment map read and table build times, for the stats.
     pub env_times: (Duration, Duration),
+    /// Image files lights read (an environment map), watched like textures.
+    pub light_files: Vec<PathBuf>,
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
@@ -120,6 +123,7 @@ pub fn build_with(
         problems: Vec::new(),
         notes: Vec::new(),
         env_times: Default::default(),
+        light_files: Vec::new(),
     };
     for (i, l) in desc.lights.iter().enumerate() {
         super::light::build_light(&mut ctx, i, l);
@@ -151,7 +155,7 @@ pub fn build_with(
         bvh_time,
         load_time,
         triangles: ctx.triangles,
-        texture_files,
+        texture_files: texture_files.into_iter().chain(ctx.light_files).collect(),
         meshes: ctx.geometry.meshes.len(),
         instances: ctx.geometry.instances.len(),
         mesh_accel_bytes: ctx.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),

@@ -242,6 +242,9 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             background,
         } => {
             let t0 = std::time::Instant::now();
+            if let Some(file) = map {
+                ctx.light_files.push(ctx.base.join(file));
+            }
             let env = match (radiance, map) {
                 (_, Some(file)) => match read_map(&ctx.base.join(file)) {
                     Ok(m) => {
