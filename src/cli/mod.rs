@@ -117,6 +117,14 @@ pub enum Command {
         bless: bool,
         #[arg(long)]
         threads: Option<usize>,
+        /// Typed override `path=value` (value in RON), applied before the
+        /// test settings are read: `--set test.seed=7` re-seeds.
+        #[arg(long = "set", value_name = "PATH=VALUE")]
+        sets: Vec<String>,
+        /// Largest accepted score (worst 16×16 window's relative MSE),
+        /// replacing every scene's `test.tolerance`.
+        #[arg(long)]
+        tolerance: Option<f64>,
     },
     /// Compare two images (PNG, EXR, PFM): RMSE, relative MSE, PSNR, means.
     Diff {
@@ -220,7 +228,17 @@ pub fn run(cli: Cli) -> ExitCode {
             paths,
             bless,
             threads,
-        } => cmd_check(paths, bless, threads),
+            sets,
+            tolerance,
+        } => cmd_check(
+            paths,
+            &crate::check::CheckOptions {
+                bless,
+                threads,
+                sets,
+                tolerance,
+            },
+        ),
         Command::Watch {
             scene,
             output,
