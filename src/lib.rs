@@ -22,5 +22,6 @@ pub mod render;
 pub mod sampler;
 pub mod scene;
 pub mod schema;
+pub mod syntax;
 pub mod view;
 pub mod watch;

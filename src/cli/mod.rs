@@ -74,20 +74,29 @@ pub enum Command {
         #[arg(long)]
         deny_warnings: bool,
     },
-    /// Rewrite scenes in canonical form (stable field order and layout).
+    /// Lay scene files out again (indentation, spacing, trailing commas, one
+    /// entry per line or short vectors on one line), keeping comments,
+    /// headers, number spellings and omitted defaults. RON stays RON, JSON
+    /// stays JSON.
     Fmt {
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
-        /// Only report files that are not canonical (exit 1 if any).
+        /// Change nothing; print a unified diff of what would change (exit 1
+        /// if anything would).
         #[arg(long)]
         check: bool,
         /// Print to standard output instead of rewriting.
         #[arg(long)]
         stdout: bool,
-        /// Write JSON (to `<scene>.json`) instead of RON.
+        /// Write the canonical JSON twin `<scene>.json` (from the parsed
+        /// scene: comments and spellings are not kept).
         #[arg(long)]
         json: bool,
-        /// Format files with comments anyway (ron cannot keep comments).
+        /// Rewrite from the parsed scene instead: fields in declaration order,
+        /// every default written out, comments dropped.
+        #[arg(long)]
+        canonical: bool,
+        /// With `--canonical`, format files with comments anyway.
         #[arg(long)]
         drop_comments: bool,
     },
@@ -212,8 +221,18 @@ pub fn run(cli: Cli) -> ExitCode {
             check,
             stdout,
             json,
+            canonical,
             drop_comments,
-        } => cmd_fmt(&scenes, check, stdout, json, drop_comments),
+        } => cmd_fmt(
+            &scenes,
+            fmt::FmtOptions {
+                check,
+                stdout,
+                json,
+                canonical,
+                drop_comments,
+            },
+        ),
         Command::Gallery {
             paths,
             out,
