@@ -16,6 +16,7 @@ pub mod imageio;
 pub mod integrators;
 pub mod lights;
 pub mod load;
+pub mod lsp;
 pub mod materials;
 pub mod math;
 pub mod render;

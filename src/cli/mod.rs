@@ -5,6 +5,8 @@ mod bench;
 mod check;
 mod diff;
 mod fmt;
+mod lsp;
+mod new;
 mod render;
 mod validate;
 
@@ -102,6 +104,18 @@ pub enum Command {
     },
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Serve the Language Server Protocol on standard input and output:
+    /// diagnostics as you type, hover, completion, go to definition.
+    Lsp,
+    /// Write a commented starter scene `NAME.ron` (camera, a light, a floor,
+    /// an object) that validates and renders.
+    New {
+        /// Scene name or path; `.ron` is added when missing.
+        name: PathBuf,
+        /// Replace an existing file.
+        #[arg(long)]
+        force: bool,
+    },
     /// Render every scene of the folders given into one folder of PNGs and
     /// print a Markdown gallery (what the README shows).
     Gallery {
@@ -239,6 +253,8 @@ pub fn run(cli: Cli) -> ExitCode {
             width,
             spp,
         } => cmd_gallery(paths, &out, width, spp),
+        Command::Lsp => lsp::cmd_lsp(),
+        Command::New { name, force } => new::cmd_new(&name, force),
         Command::Schema => {
             print_out(&crate::schema::schema_json());
             ExitCode::SUCCESS

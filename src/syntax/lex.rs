@@ -54,13 +54,31 @@ pub struct LexError {
 /// Tokenizes `src`. Only an unterminated string, comment or attribute, or a
 /// byte that no scene file can hold, is an error.
 pub fn tokenize(src: &str) -> Result<Vec<Token>, LexError> {
+    lex(src, false)
+}
+
+/// Tokenizes text being typed: an unterminated string or attribute ends at
+/// the end of its line, an unterminated comment at the end of the text, and
+/// a stray character is a word of its own.
+pub fn tokenize_lenient(src: &str) -> Vec<Token> {
+    lex(src, true).unwrap_or_default()
+}
+
+fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
     let b = src.as_bytes();
     let mut out = Vec::new();
     let mut i = 0;
     let mut newlines = 0;
+    let line_end = |at: usize| src[at..].find('\n').map_or(src.len(), |n| at + n);
+    // In lenient mode an error ends the token at `fallback` instead.
     let err = |at: usize, what: &str| LexError {
         at,
         message: what.to_string(),
+    };
+    let or_lenient = |r: Option<usize>, at: usize, fallback: usize, what: &str| match r {
+        Some(end) => Ok(end),
+        None if lenient => Ok(fallback.max(at + 1).min(src.len())),
+        None => Err(err(at, what)),
     };
     while i < b.len() {
         let c = b[i];
@@ -102,19 +120,36 @@ pub fn tokenize(src: &str) -> Result<Vec<Token>, LexError> {
                 Kind::LineComment
             }
             b'/' if b.get(i + 1) == Some(&b'*') => {
-                i = block_comment_end(b, i).ok_or_else(|| err(start, "unterminated `/*` comment"))?;
+                i = or_lenient(
+                    block_comment_end(b, i),
+                    start,
+                    b.len(),
+                    "unterminated `/*` comment",
+                )?;
                 Kind::BlockComment
             }
             b'#' if b.get(i + 1) == Some(&b'!') => {
-                i = attribute_end(b, i).ok_or_else(|| err(start, "unterminated `#![` attribute"))?;
+                i = or_lenient(
+                    attribute_end(b, i),
+                    start,
+                    line_end(start),
+                    "unterminated `#![` attribute",
+                )?;
                 Kind::Attribute
             }
             b'"' | b'\'' => {
-                i = quoted_end(b, i).ok_or_else(|| err(start, "unterminated string"))?;
+                // While typing, a string does not run on past its line.
+                let end = quoted_end(b, i).filter(|&e| !lenient || !src[start..e].contains('\n'));
+                i = or_lenient(end, start, line_end(start), "unterminated string")?;
                 Kind::Str
             }
             b'r' | b'b' if raw_or_byte_string(b, i) => {
-                i = prefixed_string_end(b, i).ok_or_else(|| err(start, "unterminated string"))?;
+                i = or_lenient(
+                    prefixed_string_end(b, i),
+                    start,
+                    line_end(start),
+                    "unterminated string",
+                )?;
                 Kind::Str
             }
             _ if is_word_byte(c) => {
@@ -127,7 +162,11 @@ pub fn tokenize(src: &str) -> Result<Vec<Token>, LexError> {
             }
             _ => {
                 let ch = src[i..].chars().next().unwrap_or('?');
-                return Err(err(i, &format!("unexpected character `{ch}`")));
+                if !lenient {
+                    return Err(err(i, &format!("unexpected character `{ch}`")));
+                }
+                i += ch.len_utf8();
+                Kind::Word
             }
         };
         out.push(Token {
@@ -251,7 +290,14 @@ fn prefixed_string_end(b: &[u8], mut i: usize) -> Option<usize> {
 /// The string value of a `Str` token's text, without quotes; escapes are
 /// kept as written (names in scene files have none).
 pub fn unquote(text: &str) -> &str {
-    let t = text.trim_start_matches(['r', 'b']).trim_matches('#');
+    let prefixed = text
+        .strip_prefix("br")
+        .or(text.strip_prefix('r'))
+        .or(text.strip_prefix('b'));
+    let t = match prefixed {
+        Some(rest) if rest.starts_with(['"', '#']) => rest.trim_matches('#'),
+        _ => text,
+    };
     t.strip_prefix(['"', '\''])
         .and_then(|t| t.strip_suffix(['"', '\'']))
         .unwrap_or(t)
@@ -291,5 +337,6 @@ mod tests {
         assert!(tokenize("/* open").is_err());
         assert_eq!(unquote("\"white\""), "white");
         assert_eq!(unquote("r#\"a\"#"), "a");
+        assert_eq!(unquote("radius"), "radius", "a word is its own text");
     }
 }

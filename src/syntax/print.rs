@@ -31,8 +31,7 @@ pub fn print(doc: &Document, json: bool) -> String {
         }
         p.pieces(&item.pieces, 0);
         for c in &item.trailing {
-            p.space();
-            p.out += &c.text;
+            p.trailing(c);
         }
         // A leading-comment-only item printed its own newline.
         if item.pieces.is_empty() && item.trailing.is_empty() && p.out.ends_with('\n') {
@@ -72,6 +71,15 @@ impl Printer {
         self.out += &c.text;
     }
 
+    /// A comment after an entry on its line, as far from it as written.
+    fn trailing(&mut self, c: &Comment) {
+        while self.out.ends_with(' ') {
+            self.out.pop();
+        }
+        self.out.extend(std::iter::repeat_n(' ', c.gap.max(1)));
+        self.out += &c.text;
+    }
+
     /// The pieces of one entry, starting at the current column.
     fn pieces(&mut self, pieces: &[Piece], indent: usize) {
         let mut prev: Option<&Piece> = None;
@@ -95,7 +103,8 @@ impl Printer {
     fn group(&mut self, g: &Group, indent: usize) {
         if let Some(flat) = flat_group(g, self.json)
             && (g.one_line || is_short_vector(g))
-            && self.column() + flat.chars().count() + 1 <= WIDTH
+            && self.column() + flat.chars().count() < WIDTH
+        // room for a comma
         {
             self.out += &flat;
             return;
@@ -127,8 +136,7 @@ impl Printer {
                 self.out.push(',');
             }
             for c in &e.trailing {
-                self.space();
-                self.comment(c);
+                self.trailing(c);
             }
         }
         for (i, c) in g.closing.iter().enumerate() {

@@ -14,6 +14,9 @@ pub struct Comment {
     /// It must be followed by a line break (`//`, or a `/* */` spanning
     /// lines).
     pub ends_line: bool,
+    /// Spaces between it and the token before it on its line (kept for a
+    /// trailing comment, so aligned comments stay aligned); 0 on its own line.
+    pub gap: usize,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -82,10 +85,19 @@ impl Parser<'_> {
 
     fn comment(&self, t: &Token) -> Comment {
         let text = t.text(self.src);
+        let prev_end = self.toks[..self.pos]
+            .iter()
+            .rev()
+            .find(|p| p.span.end <= t.span.start);
+        let gap = match prev_end {
+            Some(p) if t.newlines_before == 0 => self.src[p.span.end..t.span.start].chars().count(),
+            _ => 0,
+        };
         Comment {
             text: text.trim_end().to_string(),
             blank_before: t.newlines_before >= 2,
             ends_line: t.kind == Kind::LineComment || text.contains('\n'),
+            gap,
         }
     }
 
