@@ -127,9 +127,9 @@ mod tests {
     use super::*;
     use crate::math::Rgb;
 
-    /// Noise of a fixed level everywhere, and an 8×8 patch brightened by
-    /// several noise deviations: the whole-image figure barely moves, the
-    /// window over the patch fails.
+    /// Noise of a fixed level everywhere, and a 16×16 patch brightened by
+    /// about four deviations of a cell mean: the whole-image figure barely
+    /// moves, the window over the patch stands out.
     #[test]
     fn score_finds_a_small_wrong_region_against_noise() {
         let mut rng = crate::math::Pcg32::new(1, 2);
@@ -144,9 +144,9 @@ mod tests {
         let quiet = score(&a, &g).expect("same size");
         assert!(quiet.worst < 2.5, "noise alone scores {}", quiet.worst);
         let mut b = a.clone();
-        for y in 20..28 {
-            for x in 40..48 {
-                b.pixels[y * 64 + x] += Rgb::splat(0.03);
+        for y in 20..36 {
+            for x in 40..56 {
+                b.pixels[y * 64 + x] += Rgb::splat(0.05);
             }
         }
         let s = score(&b, &g).expect("same size");
