@@ -272,3 +272,6 @@ impl Server {
         Ok(serde_json::to_value(GotoDefinitionResponse::Scalar(loc))?)
     }
 }
+
+#[cfg(test)]
+mod tests;
