@@ -8,19 +8,33 @@
 use crate::math::{Ray, sampling};
 use glam::{Vec2, Vec3A};
 
+/// A perspective camera in world space, with its orthonormal frame precomputed so
+/// generating a ray is a few multiply-adds.
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
+    /// Centre of projection (pinhole or lens centre), in world space.
     pub eye: Vec3A,
+    /// Unit view direction, `normalize(target − eye)`.
     pub forward: Vec3A,
+    /// Unit image-right direction, `normalize(forward × up)`.
     pub right: Vec3A,
+    /// Unit image-up direction, perpendicular to `forward` and `right` (not
+    /// necessarily the `up` the scene gave).
     pub up: Vec3A,
     /// tan(fov_y / 2).
     pub tan_half_fov: f32,
+    /// Thin-lens aperture radius in scene units; 0 (or less) is a pinhole, with
+    /// everything in focus.
     pub aperture_radius: f32,
+    /// Distance from `eye` along `forward` to the plane in focus, in scene units.
     pub focus_distance: f32,
 }
 
 impl Camera {
+    /// A pinhole camera at `eye` looking at `target`, with `up` the image's rough up
+    /// direction and `fov_y_degrees` the full vertical field of view in degrees;
+    /// focus distance `|target − eye|`. `up` must not be parallel to the view (the
+    /// loader checks it).
     pub fn look_at(eye: Vec3A, target: Vec3A, up: Vec3A, fov_y_degrees: f32) -> Self {
         let forward = (target - eye).normalize();
         let right = forward.cross(up).normalize();

@@ -41,37 +41,56 @@ pub struct CheckOptions {
     pub tolerance: Option<f64>,
 }
 
+/// What checking one scene against its golden image found.
 #[derive(Debug)]
 pub enum Outcome {
+    /// The render matches its golden image within tolerance.
     Pass {
+        /// The render's score against the golden image (see [`metric`]).
         score: Score,
+        /// The largest score that passes (`test.tolerance` or `--tolerance`).
         tolerance: f64,
     },
+    /// The render differs from its golden image by more than the tolerance.
     Fail {
+        /// The render's score against the golden image.
         score: Score,
+        /// The largest score that passes.
         tolerance: f64,
+        /// Where the new render was written (`golden/<name>.new.png`), for review.
         new: PathBuf,
+        /// Where the per-pixel error image was written (`golden/<name>.diff.png`).
         heatmap: PathBuf,
     },
     /// No golden yet (run with `--bless` to create it).
     Missing {
+        /// Where the new render was written (`golden/<name>.new.png`); bless it to
+        /// make it the golden.
         new: PathBuf,
     },
     /// Golden written by `--bless`.
     Blessed {
+        /// Score against the previous golden, if there was one.
         score: Option<Score>,
     },
+    /// The scene did not load (I/O error or invalid scene); nothing was rendered.
     Invalid(LoadError),
 }
 
+/// The result of checking one scene, one row of [`summary`].
 #[derive(Debug)]
 pub struct CheckResult {
+    /// The scene file checked.
     pub scene: PathBuf,
+    /// What the comparison found.
     pub outcome: Outcome,
+    /// Wall-clock time to load, render and compare the scene.
     pub time: Duration,
 }
 
 impl CheckResult {
+    /// True if the scene needs attention: a failed comparison, a missing golden or a
+    /// scene that does not load. What `ronray check` turns into its exit status.
     pub fn failed(&self) -> bool {
         matches!(
             self.outcome,
@@ -99,6 +118,7 @@ pub fn collect(paths: &[PathBuf]) -> std::io::Result<Vec<PathBuf>> {
     Ok(out)
 }
 
+/// The golden image of `scene`: `golden/<scene file stem>.png` beside the scene file.
 pub fn golden_path(scene: &Path) -> PathBuf {
     let stem = scene.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
     scene
@@ -136,22 +156,8 @@ pub fn render_test(
     let full = load_with(scene, &with_sets)?;
     let mut desc = full.desc.clone();
     desc.test = Some(desc.test.unwrap_or_default());
-    crate::load::set::apply_sets(&mut desc, &test_sets).map_err(|problems| {
-        let diagnostics = problems
-            .iter()
-            .map(|p| {
-                let mut d =
-                    crate::diagnostic::Diagnostic::new(Path::new("--set"), "", None, p.message.clone());
-                d.path = Some(p.path.clone());
-                d.help = p.help.clone();
-                d
-            })
-            .collect();
-        LoadError::Invalid(crate::diagnostic::Report {
-            diagnostics,
-            sources: Vec::new(),
-        })
-    })?;
+    crate::load::set::apply_sets(&mut desc, &test_sets)
+        .map_err(|problems| LoadError::Invalid(crate::load::source::command_line(&problems)))?;
     let t = desc.test.unwrap_or_default();
     let (fw, fh) = (full.desc.film.width as f32, full.desc.film.height as f32);
     let height = t

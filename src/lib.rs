@@ -1,9 +1,11 @@
+#![warn(missing_docs)]
 //! ronray: a physically based renderer driven by hand-written RON scene files.
 //!
 //! The pipeline is read → parse ([`desc`]) → check → build ([`load`]) →
 //! render ([`render`]). The loader returns the runtime [`scene::Scene`] (what
 //! rays query) and the [`view::View`] beside it (camera, film, integrator);
-//! the renderer sees only those two.
+//! the renderer sees only those two. [`farm`] cuts a frame into pieces that
+//! render farms run on many machines, and assembles them bit for bit.
 
 pub mod accel;
 pub mod camera;
@@ -11,6 +13,7 @@ pub mod check;
 pub mod cli;
 pub mod desc;
 pub mod diagnostic;
+pub mod farm;
 pub mod geometry;
 pub mod imageio;
 pub mod integrators;

@@ -1,18 +1,25 @@
 //! Renders a runtime scene to a linear image, in parallel over tiles.
 //!
 //! Every camera sample draws from its own PCG32 stream seeded by (pixel,
-//! sample index, scene seed), and each pixel sums its samples in order, so the
-//! image is bit-identical whatever the thread count or tile scheduling.
+//! sample index, scene seed), and each pixel sums its samples exactly
+//! ([`ExactSum`]: fixed point, so the grouping of the additions does not
+//! matter). The image is therefore bit-identical whatever the thread count or
+//! tile scheduling, and any rectangle of pixels ([`render_sums`]) or range of
+//! samples rendered on its own holds exactly what the whole render holds
+//! there: pieces rendered on many machines reassemble bit for bit
+//! (`crate::farm`).
 
-use crate::imageio::Image;
+pub use crate::imageio::SampleSums;
+
+use crate::imageio::{Image, PixelRect};
 use crate::integrators::Counters;
-use crate::math::Rgb;
+use crate::math::{ExactSum, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::view::View;
 use glam::Vec2;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 const TILE: u32 = 16;
@@ -25,19 +32,27 @@ pub struct RenderOptions {
     /// Draw a progress bar on stderr (only shown on a terminal).
     pub progress: bool,
     /// Render only samples `first_sample..first_sample + spp`, for
-    /// progressive refinement; `None` renders all of the scene's samples.
+    /// progressive refinement and sample splits; `None` renders all of the
+    /// scene's samples.
     pub sample_range: Option<(u32, u32)>,
 }
 
+/// What a render cost, for the summary line and benchmarks.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RenderStats {
+    /// Wall-clock time of the render.
     pub elapsed: Duration,
+    /// Camera samples taken (pixels × samples per pixel, fewer if cancelled).
     pub samples: u64,
+    /// Rays traced, camera, bounce and shadow rays together.
     pub rays: u64,
+    /// True if the render stopped early because it was cancelled.
     pub cancelled: bool,
 }
 
 impl RenderStats {
+    /// One line for the terminal: seconds, millions of samples and of rays per
+    /// second.
     pub fn summary(&self) -> String {
         let s = self.elapsed.as_secs_f64().max(1e-9);
         format!(
@@ -47,6 +62,19 @@ impl RenderStats {
             self.rays as f64 / s / 1e6
         )
     }
+}
+
+/// A tile finished by [`render_sums`], for progress reports.
+#[derive(Clone, Copy, Debug)]
+pub struct TileDone {
+    /// The tile's pixels.
+    pub rect: PixelRect,
+    /// Tiles finished so far, this one included.
+    pub done: usize,
+    /// Tiles in the render.
+    pub total: usize,
+    /// Since the render started.
+    pub elapsed: Duration,
 }
 
 /// Renders the whole image; the returned pixels are the mean over the
@@ -63,133 +91,220 @@ pub fn render_cancellable(
     opts: &RenderOptions,
     cancel: &AtomicBool,
 ) -> (Image, RenderStats) {
-    let start = Instant::now();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads.unwrap_or(0))
-        .build();
-    let work = || render_tiles(scene, view, opts, cancel, None);
-    let (mut image, counters, samples) = match pool {
-        Ok(pool) => pool.install(work),
-        Err(_) => work(),
-    };
+    render_image(scene, view, opts, cancel, &|_| {})
+}
+
+/// As [`render_cancellable`], calling `on_tile` as each tile finishes (from
+/// worker threads). Each tile's sums become means as soon as it finishes, so
+/// the whole frame's exact sums are never held at once.
+pub fn render_image(
+    scene: &Scene,
+    view: &View,
+    opts: &RenderOptions,
+    cancel: &AtomicBool,
+    on_tile: &(dyn Fn(&TileDone) + Sync),
+) -> (Image, RenderStats) {
+    let (w, h) = (view.film.width, view.film.height);
     let spp = opts.sample_range.map_or(view.film.spp, |(_, n)| n);
-    for p in &mut image.pixels {
-        *p /= spp as f32;
-    }
-    let stats = RenderStats {
-        elapsed: start.elapsed(),
-        samples,
-        rays: counters.rays,
-        cancelled: cancel.load(Ordering::Relaxed),
+    let work = Work {
+        scene,
+        view,
+        opts,
+        rect: PixelRect::full(w, h),
+        cancel,
+        on_tile,
     };
-    (image, stats)
+    let (pixels, stats) = work.run(Rgb::ZERO, |s| s.mean(spp));
+    (
+        Image {
+            width: w,
+            height: h,
+            pixels,
+        },
+        stats,
+    )
 }
 
 /// Progressive refinement without rounding drift: `sums` holds per-pixel
 /// sample sums over `[0, first)` where `opts.sample_range` is `(first, n)`,
-/// and on return the sums over `[0, first + n)`, each pixel's samples added
-/// in order as [`render`] adds them. Dividing by `first + n` therefore gives
-/// exactly [`render`]'s image at that sample count. A cancelled pass leaves
-/// `sums` untouched.
+/// and on return the sums over `[0, first + n)`. The sums are exact, so
+/// `sums.mean(first + n)` is exactly [`render`]'s image at that sample
+/// count. A cancelled pass leaves `sums` untouched.
 pub fn render_accumulate(
     scene: &Scene,
     view: &View,
     opts: &RenderOptions,
     cancel: &AtomicBool,
-    sums: &mut Image,
+    sums: &mut SampleSums,
 ) -> RenderStats {
-    debug_assert_eq!((sums.width, sums.height), (view.film.width, view.film.height));
-    let start = Instant::now();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads.unwrap_or(0))
-        .build();
-    let work = || render_tiles(scene, view, opts, cancel, Some(&*sums));
-    let (image, counters, samples) = match pool {
-        Ok(pool) => pool.install(work),
-        Err(_) => work(),
-    };
-    let cancelled = cancel.load(Ordering::Relaxed);
-    if !cancelled {
-        *sums = image;
+    let (pass, stats) = render_sums(scene, view, opts, sums.rect, cancel, &|_| {});
+    if !stats.cancelled {
+        sums.add(&pass);
     }
-    RenderStats {
-        elapsed: start.elapsed(),
-        samples,
-        rays: counters.rays,
-        cancelled,
-    }
+    stats
 }
 
-/// Per-pixel sample sums, continuing from `prefix` when given.
-fn render_tiles(
+/// Per-pixel sample sums of the pixels in `rect` (which must lie inside the
+/// film) over `opts.sample_range`: exactly the sums the whole render has
+/// there. `on_tile` is called as each tile finishes, from worker threads.
+pub fn render_sums(
     scene: &Scene,
     view: &View,
     opts: &RenderOptions,
+    rect: PixelRect,
     cancel: &AtomicBool,
-    prefix: Option<&Image>,
-) -> (Image, Counters, u64) {
-    let film = view.film;
-    let (w, h) = (film.width, film.height);
-    let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
-        .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx, ty)))
-        .collect();
-    let bar = if opts.progress {
-        let bar = indicatif::ProgressBar::new(tiles.len() as u64);
-        if let Ok(style) =
-            indicatif::ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}% eta {eta}")
-        {
-            bar.set_style(style.progress_chars("=> "));
-        }
-        bar
-    } else {
-        indicatif::ProgressBar::hidden()
+    on_tile: &(dyn Fn(&TileDone) + Sync),
+) -> (SampleSums, RenderStats) {
+    debug_assert!(PixelRect::full(view.film.width, view.film.height).contains(&rect));
+    let work = Work {
+        scene,
+        view,
+        opts,
+        rect,
+        cancel,
+        on_tile,
     };
-    let (s0, spp) = opts.sample_range.unwrap_or((0, film.spp));
-    let aspect = w as f32 / h as f32;
-    let rendered: Vec<(u32, u32, Vec<Rgb>, Counters)> = tiles
-        .par_iter()
-        .map(|&(tx, ty)| {
-            let mut counters = Counters::default();
-            let (x0, y0) = (tx * TILE, ty * TILE);
-            let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
-            let mut px = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-            if cancel.load(Ordering::Relaxed) {
-                return (tx, ty, px, counters);
-            }
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let mut sum = prefix.map_or(Rgb::ZERO, |p| p.get(x, y));
-                    for s in s0..s0 + spp {
-                        let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
-                        let jitter = sampler.next_vec2();
-                        let film_pos =
-                            Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
-                        let ray = view.camera.ray(film_pos, aspect, sampler.next_vec2());
-                        let li = view.integrator.li(scene, &ray, &mut sampler, &mut counters);
-                        // A non-finite sample (a numerical bug, caught by
-                        // debug asserts) must not poison the pixel in release.
-                        if li.is_finite() {
-                            sum += li;
-                        }
-                    }
-                    px.push(sum);
-                }
-            }
-            bar.inc(1);
-            (tx, ty, px, counters)
+    let (sums, stats) = work.run(ExactSum::ZERO, |s| s);
+    (SampleSums { rect, sums }, stats)
+}
+
+/// The tiles of `rect`, `TILE` pixels square, in reading order.
+fn tiles_of(rect: PixelRect) -> Vec<PixelRect> {
+    (rect.y0..rect.y1)
+        .step_by(TILE as usize)
+        .flat_map(|y0| {
+            (rect.x0..rect.x1)
+                .step_by(TILE as usize)
+                .map(move |x0| PixelRect {
+                    x0,
+                    y0,
+                    x1: (x0 + TILE).min(rect.x1),
+                    y1: (y0 + TILE).min(rect.y1),
+                })
         })
-        .collect();
-    bar.finish_and_clear();
-    let mut image = Image::new(w, h);
-    let mut total = Counters::default();
-    for (tx, ty, px, c) in rendered {
-        total.rays += c.rays;
-        let (x0, y0) = (tx * TILE, ty * TILE);
-        let tw = (x0 + TILE).min(w) - x0;
-        for (i, p) in px.into_iter().enumerate() {
-            let (x, y) = (x0 + i as u32 % tw, y0 + i as u32 / tw);
-            image.pixels[(y * w + x) as usize] = p;
-        }
+        .collect()
+}
+
+fn progress_bar(show: bool, tiles: usize) -> indicatif::ProgressBar {
+    if !show {
+        return indicatif::ProgressBar::hidden();
     }
-    (image, total, w as u64 * h as u64 * spp as u64)
+    let bar = indicatif::ProgressBar::new(tiles as u64);
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}% eta {eta}")
+    {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}
+
+/// One render of the pixels in `rect`.
+struct Work<'a> {
+    scene: &'a Scene,
+    view: &'a View,
+    opts: &'a RenderOptions,
+    rect: PixelRect,
+    cancel: &'a AtomicBool,
+    on_tile: &'a (dyn Fn(&TileDone) + Sync),
+}
+
+impl Work<'_> {
+    /// Renders every tile on the options' thread pool, turns each pixel's
+    /// exact sum into a `T` as its tile finishes (`empty` for pixels of tiles
+    /// skipped on cancel), and returns them row-major over `rect`.
+    fn run<T: Copy + Send>(&self, empty: T, finish: impl Fn(ExactSum) -> T + Sync) -> (Vec<T>, RenderStats) {
+        let start = Instant::now();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(self.opts.threads.unwrap_or(0))
+            .build();
+        let work = || self.tiles(start, &finish);
+        let (rendered, counters) = match pool {
+            Ok(pool) => pool.install(work),
+            Err(_) => work(),
+        };
+        let rect = self.rect;
+        let mut out = vec![empty; rect.area() as usize];
+        for (tile, px) in rendered {
+            for (i, p) in px.into_iter().enumerate() {
+                let (x, y) = (
+                    tile.x0 + i as u32 % tile.width(),
+                    tile.y0 + i as u32 / tile.width(),
+                );
+                out[rect.index(x, y)] = p;
+            }
+        }
+        let spp = self.opts.sample_range.map_or(self.view.film.spp, |(_, n)| n);
+        let stats = RenderStats {
+            elapsed: start.elapsed(),
+            samples: rect.area() * spp as u64,
+            rays: counters.rays,
+            cancelled: self.cancel.load(Ordering::Relaxed),
+        };
+        (out, stats)
+    }
+
+    /// Each tile's pixels, finished; a tile skipped on cancel has none.
+    fn tiles<T: Send>(
+        &self,
+        start: Instant,
+        finish: &(impl Fn(ExactSum) -> T + Sync),
+    ) -> (Vec<(PixelRect, Vec<T>)>, Counters) {
+        let film = self.view.film;
+        let (w, h) = (film.width, film.height);
+        let tiles = tiles_of(self.rect);
+        let bar = progress_bar(self.opts.progress, tiles.len());
+        let finished = AtomicUsize::new(0);
+        let (s0, spp) = self.opts.sample_range.unwrap_or((0, film.spp));
+        let aspect = w as f32 / h as f32;
+        let rendered: Vec<(PixelRect, Vec<T>, Counters)> = tiles
+            .par_iter()
+            .map(|&tile| {
+                let mut counters = Counters::default();
+                let mut px = Vec::with_capacity(tile.area() as usize);
+                if self.cancel.load(Ordering::Relaxed) {
+                    return (tile, px, counters);
+                }
+                for y in tile.y0..tile.y1 {
+                    for x in tile.x0..tile.x1 {
+                        let mut sum = ExactSum::ZERO;
+                        for s in s0..s0 + spp {
+                            let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
+                            let jitter = sampler.next_vec2();
+                            let film_pos =
+                                Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
+                            let ray = self.view.camera.ray(film_pos, aspect, sampler.next_vec2());
+                            let li = self
+                                .view
+                                .integrator
+                                .li(self.scene, &ray, &mut sampler, &mut counters);
+                            // A non-finite sample (a numerical bug, caught by
+                            // debug asserts) must not poison the pixel in release.
+                            if li.is_finite() {
+                                sum.add_sample(li);
+                            }
+                        }
+                        px.push(finish(sum));
+                    }
+                }
+                bar.inc(1);
+                (self.on_tile)(&TileDone {
+                    rect: tile,
+                    done: finished.fetch_add(1, Ordering::Relaxed) + 1,
+                    total: tiles.len(),
+                    elapsed: start.elapsed(),
+                });
+                (tile, px, counters)
+            })
+            .collect();
+        bar.finish_and_clear();
+        let mut total = Counters::default();
+        let tiles = rendered
+            .into_iter()
+            .map(|(tile, px, c)| {
+                total.rays += c.rays;
+                (tile, px)
+            })
+            .collect();
+        (tiles, total)
+    }
 }

@@ -13,18 +13,25 @@ use crate::materials::{Material, Texture};
 use crate::math::Ray;
 use glam::Vec2;
 
+/// The runtime scene: everything rays query, in world space, indexed by `u32`.
 pub struct Scene {
+    /// Runtime materials, indexed by [`Hit::material`].
     pub materials: Vec<Material>,
+    /// Decoded image textures, indexed by [`crate::materials::ColorTex::Image`].
     pub textures: Vec<Texture>,
+    /// Light sources, indexed by [`Hit::light`]; area lights are also quads in
+    /// `shapes`.
     pub lights: Vec<Light>,
     /// Chooses the light for next-event estimation.
     pub light_picker: LightPicker,
     /// Bounded shapes first (`..bounded`, in the BVH's leaf order), then
     /// unbounded ones (planes), which every ray tests.
     pub shapes: Vec<Shape>,
+    /// Number of bounded shapes at the front of `shapes` (those in the BVH).
     pub bounded: u32,
     /// Meshes (each with its own BVH) and their instances.
     pub geometry: Geometry,
+    /// The top-level BVH over the bounded shapes.
     pub bvh: WideBvh,
 }
 

@@ -11,18 +11,26 @@ use std::path::{Path, PathBuf};
 /// Image size and sampling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Film {
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
+    /// Samples per pixel.
     pub spp: u32,
+    /// Seed of every random stream: same seed, same image.
     pub seed: u64,
+    /// How sample positions are drawn.
     pub sampler: SamplerKind,
 }
 
 /// Camera, film, integrator and output of one render.
 #[derive(Clone, Debug)]
 pub struct View {
+    /// The perspective camera, in world space.
     pub camera: Camera,
+    /// Image size and sampling.
     pub film: Film,
+    /// The light-transport estimator.
     pub integrator: Integrator,
     /// The scene's `film.output`, resolved against the scene file's folder;
     /// empty when the scene names none.

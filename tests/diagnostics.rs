@@ -1,7 +1,9 @@
 //! Broken scene files give located, helpful diagnostics — all of them at once.
 
+mod common;
+
 use ronray::diagnostic::Diagnostic;
-use ronray::load::{LoadError, load};
+use ronray::load::{LoadError, Overrides, load, load_str, load_with};
 use std::path::{Path, PathBuf};
 
 fn fixture(name: &str) -> PathBuf {
@@ -16,6 +18,30 @@ fn diagnostics(name: &str) -> (Vec<Diagnostic>, String) {
         Err(LoadError::Invalid(r)) => (r.diagnostics.clone(), r.render(false)),
         Err(e) => panic!("{name}: expected diagnostics, got {e}"),
     }
+}
+
+/// The diagnostics of scene `text` read as file `name` (its extension picks
+/// RON or JSON); rendering them must not panic, with or without colour.
+fn diagnostics_of(name: &str, text: &str) -> Vec<Diagnostic> {
+    match load_str(Path::new(name), text, &Overrides::default()) {
+        Ok(_) => panic!("{name} loaded, but it is broken on purpose:\n{text}"),
+        Err(LoadError::Invalid(r)) => {
+            assert!(!r.render(true).is_empty() && !r.render(false).is_empty());
+            r.diagnostics
+        }
+        Err(e) => panic!("{name}: expected diagnostics, got {e}"),
+    }
+}
+
+/// The diagnostic at scene path `path`, or a panic listing all of them.
+fn at<'a>(d: &'a [Diagnostic], path: &str) -> &'a Diagnostic {
+    d.iter()
+        .find(|d| d.path.as_deref() == Some(path))
+        .unwrap_or_else(|| panic!("no diagnostic at `{path}` in:\n{}", list(d)))
+}
+
+fn list(d: &[Diagnostic]) -> String {
+    d.iter().map(|d| format!("{d}\n")).collect()
 }
 
 #[test]
@@ -98,6 +124,346 @@ fn misspelled_field_suggests_the_right_one() {
     );
     let help = d[0].help.clone().unwrap_or_default();
     assert!(help.contains("did you mean `radius`?"), "help: {help}");
+}
+
+/// `six_mistakes.ron`: an unknown field in `objects[1]`, a misspelled variant
+/// in `materials.glass`, a negative radius, an unknown material name, a
+/// missing OBJ file and a missing texture. The four found by parsing and
+/// validation come together, each located; the object using the broken
+/// `glass` material is not blamed for it.
+#[test]
+fn six_mistakes_parse_and_semantic_ones_are_reported_in_one_run() {
+    let (d, text) = diagnostics("six_mistakes.ron");
+    let field = at(&d, "objects[1]");
+    assert_eq!((field.line, field.column), (10, 35), "{field}");
+    assert!(field.message.contains("unknown field `raduis`"), "{field}");
+    assert_eq!(field.help.as_deref(), Some("did you mean `radius`?"));
+    let variant = at(&d, "materials.glass");
+    assert_eq!((variant.line, variant.column), (5, 18), "{variant}");
+    assert!(variant.message.contains("unknown variant `Glas`"), "{variant}");
+    assert_eq!(variant.help.as_deref(), Some("did you mean `Glass`?"));
+    let radius = at(&d, "objects[2].radius");
+    assert_eq!((radius.line, radius.column), (11, 44), "{radius}");
+    assert!(radius.message.contains("radius -1 must be > 0"), "{radius}");
+    let name = at(&d, "objects[3].material");
+    assert_eq!((name.line, name.column), (12, 56), "{name}");
+    assert_eq!(name.help.as_deref(), Some("did you mean `white`?"));
+    assert!(
+        !d.iter().any(|d| d.path.as_deref() == Some("objects[0].material")),
+        "the stand-in for `glass` keeps its name known:\n{text}"
+    );
+    let order: Vec<usize> = d.iter().map(|d| d.line).collect();
+    assert!(order.is_sorted(), "in file order: {order:?}");
+}
+
+/// The same file's two missing files, in the same run as the other four.
+/// Missing OBJ and texture files are found by the build step today, which
+/// does not run on a scene with mistakes; this passes once those checks
+/// move into validation (on `main`).
+#[test]
+fn six_mistakes_file_ones_are_reported_in_the_same_run() {
+    let (d, text) = diagnostics("six_mistakes.ron");
+    assert_eq!(d.len(), 6, "all six in one load:\n{text}");
+    let obj = d
+        .iter()
+        .find(|d| d.path.as_deref().is_some_and(|p| p.starts_with("objects[4]")))
+        .unwrap_or_else(|| panic!("no missing OBJ in:\n{text}"));
+    assert_eq!(obj.line, 13, "{obj}");
+    let texture = d
+        .iter()
+        .find(|d| d.path.as_deref().is_some_and(|p| p.starts_with("materials.wood")))
+        .unwrap_or_else(|| panic!("no missing texture in:\n{text}"));
+    assert_eq!(texture.line, 6, "{texture}");
+}
+
+const JSON_MISTAKES: &str = r#"{
+  "camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov_y_degrees": 40},
+  "film": {"spp": -3},
+  "materials": {
+    "white": {"Lambert": {"albedo": [0.8, 0.8, 0.8]}},
+    "glass": {"Glas": {"ior": 1.5}}
+  },
+  "objects": [
+    {"Sphere": {"center": [0, 0, 0], "radius": 1, "material": "glass"}},
+    {"Sphere": {"center": [2, 0, 0], "raduis": 1, "material": "white"}},
+    {"Sphere": {"center": [0, 2, 0], "radius": -1, "material": "whtie"}}
+  ],
+  "objcts": []
+}"#;
+
+#[test]
+fn json_mistakes_of_every_kind_are_reported_in_one_run() {
+    let d = diagnostics_of("scene.json", JSON_MISTAKES);
+    assert_eq!(d.len(), 6, "{}", list(&d));
+    let spp = at(&d, "film.spp");
+    assert_eq!((spp.line, spp.column), (3, 19), "{spp}");
+    assert!(spp.message.contains("a whole number"), "{spp}");
+    let variant = at(&d, "materials.glass");
+    assert_eq!(
+        variant.help.as_deref(),
+        Some("did you mean `Glass`?"),
+        "{variant}"
+    );
+    assert_eq!(
+        at(&d, "objects[1]").help.as_deref(),
+        Some("did you mean `radius`?")
+    );
+    assert_eq!(at(&d, "objects[2].radius").line, 11);
+    assert_eq!(at(&d, "objects[2].material").line, 11);
+    let top = d
+        .iter()
+        .find(|d| d.message.contains("unknown field `objcts`"))
+        .unwrap_or_else(|| panic!("no unknown top-level field in:\n{}", list(&d)));
+    assert_eq!(
+        (top.line, top.column, top.help.as_deref()),
+        (13, 3, Some("did you mean `objects`?"))
+    );
+}
+
+#[test]
+fn unclosed_bracket_points_at_the_bracket_left_open() {
+    let (d, text) = diagnostics("unclosed_paren.ron");
+    assert_eq!(d.len(), 1, "only a broken structure stops parsing:\n{text}");
+    assert_eq!(
+        (d[0].line, d[0].column),
+        (6, 15),
+        "the `(` after `Sphere`: {}",
+        d[0]
+    );
+    assert_eq!(d[0].message, "`(` opened here is never closed");
+    let help = d[0].help.clone().unwrap_or_default();
+    assert!(help.contains("`]` at 8:5") && help.contains("add `)`"), "{help}");
+    // At the end of the file, the innermost bracket still open is named.
+    let d = diagnostics_of("cut.ron", "Scene(\n  camera: (eye: (0, 0, 4),\n");
+    assert_eq!((d[0].line, d[0].column), (2, 11), "{}", d[0]);
+    assert_eq!(d[0].message, "`(` opened here is never closed");
+}
+
+#[test]
+fn mismatched_closer_names_both_brackets_in_ron_and_json() {
+    let ron = diagnostics_of(
+        "a.ron",
+        "Scene(\n  camera: (eye: (0, 0, 4], fov_y_degrees: 40),\n)",
+    );
+    assert_eq!(ron.len(), 1, "{}", list(&ron));
+    assert_eq!((ron[0].line, ron[0].column), (2, 25), "at the `]`: {}", ron[0]);
+    assert_eq!(ron[0].message, "`]` where `)` was expected");
+    assert!(
+        ron[0].help.clone().unwrap_or_default().contains("opened at 2:17"),
+        "{}",
+        ron[0]
+    );
+    let json = diagnostics_of(
+        "a.json",
+        "{\n  \"objects\": [\n    {\"Sphere\": {\"radius\": 1]\n  ]\n}",
+    );
+    assert_eq!(json.len(), 1, "{}", list(&json));
+    assert_eq!(
+        (json[0].line, json[0].column),
+        (3, 16),
+        "the `{{` left open: {}",
+        json[0]
+    );
+    assert_eq!(json[0].message, "`{` opened here is never closed");
+}
+
+/// A byte-order mark, a non-breaking space, typographic quotes and accented
+/// letters next to mistakes: located in characters, explained, no panic.
+#[test]
+fn non_ascii_text_near_mistakes_is_located_without_panic() {
+    let (d, rendered) = diagnostics("non_ascii.ron");
+    let text = std::fs::read_to_string(fixture("non_ascii.ron")).expect("read");
+    let column = |line: usize, c: char| {
+        let l = text.lines().nth(line - 1).unwrap_or("");
+        1 + l.chars().position(|x| x == c).unwrap_or(usize::MAX - 1)
+    };
+    assert_eq!(d.len(), 4, "{}", list(&d));
+    assert_eq!((d[0].line, d[0].column), (3, column(3, '\u{a0}')), "{}", d[0]);
+    assert!(
+        d[0].help
+            .clone()
+            .unwrap_or_default()
+            .contains("non-breaking space"),
+        "{}",
+        d[0]
+    );
+    assert_eq!((d[1].line, d[1].column), (4, column(4, '\u{201c}')), "{}", d[1]);
+    assert!(
+        d[1].help
+            .clone()
+            .unwrap_or_default()
+            .contains("typographic double quote"),
+        "{}",
+        d[1]
+    );
+    assert_eq!(d[2].path.as_deref(), Some("objects[0].material"));
+    assert!(d[2].message.contains("`vért`"), "{}", d[2]);
+    assert_eq!(d[2].help.as_deref(), Some("did you mean `vert`?"));
+    assert_eq!((d[3].line, d[3].column), (7, 35), "{}", d[3]);
+    assert!(
+        rendered.contains("“blanc”"),
+        "the line is shown as written:\n{rendered}"
+    );
+}
+
+/// Whatever went wrong, no message or help names a Rust type or integer
+/// type: the user wrote `camera`, `Metal(…)`, `spp`, not `CameraDesc`.
+#[test]
+fn messages_never_name_rust_types() {
+    let cases = [
+        ("a.ron", "Scene(camera: 3)"),
+        ("a.ron", "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0)))"),
+        (
+            "a.ron",
+            "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), film: (spp: 2.5))",
+        ),
+        (
+            "a.ron",
+            "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), film: (sampler: Sobl))",
+        ),
+        (
+            "a.ron",
+            "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), materials: { \"m\": CookTorrance(roughness: 0.1, fresnel: Metal(Gld)) })",
+        ),
+        (
+            "a.ron",
+            "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), objects: [Sphere(center: (0, 0), radius: 1, material: \"m\")])",
+        ),
+        (
+            "a.ron",
+            "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), lights: 7)",
+        ),
+        (
+            "a.json",
+            r#"{"camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov_y_degrees": "wide"}}"#,
+        ),
+        (
+            "a.json",
+            r#"{"camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov_y_degrees": 40}, "film": {"spp": "many"}}"#,
+        ),
+        ("a.json", r#"{"camera": 3}"#),
+        (
+            "a.json",
+            r#"{"camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov_y_degrees": 40}, "integrator": {"Pth": {}}}"#,
+        ),
+    ];
+    for (name, text) in cases {
+        for d in diagnostics_of(name, text) {
+            let words = format!("{} {}", d.message, d.help.unwrap_or_default());
+            for rust in ["Desc", "u32", "u64", "f32", "struct ", "enum "] {
+                assert!(!words.contains(rust), "`{rust}` in `{words}` for {text}");
+            }
+        }
+    }
+    let d = diagnostics_of(
+        "a.json",
+        r#"{"camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov_y_degrees": 40}, "integrator": {"Pth": {}}}"#,
+    );
+    assert_eq!(
+        d[0].help.as_deref(),
+        Some("did you mean `Path`?"),
+        "variants get did-you-mean in JSON"
+    );
+    let d = diagnostics_of(
+        "a.ron",
+        "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), film: (sampler: Sobl))",
+    );
+    assert_eq!(d[0].help.as_deref(), Some("did you mean `Sobol`?"), "and in RON");
+}
+
+/// A `--set` whose value only fails once deserialised is blamed on that
+/// argument, not on the scene file.
+#[test]
+fn set_error_points_at_the_argument() {
+    let o = Overrides {
+        sets: vec!["film.spp=abc".into(), "camera.fov_y_degrees=30".into()],
+        ..Default::default()
+    };
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.ron");
+    let d = match load_with(&scene, &o) {
+        Err(LoadError::Invalid(r)) => r.diagnostics,
+        Err(e) => panic!("expected diagnostics, got {e}"),
+        Ok(_) => panic!("spp=abc must be rejected"),
+    };
+    assert_eq!(d.len(), 1, "{}", list(&d));
+    assert_eq!(d[0].file, Path::new("--set film.spp=abc"), "{}", d[0]);
+    assert_eq!(d[0].path.as_deref(), Some("film.spp"));
+    assert!(
+        d[0].message.contains("`abc`") && d[0].message.contains("whole number"),
+        "{}",
+        d[0]
+    );
+    assert!(
+        d[0].to_string().starts_with("--set film.spp=abc: error:"),
+        "{}",
+        d[0]
+    );
+    // With a broken file: the good overrides still apply (spp 0 is fixed),
+    // the bad one is blamed on itself, and the file's mistakes come too.
+    let o = Overrides {
+        sets: vec!["film.spp=4".into(), "camera.up=(0, 1)".into()],
+        ..Default::default()
+    };
+    let d = match load_with(&fixture("three_mistakes.ron"), &o) {
+        Err(LoadError::Invalid(r)) => r.diagnostics,
+        _ => panic!("three_mistakes.ron is broken"),
+    };
+    let places: Vec<String> = d.iter().map(|d| d.location()).collect();
+    assert_eq!(places.len(), 3, "{}", list(&d));
+    assert_eq!(places[0], "--set camera.up=(0, 1)");
+    assert!(places[1].ends_with("three_mistakes.ron:2:53") && places[2].ends_with("three_mistakes.ron:6:43"));
+}
+
+#[test]
+fn missing_scene_file_is_reported_once() {
+    for command in ["render", "validate"] {
+        let o = common::ronray(&[command, "tests/fixtures/broken/no_such_scene.ron"]);
+        assert_eq!(o.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(
+            err.matches("no_such_scene.ron").count(),
+            1,
+            "`ronray {command}` printed:\n{err}"
+        );
+    }
+}
+
+/// Cut anywhere, including inside a multi-byte character's neighbourhood,
+/// a file gives diagnostics and renders them: nothing in parsing, section
+/// splitting or rendering panics on non-ASCII or unfinished text.
+#[test]
+fn truncated_files_never_panic() {
+    let ron = std::fs::read_to_string(fixture("non_ascii.ron")).expect("read");
+    for (name, text) in [("cut.ron", ron.as_str()), ("cut.json", JSON_MISTAKES)] {
+        for (end, _) in text.char_indices().skip(1) {
+            let cut = &text[..end];
+            if let Err(LoadError::Invalid(r)) = load_str(Path::new(name), cut, &Overrides::default()) {
+                assert!(!r.diagnostics.is_empty(), "{name} cut at {end}");
+                let _ = (r.render(true), r.render(false), r.to_string());
+            }
+        }
+    }
+}
+
+/// Mistakes in the file's frame (its name, a missing or unknown top-level
+/// field) come with those inside its sections.
+#[test]
+fn frame_mistakes_come_with_the_sections_ones() {
+    let text = "Scen(\n  objects: [Sphere(center: (0, 0, 0), raduis: 1, material: \"x\")],\n  objcts: [],\n)";
+    let d = diagnostics_of("a.ron", text);
+    let messages: Vec<&str> = d.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(
+        messages,
+        [
+            "expected `Scene(…)`, found `Scen`",
+            "missing field `camera`",
+            "unknown field `raduis` in `Sphere`",
+            "unknown field `objcts`"
+        ],
+        "{}",
+        list(&d)
+    );
+    assert_eq!((d[1].line, d[1].column), (1, 5), "at the `(`: {}", d[1]);
 }
 
 // ---- Warnings: scenes that load but will surprise (issue 12) ----

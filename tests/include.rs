@@ -151,3 +151,141 @@ fn duplicate_name_across_includes_shows_both_locations() {
         "first definition located in the help: {help}"
     );
 }
+
+/// An included file is parsed like the scene: each mistake in it gets the
+/// same did-you-mean, points into that file, and comes in the same run as
+/// the including file's own mistakes. Its broken material keeps its name.
+#[test]
+fn mistakes_in_an_include_are_all_reported_with_the_scene_ones() {
+    let d = tempfile::tempdir().expect("tmp");
+    write(
+        d.path(),
+        "parts.ron",
+        "Include(\n  materials: {\n    \"glass\": Glas(ior: 1.5),\n  },\n  objects: [\n    Sphere(center: (0, 0, 0), radius: 1, material: \"glass\"),\n    Sphere(center: (0, 0, 0), raduis: 1, material: \"glass\"),\n    Sphere(center: (0, 0, 0), radius: -3, material: \"glass\"),\n  ],\n)\n",
+    );
+    write(
+        d.path(),
+        "scene.ron",
+        &format!(
+            "Scene(include: [\"parts.ron\"], {CAMERA},\n  objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"glas\")],\n)"
+        ),
+    );
+    let diags = diagnostics(&d.path().join("scene.ron"));
+    let all: String = diags.iter().map(|d| format!("{d}\n")).collect();
+    assert_eq!(diags.len(), 4, "{all}");
+    let in_parts: Vec<_> = diags.iter().filter(|d| d.file.ends_with("parts.ron")).collect();
+    assert_eq!(in_parts.len(), 3, "{all}");
+    let variant = in_parts
+        .iter()
+        .find(|d| d.message.contains("unknown variant `Glas`"))
+        .unwrap_or_else(|| panic!("{all}"));
+    assert_eq!(
+        (variant.line, variant.help.as_deref()),
+        (3, Some("did you mean `Glass`?"))
+    );
+    let field = in_parts
+        .iter()
+        .find(|d| d.message.contains("unknown field `raduis`"))
+        .unwrap_or_else(|| panic!("{all}"));
+    assert_eq!(
+        (field.line, field.help.as_deref()),
+        (7, Some("did you mean `radius`?"))
+    );
+    let radius = in_parts
+        .iter()
+        .find(|d| d.path.as_deref() == Some("objects[2].radius"))
+        .unwrap_or_else(|| panic!("the written index survives the dropped element:\n{all}"));
+    assert_eq!(radius.line, 8, "{radius}");
+    let top = diags
+        .iter()
+        .find(|d| d.file.ends_with("scene.ron"))
+        .unwrap_or_else(|| panic!("{all}"));
+    assert_eq!(top.path.as_deref(), Some("objects[0].material"), "{top}");
+    assert_eq!(top.help.as_deref(), Some("did you mean `glass`?"), "{top}");
+}
+
+/// 27 files, each including the next twice: read once each, so the scene
+/// loads at once instead of reading 2^27 files (issue 13).
+#[test]
+fn includes_named_twice_are_read_once() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let n = 27;
+    for i in 0..n {
+        let next = if i + 1 < n {
+            format!("include: [\"f{}.ron\", \"f{}.ron\"],", i + 1, i + 1)
+        } else {
+            String::new()
+        };
+        write(
+            dir.path(),
+            &format!("f{i}.ron"),
+            &format!("({next} materials: {{ \"m{i}\": Lambert(albedo: (0.5, 0.5, 0.5)) }})"),
+        );
+    }
+    write(
+        dir.path(),
+        "scene.ron",
+        &format!(
+            "Scene(include: [\"f0.ron\"], {CAMERA}, lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))], objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"m26\")])"
+        ),
+    );
+    let t = std::time::Instant::now();
+    let loaded = load_with(&dir.path().join("scene.ron"), &Overrides::default())
+        .unwrap_or_else(|e| panic!("{}", e.report().map(|r| r.render(false)).unwrap_or_default()));
+    assert_eq!(loaded.desc.materials.len(), n);
+    assert!(t.elapsed().as_secs() < 10, "took {:?}", t.elapsed());
+}
+
+/// A chain of includes deeper than the limit is a located error, not a
+/// stack overflow.
+#[test]
+fn include_chain_deeper_than_the_limit_is_an_error() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let n = ronray::load::include::MAX_INCLUDE_DEPTH + 5;
+    for i in 0..n {
+        write(
+            dir.path(),
+            &format!("f{i}.ron"),
+            &format!("(include: [\"f{}.ron\"])", i + 1),
+        );
+    }
+    write(dir.path(), &format!("f{n}.ron"), "()");
+    write(
+        dir.path(),
+        "scene.ron",
+        &format!("Scene(include: [\"f0.ron\"], {CAMERA})"),
+    );
+    let d = diagnostics(&dir.path().join("scene.ron"));
+    assert!(d.iter().any(|d| d.message.contains("nest deeper than")), "{d:?}");
+}
+
+/// A FIFO named as a scene or an include is refused at once: reading it
+/// would block for ever (issue 13).
+#[cfg(unix)]
+#[test]
+fn a_fifo_as_scene_or_include_is_refused_without_blocking() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let fifo = dir.path().join("pipe.ron");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if !made.is_ok_and(|s| s.success()) {
+        eprintln!("skipped: mkfifo is not available");
+        return;
+    }
+    match load_with(&fifo, &Overrides::default()) {
+        Err(LoadError::Io { source, .. }) => {
+            assert!(source.to_string().contains("not a regular file"), "{source}")
+        }
+        Err(e) => panic!("expected an I/O error, got {e}"),
+        Ok(_) => panic!("a FIFO loaded"),
+    }
+    write(
+        dir.path(),
+        "scene.ron",
+        &format!("Scene(include: [\"pipe.ron\"], {CAMERA})"),
+    );
+    let d = diagnostics(&dir.path().join("scene.ron"));
+    assert!(
+        d.iter().any(|d| d.message.contains("not a regular file")),
+        "{d:?}"
+    );
+}

@@ -2,7 +2,7 @@
 //! folder, edited the ways editors save, read through the lines it prints.
 //! Every wait has a deadline and the process dies with its guard.
 
-use ronray::render::{RenderOptions, render, render_accumulate};
+use ronray::render::{RenderOptions, SampleSums, render, render_accumulate};
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -327,7 +327,7 @@ fn render_accumulate_matches_render_bit_for_bit() {
     let loaded = ronray::load::load_str(path, &scene("0.8, 0.2, 0.2", 0.4, "tri.obj"), &Default::default())
         .expect("scene loads");
     let (full, _) = render(&loaded.scene, &loaded.view, &RenderOptions::default());
-    let mut sums = ronray::imageio::Image::new(48, 48);
+    let mut sums = SampleSums::new(ronray::imageio::PixelRect::full(48, 48));
     for (first, n) in [(0, 1), (1, 1), (2, 2), (4, 4)] {
         let opts = RenderOptions {
             sample_range: Some((first, n)),
@@ -341,9 +341,8 @@ fn render_accumulate_matches_render_bit_for_bit() {
             &mut sums,
         );
     }
-    let mean: Vec<_> = sums.pixels.iter().map(|&s| s / 8.0).collect();
     assert!(
-        mean == full.pixels,
+        sums.mean(8) == full,
         "passes 1+1+2+4 differ from one 8-sample render"
     );
 }

@@ -6,9 +6,13 @@
 
 use glam::Vec3A;
 
+/// An axis-aligned box, in whatever space its points are given (world space in the
+/// scene's BVH). `min > max` on some axis means empty.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// Corner with the smallest coordinate on every axis.
     pub min: Vec3A,
+    /// Corner with the largest coordinate on every axis.
     pub max: Vec3A,
 }
 
@@ -25,15 +29,19 @@ const MIN_DIR: f32 = 1e-30;
 pub(crate) const FAR_SCALE: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
 impl Aabb {
+    /// The box containing nothing: the identity of [`Aabb::union`] and
+    /// [`Aabb::grow_point`], so a fold can start from it.
     pub const EMPTY: Aabb = Aabb {
         min: Vec3A::splat(f32::INFINITY),
         max: Vec3A::splat(f32::NEG_INFINITY),
     };
 
+    /// The smallest box containing every point ([`Aabb::EMPTY`] for none).
     pub fn from_points(points: &[Vec3A]) -> Self {
         points.iter().fold(Self::EMPTY, |b, &p| b.grow_point(p))
     }
 
+    /// The smallest box containing `self` and `p`.
     #[inline]
     pub fn grow_point(self, p: Vec3A) -> Self {
         Self {
@@ -42,6 +50,7 @@ impl Aabb {
         }
     }
 
+    /// The smallest box containing both boxes.
     #[inline]
     pub fn union(self, o: Aabb) -> Self {
         Self {
@@ -50,11 +59,14 @@ impl Aabb {
         }
     }
 
+    /// Centre of the box; what the BVH build bins primitives by.
     #[inline]
     pub fn centroid(&self) -> Vec3A {
         0.5 * (self.min + self.max)
     }
 
+    /// True if the box contains no point (`min > max` on some axis), as
+    /// [`Aabb::EMPTY`]; a flat box (`min == max` on an axis) is not empty.
     #[inline]
     pub fn is_empty(&self) -> bool {
         self.min.cmpgt(self.max).any()
@@ -67,11 +79,14 @@ impl Aabb {
         !o.is_empty() && self.min.cmple(o.min).all() && o.max.cmple(self.max).all()
     }
 
+    /// Size along each axis (`max − min`); negative for an empty box.
     #[inline]
     pub fn extent(&self) -> Vec3A {
         self.max - self.min
     }
 
+    /// Total area of the six faces (0 for an empty box): by the surface area
+    /// heuristic, proportional to the chance that a random ray hits the box.
     pub fn surface_area(&self) -> f32 {
         if self.is_empty() {
             return 0.0;

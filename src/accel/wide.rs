@@ -52,6 +52,8 @@ pub(crate) struct WideNode {
 
 const _: () = assert!(size_of::<WideNode>() == 256);
 
+/// The 8-wide BVH every ray traverses, over any primitives' bounds: the scene's
+/// shapes (top level) and each mesh's triangles (bottom level).
 #[derive(Clone, Debug)]
 pub struct WideBvh {
     /// Node 0 is the root; empty iff no primitive has non-empty bounds.
@@ -98,6 +100,9 @@ impl WideBvh {
         Self::build_with(bounds, Leaves::Merged)
     }
 
+    /// Builds over `bounds[i]` for primitive `i`, forming leaves as `leaves` says;
+    /// [`WideBvh::build`] is this with [`Leaves::Merged`]. Panics above [`MAX_PRIMS`]
+    /// primitives.
     pub fn build_with(bounds: &[Aabb], leaves: Leaves) -> Self {
         assert!(bounds.len() < MAX_PRIMS, "WideBvh holds at most 2^28 primitives");
         let max_leaf = match leaves {
@@ -124,10 +129,13 @@ impl WideBvh {
         &self.order
     }
 
+    /// Number of primitives the tree was built over (including any dropped for empty
+    /// bounds).
     pub fn len(&self) -> usize {
         self.len
     }
 
+    /// True if built over no primitive at all.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }

@@ -45,7 +45,7 @@ pub(super) fn cmd_check(paths: Vec<PathBuf>, opts: &CheckOptions) -> ExitCode {
     for scene in &scenes {
         let r = check_scene(scene, opts);
         match &r.outcome {
-            Outcome::Invalid(e) => print_load_error(e),
+            Outcome::Invalid(e) => print_load_error(e, ""),
             Outcome::Fail { new, heatmap, .. } => {
                 eprintln!(
                     "{}: regression; new render {}, heat map {}",
@@ -89,7 +89,7 @@ pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Opti
         let full = match load_with(scene, &Overrides::default()) {
             Ok(l) => l,
             Err(e) => {
-                print_load_error(&e);
+                print_load_error(&e, "");
                 failed = true;
                 continue;
             }

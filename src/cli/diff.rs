@@ -12,6 +12,15 @@ pub(super) fn cmd_diff(
     max_rmse: Option<f64>,
     mask: Option<&Path>,
 ) -> ExitCode {
+    if let Some(h) = heatmap
+        && [a, b].iter().any(|input| same_file(input, h))
+    {
+        eprintln!(
+            "error: the heat map {} would overwrite an image being compared; nothing was written",
+            h.display()
+        );
+        return ExitCode::FAILURE;
+    }
     let load = |p: &Path| read_image(p).map_err(|e| eprintln!("error: {e}"));
     let (Ok(ia), Ok(ib)) = (load(a), load(b)) else {
         return ExitCode::FAILURE;
@@ -59,10 +68,25 @@ pub(super) fn cmd_diff(
         }
     }
     match max_rmse {
+        // A NaN pixel makes the RMSE NaN, which compares below anything: a
+        // gate must not pass on it.
+        Some(_) if c.rmse.is_nan() => {
+            eprintln!("rmse is NaN (an image has a NaN pixel): above any threshold");
+            ExitCode::FAILURE
+        }
         Some(t) if c.rmse > t => {
             eprintln!("rmse {:.6} is above the threshold {t}", c.rmse);
             ExitCode::FAILURE
         }
         _ => ExitCode::SUCCESS,
+    }
+}
+
+/// Whether `a` and `b` name the same file (an existing one by identity, else
+/// by spelling).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == b,
     }
 }

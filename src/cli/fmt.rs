@@ -39,7 +39,7 @@ fn is_json(p: &Path) -> bool {
 fn fmt_one(p: &Path, o: FmtOptions, failed: &mut bool) -> Result<(), String> {
     let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read: {e}"))?;
     let (out_text, target) = if o.json || o.canonical {
-        let desc = match crate::load::pipeline::parse(p, &text) {
+        let desc = match crate::load::source::parse(p, &text) {
             Ok(d) => d,
             Err(r) => {
                 eprint!("{}", r.render(std::io::stderr().is_terminal()));

@@ -1,6 +1,7 @@
 //! Subcommands. No rendering logic here: each command calls the library and
 //! turns its results into messages and exit codes.
 
+mod assemble;
 mod bench;
 mod check;
 mod diff;
@@ -12,50 +13,78 @@ mod validate;
 
 pub use validate::json_lines;
 
+/// Exit status of a command-line usage error (clap's too): bad arguments,
+/// or piece arguments that do not fit the scene.
+pub const USAGE: u8 = 2;
+
 use crate::diagnostic::Report;
 use crate::load::{LoadError, Overrides};
+use assemble::cmd_assemble;
 use check::{cmd_check, cmd_gallery};
 use clap::{Args, Parser, Subcommand};
 use diff::cmd_diff;
 use fmt::cmd_fmt;
-use render::cmd_render;
+use render::{PieceArgs, cmd_render};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use validate::cmd_validate;
 
+/// The command line (clap); `main` parses it and hands it to [`run`].
 #[derive(Parser, Debug)]
 #[command(
     name = "ronray",
     version,
-    about = "A physically based renderer for hand-written RON scenes"
+    about = "A physically based renderer for hand-written RON scenes",
+    long_about = None
 )]
 pub struct Cli {
+    /// The command to run.
     #[command(subcommand)]
     pub command: Command,
 }
 
+/// The commands; each is one file of `cli/`.
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Render a scene to PNG (8-bit sRGB) or EXR (linear float).
     Render {
+        /// The scene file (RON, or JSON by its extension).
         scene: PathBuf,
         /// Output image; defaults to the scene's `film.output`, else
         /// `<scene name>.png` in the current folder.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        #[allow(missing_docs)]
         #[command(flatten)]
         settings: RenderSettings,
+        #[allow(missing_docs)]
+        #[command(flatten)]
+        piece: PieceArgs,
         /// Print build and traversal statistics.
         #[arg(long)]
         stats: bool,
     },
+    /// Put pieces of a frame (EXR files from `render --crop/--pixels/--tile/
+    /// --samples`) back together: tiles are placed, sample splits averaged by
+    /// sample count. Refuses pieces of different scenes or versions,
+    /// overlaps and gaps.
+    Assemble {
+        /// The piece files (EXR), in any order.
+        #[arg(required = true)]
+        pieces: Vec<PathBuf>,
+        /// Output image, PNG or EXR.
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Re-render progressively whenever the scene or a file it uses changes.
     Watch {
+        /// The scene file to watch (RON or JSON).
         scene: PathBuf,
         /// Output image, as for `render`; rewritten after every pass.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        #[allow(missing_docs)]
         #[command(flatten)]
         settings: RenderSettings,
         /// Serve a live page (default 127.0.0.1:8765 or the next free port;
@@ -65,6 +94,7 @@ pub enum Command {
     },
     /// Check scenes without rendering; prints every problem found.
     Validate {
+        /// Scene files to check.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
         /// `human` (source excerpts) or `json` (one JSON object per line:
@@ -81,6 +111,7 @@ pub enum Command {
     /// headers, number spellings and omitted defaults. RON stays RON, JSON
     /// stays JSON.
     Fmt {
+        /// Scene files to format.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
         /// Change nothing; print a unified diff of what would change (exit 1
@@ -127,6 +158,7 @@ pub enum Command {
         /// Image width (the height keeps each scene's aspect).
         #[arg(long, default_value_t = 320)]
         width: u32,
+        /// Samples per pixel (default: each scene's own).
         #[arg(long)]
         spp: Option<u32>,
     },
@@ -138,7 +170,8 @@ pub enum Command {
         /// Rewrite the goldens that fail or are missing, on purpose.
         #[arg(long)]
         bless: bool,
-        #[arg(long)]
+        /// Worker threads (default: all cores; at most 1024).
+        #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
         /// Typed override `path=value` (value in RON), applied before the
         /// test settings are read: `--set test.seed=7` re-seeds.
@@ -167,9 +200,11 @@ pub enum Command {
     },
     /// Time BVH build and closest-hit throughput on an OBJ mesh.
     Bench {
+        /// The Wavefront OBJ mesh to measure.
         obj: PathBuf,
-        /// Threads for the multi-threaded figures (default: all cores).
-        #[arg(long)]
+        /// Threads for the multi-threaded figures (default: all cores; at
+        /// most 1024).
+        #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
     },
 }
@@ -183,10 +218,12 @@ pub struct RenderSettings {
     /// Image size, `WIDTHxHEIGHT`.
     #[arg(long, value_parser = parse_size)]
     pub size: Option<(u32, u32)>,
+    /// Seed of the random streams (same seed, same image).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Worker threads (default: all cores). The image does not depend on it.
-    #[arg(long)]
+    /// Worker threads (default: all cores; at most 1024). The image does not
+    /// depend on it.
+    #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,
     /// Typed override `path=value` (value in RON), e.g.
     /// `--set film.spp=256 --set materials.floor.albedo=(0.2,0.2,0.2)`.
@@ -195,6 +232,7 @@ pub struct RenderSettings {
 }
 
 impl RenderSettings {
+    /// The settings the loader applies to the scene.
     pub fn overrides(&self) -> Overrides {
         Overrides {
             spp: self.spp,
@@ -203,6 +241,21 @@ impl RenderSettings {
             sets: self.sets.clone(),
         }
     }
+}
+
+/// Most worker threads a command starts: beyond the cores, threads only
+/// cost memory (100,000 asked for would exhaust it). Raise it here.
+pub const MAX_THREADS: usize = 1024;
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let n: usize = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a whole number"))?;
+    if n == 0 || n > MAX_THREADS {
+        return Err(format!("{n} threads is outside 1..={MAX_THREADS}"));
+    }
+    Ok(n)
 }
 
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
@@ -217,14 +270,17 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((p(w)?, p(h)?))
 }
 
+/// Runs one command; the exit code says whether it succeeded.
 pub fn run(cli: Cli) -> ExitCode {
     match cli.command {
         Command::Render {
             scene,
             output,
             settings,
+            piece,
             stats,
-        } => cmd_render(&scene, output, &settings, stats),
+        } => cmd_render(&scene, output, &settings, &piece, stats),
+        Command::Assemble { pieces, output } => cmd_assemble(&pieces, &output),
         Command::Validate {
             scenes,
             format,
@@ -303,12 +359,13 @@ pub fn run(cli: Cli) -> ExitCode {
     }
 }
 
-/// Prints a load failure with full context.
-pub fn print_load_error(e: &LoadError) {
-    match e.report() {
-        Some(r) => eprint!("{}", r.render(std::io::stderr().is_terminal())),
-        None => eprintln!("error: {e}"),
+/// Prints a load failure with full context: every diagnostic, then one
+/// summary line ending in `then` (an I/O error is that line alone).
+pub fn print_load_error(e: &LoadError, then: &str) {
+    if let Some(r) = e.report() {
+        eprint!("{}", r.render(std::io::stderr().is_terminal()));
     }
+    eprintln!("error: {e}{then}");
 }
 
 /// Prints a loaded scene's warnings with context (nothing if it has none).

@@ -1,34 +1,120 @@
-//! `ronray render`: load, render, write atomically, summarise.
-use super::{RenderSettings, print_load_error, print_warnings};
-use crate::imageio::write_image;
-use crate::load::load_with;
-use crate::render::{RenderOptions, render};
+//! `ronray render`: load, render the whole frame or a piece of it, write
+//! atomically, summarise.
+use super::{RenderSettings, USAGE, print_load_error, print_warnings};
+use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
+use crate::farm::{Existing, PieceSpec, Region, TileIndex, existing_piece, piece_meta, write_piece};
+use crate::imageio::{PixelRect, write_image};
+use crate::load::{Loaded, load_with};
+use crate::render::{RenderOptions, RenderStats, TileDone, render_image, render_sums};
+use clap::Args;
+use serde_json::json;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+
+/// Which part of the frame to render, and how to report (`render` only).
+#[derive(Args, Debug, Clone, Default)]
+pub struct PieceArgs {
+    /// Render only a crop window: fractions `x0,x1,y0,y1` of the image
+    /// (pbrt's order). Writes a piece (EXR) for `ronray assemble`.
+    #[arg(long, value_parser = parse_crop, value_name = "X0,X1,Y0,Y1", conflicts_with_all = ["pixels", "tile"])]
+    pub crop: Option<[f64; 4]>,
+    /// Render only pixels `x0..x1` × `y0..y1` (ends excluded). Writes a piece.
+    #[arg(long, value_parser = parse_pixels, value_name = "X0,Y0,X1,Y1", conflicts_with = "tile")]
+    pub pixels: Option<PixelRect>,
+    /// Render tile I of an N-tile split into bands of rows. `auto/N` takes I
+    /// from SLURM_ARRAY_TASK_ID, JOB_COMPLETION_INDEX or PARALLEL_SEQ − 1;
+    /// `{tile}` in the output path becomes I. Writes a piece.
+    #[arg(long, value_parser = parse_tile, value_name = "I/N")]
+    pub tile: Option<(TileIndex, u32)>,
+    /// Render samples A to B−1 of every pixel (of the scene's spp), so
+    /// several machines can add samples to one frame. Writes a piece.
+    #[arg(long, value_parser = parse_samples, value_name = "A..B")]
+    pub samples: Option<(u32, u32)>,
+    /// `bar` (a progress bar on a terminal, the default), `json` (one JSON
+    /// line per finished tile on standard output, for scheduler logs) or
+    /// `none`.
+    #[arg(long, value_parser = ["bar", "json", "none"])]
+    pub progress: Option<String>,
+    /// Skip the render when the output already holds this piece of this
+    /// scene (same scene hash, version, pixels and samples).
+    #[arg(long)]
+    pub resume: bool,
+}
+
+impl PieceArgs {
+    fn region(&self) -> Region {
+        match (self.crop, self.pixels, self.tile) {
+            (Some(c), _, _) => Region::Crop(c),
+            (_, Some(p), _) => Region::Pixels(p),
+            (_, _, Some((index, count))) => Region::Tile { index, count },
+            _ => Region::Whole,
+        }
+    }
+
+    fn is_piece(&self) -> bool {
+        self.region() != Region::Whole || self.samples.is_some()
+    }
+}
+
+/// Prints one JSON line on standard output (`--progress json`).
+fn json_line(v: serde_json::Value) {
+    super::print_out(&format!("{v}\n"));
+}
 
 pub(super) fn cmd_render(
     path: &Path,
     output: Option<PathBuf>,
     settings: &RenderSettings,
+    piece: &PieceArgs,
     show_stats: bool,
 ) -> ExitCode {
+    let json = piece.progress.as_deref() == Some("json");
     let loaded = match load_with(path, &settings.overrides()) {
         Ok(l) => l,
         Err(e) => {
-            print_load_error(&e);
-            eprintln!("error: {e}; nothing was written");
+            print_load_error(&e, "; nothing was written");
             return ExitCode::FAILURE;
         }
     };
     // Warnings are printed, not fatal: the scene renders as written.
     print_warnings(&loaded.warnings);
-    let out = loaded.view.output_path(path, output);
+    let f = loaded.view.film;
+    let env = |k: &str| std::env::var(k).ok();
+    let spec = if piece.is_piece() {
+        match crate::farm::resolve(piece.region(), piece.samples, (f.width, f.height, f.spp), &env) {
+            Ok(s) => Some(s),
+            Err(e) => {
+                eprintln!("error: {e}; nothing was written");
+                return USAGE.into();
+            }
+        }
+    } else {
+        if piece.resume {
+            eprintln!(
+                "error: --resume skips pieces already written; give --crop, --pixels, --tile or --samples"
+            );
+            return USAGE.into();
+        }
+        None
+    };
+    let mut out = loaded.view.output_path(path, output);
+    if let Some((i, _)) = spec.and_then(|s| s.tile) {
+        out = PathBuf::from(out.to_string_lossy().replace("{tile}", &i.to_string()));
+    }
     let ext = out
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
+    if spec.is_some() && ext != "exr" {
+        eprintln!(
+            "error: a piece of a frame is written as EXR, and {} is not .exr: PNG pieces are 8-bit and cannot be merged exactly (assemble the EXR pieces into a PNG instead); nothing was written",
+            out.display()
+        );
+        return USAGE.into();
+    }
     if ext != "png" && ext != "exr" {
         eprintln!(
             "error: output {} must end in .png or .exr; nothing was written",
@@ -36,79 +122,162 @@ pub(super) fn cmd_render(
         );
         return ExitCode::FAILURE;
     }
-    let f = loaded.view.film;
+    if let Some(input) = loaded.input_at(&out) {
+        eprintln!(
+            "error: output {} is {}, which the scene reads; nothing was written",
+            out.display(),
+            input.display()
+        );
+        return ExitCode::FAILURE;
+    }
+    let spec = spec.unwrap_or(PieceSpec {
+        rect: PixelRect::full(f.width, f.height),
+        samples: (0, f.spp),
+        tile: None,
+    });
+    let is_piece = piece.is_piece();
+    let meta = match is_piece.then(|| piece_meta(&loaded, &spec)).transpose() {
+        Ok(m) => m,
+        Err(e) => {
+            eprintln!("error: {e}; nothing was written");
+            return ExitCode::FAILURE;
+        }
+    };
+    if let (true, Some(m)) = (piece.resume, &meta) {
+        match existing_piece(&out, m) {
+            Existing::Done => {
+                eprintln!(
+                    "skipped {}: it already holds this piece of scene {}",
+                    out.display(),
+                    m.scene
+                );
+                if json {
+                    json_line(json!({"event": "skipped", "output": out, "scene": m.scene}));
+                }
+                return ExitCode::SUCCESS;
+            }
+            Existing::Different(why) => eprintln!("re-rendering {}: {why}", out.display()),
+            Existing::Absent => {}
+        }
+    }
     let opts = RenderOptions {
         threads: settings.threads,
-        progress: std::io::stderr().is_terminal(),
-        sample_range: None,
+        progress: !json && piece.progress.as_deref() != Some("none") && std::io::stderr().is_terminal(),
+        sample_range: Some((spec.samples.0, spec.samples.1 - spec.samples.0)),
     };
-    let (image, stats) = render(&loaded.scene, &loaded.view, &opts);
-    if let Err(e) = write_image(&image, &out) {
+    if json {
+        json_line(json!({
+            "event": "start",
+            "output": out,
+            "scene": meta.as_ref().map(|m| m.scene.clone()),
+            "pixels": [spec.rect.x0, spec.rect.y0, spec.rect.x1, spec.rect.y1],
+            "samples": [spec.samples.0, spec.samples.1],
+            "tile": spec.tile.map(|(i, n)| format!("{i}/{n}")),
+        }));
+    }
+    let report = |t: &TileDone| {
+        if json {
+            json_line(json!({
+                "event": "tile",
+                "done": t.done,
+                "total": t.total,
+                "pixels": [t.rect.x0, t.rect.y0, t.rect.x1, t.rect.y1],
+                "elapsed_s": t.elapsed.as_secs_f64(),
+            }));
+        }
+    };
+    let cancel = AtomicBool::new(false);
+    let (written, stats) = match &meta {
+        Some(m) => {
+            let (sums, stats) = render_sums(&loaded.scene, &loaded.view, &opts, spec.rect, &cancel, &report);
+            (write_piece(&out, m, &sums).map_err(|e| e.to_string()), stats)
+        }
+        None => {
+            let (image, stats) = render_image(&loaded.scene, &loaded.view, &opts, &cancel, &report);
+            (write_image(&image, &out).map_err(|e| e.to_string()), stats)
+        }
+    };
+    if let Err(e) = written {
         eprintln!("error: {e}");
         return ExitCode::FAILURE;
     }
-    eprintln!(
-        "wrote {} ({}×{}, {} spp) in {}",
-        out.display(),
-        f.width,
-        f.height,
-        f.spp,
-        stats.summary()
-    );
+    let what = if is_piece {
+        format!(
+            "piece: pixels {}, samples {}..{} of a {}×{}, {} spp frame",
+            spec.rect, spec.samples.0, spec.samples.1, f.width, f.height, f.spp
+        )
+    } else {
+        format!("{}×{}, {} spp", f.width, f.height, f.spp)
+    };
+    eprintln!("wrote {} ({what}) in {}", out.display(), stats.summary());
+    if json {
+        json_line(json!({
+            "event": "done",
+            "output": out,
+            "elapsed_s": stats.elapsed.as_secs_f64(),
+            "samples": stats.samples,
+            "rays": stats.rays,
+        }));
+    }
     if show_stats {
-        let b = loaded.stats;
-        let bs = loaded.scene.bvh.stats();
-        eprintln!(
-            "scene: {} shapes, {} triangles placed; load {:.1} ms (OBJ parse + mesh BVHs); top-level BVH build {:.1} ms, {} nodes, {} leaves, depth {}, SAH cost {:.2}, {:.1} KiB",
-            loaded.scene.shapes.len(),
-            b.triangles,
-            b.load_time.as_secs_f64() * 1e3,
-            b.bvh_time.as_secs_f64() * 1e3,
-            bs.nodes,
-            bs.leaves,
-            bs.max_depth,
-            bs.sah_cost,
-            bs.bytes as f64 / 1024.0
-        );
-        let geo = &loaded.scene.geometry;
-        let unique: usize = geo.meshes.iter().map(|m| m.triangle_count()).sum();
-        eprintln!(
-            "meshes: {} in memory ({} triangles), {} instances; mesh BVHs + triangles {:.1} MiB ({:.1} B/triangle), all mesh data {:.1} MiB",
-            b.meshes,
-            unique,
-            b.instances,
-            b.mesh_accel_bytes as f64 / 1048576.0,
-            b.mesh_accel_bytes as f64 / unique.max(1) as f64,
-            geo.meshes.iter().map(|m| m.total_bytes()).sum::<usize>() as f64 / 1048576.0
-        );
-        for (i, m) in geo.meshes.iter().enumerate().take(8) {
-            if let Some(s) = m.blas().map(|b| b.stats()) {
-                eprintln!(
-                    "  mesh {i}: {} triangles, {} {}-wide nodes, {} leaves, depth {} (binary), SAH cost {:.2}",
-                    m.triangle_count(),
-                    s.nodes,
-                    crate::accel::wide::WIDTH,
-                    s.leaves,
-                    s.max_depth,
-                    s.sah_cost
-                );
-            }
-        }
-        let secs = stats.elapsed.as_secs_f64().max(1e-9);
-        eprintln!(
-            "rays: {} traced, {:.2} M rays/s",
-            stats.rays,
-            stats.rays as f64 / secs / 1e6
-        );
-        let sdf = crate::geometry::sdf_object::take_stats();
-        if sdf.traces > 0 {
+        print_stats(&loaded, &stats);
+    }
+    ExitCode::SUCCESS
+}
+
+/// `--stats`: build, traversal and SDF statistics.
+fn print_stats(loaded: &Loaded, stats: &RenderStats) {
+    let b = &loaded.stats;
+    let bs = loaded.scene.bvh.stats();
+    eprintln!(
+        "scene: {} shapes, {} triangles placed; load {:.1} ms (OBJ parse + mesh BVHs); top-level BVH build {:.1} ms, {} nodes, {} leaves, depth {}, SAH cost {:.2}, {:.1} KiB",
+        loaded.scene.shapes.len(),
+        b.triangles,
+        b.load_time.as_secs_f64() * 1e3,
+        b.bvh_time.as_secs_f64() * 1e3,
+        bs.nodes,
+        bs.leaves,
+        bs.max_depth,
+        bs.sah_cost,
+        bs.bytes as f64 / 1024.0
+    );
+    let geo = &loaded.scene.geometry;
+    let unique: usize = geo.meshes.iter().map(|m| m.triangle_count()).sum();
+    eprintln!(
+        "meshes: {} in memory ({} triangles), {} instances; mesh BVHs + triangles {:.1} MiB ({:.1} B/triangle), all mesh data {:.1} MiB",
+        b.meshes,
+        unique,
+        b.instances,
+        b.mesh_accel_bytes as f64 / 1048576.0,
+        b.mesh_accel_bytes as f64 / unique.max(1) as f64,
+        geo.meshes.iter().map(|m| m.total_bytes()).sum::<usize>() as f64 / 1048576.0
+    );
+    for (i, m) in geo.meshes.iter().enumerate().take(8) {
+        if let Some(s) = m.blas().map(|b| b.stats()) {
             eprintln!(
-                "sdf: {} marches, {:.1} steps per march; steps histogram {}",
-                sdf.traces,
-                sdf.steps_per_trace(),
-                sdf.histogram_text()
+                "  mesh {i}: {} triangles, {} {}-wide nodes, {} leaves, depth {} (binary), SAH cost {:.2}",
+                m.triangle_count(),
+                s.nodes,
+                crate::accel::wide::WIDTH,
+                s.leaves,
+                s.max_depth,
+                s.sah_cost
             );
         }
     }
-    ExitCode::SUCCESS
+    let secs = stats.elapsed.as_secs_f64().max(1e-9);
+    eprintln!(
+        "rays: {} traced, {:.2} M rays/s",
+        stats.rays,
+        stats.rays as f64 / secs / 1e6
+    );
+    let sdf = crate::geometry::sdf_object::take_stats();
+    if sdf.traces > 0 {
+        eprintln!(
+            "sdf: {} marches, {:.1} steps per march; steps histogram {}",
+            sdf.traces,
+            sdf.steps_per_trace(),
+            sdf.histogram_text()
+        );
+    }
 }

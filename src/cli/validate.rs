@@ -41,8 +41,7 @@ pub(super) fn cmd_validate(paths: &[PathBuf], json: bool, deny_warnings: bool) -
                 if json {
                     print_out(&json_lines(p, &e));
                 } else {
-                    print_load_error(&e);
-                    eprintln!("error: {e}");
+                    print_load_error(&e, "");
                 }
             }
         }

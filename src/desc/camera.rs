@@ -9,8 +9,14 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
+    /// Position of the camera (the pinhole, or the centre of the lens), in world
+    /// space.
     pub eye: V3,
+    /// A point the camera looks at; it is centred in the image. By default also
+    /// the distance in focus.
     pub target: V3,
+    /// Which way is up in the image, default `(0, 1, 0)`; need not be unit length
+    /// or perpendicular to the view, but must not be parallel to `target − eye`.
     #[serde(default = "default_up")]
     pub up: V3,
     /// Full vertical field of view, in degrees, in (0, 180).
@@ -32,9 +38,11 @@ fn default_up() -> V3 {
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct FilmDesc {
+    /// Image width in pixels, 1 to 16384 (default 512).
     #[serde(default = "default_width")]
     #[schemars(range(min = 1, max = 16384))]
     pub width: u32,
+    /// Image height in pixels, 1 to 16384 (default 512).
     #[serde(default = "default_height")]
     #[schemars(range(min = 1, max = 16384))]
     pub height: u32,
@@ -46,7 +54,7 @@ pub struct FilmDesc {
     #[serde(default)]
     pub seed: u64,
     /// Default output path (relative to the scene file); `.png` or `.exr`.
-    /// Defaults to the scene's file name with `.png`.
+    /// Defaults to the scene's file name with `.png`, in the current folder.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<String>,
     /// How sample positions are drawn.
@@ -97,14 +105,20 @@ pub enum IntegratorDesc {
     /// soft shadows from area lights with `light_samples` shadow rays per
     /// area light per camera sample.
     Direct {
+        /// Shadow rays per area light per camera sample, 1 to 4096 (default 1): more
+        /// gives smoother soft shadows at proportional cost.
         #[serde(default = "one")]
         light_samples: u32,
     },
     /// Direct lighting at diffuse and glossy surfaces, perfect reflection and
     /// refraction at mirrors and glass, up to `max_depth` specular bounces.
     Whitted {
+        /// Most specular bounces (mirror reflections and glass refractions) followed
+        /// from a camera ray, at most 64 (default 5).
         #[serde(default = "whitted_depth")]
         max_depth: u32,
+        /// Shadow rays per area light at each diffuse or glossy hit, 1 to 4096
+        /// (default 1).
         #[serde(default = "one")]
         light_samples: u32,
     },
@@ -112,8 +126,12 @@ pub enum IntegratorDesc {
     /// path segments as Mitsuba does (2 = direct lighting only); −1 means
     /// unlimited. Russian roulette starts after `rr_depth` segments.
     Path {
+        /// Longest path in segments (default 8): 1 sees only emitters, 2 is direct
+        /// lighting, −1 is unlimited (Russian roulette still ends paths).
         #[serde(default = "path_depth")]
         max_depth: i32,
+        /// Path segments before Russian roulette may end a path (default 5); lower is
+        /// faster and noisier, never biased.
         #[serde(default = "rr_depth")]
         rr_depth: u32,
         /// How the light for next-event estimation is chosen.
@@ -122,6 +140,8 @@ pub enum IntegratorDesc {
     },
 }
 
+/// How next-event estimation picks the one light it samples at each path
+/// vertex.
 #[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 pub enum LightSelectionDesc {
     /// In proportion to emitted power.

@@ -11,15 +11,23 @@ use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
 
+/// A colour parameter of a material: a constant or a texture looked up at the
+/// hit's UV coordinates. Written in any of the forms in the module docs; its
+/// JSON Schema is hand-written (its `JsonSchema` impl), since the forms are
+/// told apart by shape rather than by a tag.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ColorDesc {
+    /// A constant linear RGB colour; a bare number `g` is read as `(g, g, g)`.
     Rgb([f32; 3]),
     /// Image file, relative to the scene file.
     Image(String),
     /// Alternating squares of `a` and `b`, `scale` squares per UV unit.
     Checker {
+        /// Colour of the squares where ⌊u·scale⌋ + ⌊v·scale⌋ is even, linear RGB.
         a: [f32; 3],
+        /// Colour of the other squares, linear RGB.
         b: [f32; 3],
+        /// Squares per UV unit (default 1), > 0.
         scale: f32,
     },
 }

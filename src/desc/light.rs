@@ -3,20 +3,35 @@
 use super::{Color, V3};
 use serde::{Deserialize, Serialize};
 
+/// A light source, in world space (lights take no `transform`). Colours are linear
+/// RGB per channel, in the physical units each variant names.
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub enum LightDesc {
     /// Isotropic point light; `intensity` in W/sr per channel (irradiance at
     /// distance d is I·cosθ/d²). Not visible to camera rays.
-    Point { position: V3, intensity: Color },
+    Point {
+        /// Where the light is, in world space.
+        position: V3,
+        /// Radiant intensity in W/sr per channel, the same in every direction.
+        intensity: Color,
+    },
     /// A point light limited to a circular cone around `direction`:
     /// `cone_degrees` is the cone's full angle, the outer `falloff_degrees`
     /// of it fade smoothly to zero. `intensity` (W/sr) is on the axis.
     Spot {
+        /// Where the light is, in world space.
         position: V3,
+        /// The cone's axis, the way the light shines; need not be unit length.
         direction: V3,
+        /// Radiant intensity along the axis, in W/sr per channel.
         intensity: Color,
+        /// Full opening angle of the cone, in degrees, in (0, 180); no light leaves
+        /// outside it.
         cone_degrees: f32,
+        /// Soft edge, in degrees, in [0, `cone_degrees`] (default 0, a hard edge):
+        /// full intensity within the full angle `cone_degrees − falloff_degrees`,
+        /// fading smoothly to zero at `cone_degrees`.
         #[serde(default)]
         falloff_degrees: f32,
     },
@@ -24,9 +39,15 @@ pub enum LightDesc {
     /// `radiance` (W/(m²·sr)) from the side its normal `normalize(edge_u ×
     /// edge_v)` points to. Visible to camera rays.
     Quad {
+        /// One corner of the light, in world space.
         corner: V3,
+        /// First edge from `corner`; with `edge_u` × `edge_v` it sets the side that
+        /// emits.
         edge_u: V3,
+        /// Second edge from `corner`; not parallel to `edge_u`.
         edge_v: V3,
+        /// Emitted radiance in W/(m²·sr) per channel, the same over the whole surface
+        /// and every direction on the emitting side.
         radiance: Color,
         /// The light surface's own material (a name); default: black, so the
         /// light reflects nothing.
@@ -36,10 +57,16 @@ pub enum LightDesc {
     /// The same light given by its centre and half-edge vectors:
     /// `center + s·half_u + t·half_v`, s,t ∈ [−1,1]; normal `half_u × half_v`.
     Rect {
+        /// Centre of the light, in world space.
         center: V3,
+        /// Half of the first edge: the light spans `center ± half_u`.
         half_u: V3,
+        /// Half of the second edge: the light spans `center ± half_v`.
         half_v: V3,
+        /// Emitted radiance in W/(m²·sr) per channel, as for `Quad`.
         radiance: Color,
+        /// The light surface's own material (a name); default: black, so the light
+        /// reflects nothing.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         material: Option<String>,
     },

@@ -49,16 +49,24 @@ pub struct SceneDesc {
     /// (relative to this file); this file's own materials override theirs.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub include: Vec<String>,
+    /// Where the image is seen from: position, aim, field of view and depth of
+    /// field. The only section every scene must have.
     pub camera: CameraDesc,
+    /// Image size, samples per pixel, seed, sampler and output file; every field
+    /// has a default (512×512, 16 spp).
     #[serde(default)]
     pub film: FilmDesc,
+    /// How light transport is estimated; default `Direct(light_samples: 1)`.
     #[serde(default)]
     pub integrator: IntegratorDesc,
     /// Named materials; objects refer to them by name.
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
+    /// Light sources. Area lights (`Quad`, `Rect`) are also surfaces that camera
+    /// rays see; point and spot lights are not.
     #[serde(default)]
     pub lights: Vec<LightDesc>,
+    /// The geometry; each entry names a material from `materials`.
     #[serde(default)]
     pub objects: Vec<ObjectDesc>,
     /// Named meshes that `Instance` objects place; loaded once each.
@@ -75,12 +83,20 @@ pub struct SceneDesc {
 #[derive(Clone, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(rename = "Include", deny_unknown_fields)]
 pub struct IncludeDesc {
+    /// Further files to include, relative to this file; they may include others
+    /// in turn (a cycle is an error).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub include: Vec<String>,
+    /// Materials offered to the including scene. A scene's own material of the
+    /// same name overrides this one; two included files defining the same name is
+    /// an error.
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
+    /// Lights added to the including scene.
     #[serde(default)]
     pub lights: Vec<LightDesc>,
+    /// Objects added to the including scene; their material names are looked up
+    /// among all the scene's materials, included or its own.
     #[serde(default)]
     pub objects: Vec<ObjectDesc>,
 }
@@ -93,10 +109,16 @@ pub struct TestDesc {
     /// Test image width; the height keeps the film's aspect unless given.
     #[serde(default = "test_width")]
     pub width: u32,
+    /// Test image height in pixels; by default `width` × the film's height/width,
+    /// so the test keeps the film's aspect ratio.
     #[serde(default)]
     pub height: Option<u32>,
+    /// Samples per pixel of the test render (default 16). Kept low: the
+    /// comparison box-downsamples 4×4 before measuring, which averages noise out.
     #[serde(default = "test_spp")]
     pub spp: u32,
+    /// Seed of the test render (default 0), fixed so a rerun of an unchanged
+    /// renderer gives the same image.
     #[serde(default)]
     pub seed: u64,
     /// Largest accepted score against the golden image: the worst

@@ -71,44 +71,71 @@ fn plain_or_some<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::E
 pub enum ObjectDesc {
     /// An implicit surface: a tree of SDF shapes and operators (`desc/sdf.rs`).
     Sdf {
+        /// The implicit surface: one shape, or an operator combining several.
         shape: super::SdfDesc,
+        /// Name of the material in `materials`.
         material: String,
+        /// Placement steps applied in the order written (default none). Only
+        /// rotations, uniform scales and translations: a distance field cannot be
+        /// stretched.
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
+        /// Sphere-tracing settings; the defaults suit most shapes.
         #[serde(default, skip_serializing_if = "super::MarchDesc::is_default")]
         march: super::MarchDesc,
     },
+    /// A sphere of `radius` around `center`, both in scene units before `transform`.
     Sphere {
+        /// Centre of the sphere.
         center: V3,
+        /// Radius in scene units, > 0.
         #[schemars(range(min = 0))]
         radius: f32,
+        /// Name of the material in `materials`.
         material: String,
+        /// Placement steps applied in the order written (default none); they must
+        /// keep the sphere round (equal scale factors; use a `Mesh` for an
+        /// ellipsoid).
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
     /// Infinite plane through `point`, facing `normal`.
     Plane {
+        /// A point on the plane.
         point: V3,
+        /// Direction the plane faces (its surface normal); need not be unit length.
         normal: V3,
+        /// Name of the material in `materials`.
         material: String,
+        /// Placement steps applied in the order written (default none).
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
     /// Parallelogram `corner + s·edge_u + t·edge_v`, s,t ∈ `[0, 1]`.
     Quad {
+        /// One corner of the parallelogram.
         corner: V3,
+        /// First edge from `corner`.
         edge_u: V3,
+        /// Second edge from `corner`, not parallel to `edge_u`.
         edge_v: V3,
+        /// Name of the material in `materials`.
         material: String,
+        /// Placement steps applied in the order written (default none).
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
     /// Rectangle `center + s·half_u + t·half_v`, s,t ∈ [−1,1].
     Rect {
+        /// Centre of the rectangle.
         center: V3,
+        /// Half of the first edge: the shape spans `center ± half_u`.
         half_u: V3,
+        /// Half of the second edge: the shape spans `center ± half_v`.
         half_v: V3,
+        /// Name of the material in `materials`.
         material: String,
+        /// Placement steps applied in the order written (default none).
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
@@ -116,32 +143,48 @@ pub enum ObjectDesc {
     /// Without `material`, each OBJ group keeps its MTL material (grey if it
     /// has none); `materials` replaces some by OBJ group/object or MTL name.
     Mesh {
+        /// Path of the Wavefront OBJ file, relative to the scene file.
         file: String,
+        /// One scene material for every group without an entry in `materials`,
+        /// replacing the MTL materials.
         #[serde(
             default,
             deserialize_with = "plain_or_some",
             skip_serializing_if = "Option::is_none"
         )]
         material: Option<String>,
+        /// Scene materials by OBJ group/object name or MTL material name; these win
+        /// over `material` and over the MTL file.
         #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
         materials: BTreeMap<String, String>,
+        /// Replace the file's normals by area-weighted vertex normals (default
+        /// false): smooth shading for faceted files.
         #[serde(default, skip_serializing_if = "is_false")]
         smooth: bool,
+        /// Placement steps applied in the order written (default none); the mesh is
+        /// baked into world space once.
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
     /// A mesh from the scene's `meshes`, placed by `transform`; materials as
     /// for `Mesh`. Instances share the mesh's memory and BVH.
     Instance {
+        /// Name of the entry in the scene's `meshes` to place.
         mesh: String,
+        /// One scene material for every group without an entry in `materials`,
+        /// replacing the MTL materials.
         #[serde(
             default,
             deserialize_with = "plain_or_some",
             skip_serializing_if = "Option::is_none"
         )]
         material: Option<String>,
+        /// Scene materials by OBJ group/object name or MTL material name; these win
+        /// over `material` and over the MTL file.
         #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
         materials: BTreeMap<String, String>,
+        /// Placement steps applied in the order written (default none); this
+        /// instance's object-to-world transform.
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
@@ -169,6 +212,8 @@ impl ObjectDesc {
         }
     }
 
+    /// The placement steps of any object, in the order written (empty when the scene
+    /// gives none).
     pub fn transform(&self) -> &[TransformDesc] {
         match self {
             ObjectDesc::Sdf { transform, .. } => transform,

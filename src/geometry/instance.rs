@@ -13,10 +13,15 @@ use crate::accel::Aabb;
 use crate::math::Ray;
 use glam::{Affine3A, Mat3A, Vec3A};
 
+/// A mesh placed in the world by an affine transform, with its own material mapping;
+/// many instances can share one mesh and its BVH.
 #[derive(Clone, Debug)]
 pub struct Instance {
+    /// Index into [`Geometry::meshes`](super::Geometry::meshes).
     pub mesh: u32,
+    /// Object-to-world transform: where this copy of the mesh goes.
     pub world_from_object: Affine3A,
+    /// The inverse transform, which moves world rays into the mesh's space.
     pub object_from_world: Affine3A,
     /// Inverse transpose of the linear part, for normals.
     normal_from_object: Mat3A,
@@ -52,11 +57,15 @@ impl Instance {
         }
     }
 
+    /// Closest hit of a world-space `ray` with the mesh in `(0, t_max)`; `t` is the
+    /// same in both spaces because the direction is not renormalised.
     #[inline]
     pub fn closest(&self, ray: &Ray, t_max: f32, meshes: &[Mesh]) -> Option<MeshHit> {
         meshes[self.mesh as usize].closest(&self.local(ray), t_max)
     }
 
+    /// Whether the mesh blocks a world-space `ray` in `(0, t_max)`; a shadow ray
+    /// stops at the first hit found.
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32, meshes: &[Mesh]) -> bool {
         meshes[self.mesh as usize].occluded(&self.local(ray), t_max)

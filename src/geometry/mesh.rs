@@ -16,9 +16,14 @@ use crate::math::Ray;
 use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
 
+/// A triangle mesh in its own (object) space, with its bottom-level BVH once
+/// [`Mesh::prepare`] has run.
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
+    /// Vertex positions, in object space.
     pub positions: Vec<Vec3A>,
+    /// Vertex indices of each triangle; counter-clockwise seen from outside, so the
+    /// geometric normal `(b − a) × (c − a)` points out.
     pub indices: Vec<[u32; 3]>,
     /// Per-vertex shading normals (same indexing as `positions`), or empty.
     pub normals: Vec<Vec3A>,
@@ -39,7 +44,9 @@ pub struct Mesh {
 /// Where a ray meets a mesh, in the mesh's own space.
 #[derive(Clone, Copy, Debug)]
 pub struct MeshHit {
+    /// Ray parameter of the hit (the same in object and world space).
     pub t: f32,
+    /// Index of the triangle hit, in leaf order after `prepare`.
     pub tri: u32,
     /// Barycentrics of the triangle's second and third vertices.
     pub bc: Vec2,
@@ -208,6 +215,7 @@ impl Mesh {
         self.slots.get(tri as usize).copied().unwrap_or(0)
     }
 
+    /// Bounds of triangle `tri`, in object space.
     pub fn tri_bounds(&self, tri: u32) -> Aabb {
         let (a, b, c) = self.corners(tri);
         Aabb::from_points(&[a, b, c])
@@ -221,10 +229,13 @@ impl Mesh {
         }
     }
 
+    /// Number of triangles.
     pub fn triangle_count(&self) -> usize {
         self.indices.len()
     }
 
+    /// The mesh's own BVH (bottom level), once `prepare` has built it; `None` before.
+    /// Exposed for statistics.
     pub fn blas(&self) -> Option<&WideBvh> {
         self.blas.as_ref()
     }

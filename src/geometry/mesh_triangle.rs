@@ -18,16 +18,20 @@ use glam::{Vec2, Vec3, Vec3A};
 /// Meshes up to this many triangles are flattened into the scene BVH.
 pub const FLATTEN_MAX: usize = 64;
 
+/// A triangle of a small baked mesh, as its own entry in the scene BVH.
 #[derive(Clone, Copy, Debug)]
 pub struct MeshTriangle {
     /// World-space corners (the mesh is baked, so they are its own).
     pub p: [Vec3; 3],
     /// The instance that shades it, and the triangle's index in its mesh.
     pub instance: u32,
+    /// Index of the triangle in that instance's mesh.
     pub tri: u32,
 }
 
 impl MeshTriangle {
+    /// Watertight intersection with `wt` in `(0, t_max)`: the distance and the
+    /// barycentrics of the second and third corners.
     #[inline(always)]
     pub fn intersect(&self, wt: &WatertightRay, t_max: f32) -> Option<(f32, Vec2)> {
         let [a, b, c] = self.p;
@@ -40,6 +44,7 @@ impl MeshTriangle {
         geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
     }
 
+    /// World-space bounds of the three corners.
     pub fn bounds(&self) -> Aabb {
         Aabb::from_points(&self.p.map(Vec3A::from))
     }

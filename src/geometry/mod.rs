@@ -36,14 +36,19 @@ use triangle::WatertightRay;
 /// Marks "no area light" in [`Shape`] emitter fields.
 pub const NO_LIGHT: u32 = u32::MAX;
 
+/// One entry of the scene's BVH (or of its unbounded list): a small value or an index
+/// into [`Geometry`] for shapes that own big data.
 #[derive(Clone, Copy, Debug)]
 pub enum Shape {
     /// Implicit surface `i` of `Geometry::sdfs`.
     Sdf(u32),
+    /// An analytic sphere, in world space.
     Sphere(Sphere),
+    /// A parallelogram, in world space; area lights are quads too.
     Quad(Quad),
-    /// Instance `0` of [`Geometry::instances`]: a mesh and its transform.
+    /// Instance `i` of [`Geometry::instances`]: a mesh and its transform.
     Instance(u32),
+    /// An infinite plane; unbounded, so it is tested outside the BVH.
     Plane(Plane),
     /// A triangle of a small mesh, flattened into the scene BVH.
     Triangle(MeshTriangle),
@@ -52,7 +57,10 @@ pub enum Shape {
 /// Meshes and their placements, shared by every [`Shape::Instance`].
 #[derive(Clone, Debug, Default)]
 pub struct Geometry {
+    /// Triangle meshes, each with its own BVH, in object space (world space for a
+    /// baked `Mesh` object, whose instance is the identity).
     pub meshes: Vec<Mesh>,
+    /// Placements of the meshes: a mesh index, its transform and its materials.
     pub instances: Vec<Instance>,
     /// Implicit surfaces, referred to by [`Shape::Sdf`].
     pub sdfs: Vec<SdfObject>,
@@ -61,14 +69,19 @@ pub struct Geometry {
 /// A ray–surface intersection with what shading needs.
 #[derive(Clone, Copy, Debug)]
 pub struct Hit {
+    /// Ray parameter of the hit: distance along the ray in units of its direction's
+    /// length (world units for the unit-length rays integrators trace).
     pub t: f32,
+    /// World-space hit point.
     pub p: Vec3A,
     /// Unit geometric normal, on the side the shape defines as outside
     /// (not flipped toward the ray).
     pub ng: Vec3A,
     /// Unit shading normal (interpolated for smooth meshes), same side as `ng`.
     pub ns: Vec3A,
+    /// Surface texture coordinates, for textured materials.
     pub uv: Vec2,
+    /// Index into the scene's materials.
     pub material: u32,
     /// Index of the area light this surface is, or [`NO_LIGHT`].
     pub light: u32,

@@ -17,6 +17,8 @@ use std::path::Path;
 /// One OBJ object/group (tobj model): a material slot of the mesh.
 #[derive(Clone, Debug)]
 pub struct ObjGroup {
+    /// The OBJ object/group name, which `materials: { ... }` keys of a scene object
+    /// may name.
     pub name: String,
     /// Index into [`ObjData::materials`].
     pub material: Option<usize>,
@@ -25,8 +27,12 @@ pub struct ObjGroup {
 /// A loaded OBJ: the mesh (slot `k` = `groups[k]`) and its MTL materials.
 #[derive(Clone, Debug)]
 pub struct ObjData {
+    /// All groups merged into one triangle mesh, in the file's coordinates.
     pub mesh: Mesh,
+    /// The file's objects/groups, in slot order.
     pub groups: Vec<ObjGroup>,
+    /// The MTL materials the file refers to (empty if it has no MTL file or the file
+    /// is missing).
     pub materials: Vec<tobj::Material>,
     /// Repairs made, one sentence each.
     pub warnings: Vec<String>,

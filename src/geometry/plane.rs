@@ -4,14 +4,20 @@ use super::{Hit, NO_LIGHT};
 use crate::math::{Frame, Ray};
 use glam::{Vec2, Vec3A};
 
+/// An infinite plane in world space, hit from both sides.
 #[derive(Clone, Copy, Debug)]
 pub struct Plane {
+    /// A point on the plane.
     pub point: Vec3A,
+    /// Unit normal: the side the plane faces.
     pub normal: Vec3A,
+    /// Index into the scene's materials.
     pub material: u32,
 }
 
 impl Plane {
+    /// Distance along `ray` to the plane in `(1e-5, t_max)`, from either side; `None`
+    /// for rays parallel to it.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<f32> {
         let denom = self.normal.dot(ray.d);
@@ -22,6 +28,8 @@ impl Plane {
         (t > 1e-5 && t < t_max).then_some(t)
     }
 
+    /// Shading record at `p`; UVs are coordinates in the plane's own frame, one unit
+    /// per scene unit, so textures repeat once per unit.
     pub fn hit(&self, p: Vec3A, t: f32) -> Hit {
         // UVs: coordinates in the plane's own frame, one unit per scene unit.
         let f = Frame::from_normal(self.normal);

@@ -6,10 +6,15 @@ use crate::accel::Aabb;
 use crate::math::Ray;
 use glam::{Vec2, Vec3A};
 
+/// A parallelogram in world space, hit from both sides; an area light's emitting
+/// surface is one too.
 #[derive(Clone, Copy, Debug)]
 pub struct Quad {
+    /// One corner, in world space.
     pub corner: Vec3A,
+    /// First edge from `corner`; `s` runs along it.
     pub u: Vec3A,
+    /// Second edge from `corner`; `t` runs along it.
     pub v: Vec3A,
     /// `normalize(u × v)`.
     pub n: Vec3A,
@@ -18,12 +23,15 @@ pub struct Quad {
     /// and cross products were most of the cost of a quad test.
     du: Vec3A,
     dv: Vec3A,
+    /// Index into the scene's materials.
     pub material: u32,
     /// Area light index or `NO_LIGHT`.
     pub light: u32,
 }
 
 impl Quad {
+    /// The parallelogram `corner + s·u + t·v`; `u` and `v` must not be parallel.
+    /// `light` is the area light it is, or `NO_LIGHT`.
     pub fn new(corner: Vec3A, u: Vec3A, v: Vec3A, material: u32, light: u32) -> Self {
         let uxv = u.cross(v);
         let inv = 1.0 / uxv.length_squared();
@@ -39,6 +47,7 @@ impl Quad {
         }
     }
 
+    /// Area in square scene units, `|u × v|`.
     pub fn area(&self) -> f32 {
         self.u.cross(self.v).length()
     }
@@ -62,6 +71,8 @@ impl Quad {
         ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r)).then_some((t, Vec2::new(s, r)))
     }
 
+    /// Shading record for a hit at distance `t` found by [`Quad::intersect`]; `uv` is
+    /// `(s, t)` in `[0, 1]²`.
     pub fn hit(&self, ray: &Ray, t: f32) -> Hit {
         let uv = self
             .intersect(ray, f32::INFINITY)
@@ -77,6 +88,7 @@ impl Quad {
         }
     }
 
+    /// World-space bounds of the four corners.
     pub fn bounds(&self) -> Aabb {
         let c = self.corner;
         Aabb::from_points(&[c, c + self.u, c + self.v, c + self.u + self.v])

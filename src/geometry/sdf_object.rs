@@ -34,16 +34,22 @@ use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 ///   leaves anyway.
 pub const MIN_EPS: f32 = 2.5e-5;
 
+/// One scene SDF object: what [`super::Shape::Sdf`] indexes.
 #[derive(Clone, Debug)]
 pub struct SdfObject {
+    /// The surface, already in world space.
     pub sdf: Sdf,
+    /// How rays march it.
     pub params: MarchParams,
+    /// Index into the scene's materials.
     pub material: u32,
     /// Centre of the spherical UV map: the middle of the bounds.
     pub uv_center: Vec3A,
 }
 
 impl SdfObject {
+    /// An object marched with `params` and shaded with `material`; its UV centre is
+    /// the middle of its bounds (the origin when unbounded).
     pub fn new(sdf: Sdf, params: MarchParams, material: u32) -> Self {
         let b = sdf.bounds();
         let c = 0.5 * (b.min + b.max);
@@ -126,10 +132,13 @@ pub struct SdfStats {
     pub traces: u64,
     /// Distance evaluations over all marches (normals not included).
     pub steps: u64,
+    /// Number of marches per step-count bucket (see [`HISTOGRAM_BUCKETS`]).
     pub histogram: [u64; HISTOGRAM_BUCKETS],
 }
 
 impl SdfStats {
+    /// Mean distance evaluations per march: the cost figure to compare march settings
+    /// by.
     pub fn steps_per_trace(&self) -> f64 {
         self.steps as f64 / self.traces.max(1) as f64
     }

@@ -6,10 +6,14 @@ use crate::math::Ray;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
 
+/// An analytic sphere in world space.
 #[derive(Clone, Copy, Debug)]
 pub struct Sphere {
+    /// Centre, in world space.
     pub center: Vec3A,
+    /// Radius in scene units, > 0.
     pub radius: f32,
+    /// Index into the scene's materials.
     pub material: u32,
 }
 
@@ -49,6 +53,8 @@ impl Sphere {
         }
     }
 
+    /// Shading record at `p` (projected back onto the surface), with the spherical
+    /// UVs of [`Sphere::uv`].
     pub fn hit(&self, p: Vec3A, t: f32) -> Hit {
         let mut h = self.hit_without_uv(p, t);
         h.uv = Self::uv(h.ng);
@@ -78,6 +84,7 @@ impl Sphere {
         Vec2::new(u, 1.0 - v)
     }
 
+    /// World-space bounding box.
     pub fn bounds(&self) -> Aabb {
         Aabb {
             min: self.center - Vec3A::splat(self.radius),

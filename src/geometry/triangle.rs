@@ -17,6 +17,8 @@ use glam::{Vec2, Vec3A, Vec4};
 /// The per-ray part of the watertight test: the axis permutation and shear.
 #[derive(Clone, Copy, Debug)]
 pub struct WatertightRay {
+    /// The ray origin: vertices are moved by `−o` before the shear, so the ray runs
+    /// through the origin.
     pub o: Vec3A,
     k: [usize; 3],
     /// Shear `(Sx, Sy, Sz)` of the paper.
@@ -24,6 +26,7 @@ pub struct WatertightRay {
 }
 
 impl WatertightRay {
+    /// Precomputes the axis permutation and shear for `ray`, once per traversal.
     #[inline]
     pub fn new(ray: &Ray) -> Self {
         let d = ray.d;
@@ -102,7 +105,9 @@ pub const FLOATS: usize = 9;
 /// spare lanes, which the lane mask discards, so leaves need no padding; the
 /// caller keeps 3 spare floats after the last block.
 pub struct Tri4<'a> {
+    /// The block's corner coordinates, `count` triangles in the SoA layout above.
     pub soa: &'a [f32],
+    /// Number of triangles in the block, 1 to 4.
     pub count: u32,
 }
 
@@ -134,6 +139,7 @@ pub struct WatertightRay4 {
 }
 
 impl WatertightRay4 {
+    /// Precomputes the watertight setup for `ray` and splats it over four lanes.
     #[inline]
     pub fn new(ray: &Ray) -> Self {
         let one = WatertightRay::new(ray);

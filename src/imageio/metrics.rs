@@ -8,12 +8,21 @@
 use super::Image;
 use crate::math::Rgb;
 
+/// Error figures of an image `a` against a reference `b` (see the module docs for the
+/// formulas).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Comparison {
+    /// Root-mean-square error, in linear RGB units.
     pub rmse: f64,
+    /// Relative MSE, `mean((a − b)² / (b² + 0.01))`: what `ronray check` compares
+    /// with a scene's tolerance.
     pub rel_mse: f64,
+    /// Peak signal-to-noise ratio in dB (peak 1); infinite for identical images.
     pub psnr: f64,
+    /// Mean of `a` per channel over every pixel (the mask does not apply): a
+    /// brightness check.
     pub mean_a: [f64; 3],
+    /// Mean of `b` per channel over every pixel.
     pub mean_b: [f64; 3],
     /// Pixels compared (after the mask).
     pub pixels: usize,
@@ -71,10 +80,13 @@ pub fn compare(a: &Image, b: &Image, skip: Option<&[bool]>) -> Result<Comparison
 pub struct Block {
     /// Top-left pixel of the block.
     pub x: usize,
+    /// Top row of the block.
     pub y: usize,
     /// Pixels in the block (fewer than `size²` on the right and bottom edges).
     pub pixels: usize,
+    /// Mean of `a` per channel over the block.
     pub mean_a: [f64; 3],
+    /// Mean of `b` per channel over the block.
     pub mean_b: [f64; 3],
     /// Per-channel sum over the block's pixels of (a − b)².
     pub sum_sq_diff: [f64; 3],

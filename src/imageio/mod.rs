@@ -1,26 +1,36 @@
 //! Images in and out: a linear float RGB buffer, read from PNG/EXR/PFM,
 //! written to PNG (sRGB, 8-bit) or EXR (linear float) atomically, and
-//! compared by metrics.
+//! compared by metrics; [`PixelRect`] names a part of one and
+//! [`SampleSums`] holds its exact per-pixel sample sums.
 
 pub mod metrics;
 pub mod read;
+pub mod rect;
+pub mod sample_sums;
 pub mod write;
 
 pub use metrics::{Block, Comparison, blocks, compare};
 pub use read::read_image;
-pub use write::write_image;
+pub use rect::PixelRect;
+pub use sample_sums::SampleSums;
+pub use write::{write_atomic, write_image};
 
 use crate::math::Rgb;
 
 /// Linear RGB pixels, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
+    /// Row-major, top row first: pixel `(x, y)` is `pixels[y·width + x]`; linear RGB
+    /// radiance, not clamped.
     pub pixels: Vec<Rgb>,
 }
 
 impl Image {
+    /// A black image of `width × height` pixels.
     pub fn new(width: u32, height: u32) -> Self {
         Self {
             width,
@@ -29,6 +39,7 @@ impl Image {
         }
     }
 
+    /// Pixel `(x, y)`, `x` from the left, `y` from the top; panics outside the image.
     #[inline]
     pub fn get(&self, x: u32, y: u32) -> Rgb {
         self.pixels[(y * self.width + x) as usize]
@@ -87,20 +98,34 @@ pub fn srgb_decode(x: f32) -> f32 {
     }
 }
 
+/// Why an image could not be read or written; the message names the file.
 #[derive(Debug, thiserror::Error)]
 pub enum ImageError {
+    /// The file could not be opened or decoded.
     #[error("cannot read image {path}: {reason}")]
     Read {
+        /// The image file.
         path: std::path::PathBuf,
+        /// What the decoder or the file system said.
         reason: String,
     },
+    /// The file could not be encoded or written (the previous file, if any, is left
+    /// untouched).
     #[error("cannot write image {path}: {reason}")]
     Write {
+        /// The image file.
         path: std::path::PathBuf,
+        /// What the encoder or the file system said.
         reason: String,
     },
+    /// The file name's extension is not an image format ronray handles.
     #[error("unsupported image extension for {path} (use .png or .exr{pfm})", pfm = if *.reading { ", .pfm" } else { "" })]
-    Extension { path: std::path::PathBuf, reading: bool },
+    Extension {
+        /// The image file.
+        path: std::path::PathBuf,
+        /// True when reading (which also accepts `.pfm`), false when writing.
+        reading: bool,
+    },
 }
 
 #[cfg(test)]

@@ -4,6 +4,8 @@ use super::{Image, ImageError, srgb_decode};
 use crate::math::Rgb;
 use std::path::Path;
 
+/// Reads `path` into linear RGB, choosing the format by extension: `.png`
+/// (sRGB-decoded), `.exr` or `.pfm` (linear as stored).
 pub fn read_image(path: &Path) -> Result<Image, ImageError> {
     let ext = path
         .extension()
@@ -77,17 +79,34 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
         "Pf" => 1,
         other => return Err(format!("not a PFM file (magic `{other}`)")),
     };
+    let dim = |x: f64| {
+        if x.fract() == 0.0 && (1.0..=f64::from(u32::MAX)).contains(&x) {
+            Ok(x as u32)
+        } else {
+            Err(format!("bad PFM size {x}"))
+        }
+    };
     let parse = |s: &str| {
         s.parse::<f64>()
             .map_err(|_| format!("bad PFM header field `{s}`"))
     };
     let (w, h, scale) = (
-        parse(&fields[1])? as u32,
-        parse(&fields[2])? as u32,
+        dim(parse(&fields[1])?)?,
+        dim(parse(&fields[2])?)?,
         parse(&fields[3])?,
     );
-    let n = (w as usize) * (h as usize) * channels;
-    let data = bytes.get(i..i + 4 * n).ok_or("truncated PFM data")?;
+    // Checked: a header may claim any size; the data must be there before
+    // anything is allocated or indexed.
+    let n = (w as usize)
+        .checked_mul(h as usize)
+        .and_then(|p| p.checked_mul(channels))
+        .filter(|&n| n > 0)
+        .ok_or_else(|| format!("PFM size {w}×{h} is empty or too large"))?;
+    let end = n
+        .checked_mul(4)
+        .and_then(|b| b.checked_add(i))
+        .ok_or("PFM size too large")?;
+    let data = bytes.get(i..end).ok_or("truncated PFM data")?;
     let mut img = Image::new(w, h);
     let value = |k: usize| {
         let b = [data[4 * k], data[4 * k + 1], data[4 * k + 2], data[4 * k + 3]];
@@ -108,6 +127,47 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
         img.pixels[((h - 1 - row) * w + x) as usize] = v;
     }
     Ok(img)
+}
+
+/// Largest side of an image ronray decodes (textures, images to compare).
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+/// Largest number of pixels of a decoded texture: 8192 × 8192. A PNG of
+/// 11000 × 11000 is 375 KB on disk and 2.6 GB decoded, so the size is read
+/// from the header and refused before decoding. Raise it here.
+pub const MAX_TEXTURE_PIXELS: u64 = 8192 * 8192;
+
+/// Decodes an image file for use as a texture: regular files only, its size
+/// checked from the header against [`MAX_TEXTURE_PIXELS`] before anything is
+/// decoded, and the decoder's own allocation capped.
+pub fn decode_texture(path: &Path) -> Result<image::DynamicImage, String> {
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    if !meta.is_file() {
+        return Err(format!("{} is not a regular file", path.display()));
+    }
+    let open = || {
+        image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))
+    };
+    let (w, h) = open()?
+        .into_dimensions()
+        .map_err(|e| format!("cannot decode {}: {e}", path.display()))?;
+    if u64::from(w) * u64::from(h) > MAX_TEXTURE_PIXELS || w.max(h) > MAX_IMAGE_SIDE {
+        return Err(format!(
+            "{} is {w}×{h}: above the texture limit of {} pixels (8192×8192); scale it down",
+            path.display(),
+            MAX_TEXTURE_PIXELS
+        ));
+    }
+    let mut reader = open()?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(MAX_TEXTURE_PIXELS * 16);
+    reader.limits(limits);
+    reader
+        .decode()
+        .map_err(|e| format!("cannot decode {}: {e}", path.display()))
 }
 
 #[cfg(test)]

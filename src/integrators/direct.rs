@@ -9,6 +9,8 @@ use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 
+/// Direct-lighting estimator: emission seen by the camera plus every light's
+/// contribution at the first hit, by light sampling only.
 #[derive(Clone, Copy, Debug)]
 pub struct Direct {
     /// Shadow rays per area light per camera sample (the seed report's
@@ -17,6 +19,8 @@ pub struct Direct {
 }
 
 impl Direct {
+    /// Radiance in W/(m²·sr) arriving along camera `ray`: emission at the first hit
+    /// plus the light it reflects directly from every light.
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
         counters.rays += 1;
         let Some(hit) = scene.intersect(ray, f32::INFINITY) else {

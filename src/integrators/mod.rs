@@ -16,20 +16,29 @@ use crate::sampler::Sampler;
 use crate::scene::Scene;
 use glam::Vec3A;
 
+/// The light-transport estimator a render uses; a closed set, so an `enum` forwarded
+/// by `match` rather than a trait object.
 #[derive(Clone, Copy, Debug)]
 pub enum Integrator {
+    /// Emission plus one bounce of light (see [`direct`]).
     Direct(Direct),
+    /// Direct lighting plus perfect specular chains (see [`whitted`]).
     Whitted(Whitted),
+    /// Path tracing with next-event estimation and MIS (see [`path`]).
     Path(Path),
 }
 
 /// Per-thread counters, summed for the render summary.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Counters {
+    /// Rays traced (camera, bounce and shadow rays), for the rays/s figure.
     pub rays: u64,
 }
 
 impl Integrator {
+    /// Radiance in W/(m²·sr) arriving at the camera along `ray` (a camera ray in
+    /// world space), one sample of the chosen estimator; `sampler` must be set to
+    /// this pixel and sample.
     #[inline]
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
         match self {

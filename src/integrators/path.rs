@@ -23,14 +23,19 @@ use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 
+/// Path-tracing estimator with next-event estimation and MIS; the module docs pin
+/// down its depth convention.
 #[derive(Clone, Copy, Debug)]
 pub struct Path {
     /// Segments from the camera; `u32::MAX` when unlimited.
     pub max_depth: u32,
+    /// Segments a path has before Russian roulette may end it.
     pub rr_depth: u32,
 }
 
 impl Path {
+    /// Radiance in W/(m²·sr) arriving along camera `ray`, one path's estimate;
+    /// unbiased for unlimited depth.
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
         let picker: &LightPicker = &scene.light_picker;
         let mut l = Rgb::ZERO;

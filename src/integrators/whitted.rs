@@ -13,14 +13,20 @@ use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 
+/// Whitted-style estimator: direct lighting at diffuse and glossy hits, perfect
+/// reflection and refraction followed through mirrors and glass.
 #[derive(Clone, Copy, Debug)]
 pub struct Whitted {
     /// Specular bounces followed after the camera ray.
     pub max_depth: u32,
+    /// Shadow rays per area light at each diffuse or glossy hit; point and spot
+    /// lights take one.
     pub light_samples: u32,
 }
 
 impl Whitted {
+    /// Radiance in W/(m²·sr) arriving along camera `ray`, following one specular
+    /// chain of at most `max_depth` bounces.
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
         let mut l = Rgb::ZERO;
         let mut beta = Rgb::ONE;

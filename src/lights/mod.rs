@@ -14,10 +14,16 @@ pub use spot::SpotLight;
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
+/// A light source of the runtime scene, in world space; a closed set, so an `enum`
+/// forwarded by `match`.
 #[derive(Clone, Copy, Debug)]
 pub enum Light {
+    /// Isotropic point light (a delta light).
     Point(PointLight),
+    /// Point light limited to a cone (a delta light).
     Spot(SpotLight),
+    /// One-sided parallelogram area light; its surface is also a
+    /// [`crate::geometry::Quad`] in the scene BVH.
     Quad(QuadLight),
 }
 
@@ -39,10 +45,15 @@ pub struct LightSample {
     pub li: Rgb,
     /// Solid-angle density of `wi`; 1 for delta lights.
     pub pdf: f32,
+    /// True for point and spot lights: `wi` is the only direction the light arrives
+    /// from, so BSDF sampling can never hit it and MIS does not apply.
     pub delta: bool,
 }
 
 impl Light {
+    /// Samples light arriving at world-space point `p`, `u` ∈ [0, 1)² choosing the
+    /// point on an area light; `None` if no light reaches `p` (behind an area light,
+    /// outside a spot's cone, or at the light's own position).
     #[inline]
     pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
         match self {
@@ -61,6 +72,8 @@ impl Light {
         }
     }
 
+    /// True for lights without area (point, spot): sampled exactly, never hit by
+    /// rays.
     pub fn is_delta(&self) -> bool {
         !matches!(self, Light::Quad(_))
     }

@@ -5,14 +5,18 @@ use crate::math::Rgb;
 use glam::Vec3A;
 use std::f32::consts::PI;
 
+/// Isotropic point light: the same intensity in every direction.
 #[derive(Clone, Copy, Debug)]
 pub struct PointLight {
+    /// Position in world space.
     pub position: Vec3A,
     /// Radiant intensity, W/sr.
     pub intensity: Rgb,
 }
 
 impl PointLight {
+    /// The light reaching world-space point `p`: `I/r²` from the light's position,
+    /// pdf 1; `None` at the light's own position.
     pub fn sample(&self, p: Vec3A) -> Option<LightSample> {
         let d = self.position - p;
         let dist2 = d.length_squared();

@@ -4,6 +4,8 @@
 use super::Light;
 use crate::math::luminance;
 
+/// Picks the light each next-event estimate samples, from a precomputed distribution
+/// over the scene's lights (by power or uniform).
 #[derive(Clone, Debug, Default)]
 pub struct LightPicker {
     /// Probability of each light.
@@ -57,6 +59,8 @@ impl LightPicker {
         Some((i, self.pmf[i])).filter(|&(_, p)| p > 0.0)
     }
 
+    /// Probability of picking light `i`: what a light-sampled pdf is multiplied by
+    /// when it is weighted against BSDF sampling.
     #[inline]
     pub fn pmf(&self, i: usize) -> f32 {
         self.pmf.get(i).copied().unwrap_or(0.0)

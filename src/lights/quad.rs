@@ -5,19 +5,27 @@ use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
 
+/// One-sided parallelogram `corner + s·u + t·v`, s,t ∈ [0, 1], emitting uniform
+/// radiance from the side `u × v` points to.
 #[derive(Clone, Copy, Debug)]
 pub struct QuadLight {
+    /// One corner, in world space.
     pub corner: Vec3A,
+    /// First edge from `corner`.
     pub u: Vec3A,
+    /// Second edge from `corner`.
     pub v: Vec3A,
     /// Emitting side: `normalize(u × v)`.
     pub n: Vec3A,
+    /// Area in m² (square scene units), `|u × v|`.
     pub area: f32,
     /// Emitted radiance, W/(m²·sr).
     pub radiance: Rgb,
 }
 
 impl QuadLight {
+    /// The light spanned by `u` and `v` from `corner` (not parallel), emitting
+    /// `radiance` in W/(m²·sr) toward `u × v`.
     pub fn new(corner: Vec3A, u: Vec3A, v: Vec3A, radiance: Rgb) -> Self {
         let c = u.cross(v);
         Self {

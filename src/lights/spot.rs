@@ -7,8 +7,11 @@ use crate::math::Rgb;
 use glam::Vec3A;
 use std::f32::consts::PI;
 
+/// A point light restricted to a circular cone around `direction`, with a smooth
+/// falloff band at its edge.
 #[derive(Clone, Copy, Debug)]
 pub struct SpotLight {
+    /// Position in world space.
     pub position: Vec3A,
     /// Unit axis of the cone.
     pub direction: Vec3A,
@@ -52,6 +55,8 @@ impl SpotLight {
         t * t * (3.0 - 2.0 * t)
     }
 
+    /// The light reaching world-space point `p`: `I·falloff/r²`, pdf 1; `None`
+    /// outside the cone or at the light's position.
     pub fn sample(&self, p: Vec3A) -> Option<LightSample> {
         let d = self.position - p;
         let dist2 = d.length_squared();

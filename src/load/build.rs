@@ -1,12 +1,13 @@
 //! Desc → runtime: names become indices, defaults are filled, meshes are
 //! loaded and transformed, the BVH is built. Each kind of thing builds itself
 //! in its own file (`material.rs`, `light.rs`, `object.rs`, `mesh.rs`,
-//! `sdf/`, `view.rs`) into one [`BuildContext`]; this file runs them in
+//! `sdf/`, `view.rs`) into one `BuildContext`; this file runs them in
 //! order and assembles the [`Scene`]. Problems found here (an OBJ that does
 //! not parse) are reported like validation problems.
 
 use super::mesh::MeshState;
 use super::mtl::MtlMaterials;
+use super::validate::MAX_COORD;
 use crate::accel::{Aabb, Leaves, WideBvh};
 use crate::desc::{IntegratorDesc, LightSelectionDesc, SceneDesc};
 use crate::diagnostic::Problem;
@@ -23,14 +24,18 @@ use std::time::{Duration, Instant};
 /// What building cost, for `--stats` and the render summary.
 #[derive(Clone, Debug, Default)]
 pub struct BuildStats {
+    /// Time to build the top-level (scene) BVH.
     pub bvh_time: Duration,
+    /// Time for everything before it: materials and textures, lights, objects, OBJ
+    /// files read and each mesh's own BVH built.
     pub load_time: Duration,
     /// Triangles over all placed meshes (instances counted each time).
     pub triangles: usize,
     /// Texture files read while building (watch mode re-reads on change).
     pub texture_files: Vec<PathBuf>,
-    /// Distinct meshes held in memory, and their placements.
+    /// Distinct meshes held in memory.
     pub meshes: usize,
+    /// Placements of those meshes (`Mesh` and `Instance` objects).
     pub instances: usize,
     /// Bytes of the meshes' BVHs and inline triangles (each mesh once).
     pub mesh_accel_bytes: usize,
@@ -110,7 +115,9 @@ pub fn build_with(
         super::light::build_light(&mut ctx, l);
     }
     for (i, o) in desc.objects.iter().enumerate() {
+        let (shapes, unbounded) = (ctx.shapes.len(), ctx.unbounded.len());
         super::object::build_object(&mut ctx, i, o);
+        check_extent(&mut ctx, i, shapes, unbounded);
     }
     if !ctx.problems.is_empty() {
         return Err(ctx.problems);
@@ -151,6 +158,27 @@ pub fn build_with(
         bvh,
     };
     Ok((scene, super::view::build_view(desc, base), stats))
+}
+
+/// Object `i` (its shapes from `shapes` and `unbounded` on) must lie within
+/// ±[`MAX_COORD`] once placed: a mesh scaled by 1e37 validates (its file is
+/// not read by the checks) but its squared distances would overflow.
+fn check_extent(ctx: &mut BuildContext, i: usize, shapes: usize, unbounded: usize) {
+    let far = ctx.shapes[shapes..]
+        .iter()
+        .chain(&ctx.unbounded[unbounded..])
+        .filter_map(|s| s.bounds(&ctx.geometry))
+        .map(|b| b.min.abs().max(b.max.abs()).max_element())
+        .find(|m| m.is_nan() || *m > MAX_COORD);
+    if let Some(m) = far {
+        ctx.problems.push(
+            Problem::new(
+                format!("objects[{i}]"),
+                format!("the placed object reaches {m:e}, beyond ±{MAX_COORD:e}"),
+            )
+            .help("scene coordinates are 32-bit floats; scale the object or the scene down"),
+        );
+    }
 }
 
 /// The scene BVH over the bounded shapes, and every shape in the order the

@@ -20,6 +20,8 @@ pub fn to_ron(desc: &SceneDesc) -> Result<String, String> {
     Ok(format!("Scene{body}\n"))
 }
 
+/// Canonical JSON (`ronray fmt --json`): pretty-printed, fields in declaration
+/// order, newline-terminated; ronray reads it as it reads RON.
 pub fn to_json(desc: &SceneDesc) -> Result<String, String> {
     serde_json::to_string_pretty(desc)
         .map(|s| s + "\n")

@@ -12,10 +12,12 @@
 //! Every merged entry remembers where it came from, so a problem found in
 //! the composed scene is reported in the file and at the line that wrote it.
 
+use super::document::Gaps;
+use super::source;
 use super::spans::Spans;
-use crate::desc::{ColorDesc, IncludeDesc, ObjectDesc, SceneDesc};
-use crate::diagnostic::Problem;
-use crate::diagnostic::{Diagnostic, Report, offset_of};
+use crate::desc::{ColorDesc, IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
+use crate::diagnostic::{Diagnostic, Problem, Report};
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 /// Where a path of the composed scene was written.
@@ -29,31 +31,41 @@ struct Origin {
 /// The files a composed scene was read from, and where each entry came from.
 #[derive(Debug, Default)]
 pub struct Composition {
+    /// Every file read (the scene first, then its includes) with its text.
     pub sources: Vec<(PathBuf, String)>,
+    /// What each source's partial read left out (parallel to `sources`).
+    gaps: Vec<Gaps>,
     origins: Vec<Origin>,
+    /// Mistakes in included files that did not stop the composition.
+    pub diagnostics: Vec<Diagnostic>,
 }
 
 impl Composition {
     /// A scene without includes: everything is in file 0.
-    pub fn single(path: &Path, text: &str) -> Self {
+    pub fn single(path: &Path, text: &str, gaps: Gaps) -> Self {
         Self {
             sources: vec![(path.to_path_buf(), text.to_string())],
-            origins: Vec::new(),
+            gaps: vec![gaps],
+            ..Self::default()
         }
     }
 
-    /// Turns problems of the composed scene into diagnostics in the right file.
+    /// Turns problems of the composed scene into diagnostics in the file and
+    /// at the entry that wrote them. Problems inside a stand-in for a broken
+    /// entry are dropped: that entry's parse error is already reported.
     pub fn locate(&self, problems: &[Problem]) -> Report {
         let spans: Vec<Spans> = self.sources.iter().map(|(_, t)| Spans::scan(t)).collect();
         let diagnostics = problems
             .iter()
-            .map(|p| {
+            .filter_map(|p| {
                 let (file, path) = self.origin_of(&p.path);
+                let path = self
+                    .gaps
+                    .get(file)
+                    .map_or(Some(path.clone()), |g| g.original(&path))?;
                 let (fpath, text) = &self.sources[file];
-                let mut d = Diagnostic::new(fpath, text, spans[file].find(&path), p.message.clone());
-                d.path = Some(path);
-                d.help = p.help.clone();
-                d
+                let p = Problem { path, ..p.clone() };
+                Some(source::locate(fpath, text, &spans[file], &p))
             })
             .collect();
         Report {
@@ -78,33 +90,38 @@ impl Composition {
     }
 }
 
-/// Merges `desc.include` (recursively) into `desc`.
-pub fn compose(path: &Path, text: &str, desc: &mut SceneDesc) -> Result<Composition, Report> {
-    let mut c = Composition::single(path, text);
+/// Merges `desc.include` (recursively) into `desc`. Mistakes inside an
+/// included file are collected in [`Composition::diagnostics`] and the rest
+/// of it is merged; a file that cannot be read, an include cycle or a name
+/// defined twice is an `Err`.
+pub fn compose(path: &Path, text: &str, gaps: Gaps, desc: &mut SceneDesc) -> Result<Composition, Report> {
+    let c = Composition::single(path, text, gaps);
     if desc.include.is_empty() {
         return Ok(c);
     }
-    let mut merged = IncludeDesc::default();
-    let mut defined: std::collections::HashMap<String, (usize, String)> = Default::default();
-    let mut errors = Vec::new();
+    let mut k = Composer {
+        c,
+        merged: IncludeDesc::default(),
+        defined: HashMap::new(),
+        errors: Vec::new(),
+        done: HashSet::new(),
+    };
     let stack = vec![canonical(path)];
     for (i, inc) in desc.include.clone().iter().enumerate() {
         let at = Site {
             file: 0,
             path: format!("include[{i}]"),
         };
-        include(
-            &mut c,
-            &mut merged,
-            &mut defined,
-            &mut errors,
-            &stack,
-            PathBuf::new(),
-            inc,
-            at,
-        );
+        k.include(&stack, PathBuf::new(), inc, at);
     }
+    let Composer {
+        mut c,
+        mut merged,
+        mut errors,
+        ..
+    } = k;
     if !errors.is_empty() {
+        errors.append(&mut c.diagnostics);
         return Err(Report {
             diagnostics: errors,
             sources: c.sources,
@@ -145,150 +162,205 @@ struct Site {
     path: String,
 }
 
-#[allow(clippy::too_many_arguments)]
-fn include(
-    c: &mut Composition,
-    merged: &mut IncludeDesc,
-    defined: &mut std::collections::HashMap<String, (usize, String)>,
-    errors: &mut Vec<Diagnostic>,
-    stack: &[PathBuf],
-    parent_rel: PathBuf,
-    inc: &str,
-    at: Site,
-) {
-    let rel = parent_rel.join(inc);
-    let top_dir = c.sources[0].0.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let full = top_dir.join(&rel);
-    let err = |c: &Composition, msg: String, help: String| {
-        let (p, t) = &c.sources[at.file];
-        let mut d = Diagnostic::new(p, t, Spans::scan(t).find(&at.path), msg);
-        d.path = Some(at.path.clone());
-        d.help = Some(help);
-        d
-    };
-    let key = canonical(&full);
-    if let Some(k) = stack.iter().position(|s| *s == key) {
-        let chain: Vec<String> = stack[k..]
-            .iter()
-            .chain([&key])
-            .map(|p| p.display().to_string())
-            .collect();
-        let first = c
-            .sources
-            .iter()
-            .position(|(p, _)| canonical(p) == key)
-            .map(|i| location(c, i, ""));
-        errors.push(err(
-            c,
-            format!("include cycle: {}", chain.join(" → ")),
-            format!(
+/// Largest include nesting depth. A deeper chain is almost certainly a
+/// mistake; raise it here if a real scene needs more.
+pub const MAX_INCLUDE_DEPTH: usize = 32;
+/// Largest number of distinct files one scene may include (each is read
+/// once, however often it is named).
+pub const MAX_INCLUDES: usize = 1024;
+
+/// The state of one composition: what was merged so far and where each
+/// material was first defined.
+struct Composer {
+    c: Composition,
+    merged: IncludeDesc,
+    /// Material name → (file, path) of its first definition.
+    defined: HashMap<String, (usize, String)>,
+    errors: Vec<Diagnostic>,
+    /// Files already included, by canonical path: a file named twice (a
+    /// diamond of includes) is read once, so the work stays linear in the
+    /// number of distinct files however the includes branch.
+    done: HashSet<PathBuf>,
+}
+
+impl Composer {
+    /// A problem at the include entry `at`.
+    fn error_at(&mut self, at: &Site, msg: String, help: String) {
+        let (p, t) = &self.c.sources[at.file];
+        let d = source::locate(
+            p,
+            t,
+            &Spans::scan(t),
+            &Problem::new(at.path.clone(), msg).help(help),
+        );
+        self.errors.push(d);
+    }
+
+    /// Reads include `inc` (written at `at`, relative to `parent_rel`) and
+    /// merges its entries, after its own includes.
+    fn include(&mut self, stack: &[PathBuf], parent_rel: PathBuf, inc: &str, at: Site) {
+        let rel = parent_rel.join(inc);
+        let top_dir = self.c.sources[0]
+            .0
+            .parent()
+            .unwrap_or(Path::new("."))
+            .to_path_buf();
+        let full = top_dir.join(&rel);
+        let key = canonical(&full);
+        if self.refused(stack, &key, &full, &at) {
+            return;
+        }
+        let Some((file, text, mut inc_desc)) = self.read(&full, &at) else {
+            return;
+        };
+        let here = rel.parent().map(Path::to_path_buf).unwrap_or_default();
+        let mut stack = stack.to_vec();
+        stack.push(key);
+        for (i, nested) in inc_desc.include.clone().iter().enumerate() {
+            let site = Site {
+                file,
+                path: format!("include[{i}]"),
+            };
+            self.include(&stack, here.clone(), nested, site);
+        }
+        // Relative asset paths stay relative to the included file.
+        let fix = |f: &mut String| {
+            if Path::new(f.as_str()).is_relative() {
+                *f = here.join(f.as_str()).to_string_lossy().into_owned();
+            }
+        };
+        for (name, mut m) in std::mem::take(&mut inc_desc.materials) {
+            for c in m.color_params_mut() {
+                if let ColorDesc::Image(file) = c {
+                    fix(file);
+                }
+            }
+            self.merge_material(file, &full, &text, name, m);
+        }
+        for mut o in std::mem::take(&mut inc_desc.objects) {
+            if let ObjectDesc::Mesh { file: f, .. } = &mut o {
+                fix(f);
+            }
+            inc_desc.objects.push(o);
+        }
+        self.merge_lists(file, inc_desc);
+    }
+
+    /// Whether `key` may not be included here: a cycle, too deep, too many
+    /// files (each reported at `at`), or already included (silently: a
+    /// diamond of includes is fine).
+    fn refused(&mut self, stack: &[PathBuf], key: &PathBuf, full: &Path, at: &Site) -> bool {
+        if let Some(k) = stack.iter().position(|s| s == key) {
+            let chain: Vec<String> = stack[k..]
+                .iter()
+                .chain([key])
+                .map(|p| p.display().to_string())
+                .collect();
+            let first = self
+                .c
+                .sources
+                .iter()
+                .position(|(p, _)| canonical(p) == *key)
+                .map(|i| location(&self.c, i, ""));
+            let help = format!(
                 "{} is already being included (from {}); remove one of the includes",
                 full.display(),
                 first.unwrap_or_default()
-            ),
-        ));
-        return;
+            );
+            self.error_at(at, format!("include cycle: {}", chain.join(" → ")), help);
+            return true;
+        }
+        if stack.len() > MAX_INCLUDE_DEPTH {
+            let msg = format!("includes nest deeper than {MAX_INCLUDE_DEPTH} files");
+            self.error_at(at, msg, "flatten the chain of includes".into());
+            return true;
+        }
+        if !self.done.insert(key.clone()) {
+            return true;
+        }
+        if self.done.len() > MAX_INCLUDES {
+            let msg = format!("more than {MAX_INCLUDES} included files");
+            self.error_at(at, msg, "merge some of the included files".into());
+            return true;
+        }
+        false
     }
-    let text = match std::fs::read_to_string(&full) {
-        Ok(t) => t,
-        Err(e) => {
-            errors.push(err(
-                c,
-                format!("cannot read included file {}: {e}", full.display()),
-                "include paths are relative to the including file's folder".into(),
-            ));
-            return;
-        }
-    };
-    let file = c.sources.len();
-    c.sources.push((full.clone(), text.clone()));
-    let opts = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    let parsed = if full.extension().is_some_and(|e| e == "json") {
-        serde_json::from_str::<IncludeDesc>(&text)
-            .map_err(|e| (offset_of(&text, e.line(), e.column()), e.to_string()))
-    } else {
-        opts.from_str::<IncludeDesc>(&text).map_err(|e| {
-            (
-                offset_of(&text, e.span.start.line, e.span.start.col),
-                e.code.to_string(),
-            )
-        })
-    };
-    let mut inc_desc = match parsed {
-        Ok(d) => d,
-        Err((off, msg)) => {
-            errors.push(Diagnostic::new(
-                &full,
-                &text,
-                Some(off..(off + 1).min(text.len())),
-                msg,
-            ));
-            return;
-        }
-    };
-    let here = rel.parent().map(Path::to_path_buf).unwrap_or_default();
-    let mut stack = stack.to_vec();
-    stack.push(key);
-    for (i, nested) in inc_desc.include.clone().iter().enumerate() {
-        let site = Site {
-            file,
-            path: format!("include[{i}]"),
+
+    /// Reads and parses an included file; `None` (with its diagnostics)
+    /// when it cannot be read or does not parse.
+    fn read(&mut self, full: &Path, at: &Site) -> Option<(usize, String, IncludeDesc)> {
+        let text = match source::read_text(full) {
+            Ok(t) => t,
+            Err(e) => {
+                let msg = format!("cannot read included file {}: {e}", full.display());
+                self.error_at(
+                    at,
+                    msg,
+                    "include paths are relative to the including file's folder".into(),
+                );
+                return None;
+            }
         };
-        include(c, merged, defined, errors, &stack, here.clone(), nested, site);
-    }
-    // Relative asset paths stay relative to the included file.
-    let fix = |f: &mut String| {
-        if Path::new(f.as_str()).is_relative() {
-            *f = here.join(f.as_str()).to_string_lossy().into_owned();
-        }
-    };
-    for (name, mut m) in std::mem::take(&mut inc_desc.materials) {
-        for c in m.color_params_mut() {
-            if let ColorDesc::Image(file) = c {
-                fix(file);
+        let file = self.c.sources.len();
+        self.c.sources.push((full.to_path_buf(), text.clone()));
+        self.c.gaps.push(Gaps::default());
+        match source::read::<IncludeDesc>(full, &text) {
+            Ok(parsed) => {
+                self.c.gaps[file] = parsed.gaps;
+                self.c.diagnostics.extend(parsed.diagnostics);
+                Some((file, text, parsed.desc))
+            }
+            Err(broken) => {
+                self.errors.extend(broken.diagnostics);
+                None
             }
         }
-        if let Some((first_file, first_path)) = defined.get(&name) {
-            let first = location(c, *first_file, first_path);
-            let mut d = Diagnostic::new(
-                &full,
-                &text,
-                Spans::scan(&text).find(&format!("materials.{name}")),
+    }
+
+    /// Adds material `name` of included file `file`; a name another
+    /// included file already defined is a located error.
+    fn merge_material(&mut self, file: usize, full: &Path, text: &str, name: String, m: MaterialDesc) {
+        if let Some((first_file, first_path)) = self.defined.get(&name) {
+            let first = location(&self.c, *first_file, first_path);
+            let p = Problem::new(
+                format!("materials.{name}"),
                 format!("material `{name}` is defined in two included files"),
-            );
-            d.path = Some(format!("materials.{name}"));
-            d.help = Some(format!(
+            )
+            .help(format!(
                 "it is first defined at {first}; rename one, or define it in the including scene to choose"
             ));
-            errors.push(d);
-            continue;
+            self.errors
+                .push(source::locate(full, text, &Spans::scan(text), &p));
+            return;
         }
-        defined.insert(name.clone(), (file, format!("materials.{name}")));
-        c.origins.push(Origin {
+        self.defined
+            .insert(name.clone(), (file, format!("materials.{name}")));
+        self.c.origins.push(Origin {
             merged: format!("materials.{name}"),
             file,
             original: format!("materials.{name}"),
         });
-        merged.materials.insert(name, m);
+        self.merged.materials.insert(name, m);
     }
-    for (i, l) in inc_desc.lights.into_iter().enumerate() {
-        c.origins.push(Origin {
-            merged: format!("lights[{}]", merged.lights.len()),
-            file,
-            original: format!("lights[{i}]"),
-        });
-        merged.lights.push(l);
-    }
-    for (i, mut o) in inc_desc.objects.into_iter().enumerate() {
-        if let ObjectDesc::Mesh { file: f, .. } = &mut o {
-            fix(f);
+
+    /// Appends the lights and objects of included file `file`.
+    fn merge_lists(&mut self, file: usize, inc: IncludeDesc) {
+        for (i, l) in inc.lights.into_iter().enumerate() {
+            self.c.origins.push(Origin {
+                merged: format!("lights[{}]", self.merged.lights.len()),
+                file,
+                original: format!("lights[{i}]"),
+            });
+            self.merged.lights.push(l);
         }
-        c.origins.push(Origin {
-            merged: format!("objects[{}]", merged.objects.len()),
-            file,
-            original: format!("objects[{i}]"),
-        });
-        merged.objects.push(o);
+        for (i, o) in inc.objects.into_iter().enumerate() {
+            self.c.origins.push(Origin {
+                merged: format!("objects[{}]", self.merged.objects.len()),
+                file,
+                original: format!("objects[{i}]"),
+            });
+            self.merged.objects.push(o);
+        }
     }
 }
 

@@ -153,13 +153,19 @@ impl Checker {
 /// The runtime materials (in name order), the textures they use, and the
 /// index of each name.
 pub struct Materials {
+    /// The runtime materials, in the name order of the scene's `materials`.
     pub materials: Vec<Material>,
+    /// Decoded image textures, indexed by [`ColorTex::Image`].
     pub textures: Vec<Texture>,
+    /// Index in `materials` of each scene material name.
     pub index: HashMap<String, u32>,
     /// Image files read, for watch mode.
     pub files: Vec<PathBuf>,
 }
 
+/// Builds every entry of the scene's `materials`, resolving texture files against
+/// `base` (the scene file's folder) and decoding each file once. All texture problems
+/// come back together.
 pub fn build_materials(
     descs: &BTreeMap<String, MaterialDesc>,
     base: &Path,
@@ -260,6 +266,7 @@ fn build_material(b: &mut Builder, name: &str, m: &MaterialDesc) -> Material {
     }
 }
 
+/// The runtime conductor preset of a scene's `Metal(...)` name.
 pub fn metal(m: MetalDesc) -> Metal {
     match m {
         MetalDesc::Gold => Metal::Gold,
@@ -286,7 +293,10 @@ impl Builder<'_> {
                 scale: *scale,
             },
             ColorDesc::Image(file) => {
+                // Keyed by the file itself, not its spelling: `x.png` and
+                // `./x.png` are decoded once.
                 let full = self.base.join(file);
+                let full = std::fs::canonicalize(&full).unwrap_or(full);
                 if let Some(&i) = self.by_path.get(&full) {
                     return ColorTex::Image(i);
                 }
@@ -312,10 +322,7 @@ impl Builder<'_> {
 
 /// Decodes an 8-bit image as sRGB-encoded colour.
 pub fn load_texture(path: &Path) -> Result<Texture, String> {
-    let img = image::open(path).map_err(|e| match e {
-        image::ImageError::IoError(io) => format!("cannot read texture {}: {io}", path.display()),
-        other => format!("cannot decode texture {}: {other}", path.display()),
-    })?;
+    let img = crate::imageio::read::decode_texture(path).map_err(|e| format!("texture: {e}"))?;
     let rgb = img.to_rgb8();
     Ok(Texture::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()))
 }

@@ -8,7 +8,9 @@
 //! and `build.rs` run them in order; every check runs before any build, so
 //! `validate` and watch mode stop after checking.
 
+mod brackets;
 pub mod build;
+pub mod document;
 pub mod format;
 pub mod include;
 mod light;
@@ -16,12 +18,17 @@ pub mod material;
 mod mesh;
 mod mtl;
 pub mod object;
+mod outline;
 pub mod pipeline;
 pub mod sdf;
+mod sections;
 pub mod set;
+pub mod source;
 pub mod spans;
+mod tokens;
 pub mod validate;
 mod view;
 pub mod warnings;
+mod words;
 
 pub use pipeline::{LoadError, Loaded, Overrides, load, load_str, load_with};

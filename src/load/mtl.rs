@@ -130,7 +130,7 @@ impl MtlMaterials {
         if let Some(t) = self.textures_by_path.get(path) {
             return *t;
         }
-        let t = match image::open(path) {
+        let t = match crate::imageio::read::decode_texture(path) {
             Ok(img) => {
                 let rgb = img.to_rgb8();
                 self.textures

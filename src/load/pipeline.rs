@@ -1,21 +1,26 @@
-//! Reading a scene file through every stage, turning each stage's problems
-//! into located diagnostics.
+//! Reading a scene file through every stage: parse ([`super::source`]),
+//! compose includes, apply overrides, validate, build. Each stage's problems
+//! become located diagnostics, all reported together.
 
 use super::build::{BuildStats, build_with};
-use super::spans::Spans;
-use super::validate::validate;
+use super::include::Composition;
+pub use super::source::{command_line, located, parse, read};
 use crate::desc::SceneDesc;
-use crate::diagnostic::{Diagnostic, Report, offset_of};
-use crate::diagnostic::{Problem, suggest};
+use crate::diagnostic::Report;
 use crate::scene::Scene;
 use crate::view::View;
 use std::path::{Path, PathBuf};
 
 /// A scene ready to render, with what produced it.
 pub struct Loaded {
+    /// What rays query.
     pub scene: Scene,
+    /// Camera, film, integrator and output.
     pub view: View,
+    /// The checked description the scene was built from (includes composed,
+    /// overrides applied).
     pub desc: SceneDesc,
+    /// What building cost, and its notes.
     pub stats: BuildStats,
     /// Every file the scene depends on (itself, meshes…), for watch mode.
     pub files: Vec<PathBuf>,
@@ -26,12 +31,47 @@ pub struct Loaded {
     pub warnings: Report,
 }
 
+impl Loaded {
+    /// The input of this scene (the scene file, an include, an OBJ, a
+    /// texture) that writing an image to `out` would overwrite, if any. An
+    /// output must never replace what the scene reads: in watch mode that
+    /// would also re-trigger a render for ever.
+    pub fn input_at(&self, out: &Path) -> Option<&Path> {
+        let key = |p: &Path| {
+            std::fs::canonicalize(p)
+                .unwrap_or_else(|_| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()))
+        };
+        let out = key(out);
+        self.files.iter().map(PathBuf::as_path).find(|f| key(f) == out)
+    }
+}
+
+/// Why a scene did not load.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {
+    /// The scene file itself could not be read.
     #[error("cannot read scene file {}: {source}", path.display())]
-    Io { path: PathBuf, source: std::io::Error },
-    #[error("{} in {}", plural(.0.diagnostics.len()), .0.diagnostics.first().map(|d| d.file.display().to_string()).unwrap_or_default())]
+    Io {
+        /// The file, as given.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// The scene has mistakes: every one found, located.
+    #[error("{} in {}", plural(.0.diagnostics.len()), files(.0))]
     Invalid(Report),
+}
+
+/// The files (or `--set` arguments) a report's diagnostics are in, in order.
+fn files(r: &Report) -> String {
+    let mut names: Vec<String> = Vec::new();
+    for d in &r.diagnostics {
+        let name = d.file.display().to_string();
+        if !names.contains(&name) {
+            names.push(name);
+        }
+    }
+    names.join(", ")
 }
 
 fn plural(n: usize) -> String {
@@ -43,6 +83,7 @@ fn plural(n: usize) -> String {
 }
 
 impl LoadError {
+    /// The located diagnostics, for an invalid scene.
     pub fn report(&self) -> Option<&Report> {
         match self {
             LoadError::Invalid(r) => Some(r),
@@ -55,14 +96,19 @@ impl LoadError {
 /// same validation.
 #[derive(Clone, Debug, Default)]
 pub struct Overrides {
+    /// `--spp`: samples per pixel.
     pub spp: Option<u32>,
+    /// `--size`: width and height in pixels.
     pub size: Option<(u32, u32)>,
+    /// `--seed`.
     pub seed: Option<u64>,
     /// `path=value` typed overrides (`--set`), applied before the others.
     pub sets: Vec<String>,
 }
 
 impl Overrides {
+    /// Writes `--spp`, `--size` and `--seed` into the description (`--set`
+    /// is applied earlier, by `set.rs`).
     pub fn apply(&self, desc: &mut SceneDesc) {
         if let Some(spp) = self.spp {
             desc.film.spp = spp;
@@ -84,7 +130,7 @@ pub fn load(path: &Path) -> Result<Loaded, LoadError> {
 
 /// As [`load`], with command-line overrides.
 pub fn load_with(path: &Path, overrides: &Overrides) -> Result<Loaded, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
+    let text = super::source::read_text(path).map_err(|source| LoadError::Io {
         path: path.to_path_buf(),
         source,
     })?;
@@ -104,27 +150,18 @@ pub fn load_str_with_meshes(
     overrides: &Overrides,
     load_mesh: &dyn Fn(&Path) -> Result<crate::geometry::obj::ObjData, String>,
 ) -> Result<Loaded, LoadError> {
-    let mut desc = parse(path, text).map_err(LoadError::Invalid)?;
-    let composition = super::include::compose(path, text, &mut desc).map_err(LoadError::Invalid)?;
-    if let Err(problems) = super::set::apply_sets(&mut desc, &overrides.sets) {
-        return Err(LoadError::Invalid(command_line(&problems)));
-    }
-    overrides.apply(&mut desc);
+    let (desc, composition) = check(path, text, overrides).map_err(|r| LoadError::Invalid(r.sorted()))?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let problems = validate(&desc, base);
-    if !problems.is_empty() {
-        return Err(LoadError::Invalid(composition.locate(&problems)));
-    }
     let mut warnings = super::warnings::located(&composition, &super::warnings::warnings(&desc));
-    let (scene, view, stats) =
-        build_with(&desc, base, load_mesh).map_err(|p| LoadError::Invalid(composition.locate(&p)))?;
+    let (scene, view, stats) = build_with(&desc, base, load_mesh)
+        .map_err(|p| LoadError::Invalid(composition.locate(&p).sorted()))?;
     // What the build repaired or defaulted (OBJ fixes, a grey default) is
     // reported beside the warnings, as notes.
     warnings
         .diagnostics
-        .extend(stats.notes.iter().map(|n| Diagnostic {
+        .extend(stats.notes.iter().map(|n| crate::diagnostic::Diagnostic {
             severity: crate::diagnostic::Severity::Note,
-            ..Diagnostic::new(path, "", None, n.clone())
+            ..crate::diagnostic::Diagnostic::new(path, "", None, n.clone())
         }));
     let mut files: Vec<PathBuf> = composition.sources.iter().map(|(p, _)| p.clone()).collect();
     files.extend(stats.texture_files.iter().cloned());
@@ -144,145 +181,29 @@ pub fn load_str_with_meshes(
     })
 }
 
-/// RON text → [`SceneDesc`]; a syntax or type error becomes one diagnostic at
-/// the position ron reports, with a suggestion for misspelled names.
-pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
-        return parse_json(path, text);
+/// Every check before building: parse (as far as each entry allows),
+/// compose includes, apply overrides, validate. All mistakes found, of every
+/// kind and in every file, fail together; a scene with any is never built.
+fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<(SceneDesc, Composition), Report> {
+    let parsed = read::<SceneDesc>(path, text)?;
+    let mut desc = parsed.desc;
+    let mut found = parsed.diagnostics;
+    let composition = super::include::compose(path, text, parsed.gaps, &mut desc).map_err(|mut r| {
+        r.diagnostics.append(&mut found);
+        r
+    })?;
+    found.extend(composition.diagnostics.iter().cloned());
+    let bad_sets = super::set::apply_sets(&mut desc, &overrides.sets)
+        .err()
+        .unwrap_or_default();
+    found.extend(command_line(&bad_sets).diagnostics);
+    overrides.apply(&mut desc);
+    let base = path.parent().unwrap_or(Path::new("."));
+    let mut report = composition.locate(&super::validate::validate(&desc, base));
+    report.diagnostics.append(&mut found);
+    if report.diagnostics.is_empty() {
+        return Ok((desc, composition));
     }
-    // `implicit_some` lets optional fields be written bare (`focus_distance: 3.5`).
-    let opts = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    opts.from_str::<SceneDesc>(text).map_err(|e| {
-        let start = offset_of(text, e.span.start.line, e.span.start.col);
-        let mut end = offset_of(text, e.span.end.line, e.span.end.col).max(start);
-        if end == start {
-            end = (start + 1).min(text.len());
-        }
-        let (message, help) = describe(&e.code);
-        let mut d = Diagnostic::new(path, text, Some(start..end), message);
-        d.help = help;
-        Report {
-            diagnostics: vec![d],
-            sources: vec![(path.to_path_buf(), text.to_string())],
-        }
-    })
-}
-
-/// JSON text → [`SceneDesc`], with the same kind of located diagnostic.
-fn parse_json(path: &Path, text: &str) -> Result<SceneDesc, Report> {
-    serde_json::from_str::<SceneDesc>(text).map_err(|e| {
-        let start = offset_of(text, e.line(), e.column().max(1));
-        let full = e.to_string();
-        let message = full
-            .rsplit_once(" at line ")
-            .map_or(full.as_str(), |(m, _)| m)
-            .to_string();
-        // serde's wording: "unknown field `x`, expected one of `a`, `b`".
-        let quoted: Vec<&str> = message.split('`').skip(1).step_by(2).collect();
-        let help = match quoted.split_first() {
-            Some((found, expected)) if message.starts_with("unknown") && !expected.is_empty() => {
-                Some(match suggest(found, expected.iter().copied()) {
-                    Some(s) => format!("did you mean `{s}`?"),
-                    None => format!("expected one of {}", expected.join(", ")),
-                })
-            }
-            _ => None,
-        };
-        let mut d = Diagnostic::new(path, text, Some(start.saturating_sub(1)..start), message);
-        d.help = help;
-        Report {
-            diagnostics: vec![d],
-            sources: vec![(path.to_path_buf(), text.to_string())],
-        }
-    })
-}
-
-/// Semantic problems → diagnostics located through the RON text.
-pub fn located(path: &Path, text: &str, problems: &[Problem]) -> Report {
-    let spans = Spans::scan(text);
-    let diagnostics = problems
-        .iter()
-        .map(|p| {
-            let mut d = Diagnostic::new(path, text, spans.find(&p.path), p.message.clone());
-            d.path = Some(p.path.clone());
-            d.help = p.help.clone();
-            d
-        })
-        .collect();
-    Report {
-        diagnostics,
-        sources: vec![(path.to_path_buf(), text.to_string())],
-    }
-}
-
-fn describe(e: &ron::Error) -> (String, Option<String>) {
-    use ron::Error as E;
-    let list = |xs: &[&str]| xs.iter().map(|x| format!("`{x}`")).collect::<Vec<_>>().join(", ");
-    match e {
-        E::NoSuchStructField {
-            expected,
-            found,
-            outer,
-        } => {
-            let within = outer.as_ref().map(|o| format!(" in `{o}`")).unwrap_or_default();
-            let help = match suggest(found, expected.iter().copied()) {
-                Some(s) => format!("did you mean `{s}`? (expected one of {})", list(expected)),
-                None => format!("expected one of {}", list(expected)),
-            };
-            (format!("unknown field `{found}`{within}"), Some(help))
-        }
-        E::NoSuchEnumVariant {
-            expected,
-            found,
-            outer,
-        } => {
-            let within = outer.as_ref().map(|o| format!(" for `{o}`")).unwrap_or_default();
-            let help = match suggest(found, expected.iter().copied()) {
-                Some(s) => format!("did you mean `{s}`? (expected one of {})", list(expected)),
-                None => format!("expected one of {}", list(expected)),
-            };
-            (format!("unknown variant `{found}`{within}"), Some(help))
-        }
-        E::MissingStructField { field, outer } => {
-            let within = outer.as_ref().map(|o| format!(" in `{o}`")).unwrap_or_default();
-            (
-                format!("missing field `{field}`{within}"),
-                Some(format!("add `{field}: ...`")),
-            )
-        }
-        E::DuplicateStructField { field, .. } => (
-            format!("field `{field}` is given twice"),
-            Some("keep one of them".into()),
-        ),
-        E::ExpectedComma => (
-            "expected `,`".into(),
-            Some("separate fields and elements with commas".into()),
-        ),
-        E::Eof => (
-            "unexpected end of file".into(),
-            Some("a bracket or parenthesis is probably not closed".into()),
-        ),
-        E::ExpectedDifferentLength { expected, found } => (
-            format!("expected {expected}, found {found} elements"),
-            Some("vectors and colours are written `(x, y, z)`".into()),
-        ),
-        other => (other.to_string(), None),
-    }
-}
-
-/// Problems in command-line overrides: located by `--set`, not by file.
-fn command_line(problems: &[Problem]) -> Report {
-    let diagnostics = problems
-        .iter()
-        .map(|p| {
-            let mut d = Diagnostic::new(Path::new("--set"), "", None, p.message.clone());
-            d.path = Some(p.path.clone());
-            d.help = p.help.clone();
-            d
-        })
-        .collect();
-    Report {
-        diagnostics,
-        sources: Vec::new(),
-    }
+    report.sources = composition.sources;
+    Err(report)
 }

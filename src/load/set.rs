@@ -12,55 +12,69 @@ use crate::desc::SceneDesc;
 use crate::diagnostic::{Problem, suggest};
 use serde_json::Value;
 
+/// A problem with one `--set` argument, kept with the argument as written so
+/// the diagnostic can point at it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SetProblem {
+    /// The `--set` argument as the user wrote it.
+    pub arg: String,
+    /// What is wrong with it.
+    pub problem: Problem,
+}
+
 /// Applies every `path=value` in order; all problems are reported together.
-pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<Problem>> {
+/// Each override is type-checked as it is applied, so a value that does not
+/// fit is blamed on its own argument. The overrides that fit are applied even
+/// when others do not, so the scene is still checked as the user meant it.
+pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<SetProblem>> {
     if sets.is_empty() {
         return Ok(());
     }
-    let mut tree = serde_json::to_value(&*desc).map_err(|e| vec![Problem::new("", e.to_string())])?;
+    let blame = |arg: &str, problem: Problem| SetProblem {
+        arg: arg.to_string(),
+        problem,
+    };
+    let mut tree =
+        serde_json::to_value(&*desc).map_err(|e| vec![blame("", Problem::new("", e.to_string()))])?;
     let mut problems = Vec::new();
     for s in sets {
-        let Some((path, text)) = s.split_once('=') else {
-            problems.push(
-                Problem::new(s.as_str(), format!("`--set {s}` has no `=`"))
-                    .help("write `--set path=value`, e.g. `--set film.spp=256`"),
-            );
-            continue;
-        };
-        let (path, text) = (path.trim(), text.trim());
-        let value = match parse_value(text) {
-            Ok(v) => v,
-            Err(e) => {
-                problems.push(
-                    Problem::new(path, format!("cannot parse `{text}`: {e}"))
-                        .help("values are written in RON: `256`, `30.5`, `(0.2, 0.2, 0.2)`, `\"file.obj\"`"),
-                );
-                continue;
-            }
-        };
-        match node_mut(&mut tree, path) {
-            Ok(node) => *node = value,
-            Err(p) => problems.push(p),
+        match apply_one(&tree, s) {
+            Ok(next) => tree = next,
+            Err(p) => problems.push(blame(s, p)),
         }
     }
-    if !problems.is_empty() {
-        return Err(problems);
+    // Every override kept has type-checked the whole tree.
+    if let Ok(d) = serde_json::from_value::<SceneDesc>(tree) {
+        *desc = d;
     }
-    match serde_json::from_value::<SceneDesc>(tree) {
-        Ok(d) => {
-            *desc = d;
-            Ok(())
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(problems)
+    }
+}
+
+/// `tree` with the override `s` applied, if it names a field and its value
+/// fits there.
+fn apply_one(tree: &Value, s: &str) -> Result<Value, Problem> {
+    let Some((path, text)) = s.split_once('=') else {
+        return Err(Problem::new(s, format!("`--set {s}` has no `=`"))
+            .help("write `--set path=value`, e.g. `--set film.spp=256`"));
+    };
+    let (path, text) = (path.trim(), text.trim());
+    let value = parse_value(text).map_err(|e| {
+        Problem::new(path, format!("cannot parse `{text}`: {e}"))
+            .help("values are written in RON: `256`, `30.5`, `(0.2, 0.2, 0.2)`, `\"file.obj\"`")
+    })?;
+    let mut next = tree.clone();
+    *node_mut(&mut next, path)? = value;
+    match serde_json::from_value::<SceneDesc>(next.clone()) {
+        Ok(_) => Ok(next),
+        Err(e) => {
+            let (why, _) = super::words::serde_message(&e.to_string());
+            Err(Problem::new(path, format!("`{text}` does not fit here: {why}"))
+                .help("check the value's type: numbers, `(r, g, b)` colours, `\"strings\"`"))
         }
-        Err(e) => Err(vec![
-            Problem::new(
-                sets.iter()
-                    .map(|s| s.split('=').next().unwrap_or("").trim())
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                format!("override does not fit the scene: {e}"),
-            )
-            .help("check the value's type: numbers, `(r, g, b)` colours, `\"strings\"`"),
-        ]),
     }
 }
 
@@ -72,7 +86,10 @@ pub fn apply_sets(desc: &mut SceneDesc, sets: &[String]) -> Result<(), Vec<Probl
 fn parse_value(text: &str) -> Result<Value, String> {
     let plain = |t: &str| {
         ron::from_str::<ron::Value>(t)
-            .map_err(|e| e.to_string())
+            .map_err(|e| {
+                let at = crate::diagnostic::offset_of(t, e.span.start.line, e.span.start.col);
+                super::words::ron_error(&e.code, &t[at..]).0
+            })
             .and_then(|v| serde_json::to_value(v).map_err(|e| e.to_string()))
     };
     let end = text

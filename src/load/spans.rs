@@ -7,9 +7,11 @@
 //! `objects[3].material`, `materials.white.albedo`. Enum variant and struct
 //! names are transparent, as they are in the paths.
 
+use super::tokens::{Tok, skip_value, tokenize};
 use std::collections::HashMap;
 use std::ops::Range;
 
+/// Byte ranges of a document's values by scene path.
 #[derive(Debug, Default)]
 pub struct Spans {
     map: HashMap<String, Range<usize>>,
@@ -45,128 +47,16 @@ impl Spans {
     pub fn get(&self, path: &str) -> Option<Range<usize>> {
         self.map.get(path).cloned()
     }
-}
 
-#[derive(Clone, Debug, PartialEq)]
-enum Tok {
-    Open(char),
-    Close(char),
-    Colon,
-    Comma,
-    /// Identifier, number, string, char: anything atomic.
-    Atom {
-        ident: bool,
-        text: String,
-    },
-}
-
-fn tokenize(src: &str) -> Vec<(Tok, Range<usize>)> {
-    let b = src.as_bytes();
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < b.len() {
-        let c = b[i];
-        match c {
-            b' ' | b'\t' | b'\n' | b'\r' => i += 1,
-            b'/' if b.get(i + 1) == Some(&b'/') => {
-                while i < b.len() && b[i] != b'\n' {
-                    i += 1;
-                }
-            }
-            b'/' if b.get(i + 1) == Some(&b'*') => {
-                // RON block comments nest.
-                let mut depth = 0;
-                while i < b.len() {
-                    if b[i] == b'/' && b.get(i + 1) == Some(&b'*') {
-                        depth += 1;
-                        i += 2;
-                    } else if b[i] == b'*' && b.get(i + 1) == Some(&b'/') {
-                        depth -= 1;
-                        i += 2;
-                        if depth == 0 {
-                            break;
-                        }
-                    } else {
-                        i += 1;
-                    }
-                }
-            }
-            b'#' => {
-                // `#![enable(...)]` and similar attributes: skip to the `]`.
-                while i < b.len() && b[i] != b']' {
-                    i += 1;
-                }
-                i += 1;
-            }
-            b'(' | b'[' | b'{' => {
-                out.push((Tok::Open(c as char), i..i + 1));
-                i += 1;
-            }
-            b')' | b']' | b'}' => {
-                out.push((Tok::Close(c as char), i..i + 1));
-                i += 1;
-            }
-            b':' => {
-                out.push((Tok::Colon, i..i + 1));
-                i += 1;
-            }
-            b',' => {
-                out.push((Tok::Comma, i..i + 1));
-                i += 1;
-            }
-            b'"' | b'\'' => {
-                let start = i;
-                i += 1;
-                while i < b.len() && b[i] != c {
-                    i += if b[i] == b'\\' { 2 } else { 1 };
-                }
-                i = (i + 1).min(b.len());
-                let text = src[start + 1..i.saturating_sub(1).max(start + 1)].to_string();
-                out.push((Tok::Atom { ident: false, text }, start..i));
-            }
-            b'r' if matches!(b.get(i + 1), Some(b'"') | Some(b'#')) => {
-                // Raw string r#"..."#.
-                let start = i;
-                i += 1;
-                let mut hashes = 0;
-                while i < b.len() && b[i] == b'#' {
-                    hashes += 1;
-                    i += 1;
-                }
-                i += 1;
-                let body = i;
-                let close = format!("\"{}", "#".repeat(hashes));
-                let end = src[i..].find(&close).map_or(b.len(), |k| i + k);
-                i = (end + close.len()).min(b.len());
-                out.push((
-                    Tok::Atom {
-                        ident: false,
-                        text: src[body..end].to_string(),
-                    },
-                    start..i,
-                ));
-            }
-            _ => {
-                let start = i;
-                while i < b.len() && !b" \t\r\n()[]{}:,\"'/#".contains(&b[i]) {
-                    i += 1;
-                }
-                if i == start {
-                    i += 1;
-                }
-                let text = &src[start..i];
-                let ident = text.chars().next().is_some_and(|c| c.is_alphabetic() || c == '_');
-                out.push((
-                    Tok::Atom {
-                        ident,
-                        text: text.to_string(),
-                    },
-                    start..i,
-                ));
-            }
-        }
+    /// The path of the innermost value whose text holds byte `offset` (a
+    /// field's key counts as part of the value around it); `None` at the top.
+    pub fn path_at(&self, offset: usize) -> Option<String> {
+        self.map
+            .iter()
+            .filter(|(p, r)| !p.is_empty() && !p.ends_with("#key") && r.contains(&offset))
+            .min_by_key(|(p, r)| (r.len(), std::cmp::Reverse(p.len())))
+            .map(|(p, _)| p.clone())
     }
-    out
 }
 
 struct Scanner {
@@ -212,7 +102,13 @@ impl Scanner {
             }
         }
         let end = self.end_of_prev();
-        self.map.entry(path.to_string()).or_insert(start..end);
+        // A value seen again under the same path is either its own outer
+        // layer (JSON's `{"Sphere": {…}}`: the whole wins) or a repeated
+        // field (the first wins).
+        let span = self.map.entry(path.to_string()).or_insert(start..end);
+        if start <= span.start && end >= span.end {
+            *span = start..end;
+        }
     }
 
     /// The inside of `( … )`, `[ … ]` or `{ … }`, opening token current.
@@ -245,7 +141,7 @@ impl Scanner {
                     && self.toks.get(self.pos - 1).is_some_and(|t| t.0 == Tok::Open('{'))
                     && self
                         .toks
-                        .get(self.skip_value(self.pos + 2))
+                        .get(skip_value(&self.toks, self.pos + 2))
                         .is_some_and(|t| matches!(t.0, Tok::Close(_)));
                 let child = if variant {
                     path.to_string()
@@ -264,33 +160,6 @@ impl Scanner {
                 }
             }
         }
-    }
-}
-
-impl Scanner {
-    /// Token index just past the value starting at `i`.
-    fn skip_value(&self, mut i: usize) -> usize {
-        let mut depth = 0i32;
-        while let Some((t, _)) = self.toks.get(i) {
-            match t {
-                Tok::Open(_) => depth += 1,
-                Tok::Close(_) => {
-                    depth -= 1;
-                    if depth < 0 {
-                        return i;
-                    }
-                    if depth == 0 {
-                        return i + 1;
-                    }
-                }
-                Tok::Atom { ident: true, .. }
-                    if depth == 0 && matches!(self.toks.get(i + 1), Some((Tok::Open('('), _))) => {}
-                _ if depth == 0 => return i + 1,
-                _ => {}
-            }
-            i += 1;
-        }
-        i
     }
 }
 

@@ -14,6 +14,15 @@ pub const MAX_RESOLUTION: u32 = 16_384;
 pub const MAX_SPP: u32 = 1 << 20;
 /// Largest accepted shadow rays per area light.
 pub const MAX_LIGHT_SAMPLES: u32 = 4096;
+/// Largest magnitude of any coordinate, size or colour a scene may write,
+/// and of any point of a placed object (checked after the build, when
+/// meshes are loaded and transformed). Squares of larger values overflow
+/// f32 in ray–shape tests.
+pub const MAX_COORD: f32 = 1e15;
+/// Largest accepted path depth before Russian roulette starts: without
+/// roulette a path in a closed white room never ends (u32::MAX took
+/// minutes per sample).
+pub const MAX_RR_DEPTH: u32 = 1024;
 /// Largest accepted Whitted recursion depth.
 pub const MAX_DEPTH: u32 = 64;
 
@@ -181,16 +190,26 @@ impl Checker {
     }
 
     /// Finite components; false (after reporting) if not.
+    /// Finite components within ±[`MAX_COORD`]; false (after reporting)
+    /// if not.
     pub(super) fn finite(&mut self, path: &str, v: &[f32]) -> bool {
-        if v.iter().all(|x| x.is_finite()) {
-            return true;
+        if !v.iter().all(|x| x.is_finite()) {
+            self.push(
+                path,
+                format!("non-finite number in {v:?}"),
+                "use finite numbers (no inf or NaN)",
+            );
+            return false;
         }
-        self.push(
-            path,
-            format!("non-finite number in {v:?}"),
-            "use finite numbers (no inf or NaN)",
-        );
-        false
+        if let Some(x) = v.iter().find(|x| x.abs() > MAX_COORD) {
+            self.push(
+                path,
+                format!("{x:e} is beyond ±{MAX_COORD:e}"),
+                "scene numbers are 32-bit floats: squared distances of larger ones overflow; scale the scene down",
+            );
+            return false;
+        }
+        true
     }
 
     pub(super) fn color(&mut self, path: &str, c: &Color, upper: Option<f32>) {

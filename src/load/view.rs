@@ -1,7 +1,7 @@
 //! Camera, film and integrator: their checks, and the [`View`] they build
 //! (what `render()` needs beside the scene).
 
-use super::validate::{Checker, MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_RESOLUTION, MAX_SPP};
+use super::validate::{Checker, MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_RESOLUTION, MAX_RR_DEPTH, MAX_SPP};
 use crate::camera::Camera;
 use crate::desc::{CameraDesc, FilmDesc, IntegratorDesc, SamplerDesc, SceneDesc};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
@@ -88,6 +88,19 @@ impl Checker {
                     "end it in `.png` (8-bit sRGB) or `.exr` (linear float)",
                 );
             }
+            // A scene from someone else's repository must not write outside
+            // its own folder; the command line may (`-o`).
+            let p = std::path::Path::new(out);
+            if p.is_absolute()
+                || p.components()
+                    .any(|c| matches!(c, std::path::Component::ParentDir))
+            {
+                self.push(
+                    "film.output",
+                    format!("output `{out}` leaves the scene's folder"),
+                    "write a path relative to the scene file, without `..`; to write elsewhere, pass `-o PATH` on the command line",
+                );
+            }
         }
     }
 
@@ -116,12 +129,21 @@ impl Checker {
                     );
                 }
             }
-            IntegratorDesc::Path { max_depth, .. } => {
+            IntegratorDesc::Path {
+                max_depth, rr_depth, ..
+            } => {
                 if *max_depth == 0 || *max_depth < -1 {
                     self.push(
                         "integrator.max_depth",
                         format!("max_depth {max_depth} is neither −1 nor ≥ 1"),
                         "it counts path segments: 1 = emitters only, 2 = direct lighting, 8 is typical, −1 = unlimited",
+                    );
+                }
+                if *rr_depth > MAX_RR_DEPTH {
+                    self.push(
+                        "integrator.rr_depth",
+                        format!("rr_depth {rr_depth} is above {MAX_RR_DEPTH}"),
+                        "Russian roulette is what ends long paths cheaply; 5 is typical",
                     );
                 }
             }

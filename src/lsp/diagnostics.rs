@@ -17,9 +17,7 @@ pub fn check(path: &Path, text: &str, meshes: &MeshCache) -> BTreeMap<PathBuf, V
     let mut out: BTreeMap<PathBuf, Vec<lsp_types::Diagnostic>> = BTreeMap::new();
     out.insert(path.to_path_buf(), Vec::new());
     if is_include_file(text) {
-        if let Some(d) = include_error(path, text) {
-            out.entry(path.to_path_buf()).or_default().push(d);
-        }
+        out.entry(path.to_path_buf()).or_default().extend(include_errors(path, text));
         return out;
     }
     let report = match load_str_with_meshes(path, text, &Overrides::default(), &|p| meshes.load(p)) {
@@ -89,7 +87,8 @@ pub fn convert(d: &Diagnostic, source: Option<&str>) -> lsp_types::Diagnostic {
 }
 
 /// An included file (`Include(...)`) is checked by the scenes that include
-/// it; on its own only its syntax and field names are.
+/// it; on its own only its syntax and field names are (every mistake, as the
+/// loader reads it).
 fn is_include_file(text: &str) -> bool {
     let toks = crate::syntax::lex::tokenize_lenient(text);
     toks.iter()
@@ -97,12 +96,10 @@ fn is_include_file(text: &str) -> bool {
         .is_some_and(|t| t.text(text) == "Include")
 }
 
-fn include_error(path: &Path, text: &str) -> Option<lsp_types::Diagnostic> {
-    let opts = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    opts.from_str::<crate::desc::IncludeDesc>(text).err().map(|e| {
-        let start = crate::diagnostic::offset_of(text, e.span.start.line, e.span.start.col);
-        let end = crate::diagnostic::offset_of(text, e.span.end.line, e.span.end.col).max(start + 1);
-        let d = Diagnostic::new(path, text, Some(start..end.min(text.len())), e.code.to_string());
-        convert(&d, Some(text))
-    })
+fn include_errors(path: &Path, text: &str) -> Vec<lsp_types::Diagnostic> {
+    let diagnostics = match crate::load::source::read::<crate::desc::IncludeDesc>(path, text) {
+        Ok(parsed) => parsed.diagnostics,
+        Err(report) => report.diagnostics,
+    };
+    diagnostics.iter().map(|d| convert(d, Some(text))).collect()
 }

@@ -27,6 +27,8 @@ use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
 
+/// Energy-normalised Blinn–Phong BSDF with its parameters fixed at one hit (see the
+/// module docs for the formula and sampling).
 #[derive(Clone, Copy, Debug)]
 pub struct BlinnPhong {
     kd: Rgb,

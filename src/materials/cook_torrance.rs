@@ -11,9 +11,13 @@ use super::{BsdfSample, Bxdf, Fresnel, Microfacet, flip_up, reflect};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
+/// Rough-conductor BSDF at one hit: a microfacet distribution and the conductor's
+/// Fresnel reflectance.
 #[derive(Clone, Copy, Debug)]
 pub struct CookTorrance {
+    /// Normal distribution and width (α) of the microfacets.
     pub distribution: Microfacet,
+    /// Reflectance of each microfacet.
     pub fresnel: Fresnel,
 }
 

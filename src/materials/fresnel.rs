@@ -18,12 +18,22 @@ use crate::math::Rgb;
 pub enum Fresnel {
     /// Exact conductor Fresnel with complex IOR `eta + i·k` per channel,
     /// relative to the outside medium.
-    Conductor { eta: Rgb, k: Rgb },
+    Conductor {
+        /// Real part of the index of refraction per channel, > 0.
+        eta: Rgb,
+        /// Extinction coefficient (imaginary part) per channel, ≥ 0.
+        k: Rgb,
+    },
     /// Schlick's approximation with reflectance `f0` at normal incidence.
-    Schlick { f0: Rgb },
+    Schlick {
+        /// Reflectance at normal incidence per channel, in [0, 1].
+        f0: Rgb,
+    },
 }
 
 impl Fresnel {
+    /// Reflectance per channel for light arriving at angle cosine `cos_i` to the
+    /// (micro)surface normal.
     #[inline]
     pub fn eval(&self, cos_i: f32) -> Rgb {
         match self {
@@ -36,11 +46,16 @@ impl Fresnel {
 /// Which formula a smooth dielectric uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DielectricFresnel {
+    /// The exact Fresnel equations ([`dielectric`]).
     Exact,
+    /// Schlick's approximation ([`schlick_dielectric`]): cheaper, close to exact for
+    /// glass-like indices.
     Schlick,
 }
 
 impl DielectricFresnel {
+    /// Reflectance for light arriving at angle cosine `cos_i` on a boundary of
+    /// relative IOR `eta` (η below / η above); `cos_i < 0` arrives from below.
     #[inline]
     pub fn eval(&self, cos_i: f32, eta: f32) -> f32 {
         match self {
@@ -53,9 +68,13 @@ impl DielectricFresnel {
 /// Named conductors for [`Fresnel::Conductor`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Metal {
+    /// Gold (warm yellow).
     Gold,
+    /// Silver (nearly white).
     Silver,
+    /// Copper (orange-red).
     Copper,
+    /// Aluminium (neutral grey-white).
     Aluminium,
 }
 
@@ -83,6 +102,7 @@ impl Metal {
         (Rgb::from_array(eta), Rgb::from_array(k))
     }
 
+    /// The preset as an exact conductor Fresnel term.
     pub fn fresnel(self) -> Fresnel {
         let (eta, k) = self.eta_k();
         Fresnel::Conductor { eta, k }

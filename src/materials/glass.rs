@@ -21,10 +21,16 @@ use super::{BsdfSample, Bxdf, DielectricFresnel};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
+/// Smooth-dielectric BSDF at one hit (both lobes are deltas; see the module docs for
+/// sides and radiance scaling).
 #[derive(Clone, Copy, Debug)]
 pub struct Glass {
+    /// Index of refraction η(inside)/η(outside), > 0; inside is where the normal does
+    /// not point.
     pub ior: f32,
+    /// Colour of transmitted light per refraction; reflection stays white.
     pub tint: Rgb,
+    /// Which Fresnel formula picks between reflection and refraction.
     pub fresnel: DielectricFresnel,
 }
 

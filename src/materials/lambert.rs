@@ -6,8 +6,10 @@ use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
 
+/// Ideal diffuse BSDF at one hit.
 #[derive(Clone, Copy, Debug)]
 pub struct Lambert {
+    /// Diffuse reflectance per channel, in [0, 1]: the fraction of light reflected.
     pub albedo: Rgb,
 }
 

@@ -28,6 +28,8 @@ use crate::math::{Rgb, luminance, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
 
+/// glTF metallic–roughness BSDF at one hit, with the parameters already mixed into a
+/// specular `F0` and a diffuse colour.
 #[derive(Clone, Copy, Debug)]
 pub struct MetalPlastic {
     f0: Rgb,

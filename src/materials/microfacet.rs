@@ -25,9 +25,12 @@ use std::f32::consts::PI;
 /// Below this the lobe is narrower than f32 can resolve well.
 pub const MIN_ALPHA: f32 = 1e-3;
 
+/// Shape of the microfacet normal distribution.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Distribution {
+    /// Trowbridge–Reitz (GGX): long tails, sampled by visible normals.
     Ggx,
+    /// Beckmann: Gaussian slopes, shorter tails, sampled by `D·cos θm`.
     Beckmann,
 }
 
@@ -35,11 +38,15 @@ pub enum Distribution {
 /// the functions expect `wo.z > 0` (callers flip two-sided cases).
 #[derive(Clone, Copy, Debug)]
 pub struct Microfacet {
+    /// Which distribution.
     pub distribution: Distribution,
+    /// Width α of the distribution (larger is rougher), at least [`MIN_ALPHA`].
     pub alpha: f32,
 }
 
 impl Microfacet {
+    /// The distribution for a perceptual `roughness` ∈ [0, 1] (clamped):
+    /// `alpha = roughness²`, at least [`MIN_ALPHA`].
     pub fn from_roughness(distribution: Distribution, roughness: f32) -> Self {
         let r = roughness.clamp(0.0, 1.0);
         Self {
@@ -90,6 +97,8 @@ impl Microfacet {
         }
     }
 
+    /// Smith masking of one direction `w` (z > 0): the fraction of microfacet area
+    /// visible from `w`.
     pub fn g1(&self, w: Vec3A) -> f32 {
         1.0 / (1.0 + self.lambda(w))
     }

@@ -7,8 +7,10 @@ use super::{BsdfSample, Bxdf};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
+/// Perfect mirror BSDF at one hit.
 #[derive(Clone, Copy, Debug)]
 pub struct Mirror {
+    /// Colour multiplying the reflection, per channel in [0, 1].
     pub tint: Rgb,
 }
 

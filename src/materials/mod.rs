@@ -58,6 +58,7 @@ use glam::{Vec2, Vec3A};
 /// One direction drawn from a BSDF.
 #[derive(Clone, Copy, Debug)]
 pub struct BsdfSample {
+    /// The sampled direction, unit length, in the local shading frame (normal +z).
     pub wi: Vec3A,
     /// `f · |cos θi| / pdf`: what the path throughput is multiplied by.
     /// For refraction it already includes the radiance scaling
@@ -135,7 +136,11 @@ impl BsdfSample {
 
 /// The contract every scattering model implements, so tests can be generic.
 pub trait Bxdf {
+    /// The BSDF value `f(wo, wi)` in 1/sr, without the cosine factor; zero for delta
+    /// lobes and for directions the model does not scatter into.
     fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb;
+    /// Solid-angle density (1/sr) with which `sample` draws `wi` from `wo`; zero for
+    /// delta lobes, as `eval`.
     fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32;
     /// `u_lobe` picks a lobe for mixtures; `u` drives the warp.
     fn sample(&self, wo: Vec3A, u_lobe: f32, u: Vec2) -> Option<BsdfSample>;
@@ -148,13 +153,21 @@ pub trait Bxdf {
 /// A BSDF with all its parameters resolved at one hit point.
 #[derive(Clone, Copy, Debug)]
 pub enum Bsdf {
+    /// Ideal diffuse.
     Lambert(Lambert),
+    /// Rough diffuse.
     OrenNayar(OrenNayar),
+    /// Modified Phong.
     Phong(Phong),
+    /// Modified Blinn–Phong.
     BlinnPhong(BlinnPhong),
+    /// Microfacet conductor.
     CookTorrance(CookTorrance),
+    /// glTF metallic–roughness.
     MetalPlastic(MetalPlastic),
+    /// Perfect mirror.
     Mirror(Mirror),
+    /// Smooth dielectric.
     Glass(Glass),
 }
 
@@ -199,42 +212,68 @@ impl Bxdf for Bsdf {
 /// `alpha = roughness²`, `exponent` ≥ 0, `ior` relative to the outside (> 0).
 #[derive(Clone, Debug)]
 pub enum Material {
+    /// Ideal diffuse, `f = albedo/π`.
     Lambert {
+        /// Diffuse reflectance per channel, in [0, 1].
         albedo: ColorTex,
     },
     /// `sigma`: Fujii's **unitless** roughness ≥ 0 (0 = Lambert, useful up
     /// to 1); not an angle — see [`OrenNayar`] for why.
     OrenNayar {
+        /// Diffuse reflectance per channel, in [0, 1].
         albedo: ColorTex,
+        /// Roughness, unitless, ≥ 0.
         sigma: f32,
     },
     /// `kd + ks` is scaled down per channel to at most 1 (see [`Phong`]).
     Phong {
+        /// Diffuse reflectance per channel.
         kd: ColorTex,
+        /// Specular reflectance per channel.
         ks: ColorTex,
+        /// Sharpness n of the `cosⁿα` lobe, ≥ 0.
         exponent: f32,
     },
+    /// Energy-normalised Blinn–Phong; `kd + ks` is capped per channel as for `Phong`.
     BlinnPhong {
+        /// Diffuse reflectance per channel.
         kd: ColorTex,
+        /// Specular reflectance per channel.
         ks: ColorTex,
+        /// Sharpness n of the `cosⁿθh` lobe, ≥ 0.
         exponent: f32,
     },
+    /// Microfacet conductor (Smith height-correlated masking-shadowing).
     CookTorrance {
+        /// Microfacet normal distribution.
         distribution: Distribution,
+        /// Perceptual roughness in [0, 1]; `alpha = roughness²`.
         roughness: f32,
+        /// Reflectance of the conductor.
         fresnel: Fresnel,
     },
+    /// glTF metallic–roughness: a diffuse base under a GGX coat.
     MetalPlastic {
+        /// Diffuse colour (plastic) or reflectance at normal incidence (metal), per
+        /// channel in [0, 1].
         base_color: ColorTex,
+        /// Perceptual roughness in [0, 1]; GGX `alpha = roughness²`.
         roughness: f32,
+        /// 0 is plastic, 1 is metal, in [0, 1].
         metalness: f32,
     },
+    /// Perfect specular reflection.
     Mirror {
+        /// Colour multiplying the reflection, per channel in [0, 1].
         tint: ColorTex,
     },
+    /// Smooth dielectric boundary (glass, water).
     Glass {
+        /// Index of refraction η(inside)/η(outside), > 0.
         ior: f32,
+        /// Colour of transmitted light, applied once per refraction.
         tint: ColorTex,
+        /// Which Fresnel formula chooses between reflection and refraction.
         fresnel: DielectricFresnel,
     },
     /// The surface of an area light: black and non-reflecting, as in the

@@ -27,6 +27,8 @@ use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
 
+/// Fujii's energy-conserving Oren–Nayar BSDF at one hit, its `A` and `B` terms
+/// precomputed from `sigma`.
 #[derive(Clone, Copy, Debug)]
 pub struct OrenNayar {
     albedo: Rgb,

@@ -22,6 +22,8 @@ use crate::math::{Frame, Rgb, luminance, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::{FRAC_1_PI, PI};
 
+/// Energy-normalised Phong BSDF at one hit (see the module docs for the formula and
+/// sampling).
 #[derive(Clone, Copy, Debug)]
 pub struct Phong {
     kd: Rgb,
@@ -60,6 +62,9 @@ pub(crate) fn lobe_pdf(exponent: f32, cos: f32) -> f32 {
 }
 
 impl Phong {
+    /// Diffuse `kd` and specular `ks` reflectance (scaled down per channel so
+    /// `kd + ks ≤ 1`, so the surface creates no energy) and lobe sharpness
+    /// `exponent` ≥ 0 (clamped).
     pub fn new(kd: Rgb, ks: Rgb, exponent: f32) -> Self {
         let (kd, ks, spec_prob) = conserve(kd, ks);
         Self {

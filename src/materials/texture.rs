@@ -14,19 +14,25 @@ use glam::Vec2;
 /// A colour parameter: a constant or a lookup into the scene's textures.
 #[derive(Clone, Debug)]
 pub enum ColorTex {
+    /// The same linear RGB value everywhere.
     Const(Rgb),
     /// Index into the scene's texture list (checked by the loader).
     Image(u32),
     /// Squares of side `1/scale` in uv space alternating `a` and `b`; the
     /// square containing uv (0, 0)+ is `a`.
     Checker {
+        /// Colour of the square at uv (0, 0) and every other square, linear RGB.
         a: Rgb,
+        /// Colour of the remaining squares, linear RGB.
         b: Rgb,
+        /// Squares per uv unit, > 0.
         scale: f32,
     },
 }
 
 impl ColorTex {
+    /// The colour at texture coordinates `uv`; images are filtered bilinearly and
+    /// repeat outside [0, 1]².
     #[inline]
     pub fn eval(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
         match self {
@@ -49,8 +55,12 @@ impl ColorTex {
 /// A decoded image texture (linear RGB texels, row-major, top row first).
 #[derive(Clone, Debug)]
 pub struct Texture {
+    /// Width in texels.
     pub width: u32,
+    /// Height in texels.
     pub height: u32,
+    /// Linear RGB texels, row-major, top row first: texel `(x, y)` is
+    /// `texels[y·width + x]`.
     pub texels: Vec<Rgb>,
 }
 

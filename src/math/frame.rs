@@ -3,10 +3,14 @@
 
 use glam::Vec3A;
 
+/// A right-handed orthonormal basis `(s, t, n)`: world ↔ local shading frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Frame {
+    /// First tangent: the local +x axis.
     pub s: Vec3A,
+    /// Second tangent: the local +y axis, `n × s`.
     pub t: Vec3A,
+    /// The normal: the local +z axis.
     pub n: Vec3A,
 }
 
@@ -23,11 +27,13 @@ impl Frame {
         Self { s, t, n }
     }
 
+    /// World-space vector `v` in this frame's coordinates (normal along +z).
     #[inline]
     pub fn to_local(&self, v: Vec3A) -> Vec3A {
         Vec3A::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))
     }
 
+    /// Local vector `v` back in world space; the inverse of [`Frame::to_local`].
     #[inline]
     pub fn to_world(&self, v: Vec3A) -> Vec3A {
         self.s * v.x + self.t * v.y + self.n * v.z

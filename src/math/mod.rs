@@ -1,12 +1,14 @@
 //! Small numeric building blocks shared by every stage: colours, rays,
-//! orthonormal frames, sampling warps with their densities and the random
-//! number generator.
+//! orthonormal frames, sampling warps with their densities, the random
+//! number generator and exact sums of samples.
 
+pub mod exact_sum;
 pub mod frame;
 pub mod ray;
 pub mod rng;
 pub mod sampling;
 
+pub use exact_sum::ExactSum;
 pub use frame::Frame;
 pub use ray::Ray;
 pub use rng::Pcg32;

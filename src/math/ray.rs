@@ -2,8 +2,11 @@
 
 use glam::Vec3A;
 
+/// A ray: origin and direction, in whatever space it is traced (world space for the
+/// scene, object space inside an instance).
 #[derive(Clone, Copy, Debug)]
 pub struct Ray {
+    /// Origin.
     pub o: Vec3A,
     /// Not required to be normalised by the intersectors, but every ray the
     /// renderer spawns is, so `t` is a distance.
@@ -11,11 +14,13 @@ pub struct Ray {
 }
 
 impl Ray {
+    /// The ray from `o` along `d`; `d` is taken as given, not normalised.
     #[inline]
     pub fn new(o: Vec3A, d: Vec3A) -> Self {
         Self { o, d }
     }
 
+    /// The point at parameter `t`, `o + t·d`.
     #[inline]
     pub fn at(&self, t: f32) -> Vec3A {
         self.o + self.d * t

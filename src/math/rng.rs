@@ -4,6 +4,8 @@
 
 use glam::Vec2;
 
+/// PCG32 generator (XSH RR output, 64-bit state): one independent stream per camera
+/// sample.
 #[derive(Clone, Debug)]
 pub struct Pcg32 {
     state: u64,
@@ -13,6 +15,8 @@ pub struct Pcg32 {
 const MULT: u64 = 6364136223846793005;
 
 impl Pcg32 {
+    /// A generator seeded with `seed` on stream `stream`; different streams give
+    /// independent sequences even for equal seeds.
     pub fn new(seed: u64, stream: u64) -> Self {
         let mut r = Self {
             state: 0,
@@ -34,6 +38,7 @@ impl Pcg32 {
         )
     }
 
+    /// The next uniform 32-bit value.
     #[inline]
     pub fn next_u32(&mut self) -> u32 {
         let old = self.state;
@@ -49,6 +54,7 @@ impl Pcg32 {
         (self.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
     }
 
+    /// Two uniform values in [0, 1)², x drawn first.
     #[inline]
     pub fn next_vec2(&mut self) -> Vec2 {
         Vec2::new(self.next_f32(), self.next_f32())

@@ -39,11 +39,15 @@ pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
     Vec3A::new(d.x, d.y, z)
 }
 
+/// Density (1/sr) of [`cosine_hemisphere`] at a direction of angle cosine `cos_theta`
+/// to +z; 0 below the horizon.
 #[inline]
 pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
     cos_theta.max(0.0) * FRAC_1_PI
 }
 
+/// Uniform direction on the unit sphere from `u` ∈ [0, 1)²; density
+/// [`UNIFORM_SPHERE_PDF`].
 pub fn uniform_sphere(u: Vec2) -> Vec3A {
     let z = 1.0 - 2.0 * u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
@@ -51,8 +55,11 @@ pub fn uniform_sphere(u: Vec2) -> Vec3A {
     Vec3A::new(r * phi.cos(), r * phi.sin(), z)
 }
 
+/// Density (1/sr) of [`uniform_sphere`]: 1/(4π).
 pub const UNIFORM_SPHERE_PDF: f32 = 1.0 / (4.0 * PI);
 
+/// Uniform direction on the upper (+z) unit hemisphere from `u` ∈ [0, 1)²; density
+/// [`UNIFORM_HEMISPHERE_PDF`].
 pub fn uniform_hemisphere(u: Vec2) -> Vec3A {
     let z = u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
@@ -60,6 +67,7 @@ pub fn uniform_hemisphere(u: Vec2) -> Vec3A {
     Vec3A::new(r * phi.cos(), r * phi.sin(), z)
 }
 
+/// Density (1/sr) of [`uniform_hemisphere`]: 1/(2π).
 pub const UNIFORM_HEMISPHERE_PDF: f32 = 1.0 / (2.0 * PI);
 
 /// Veach's power heuristic (β = 2) for combining two strategies by MIS,

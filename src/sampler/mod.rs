@@ -18,11 +18,15 @@ use crate::math::Pcg32;
 use crate::math::rng::mix64;
 use glam::Vec2;
 
+/// Which sample generator a render uses (the scene's `film.sampler`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SamplerKind {
+    /// Uniform random numbers from each sample's own PCG32 stream.
     #[default]
     Independent,
+    /// Jittered strata per 2-D dimension pair, visited in a random order.
     Stratified,
+    /// Padded, Owen-scrambled Sobol points: lowest error, best at power-of-two spp.
     Sobol,
 }
 
@@ -39,6 +43,9 @@ pub struct Sampler {
 }
 
 impl Sampler {
+    /// The sampler for sample `index` (of `spp`) of pixel `(x, y)` with the scene's
+    /// `seed`: a pure function of those, so any pixel or sample can be rendered alone
+    /// and give the same numbers.
     pub fn new(kind: SamplerKind, x: u32, y: u32, index: u32, spp: u32, seed: u64) -> Self {
         let pixel_hash = mix64(((y as u64) << 32 | x as u64) ^ mix64(seed.wrapping_add(0x5851_f42d)));
         Self {
@@ -70,6 +77,7 @@ impl Sampler {
         h
     }
 
+    /// The next dimension, uniform in [0, 1).
     #[inline]
     pub fn next_f32(&mut self) -> f32 {
         match self.kind {
@@ -84,6 +92,9 @@ impl Sampler {
         }
     }
 
+    /// The next pair of dimensions, uniform in [0, 1)²: what the strata and Sobol
+    /// points are built for, so 2-D draws (lens, light point, BSDF direction) should
+    /// use it.
     #[inline]
     pub fn next_vec2(&mut self) -> Vec2 {
         match self.kind {

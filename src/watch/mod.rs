@@ -18,7 +18,7 @@ mod status;
 mod watched;
 
 use crate::desc::ObjectDesc;
-use crate::load::pipeline::{load_str_with_meshes, parse};
+use crate::load::pipeline::{load_str_with_meshes, read};
 use crate::load::{LoadError, Overrides};
 use debounce::Debounce;
 use mesh_cache::MeshCache;
@@ -36,7 +36,9 @@ use watched::WatchSet;
 /// What `ronray watch` was asked to do.
 #[derive(Clone, Debug)]
 pub struct WatchArgs {
+    /// The scene file to watch.
     pub scene: PathBuf,
+    /// `-o`: where each pass is written (default as for `render`).
     pub output: Option<PathBuf>,
     /// Overrides from the command line (`--spp`, `--set`, …).
     pub overrides: Overrides,
@@ -51,6 +53,7 @@ enum Msg {
     Quit,
 }
 
+/// Watches and re-renders until interrupted (Ctrl-C).
 pub fn run(args: WatchArgs) -> ExitCode {
     let hub = args.serve.is_some().then(|| Arc::new(hub::Hub::default()));
     let reporter = Arc::new(Reporter::new(std::io::stderr().is_terminal(), hub.clone()));
@@ -196,6 +199,16 @@ impl Session {
             let msg = format!("error: output {} must end in .png or .exr", output.display());
             return self.reporter.problem(generation, &msg);
         }
+        if let Some(input) = loaded.input_at(&output) {
+            // Writing it would overwrite an input and trigger this reload
+            // again, for ever.
+            let msg = format!(
+                "error: output {} is {}, which the scene reads; keeping the last good image",
+                output.display(),
+                input.display()
+            );
+            return self.reporter.problem(generation, &msg);
+        }
         self.reporter.warnings(&loaded.warnings);
         let name = self.scene.display().to_string();
         let watched = self.set.file_count();
@@ -228,12 +241,13 @@ impl Session {
     }
 }
 
-/// The files a scene that failed to load names, as far as it parses.
+/// The files a scene that failed to load names, as far as it parses (every
+/// entry that parses on its own counts).
 fn referenced_files(scene: &Path, text: &str) -> Vec<PathBuf> {
     let base = scene.parent().unwrap_or(Path::new("."));
     let mut files = vec![scene.to_path_buf()];
-    if let Ok(desc) = parse(scene, text) {
-        for o in &desc.objects {
+    if let Ok(parsed) = read::<crate::desc::SceneDesc>(scene, text) {
+        for o in &parsed.desc.objects {
             if let ObjectDesc::Mesh { file, .. } = o {
                 files.push(base.join(file));
             }

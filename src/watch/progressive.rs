@@ -8,8 +8,8 @@
 //! invalid edit leaves the last good image on disk as it was.
 
 use super::status::{PassInfo, Reporter};
-use crate::imageio::{Image, write_image};
-use crate::render::{RenderOptions, render_accumulate};
+use crate::imageio::{Image, PixelRect, write_image};
+use crate::render::{RenderOptions, SampleSums, render_accumulate};
 use crate::scene::Scene;
 use crate::view::View;
 use std::path::PathBuf;
@@ -76,7 +76,7 @@ fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
     let film = job.view.film;
     let targets = schedule(film.spp);
     let passes = targets.len();
-    let mut sums = Image::new(film.width, film.height);
+    let mut sums = SampleSums::new(PixelRect::full(film.width, film.height));
     let mut done = 0;
     for (k, &target) in targets.iter().enumerate() {
         let pass = k + 1;
@@ -98,12 +98,8 @@ fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
             return;
         }
         done = target;
-        let image = Image {
-            width: film.width,
-            height: film.height,
-            // The same division `render` does, on the same sums.
-            pixels: sums.pixels.iter().map(|&s| s / done as f32).collect(),
-        };
+        // The same division `render` does, on the same sums.
+        let image = sums.mean(done);
         if let Err(e) = write_image(&image, &job.output) {
             reporter.failed(&format!("{e}; watching for the next change"));
             return;

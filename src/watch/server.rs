@@ -21,6 +21,21 @@ const DEFAULT_TRIES: u16 = 10;
 /// Threads are cheap, not free: a runaway client gets 503s.
 const MAX_CONNECTIONS: usize = 64;
 const KEEPALIVE: Duration = Duration::from_secs(15);
+/// How often an idle event stream checks that its page is still there.
+const POLL: Duration = Duration::from_millis(250);
+
+/// Whether the client has closed its end (a read would return end of file).
+/// Pages send nothing after their request, so any byte would also do; the
+/// peek is non-blocking, then the socket goes back to blocking.
+fn peer_closed(stream: &TcpStream) -> bool {
+    if stream.set_nonblocking(true).is_err() {
+        return false;
+    }
+    let mut b = [0u8; 1];
+    let closed = matches!(stream.peek(&mut b), Ok(0));
+    let _ = stream.set_nonblocking(false);
+    closed
+}
 
 /// Binds `addr` (`HOST:PORT`, or a bare port on loopback; empty for the
 /// default, moving to the next port while one is taken) and serves in the
@@ -67,8 +82,11 @@ fn bind(addr: &str) -> io::Result<TcpListener> {
 
 fn handle(mut stream: TcpStream, hub: &Hub) -> io::Result<()> {
     stream.set_read_timeout(Some(Duration::from_secs(5)))?;
-    let (method, target) = read_request(&stream)?;
+    let (method, target, host) = read_request(&stream)?;
     let path = target.split(['?', '#']).next().unwrap_or("/");
+    if !host_allowed(host.as_deref()) {
+        return respond(&mut stream, "403 Forbidden", "text/plain", b"unknown Host");
+    }
     if method != "GET" {
         return respond(&mut stream, "405 Method Not Allowed", "text/plain", b"GET only");
     }
@@ -89,23 +107,47 @@ fn handle(mut stream: TcpStream, hub: &Hub) -> io::Result<()> {
     }
 }
 
-/// The request line's method and target; headers are read and ignored.
-fn read_request(stream: &TcpStream) -> io::Result<(String, String)> {
+/// The request line's method and target, and the `Host` header; other
+/// headers are read and ignored.
+fn read_request(stream: &TcpStream) -> io::Result<(String, String, Option<String>)> {
     let mut reader = BufReader::new(stream).take(16 * 1024);
     let mut first = String::new();
     reader.read_line(&mut first)?;
     let mut line = String::new();
+    let mut host = None;
     loop {
         line.clear();
         if reader.read_line(&mut line)? == 0 || line == "\r\n" || line == "\n" {
             break;
         }
+        if let Some((name, value)) = line.split_once(':')
+            && name.trim().eq_ignore_ascii_case("host")
+        {
+            host = Some(value.trim().to_string());
+        }
     }
     let mut parts = first.split_whitespace();
     match (parts.next(), parts.next()) {
-        (Some(m), Some(t)) => Ok((m.to_string(), t.to_string())),
+        (Some(m), Some(t)) => Ok((m.to_string(), t.to_string(), host)),
         _ => Err(io::Error::new(io::ErrorKind::InvalidData, "bad request line")),
     }
+}
+
+/// Whether a request's `Host` may be served: `localhost` or an IP address
+/// (any port). A DNS name that resolves to this machine is how a web page
+/// elsewhere would reach the server (DNS rebinding), so names are refused;
+/// a request without `Host` (HTTP/1.0 tools) is served.
+fn host_allowed(host: Option<&str>) -> bool {
+    let Some(host) = host else {
+        return true;
+    };
+    let name = if let Some(rest) = host.strip_prefix('[') {
+        // `[::1]:8765`
+        rest.split(']').next().unwrap_or("")
+    } else {
+        host.rsplit_once(':').map_or(host, |(n, _)| n)
+    };
+    name.eq_ignore_ascii_case("localhost") || name.parse::<std::net::IpAddr>().is_ok()
 }
 
 fn respond(stream: &mut TcpStream, status: &str, content_type: &str, body: &[u8]) -> io::Result<()> {
@@ -127,12 +169,24 @@ fn events(mut stream: TcpStream, hub: &Hub) -> io::Result<()> {
           Connection: keep-alive\r\n\r\nretry: 1000\n\n",
     )?;
     let mut seen = 0;
+    let mut quiet = Duration::ZERO;
     loop {
-        let snap = hub.wait_newer(seen, KEEPALIVE);
+        // Short waits, so a page that closed frees its connection within a
+        // poll instead of at the next keep-alive write (64 closed pages kept
+        // the server answering 503 for 15 s).
+        let snap = hub.wait_newer(seen, POLL);
         if snap.seq == seen {
-            stream.write_all(b": keepalive\n\n")?;
+            if peer_closed(&stream) {
+                return Ok(());
+            }
+            quiet += POLL;
+            if quiet >= KEEPALIVE {
+                stream.write_all(b": keepalive\n\n")?;
+                quiet = Duration::ZERO;
+            }
             continue;
         }
+        quiet = Duration::ZERO;
         let mut news: Vec<_> = KINDS
             .iter()
             .map(|&k| (&snap.events[k as usize], k))
@@ -159,4 +213,63 @@ fn state_json(snap: &Snapshot) -> String {
         })
         .collect();
     format!("{{{}}}", fields.join(","))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::Instant;
+
+    fn get(addr: SocketAddr, path: &str, host: &str) -> String {
+        let mut s = TcpStream::connect(addr).expect("connect");
+        s.set_read_timeout(Some(Duration::from_secs(5))).expect("timeout");
+        // A busy server answers 503 without reading: the write may fail.
+        let _ = write!(s, "GET {path} HTTP/1.1\r\nHost: {host}\r\n\r\n");
+        let mut out = String::new();
+        let _ = s.read_to_string(&mut out);
+        out
+    }
+
+    #[test]
+    fn server_refuses_hosts_that_are_dns_names() {
+        let addr = start("0", Arc::new(Hub::default())).expect("start");
+        assert!(get(addr, "/state", &format!("127.0.0.1:{}", addr.port())).starts_with("HTTP/1.1 200"));
+        assert!(get(addr, "/state", "localhost:8765").starts_with("HTTP/1.1 200"));
+        assert!(get(addr, "/state", "[::1]:8765").starts_with("HTTP/1.1 200"));
+        assert!(get(addr, "/state", "evil.example:8765").starts_with("HTTP/1.1 403"));
+    }
+
+    /// 64 pages open `/events` and close: the server frees their
+    /// connections within a poll, not after 15 s of 503s.
+    #[test]
+    fn server_frees_closed_event_streams_promptly() {
+        let addr = start("0", Arc::new(Hub::default())).expect("start");
+        let host = format!("127.0.0.1:{}", addr.port());
+        let streams: Vec<TcpStream> = (0..MAX_CONNECTIONS)
+            .map(|_| {
+                let mut s = TcpStream::connect(addr).expect("connect");
+                write!(s, "GET /events HTTP/1.1\r\nHost: {host}\r\n\r\n").expect("send");
+                let mut b = [0u8; 16];
+                s.read_exact(&mut b).expect("headers start");
+                s
+            })
+            .collect();
+        assert!(
+            get(addr, "/state", &host).starts_with("HTTP/1.1 503"),
+            "all slots taken"
+        );
+        drop(streams);
+        let t = Instant::now();
+        loop {
+            if get(addr, "/state", &host).starts_with("HTTP/1.1 200") {
+                break;
+            }
+            assert!(
+                t.elapsed() < Duration::from_secs(5),
+                "still busy after {:?}",
+                t.elapsed()
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
 }

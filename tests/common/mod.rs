@@ -77,21 +77,34 @@ pub fn mean_li(l: &Loaded, ray: Ray, n: u32) -> Vec3A {
 /// returns `None` — unless `RONRAY_REQUIRE_TOOLS=1` (set by `.ci/run`, which
 /// installs every tool) makes a missing tool a failure.
 pub fn tool_or_skip(tool: &str, test: &str, install: &str) -> Option<PathBuf> {
-    use std::io::Write;
     let found = std::env::var_os("PATH")
         .iter()
         .flat_map(std::env::split_paths)
         .map(|d| d.join(tool))
         .find(|p| p.is_file());
     if found.is_none() {
-        let why = format!("`{tool}` is not installed ({install})");
-        if std::env::var("RONRAY_REQUIRE_TOOLS").as_deref() == Ok("1") {
-            panic!("{test}: {why}, and RONRAY_REQUIRE_TOOLS=1 requires it");
-        }
-        let _ = writeln!(
-            std::io::stderr(),
-            "skipped {test}: {why}; install it to run this test"
+        skip_or_fail(
+            test,
+            &format!("`{tool}` is not installed ({install})"),
+            "install it to run this test",
         );
     }
     found
+}
+
+/// Reports that `test` cannot run because of `why`: on the terminal (past
+/// the harness's capture) with `remedy`, or as a failure when
+/// `RONRAY_REQUIRE_TOOLS=1` says every tool and service must be there.
+pub fn skip_or_fail(test: &str, why: &str, remedy: &str) {
+    use std::io::Write;
+    if std::env::var("RONRAY_REQUIRE_TOOLS").as_deref() == Ok("1") {
+        panic!("{test}: {why}, and RONRAY_REQUIRE_TOOLS=1 requires it");
+    }
+    let _ = writeln!(std::io::stderr(), "skipped {test}: {why}; {remedy}");
+}
+
+/// Prints a line past the test harness's capture (measured figures).
+pub fn report(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "{line}");
 }

@@ -27,6 +27,9 @@ pub(crate) use node::Node;
 /// therefore fixed, on the stack, and never overflows.
 pub(crate) const MAX_DEPTH: u32 = 64;
 
+/// A binary BVH over primitive bounds, built by binned SAH. It stores only boxes and
+/// the caller's primitive indices, so any kind of primitive can share it; the wide
+/// BVH is built from it.
 pub struct Bvh {
     /// Depth-first; empty iff no primitive has non-empty bounds.
     nodes: Vec<Node>,
@@ -39,7 +42,9 @@ pub struct Bvh {
 /// Size and quality of a built tree.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BvhStats {
+    /// Number of nodes, inner and leaf.
     pub nodes: usize,
+    /// Number of leaf nodes.
     pub leaves: usize,
     /// Root has depth 0.
     pub max_depth: u32,
@@ -68,6 +73,7 @@ impl Bvh {
         self.len
     }
 
+    /// True if built over no primitive at all.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
@@ -78,6 +84,7 @@ impl Bvh {
         self.nodes.first().map_or(Aabb::EMPTY, Node::bounds)
     }
 
+    /// Size and SAH quality of the tree (see [`BvhStats`]).
     pub fn stats(&self) -> BvhStats {
         stats_of(&self.nodes, self.indices.len())
     }

@@ -140,7 +140,13 @@ impl WideBvh {
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                debug_assert!(node.child[lane] != EMPTY);
+                // An empty lane has inverted bounds and never passes the slab
+                // test with a finite ray; a ray made of huge or non-finite
+                // numbers can still let one through, so it is skipped here
+                // rather than read as a leaf (it would index past the end).
+                if node.child[lane] == EMPTY {
+                    continue;
+                }
                 let e = (node.child[lane], t_near[lane]);
                 if e.0 & LEAF == 0 {
                     prefetch(&self.nodes[e.0 as usize]);
@@ -186,6 +192,10 @@ impl WideBvh {
             while mask != 0 {
                 let lane = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
+                // See `intersect`: never follow an empty lane.
+                if node.child[lane] == EMPTY {
+                    continue;
+                }
                 stack[sp].write(node.child[lane]);
                 sp += 1;
             }

@@ -13,6 +13,8 @@ use super::node::SdfNode;
 use crate::accel::Aabb;
 use glam::{BVec3A, Mat3A, Vec3A};
 
+/// The box containing everything: the bounds of an unbounded tree (a `Plane` not cut
+/// by a bounded shape), which the BVH cannot cull.
 pub const INFINITE: Aabb = Aabb {
     min: Vec3A::NEG_INFINITY,
     max: Vec3A::INFINITY,

@@ -18,6 +18,8 @@ use crate::accel::Aabb;
 use crate::math::Ray;
 use glam::Vec3A;
 
+/// How one SDF object is sphere-traced: step budget, hit threshold and step sizes.
+/// The scene's `march` settings fill it; the defaults suit exact shapes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MarchParams {
     /// Steps before the march gives up and reports a miss. A ray that passes

@@ -5,11 +5,13 @@
 
 use glam::{Vec2, Vec3A};
 
+/// Ball of `radius` around the origin.
 #[inline]
 pub fn sphere(p: Vec3A, radius: f32) -> f32 {
     p.length() - radius
 }
 
+/// Axis-aligned box from `-half_extents` to `half_extents`.
 #[inline]
 pub fn cuboid(p: Vec3A, half_extents: Vec3A) -> f32 {
     // Per-axis distance outside the slabs (negative inside).
@@ -18,12 +20,16 @@ pub fn cuboid(p: Vec3A, half_extents: Vec3A) -> f32 {
     q.max(Vec3A::ZERO).length() + q.max_element().min(0.0)
 }
 
+/// Box of outer size `half_extents` with edges rounded by `radius` (`0 ≤ radius ≤`
+/// the smallest half extent).
 #[inline]
 pub fn round_box(p: Vec3A, half_extents: Vec3A, radius: f32) -> f32 {
     // A box shrunk by the radius, inflated by it again.
     cuboid(p, half_extents - Vec3A::splat(radius)) - radius
 }
 
+/// Torus around the y axis: `major` from the origin to the tube's centre line,
+/// `minor` the tube's radius.
 #[inline]
 pub fn torus(p: Vec3A, major: f32, minor: f32) -> f32 {
     // Distance to the centre circle in the (radial, y) half-plane, minus the tube.
@@ -31,6 +37,7 @@ pub fn torus(p: Vec3A, major: f32, minor: f32) -> f32 {
     q.length() - minor
 }
 
+/// Segment from `a` to `b` swept by a ball of `radius`; `a = b` is a sphere.
 #[inline]
 pub fn capsule(p: Vec3A, a: Vec3A, b: Vec3A, radius: f32) -> f32 {
     let pa = p - a;
@@ -45,6 +52,7 @@ pub fn capsule(p: Vec3A, a: Vec3A, b: Vec3A, radius: f32) -> f32 {
     (pa - ba * h).length() - radius
 }
 
+/// Capped cylinder along y, of `radius`, from `-half_height` to `half_height`.
 #[inline]
 pub fn cylinder(p: Vec3A, radius: f32, half_height: f32) -> f32 {
     // A 2D box in the (radial, y) half-plane.

@@ -16,6 +16,8 @@ use super::primitives::{capsule, cuboid, cylinder, plane, round_box, sphere, tor
 use crate::accel::Aabb;
 use glam::Vec3A;
 
+/// An SDF tree ready to march: the node arena, its root, and what the march
+/// needs precomputed (exactness, bounds).
 #[derive(Clone, Debug)]
 pub struct Sdf {
     nodes: Vec<SdfNode>,
@@ -86,10 +88,13 @@ impl Sdf {
         self.is_exact
     }
 
+    /// The node arena, children before parents (plane normals and rotations
+    /// normalised).
     pub fn nodes(&self) -> &[SdfNode] {
         &self.nodes
     }
 
+    /// Index of the root node in [`Sdf::nodes`].
     pub fn root(&self) -> u32 {
         self.root
     }

@@ -1,0 +1,294 @@
+//! The one place scene text is parsed, RON or JSON, for the top file and
+//! included files alike, and the one place a problem becomes a located
+//! diagnostic.
+//!
+//! A file that parses as a whole is done in one step. One that does not is
+//! checked for unbalanced brackets (`brackets.rs`), the only mistake
+//! that stops reading; otherwise it is read section by section
+//! (`sections.rs`) so that every mistake in it is reported at once,
+//! in the user's words (`words.rs`).
+
+use super::brackets;
+use super::document::{Document, Gaps};
+use super::outline::Outline;
+use super::sections;
+use super::set::SetProblem;
+use super::spans::Spans;
+use super::tokens::{Tok, tokenize};
+use super::words;
+use crate::desc::SceneDesc;
+use crate::diagnostic::{Diagnostic, Problem, Report, offset_of};
+use serde::de::DeserializeOwned;
+use std::borrow::Cow;
+use std::ops::Range;
+use std::path::Path;
+
+/// How a file is written: RON (with the extensions it enables) or JSON.
+pub enum Format {
+    /// RON, with the options (extensions) the file enables.
+    Ron(ron::Options),
+    /// JSON (chosen by the `.json` extension).
+    Json,
+}
+
+/// A parse mistake located in the file's text.
+#[derive(Clone, Debug)]
+pub struct Slip {
+    /// Byte range of the mistake in the file.
+    pub span: Range<usize>,
+    /// What is wrong.
+    pub message: String,
+    /// The likely fix.
+    pub help: Option<String>,
+}
+
+/// A file read as far as it could be: a (possibly partial) description,
+/// what was left out of it, and the mistakes found on the way. A partial
+/// description is only for checking; there is a diagnostic for every gap.
+pub struct Parsed<T> {
+    /// What was read (stand-ins where entries were broken).
+    pub desc: T,
+    /// The entries left out or replaced, so later problems keep the
+    /// indices the user wrote.
+    pub gaps: Gaps,
+    /// The parse mistakes found.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Format {
+    /// JSON for `.json` files, else RON with `implicit_some` (optional
+    /// fields written bare: `focus_distance: 3.5`) and whatever the file's
+    /// `#![enable(…)]` header adds, so that a slice read alone gets them too.
+    pub fn of(path: &Path, text: &str) -> Self {
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+            return Format::Json;
+        }
+        let mut ext = ron::extensions::Extensions::IMPLICIT_SOME;
+        let mut rest = text.trim_start();
+        while let Some(attr) = rest.strip_prefix("#![enable(") {
+            let Some((names, after)) = attr.split_once(")]") else {
+                break;
+            };
+            for name in names.split(',') {
+                ext |= ron::extensions::Extensions::from_ident(name.trim()).unwrap_or_default();
+            }
+            rest = after.trim_start();
+        }
+        Format::Ron(ron::Options::default().with_default_extension(ext))
+    }
+
+    /// Deserialises `text[range]` on its own; an error is located in `text`.
+    pub(super) fn read<T: DeserializeOwned>(&self, text: &str, range: Range<usize>) -> Result<T, Slip> {
+        let slice = text.get(range.clone()).unwrap_or("");
+        let (span, (message, help)) = match self {
+            Format::Ron(opts) => {
+                let e = match opts.from_str::<T>(slice) {
+                    Ok(v) => return Ok(v),
+                    Err(e) => e,
+                };
+                let mut start = offset_of(slice, e.span.start.line, e.span.start.col);
+                let end = offset_of(slice, e.span.end.line, e.span.end.col).max(start);
+                // ron points past the sign of a negative number it rejects.
+                if e.code == ron::Error::IntegerOutOfBounds && slice[..start].ends_with('-') {
+                    start -= 1;
+                }
+                (start..end, words::ron_error(&e.code, &slice[start..]))
+            }
+            Format::Json => {
+                let e = match serde_json::from_str::<T>(slice) {
+                    Ok(v) => return Ok(v),
+                    Err(e) => e,
+                };
+                let at = json_offset(slice, e.line(), e.column());
+                (token_at(slice, at), words::serde_message(&e.to_string()))
+            }
+        };
+        let span = widen(text, span.start + range.start..span.end + range.start);
+        let help = words::odd_character(&text[span.start..]).or(help);
+        Err(Slip::new(span, message, help))
+    }
+}
+
+/// Byte offset of serde_json's 1-based line and byte column (the last byte
+/// it read).
+fn json_offset(text: &str, line: usize, col: usize) -> usize {
+    let start: usize = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum();
+    (start + col.saturating_sub(1)).min(text.len())
+}
+
+/// The token holding byte `at`, or the character there.
+fn token_at(text: &str, at: usize) -> Range<usize> {
+    tokenize(text)
+        .into_iter()
+        .find(|(t, r)| r.contains(&at) && !matches!(t, Tok::Unclosed(_)))
+        .map_or(at..at, |(_, r)| r)
+}
+
+/// `span` on character boundaries of `text`, at least one character wide
+/// (ariadne needs something to underline).
+fn widen(text: &str, span: Range<usize>) -> Range<usize> {
+    let start = text.floor_char_boundary(span.start.min(text.len()));
+    let mut end = text.ceil_char_boundary(span.end.clamp(start, text.len()));
+    if end == start {
+        end = text[start..]
+            .chars()
+            .next()
+            .map_or(start, |c| start + c.len_utf8());
+    }
+    start..end
+}
+
+impl Slip {
+    /// A mistake at `span`.
+    pub fn new(span: Range<usize>, message: String, help: Option<String>) -> Self {
+        Self { span, message, help }
+    }
+
+    /// The located diagnostic, with the scene path of the value it is in.
+    fn diagnostic(self, file: &Path, text: &str, spans: &Spans) -> Diagnostic {
+        let mut d = Diagnostic::new(file, text, Some(widen(text, self.span)), self.message);
+        d.path = spans.path_at(d.span.as_ref().map_or(0, |s| s.start));
+        d.help = self.help;
+        d
+    }
+}
+
+/// A UTF-8 byte-order mark is not a mistake: it reads as spaces, which
+/// keeps every byte offset (and so every diagnostic) in place.
+fn without_bom(text: &str) -> Cow<'_, str> {
+    match text.strip_prefix('\u{feff}') {
+        Some(rest) => Cow::Owned(format!("   {rest}")),
+        None => Cow::Borrowed(text),
+    }
+}
+
+/// Largest scene or included file read, in bytes. Hand-written scenes are
+/// kilobytes; raise it here for generated ones.
+pub const MAX_SCENE_FILE_BYTES: u64 = 64 << 20;
+
+/// Reads a scene or included file as text. Regular files only: a FIFO or a
+/// device would block or never end (`metadata` does not open the file, so
+/// asking cannot block). Larger than [`MAX_SCENE_FILE_BYTES`] is an error.
+pub fn read_text(path: &Path) -> std::io::Result<String> {
+    use std::io::{Error, ErrorKind, Read};
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(Error::new(ErrorKind::InvalidInput, "not a regular file"));
+    }
+    if meta.len() > MAX_SCENE_FILE_BYTES {
+        return Err(Error::new(
+            ErrorKind::InvalidData,
+            format!("larger than {} MiB", MAX_SCENE_FILE_BYTES >> 20),
+        ));
+    }
+    let mut text = String::new();
+    std::fs::File::open(path)?
+        .take(MAX_SCENE_FILE_BYTES + 1)
+        .read_to_string(&mut text)?;
+    if text.len() as u64 > MAX_SCENE_FILE_BYTES {
+        return Err(Error::new(
+            ErrorKind::InvalidData,
+            format!("larger than {} MiB", MAX_SCENE_FILE_BYTES >> 20),
+        ));
+    }
+    Ok(text)
+}
+
+/// Reads a scene or included file. Only a broken structure (unbalanced
+/// brackets, or no recognisable top level) is an `Err`; every other mistake
+/// is in [`Parsed::diagnostics`], beside what could be read.
+pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
+    let clean = without_bom(text);
+    let format = Format::of(path, &clean);
+    let mut whole = match format.read::<T>(&clean, 0..clean.len()) {
+        Ok(desc) => {
+            let (gaps, diagnostics) = (Gaps::default(), Vec::new());
+            return Ok(Parsed {
+                desc,
+                gaps,
+                diagnostics,
+            });
+        }
+        Err(slip) => slip,
+    };
+    if clean.trim().is_empty() {
+        let help = Some("a scene is written `Scene(camera: (…), objects: […])`".to_string());
+        whole = Slip::new(0..0, "the file is empty".into(), help);
+    }
+    let spans = Spans::scan(&clean);
+    let located = |slips: Vec<Slip>| -> Vec<Diagnostic> {
+        slips
+            .into_iter()
+            .map(|s| s.diagnostic(path, text, &spans))
+            .collect()
+    };
+    let stop = |slip: Slip| Report {
+        diagnostics: located(vec![slip]),
+        sources: vec![(path.to_path_buf(), text.to_string())],
+    };
+    if let Some(broken) = brackets::check(&clean) {
+        return Err(stop(broken));
+    }
+    let Some(outline) = Outline::of(&clean) else {
+        return Err(stop(whole));
+    };
+    let (desc, gaps, slips) = sections::read::<T>(&format, &clean, &outline, whole);
+    let diagnostics = located(slips);
+    Ok(Parsed {
+        desc,
+        gaps,
+        diagnostics,
+    })
+}
+
+/// RON or JSON text → [`SceneDesc`], or every mistake in it.
+pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
+    let parsed = read::<SceneDesc>(path, text)?;
+    if parsed.diagnostics.is_empty() {
+        return Ok(parsed.desc);
+    }
+    Err(Report {
+        diagnostics: parsed.diagnostics,
+        sources: vec![(path.to_path_buf(), text.to_string())],
+    })
+}
+
+/// A problem found in a parsed file, located by its scene path.
+pub fn locate(file: &Path, text: &str, spans: &Spans, p: &Problem) -> Diagnostic {
+    let mut d = Diagnostic::new(file, text, spans.find(&p.path), p.message.clone());
+    d.path = Some(p.path.clone());
+    d.help = p.help.clone();
+    d
+}
+
+/// Semantic problems → diagnostics located through the file's text.
+pub fn located(path: &Path, text: &str, problems: &[Problem]) -> Report {
+    let spans = Spans::scan(text);
+    Report {
+        diagnostics: problems.iter().map(|p| locate(path, text, &spans, p)).collect(),
+        sources: vec![(path.to_path_buf(), text.to_string())],
+    }
+}
+
+/// Problems in command-line overrides: located at the `--set` argument
+/// that caused each (`--set film.spp=abc`), not in any file.
+pub fn command_line(problems: &[SetProblem]) -> Report {
+    let diagnostics = problems
+        .iter()
+        .map(|s| {
+            let file = format!("--set {}", s.arg);
+            let mut d = Diagnostic::new(Path::new(&file), "", None, s.problem.message.clone());
+            d.path = Some(s.problem.path.clone()).filter(|p| !p.is_empty());
+            d.help = s.problem.help.clone();
+            d
+        })
+        .collect();
+    Report {
+        diagnostics,
+        sources: Vec::new(),
+    }
+}

@@ -1,0 +1,192 @@
+//! Exact, order-free sums of radiance samples.
+//!
+//! A pixel is the mean of its samples. Summed in `f32`, the total depends on
+//! how the additions are grouped (float addition is not associative): samples
+//! 0..8 and 8..16 summed on two machines and then added differ in the last
+//! bits from samples 0..16 summed in one run, because the second machine
+//! starts from 0 instead of the first machine's running sum. So each sample is
+//! instead turned once into a fixed-point integer with 64 fractional bits
+//! (a *superaccumulator* in the sense of Kulisch, narrowed to the range
+//! radiance needs), and integers add associatively: any split of a pixel's
+//! samples, summed in any order on any number of machines, gives the same
+//! integer, and [`ExactSum::mean`] the same `f32`.
+//!
+//! - **Range**: a sample is clamped to ±2³⁰ (about 1.07·10⁹; radiance beyond
+//!   that is a numerical accident). With at most 2³² samples a channel's sum
+//!   stays below 2⁶² · 2⁶⁴ = 2¹²⁶, inside `i128`.
+//! - **Precision**: the conversion keeps every bit of the sample down to
+//!   2⁻⁶⁴ ≈ 5.4·10⁻²⁰ and truncates below, so every `f32` of magnitude
+//!   ≥ 2⁻⁴⁰ ≈ 9·10⁻¹³ is held exactly.
+//! - **Mean**: the integer is rounded to `f64`, scaled, divided by the sample
+//!   count and rounded to `f32`: a pure function of (sum, count).
+
+use super::Rgb;
+
+/// Fractional bits of the fixed-point representation.
+const FRACTION_BITS: i32 = 64;
+/// Largest sample magnitude kept (2³⁰); larger samples are clamped to it.
+const LIMIT: f32 = (1u32 << 30) as f32;
+
+/// The exact sum of a pixel's samples, one fixed-point integer per channel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ExactSum(pub [i128; 3]);
+
+impl ExactSum {
+    /// No samples yet.
+    pub const ZERO: ExactSum = ExactSum([0; 3]);
+
+    /// Adds one sample; non-finite channels must be filtered by the caller.
+    #[inline]
+    pub fn add_sample(&mut self, c: Rgb) {
+        debug_assert!(c.is_finite(), "non-finite sample {c}");
+        for (s, v) in self.0.iter_mut().zip(c.to_array()) {
+            *s = s.wrapping_add(to_fixed(v));
+        }
+    }
+
+    /// Adds another sum (wrapping, so the result never depends on order even
+    /// for sums read from damaged files).
+    #[inline]
+    pub fn add(&mut self, other: &ExactSum) {
+        for (s, o) in self.0.iter_mut().zip(other.0) {
+            *s = s.wrapping_add(o);
+        }
+    }
+
+    /// The mean over `n` samples (0 for `n == 0`).
+    #[inline]
+    pub fn mean(&self, n: u32) -> Rgb {
+        if n == 0 {
+            return Rgb::ZERO;
+        }
+        let scale = (-FRACTION_BITS as f64).exp2() / n as f64;
+        Rgb::from_array(self.0.map(|s| (s as f64 * scale) as f32))
+    }
+
+    /// The three sums as little-endian 32-bit words, channel by channel (how
+    /// piece files store them).
+    pub fn to_words(&self) -> [[u32; 4]; 3] {
+        self.0.map(|s| {
+            let u = s as u128;
+            [0, 1, 2, 3].map(|k| (u >> (32 * k)) as u32)
+        })
+    }
+
+    /// The inverse of [`ExactSum::to_words`].
+    pub fn from_words(words: [[u32; 4]; 3]) -> Self {
+        ExactSum(words.map(|w| {
+            w.iter()
+                .enumerate()
+                .fold(0u128, |acc, (k, &x)| acc | (x as u128) << (32 * k)) as i128
+        }))
+    }
+}
+
+/// `x` in units of 2⁻⁶⁴, truncated toward zero; exact for |x| ≥ 2⁻⁴⁰.
+#[inline]
+fn to_fixed(x: f32) -> i128 {
+    if !x.is_finite() {
+        return 0;
+    }
+    let bits = x.clamp(-LIMIT, LIMIT).to_bits();
+    let biased = ((bits >> 23) & 0xff) as i32;
+    let fraction = (bits & 0x7f_ffff) as i128;
+    // x = m · 2^e with an integer mantissa m < 2²⁴ (subnormals have no
+    // implicit bit and the smallest exponent).
+    let (m, e) = if biased == 0 {
+        (fraction, -149)
+    } else {
+        (fraction | 0x80_0000, biased - 150)
+    };
+    // In fixed-point units x = m · 2^(e + 64); e + 64 ≤ 30 − 23 + 64 = 71.
+    let shift = e + FRACTION_BITS;
+    let magnitude = if shift >= 0 {
+        m << shift
+    } else if shift > -32 {
+        m >> -shift
+    } else {
+        0
+    };
+    if bits >> 31 == 1 { -magnitude } else { magnitude }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Pcg32;
+
+    fn samples(n: usize, seed: u64) -> Vec<Rgb> {
+        let mut rng = Pcg32::new(seed, 7);
+        (0..n)
+            .map(|_| {
+                // Radiance-like values over many octaves, some zero.
+                let v = |r: &mut Pcg32| {
+                    let u = r.next_f32();
+                    if u < 0.1 {
+                        0.0
+                    } else {
+                        (40.0 * u - 30.0).exp2() * r.next_f32()
+                    }
+                };
+                Rgb::new(v(&mut rng), v(&mut rng), v(&mut rng))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn exact_sum_is_the_same_for_every_split_and_order() {
+        let s = samples(257, 3);
+        let mut whole = ExactSum::ZERO;
+        s.iter().for_each(|&c| whole.add_sample(c));
+        for cuts in [vec![1], vec![100, 200], vec![5, 6, 7, 250]] {
+            let mut bounds = vec![0];
+            bounds.extend(&cuts);
+            bounds.push(s.len());
+            let mut merged = ExactSum::ZERO;
+            // Pieces added last to first: order must not matter either.
+            for w in bounds.windows(2).rev() {
+                let mut piece = ExactSum::ZERO;
+                s[w[0]..w[1]].iter().rev().for_each(|&c| piece.add_sample(c));
+                merged.add(&piece);
+            }
+            assert_eq!(merged, whole, "split at {cuts:?} changed the sum");
+        }
+    }
+
+    #[test]
+    fn exact_sum_mean_is_close_to_the_f64_mean() {
+        let s = samples(1000, 5);
+        let mut sum = ExactSum::ZERO;
+        s.iter().for_each(|&c| sum.add_sample(c));
+        let f64_mean: f64 = s.iter().map(|c| c.x as f64).sum::<f64>() / s.len() as f64;
+        let got = sum.mean(s.len() as u32).x as f64;
+        assert!(
+            ((got - f64_mean) / f64_mean).abs() < 1e-7,
+            "mean {got} vs f64 reference {f64_mean}"
+        );
+    }
+
+    #[test]
+    fn fixed_conversion_is_exact_in_range_and_clamps_outside() {
+        for x in [1.0f32, 0.5, 3.75e-12, 123456.78, -2.5, 1e-30, 2.0f32.powi(-40)] {
+            let mut s = ExactSum::ZERO;
+            s.add_sample(Rgb::splat(x));
+            let back = s.mean(1).x;
+            if x.abs() >= 2.0f32.powi(-40) {
+                assert_eq!(back, x, "{x} did not survive the fixed-point round trip");
+            } else {
+                assert!((back - x).abs() < 1e-19, "{x} came back as {back}");
+            }
+        }
+        let mut s = ExactSum::ZERO;
+        s.add_sample(Rgb::splat(1e20));
+        assert_eq!(s.mean(1).x, LIMIT, "a huge sample is clamped to 2^30");
+    }
+
+    #[test]
+    fn exact_sum_words_round_trip() {
+        let mut s = ExactSum::ZERO;
+        s.add_sample(Rgb::new(1.5, -3.25e-9, 7e8));
+        assert_eq!(ExactSum::from_words(s.to_words()), s);
+    }
+}

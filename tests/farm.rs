@@ -1,0 +1,350 @@
+//! Pieces of a frame, rendered by separate `ronray render` runs and put back
+//! together by `ronray assemble`: tiles and crops byte for byte, sample
+//! splits exactly, and every mismatch refused with the pieces and pixels
+//! named.
+
+mod common;
+
+use common::{ronray_in, root};
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+/// A 64×64, 4-spp Cornell box: a few hundred milliseconds per render.
+const SIZE: &str = "64x64";
+const SPP: &str = "4";
+
+fn scene() -> String {
+    root().join("scenes/cornell.ron").display().to_string()
+}
+
+/// `ronray render` of the test scene in `dir` with `extra` arguments; must
+/// succeed.
+fn render(dir: &Path, extra: &[&str]) -> Output {
+    let s = scene();
+    let mut args = vec!["render", s.as_str(), "--size", SIZE, "--spp", SPP];
+    args.extend_from_slice(extra);
+    let o = ronray_in(dir, &args);
+    assert!(
+        o.status.success(),
+        "ronray {} failed: {}",
+        args.join(" "),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    o
+}
+
+fn assemble(dir: &Path, pieces: &[String], out: &str) -> Output {
+    let mut args = vec!["assemble"];
+    args.extend(pieces.iter().map(String::as_str));
+    args.extend(["-o", out]);
+    ronray_in(dir, &args)
+}
+
+fn read(p: PathBuf) -> Vec<u8> {
+    std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// Renders the whole frame as EXR and PNG, assembles `pieces` into both, and
+/// requires equal bytes.
+fn assert_reassembles(dir: &Path, pieces: &[String]) {
+    render(dir, &["-o", "whole.exr"]);
+    render(dir, &["-o", "whole.png"]);
+    for ext in ["exr", "png"] {
+        let out = format!("assembled.{ext}");
+        let o = assemble(dir, pieces, &out);
+        assert!(
+            o.status.success(),
+            "assemble failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(
+            read(dir.join(&out)) == read(dir.join(format!("whole.{ext}"))),
+            "{} assembled from {pieces:?} differs from the whole render",
+            out
+        );
+    }
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn four_crop_tiles_reassemble_byte_for_byte() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let crops = ["0,0.5,0,0.5", "0.5,1,0,0.5", "0,0.5,0.5,1", "0.5,1,0.5,1"];
+    let mut pieces = Vec::new();
+    for (i, c) in crops.iter().enumerate() {
+        let out = format!("crop{i}.exr");
+        let threads = if i % 2 == 0 { "1" } else { "2" };
+        render(dir.path(), &["--crop", c, "-o", &out, "--threads", threads]);
+        pieces.push(out);
+    }
+    assert_reassembles(dir.path(), &pieces);
+}
+
+#[test]
+fn seven_uneven_tiles_reassemble_byte_for_byte() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut pieces = Vec::new();
+    // 64 rows in 7 bands of 9 or 10 rows, none aligned with the renderer's
+    // 16-pixel tiles; given in scrambled order.
+    for i in [3, 0, 6, 1, 5, 2, 4] {
+        let tile = format!("{i}/7");
+        let threads = if i % 2 == 0 { "2" } else { "1" };
+        render(
+            dir.path(),
+            &["--tile", &tile, "-o", "tile-{tile}.exr", "--threads", threads],
+        );
+        pieces.push(format!("tile-{i}.exr"));
+    }
+    assert_reassembles(dir.path(), &pieces);
+}
+
+/// Samples 0..1, 1..3 and 3..4 of every pixel on three "machines". Per-pixel
+/// sums are exact (fixed point), so the merge is exact: the largest
+/// difference from the whole render is 0, in every channel of every pixel.
+#[test]
+fn three_way_sample_split_merges_to_the_whole_render_exactly() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut pieces = Vec::new();
+    for (range, threads) in [("3..4", "1"), ("0..1", "2"), ("1..3", "1")] {
+        let out = format!("samples-{range}.exr");
+        render(
+            dir.path(),
+            &["--samples", range, "-o", &out, "--threads", threads],
+        );
+        pieces.push(out);
+    }
+    assert_reassembles(dir.path(), &pieces);
+    let whole = ronray::imageio::read_image(&dir.path().join("whole.exr")).expect("whole");
+    let merged = ronray::imageio::read_image(&dir.path().join("assembled.exr")).expect("merged");
+    let largest = whole
+        .pixels
+        .iter()
+        .zip(&merged.pixels)
+        .map(|(a, b)| (*a - *b).abs().max_element())
+        .fold(0.0f32, f32::max);
+    assert_eq!(
+        largest, 0.0,
+        "merged samples differ from the whole render by up to {largest}"
+    );
+    // What exact sums buy: the sample-weighted mean of the pieces' own f32
+    // means (their RGB channels), the merge a renderer without exact sums
+    // could do, is off by a few float roundings.
+    let means: Vec<(u32, ronray::imageio::Image)> = pieces
+        .iter()
+        .map(|p| {
+            let piece = ronray::farm::read_piece(&dir.path().join(p)).expect("piece");
+            let n = piece.meta.samples.1 - piece.meta.samples.0;
+            (n, piece.sums.mean(n))
+        })
+        .collect();
+    let (mut abs, mut rel) = (0.0f32, 0.0f32);
+    for (i, w) in whole.pixels.iter().enumerate() {
+        let m = means
+            .iter()
+            .map(|(n, img)| img.pixels[i] * *n as f32)
+            .sum::<glam::Vec3A>()
+            / 4.0;
+        let d = (m - *w).abs().max_element();
+        abs = abs.max(d);
+        rel = rel.max(d / w.max_element().max(1e-6));
+    }
+    common::report(&format!(
+        "three_way_sample_split: exact sums differ from the whole render by 0; merging the pieces' f32 means would differ by up to {abs:.2e} ({rel:.2e} relative)"
+    ));
+}
+
+#[test]
+fn a_piece_holds_the_whole_renders_values_and_windows() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    render(dir.path(), &["--pixels", "5,7,40,30", "-o", "piece.exr"]);
+    render(dir.path(), &["-o", "whole.exr"]);
+    let piece = ronray::farm::read_piece(&dir.path().join("piece.exr")).expect("piece reads");
+    let m = &piece.meta;
+    assert_eq!((m.frame, m.samples, m.spp, m.tile), ((64, 64), (0, 4), 4, None));
+    assert_eq!((m.rect.x0, m.rect.y0, m.rect.x1, m.rect.y1), (5, 7, 40, 30));
+    assert_eq!(m.version, env!("CARGO_PKG_VERSION"));
+    assert!(m.scene.starts_with("sha256:"), "scene hash {}", m.scene);
+    // The EXR windows, as any EXR reader sees them.
+    let exr = exr::meta::MetaData::read_from_file(dir.path().join("piece.exr"), false).expect("header");
+    let h = &exr.headers[0];
+    assert_eq!(h.shared_attributes.display_window.size, exr::math::Vec2(64, 64));
+    assert_eq!(h.own_attributes.layer_position, exr::math::Vec2(5, 7));
+    assert_eq!(h.layer_size, exr::math::Vec2(35, 23));
+    // Its RGB are the whole render's values at those pixels, bit for bit.
+    let whole = ronray::imageio::read_image(&dir.path().join("whole.exr")).expect("whole");
+    let mean = piece.sums.mean(4);
+    for y in 7..30 {
+        for x in 5..40 {
+            let (a, b) = (mean.get(x - 5, y - 7), whole.get(x, y));
+            assert!(
+                a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits),
+                "pixel ({x}, {y}): {a} vs {b}"
+            );
+        }
+    }
+}
+
+#[test]
+fn pieces_of_two_scenes_are_refused_naming_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    render(dir.path(), &["--tile", "0/2", "-o", "a-0.exr", "--seed", "0"]);
+    // Another scene file at the same size, samples and seed: only the scene
+    // differs.
+    let other = root().join("scenes/materials.ron").display().to_string();
+    let b = ronray_in(
+        dir.path(),
+        &[
+            "render", &other, "--size", SIZE, "--spp", SPP, "--seed", "0", "--tile", "1/2", "-o", "b-1.exr",
+        ],
+    );
+    assert!(b.status.success(), "{}", stderr(&b));
+    let o = assemble(dir.path(), &["a-0.exr".into(), "b-1.exr".into()], "out.png");
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("different scenes")
+            && e.contains("a-0.exr has scene sha256:")
+            && e.contains("b-1.exr has scene sha256:"),
+        "expected both pieces named with their scene hashes, got:\n{e}"
+    );
+    assert!(
+        !dir.path().join("out.png").exists(),
+        "a refused assembly wrote its output"
+    );
+}
+
+#[test]
+fn overlapping_pieces_are_refused_naming_them_and_the_pixels() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    render(dir.path(), &["--pixels", "0,0,64,40", "-o", "top.exr"]);
+    render(dir.path(), &["--pixels", "0,32,64,64", "-o", "bottom.exr"]);
+    let o = assemble(dir.path(), &["top.exr".into(), "bottom.exr".into()], "out.exr");
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("pieces top.exr and bottom.exr overlap: both hold samples 0..4 of pixels x 0..64, y 32..40 (512 pixels)"),
+        "expected the overlap named, got:\n{e}"
+    );
+}
+
+#[test]
+fn a_missing_tile_is_refused_naming_the_tile_and_its_pixels() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut pieces = Vec::new();
+    for i in [0, 1, 3] {
+        render(dir.path(), &["--tile", &format!("{i}/4"), "-o", "t{tile}.exr"]);
+        pieces.push(format!("t{i}.exr"));
+    }
+    let o = assemble(dir.path(), &pieces, "out.exr");
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("missing tile 2/4: no piece holds samples 0..4 of pixels x 0..64, y 32..48 (1024 pixels)"),
+        "expected the missing tile named, got:\n{e}"
+    );
+}
+
+#[test]
+fn png_pieces_are_refused_with_the_reason() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let s = scene();
+    let o = ronray_in(
+        dir.path(),
+        &["render", &s, "--size", SIZE, "--tile", "0/2", "-o", "piece.png"],
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.contains("PNG pieces are 8-bit and cannot be merged exactly"),
+        "{e}"
+    );
+    assert!(!dir.path().join("piece.png").exists());
+}
+
+#[test]
+fn resume_skips_a_finished_piece_and_redoes_a_different_one() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    render(dir.path(), &["--tile", "1/3", "-o", "t.exr", "--resume"]);
+    let again = render(dir.path(), &["--tile", "1/3", "-o", "t.exr", "--resume"]);
+    assert!(
+        stderr(&again).contains("skipped t.exr: it already holds this piece"),
+        "{}",
+        stderr(&again)
+    );
+    let other = render(
+        dir.path(),
+        &["--tile", "1/3", "-o", "t.exr", "--resume", "--seed", "9"],
+    );
+    assert!(
+        stderr(&other).contains("re-rendering t.exr: it holds scene"),
+        "{}",
+        stderr(&other)
+    );
+}
+
+#[test]
+fn progress_json_prints_one_line_per_tile() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let o = render(
+        dir.path(),
+        &["--tile", "0/2", "-o", "t.exr", "--progress", "json"],
+    );
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("`{l}` is not JSON: {e}")))
+        .collect();
+    let events: Vec<&str> = lines.iter().map(|v| v["event"].as_str().unwrap_or("?")).collect();
+    // 64×32 pixels are 4×2 tiles of 16.
+    let mut expected = vec!["start"];
+    expected.extend(["tile"; 8]);
+    expected.push("done");
+    assert_eq!(events, expected);
+    assert_eq!(lines[8]["total"], 8);
+}
+
+#[test]
+fn tile_auto_reads_the_schedulers_index_or_says_which_variables_it_reads() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let s = scene();
+    let run = |var: Option<(&str, &str)>| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_ronray"));
+        c.args([
+            "render",
+            &s,
+            "--size",
+            SIZE,
+            "--spp",
+            "1",
+            "--tile",
+            "auto/4",
+            "-o",
+            "a{tile}.exr",
+        ])
+        .current_dir(dir.path());
+        for v in ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX", "PARALLEL_SEQ"] {
+            c.env_remove(v);
+        }
+        if let Some((k, v)) = var {
+            c.env(k, v);
+        }
+        c.output().expect("ronray runs")
+    };
+    assert!(run(Some(("SLURM_ARRAY_TASK_ID", "2"))).status.success());
+    assert!(run(Some(("JOB_COMPLETION_INDEX", "0"))).status.success());
+    assert!(
+        run(Some(("PARALLEL_SEQ", "2"))).status.success(),
+        "GNU parallel's 2 is tile 1"
+    );
+    for i in 0..3 {
+        assert!(
+            dir.path().join(format!("a{i}.exr")).exists(),
+            "tile {i} not written"
+        );
+    }
+    let none = run(None);
+    assert_eq!(none.status.code(), Some(2));
+    assert!(stderr(&none).contains("SLURM_ARRAY_TASK_ID"), "{}", stderr(&none));
+}
