@@ -33,6 +33,7 @@ pub fn golden_error(new: &Image, golden: &Image) -> Result<f64, String> {
 pub struct CheckOptions {
     /// Rewrite the goldens that fail or are missing.
     pub bless: bool,
+    /// Worker threads (default: all cores); the image does not depend on it.
     pub threads: Option<usize>,
     /// `--set path=value` overrides, applied before the test settings are
     /// read (`--set test.seed=7` re-seeds the check).

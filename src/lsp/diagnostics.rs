@@ -17,7 +17,9 @@ pub fn check(path: &Path, text: &str, meshes: &MeshCache) -> BTreeMap<PathBuf, V
     let mut out: BTreeMap<PathBuf, Vec<lsp_types::Diagnostic>> = BTreeMap::new();
     out.insert(path.to_path_buf(), Vec::new());
     if is_include_file(text) {
-        out.entry(path.to_path_buf()).or_default().extend(include_errors(path, text));
+        out.entry(path.to_path_buf())
+            .or_default()
+            .extend(include_errors(path, text));
         return out;
     }
     let report = match load_str_with_meshes(path, text, &Overrides::default(), &|p| meshes.load(p)) {

@@ -5,6 +5,7 @@
 use crate::syntax::cursor::{Context, Step};
 use serde_json::Value;
 
+/// The scene schema, parsed once when the server starts.
 pub struct Schema {
     root: Value,
 }
@@ -13,11 +14,13 @@ pub struct Schema {
 /// newtype variant (`Translate((1, 0, 0))`: the tuple inside is the value).
 #[derive(Clone, Copy)]
 pub struct Node<'a> {
+    /// The schema node.
     pub value: &'a Value,
     newtype: bool,
 }
 
 impl Schema {
+    /// Parses the schema generated from `desc/` ([`crate::schema::schema_json`]).
     pub fn new() -> Self {
         let root = serde_json::from_str(&crate::schema::schema_json()).unwrap_or(Value::Null);
         Self { root }

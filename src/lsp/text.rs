@@ -15,6 +15,7 @@ pub fn position(text: &str, offset: usize) -> Position {
     Position::new(line as u32, character as u32)
 }
 
+/// The protocol range of a byte range.
 pub fn range(text: &str, span: std::ops::Range<usize>) -> Range {
     Range::new(position(text, span.start), position(text, span.end))
 }

@@ -18,6 +18,7 @@ pub enum Step {
 /// One open bracket around the position, outermost first.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
+    /// The bracket: `(`, `[` or `{`.
     pub open: char,
     /// Index of the opening token.
     pub token: usize,
@@ -34,6 +35,7 @@ pub struct Frame {
 /// Where the position is.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Context {
+    /// The open brackets around the position, outermost first.
     pub frames: Vec<Frame>,
     /// The token the position is in or touches, if any.
     pub token: Option<usize>,

@@ -12,7 +12,9 @@ pub enum Kind {
     Open(char),
     /// `)`, `]` or `}`.
     Close(char),
+    /// `:`.
     Colon,
+    /// `,`.
     Comma,
     /// An identifier, `true`, a number (`40`, `-1.5e3`, `0x1F`).
     Word,
@@ -26,19 +28,24 @@ pub enum Kind {
     Attribute,
 }
 
+/// One token: what it is and where.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Token {
+    /// What the token is.
     pub kind: Kind,
+    /// Its bytes in the source.
     pub span: Range<usize>,
     /// Newlines between the previous token (or the start) and this one.
     pub newlines_before: usize,
 }
 
 impl Token {
+    /// The token as written in `src`.
     pub fn text<'a>(&self, src: &'a str) -> &'a str {
         &src[self.span.clone()]
     }
 
+    /// Whether the token is a `//` or `/* */` comment.
     pub fn is_comment(&self) -> bool {
         matches!(self.kind, Kind::LineComment | Kind::BlockComment)
     }
@@ -47,7 +54,9 @@ impl Token {
 /// Why text could not be tokenized, with the byte where it happened.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LexError {
+    /// Byte offset of the problem.
     pub at: usize,
+    /// What is wrong, in words.
     pub message: String,
 }
 

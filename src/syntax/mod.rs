@@ -15,7 +15,12 @@ use lex::{Kind, tokenize};
 pub enum FormatError {
     /// The text does not tokenize or its brackets do not balance.
     #[error("cannot format: {message} (byte {at})")]
-    Syntax { at: usize, message: String },
+    Syntax {
+        /// Byte offset of the problem.
+        at: usize,
+        /// What is wrong, in words.
+        message: String,
+    },
     /// The layout would have changed a token: a bug, and nothing is written.
     #[error("internal error: formatting would change the scene's tokens ({0}); nothing was written")]
     Changed(String),

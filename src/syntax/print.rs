@@ -13,6 +13,7 @@ pub const WIDTH: usize = 110;
 /// one line whenever it fits.
 const SHORT_VECTOR: usize = 4;
 
+/// The text of `doc` laid out again (JSON rules when `json`: no trailing commas).
 pub fn print(doc: &Document, json: bool) -> String {
     let mut p = Printer {
         out: String::new(),

@@ -6,8 +6,10 @@
 
 use super::lex::{Kind, LexError, Token, tokenize};
 
+/// A comment, with what its placement needs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Comment {
+    /// The comment as written, trailing spaces removed.
     pub text: String,
     /// A blank line came before it.
     pub blank_before: bool,
@@ -19,11 +21,14 @@ pub struct Comment {
     pub gap: usize,
 }
 
+/// A part of an entry, in source order.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Piece {
     /// A word or string, as written.
     Atom(String),
+    /// `:` between a key and its value.
     Colon,
+    /// A bracketed group.
     Group(Group),
     /// A comment in the middle of an entry (`key: /* why */ value`).
     Comment(Comment),
@@ -32,9 +37,11 @@ pub enum Piece {
 /// One element of a group: `key: value`, `value`, `"name": Variant(...)`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Entry {
+    /// A blank line came before it.
     pub blank_before: bool,
     /// Comments on their own lines before it.
     pub leading: Vec<Comment>,
+    /// The key, colon, name and value, with comments between them.
     pub pieces: Vec<Piece>,
     /// Comments after it on its last line.
     pub trailing: Vec<Comment>,
@@ -42,12 +49,16 @@ pub struct Entry {
     pub comma: bool,
 }
 
+/// A bracketed group and its entries.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Group {
+    /// The opening bracket.
     pub open: char,
+    /// The closing bracket.
     pub close: char,
     /// Comments on the line of the opening bracket.
     pub open_trailing: Vec<Comment>,
+    /// The entries, in order.
     pub entries: Vec<Entry>,
     /// Comments on their own lines before the closing bracket.
     pub closing: Vec<Comment>,
@@ -61,6 +72,7 @@ pub struct Group {
 /// A whole file: comments, attributes and the value, each on its own lines.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Document {
+    /// Top-level items: comments, `#![...]` attributes and the value.
     pub items: Vec<Entry>,
 }
 
