@@ -1,11 +1,12 @@
 //! Regression checks: render each scene at its `test` settings and compare
 //! with its golden image, `golden/<scene name>.png` beside the scene file.
 //!
-//! The metric ([`metric`]) is relative MSE judged region by region: the
-//! largest mean over 16×16-pixel windows, after 4×4 box downsampling and
-//! after the new render has gone through the same 8-bit sRGB encoding as the
-//! golden (so an unchanged renderer scores exactly 0). The threshold is the
-//! scene's `test.tolerance` (default [`DEFAULT_TOLERANCE`]) unless the
+//! The metric ([`metric`]) judges each region against its own noise: the
+//! largest mean over 16×16-pixel windows of the squared z-scores of 4×4-cell
+//! differences, the noise estimated from both images, after the new render
+//! has gone through the same 8-bit sRGB encoding as the golden (so an
+//! unchanged renderer scores exactly 0). The threshold is the scene's
+//! `test.tolerance` (default [`DEFAULT_TOLERANCE`]) unless the
 //! command line gives one. A failure leaves the new render and a heat map
 //! beside the golden, and an HTML page showing the three side by side
 //! ([`report`]).
@@ -23,7 +24,7 @@ use std::time::{Duration, Instant};
 pub use crate::desc::DEFAULT_TOLERANCE;
 pub use metric::{COMPARE_FACTOR, Score, WINDOW, score};
 
-/// The judged figure of [`score`]: the worst window's relative MSE.
+/// The judged figure of [`score`]: the worst window's mean squared z-score.
 pub fn golden_error(new: &Image, golden: &Image) -> Result<f64, String> {
     score(new, golden).map(|s| s.worst)
 }
@@ -252,9 +253,9 @@ pub fn check_scene(scene: &Path, opts: &CheckOptions) -> CheckResult {
 pub fn summary(results: &[CheckResult]) -> String {
     let mut s = format!(
         "{:<40} {:>8} {:>12} {:>12} {:>10} {:>8}\n",
-        "scene", "status", "worst tile", "whole image", "tolerance", "time"
+        "scene", "status", "score", "whole relMSE", "tolerance", "time"
     );
-    let figures = |sc: &Score| (format!("{:.6}", sc.worst), format!("{:.6}", sc.whole));
+    let figures = |sc: &Score| (format!("{:.3}", sc.worst), format!("{:.6}", sc.whole));
     for r in results {
         let name = r.scene.display().to_string();
         let dash = || ("-".to_string(), "-".to_string());

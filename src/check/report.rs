@@ -63,8 +63,9 @@ pub fn page_html(scene: &str, images: [(&str, String); 3], score: &super::Score,
          img {{ width: 384px; image-rendering: pixelated; border: 1px solid #555; }}\n\
          code {{ color: #fc6; }}\n</style></head>\n<body>\n\
          <h1>{title}: regression</h1>\n\
-         <p>Worst {side}×{side}-pixel window at ({x}, {y}): relative MSE <code>{worst:.6}</code>, \
-         over the tolerance <code>{tolerance:.4}</code> (whole image: <code>{whole:.6}</code>).</p>\n\
+         <p>Worst {side}×{side}-pixel window at ({x}, {y}): score <code>{worst:.3}</code> \
+         (mean squared z-score of the difference against the noise), \
+         over the tolerance <code>{tolerance:.4}</code> (whole-image relative MSE: <code>{whole:.6}</code>).</p>\n\
          <div class=\"row\">\n{figures}</div>\n\
          <p>Accept the new image on purpose with <code>ronray check --bless {title}</code>.</p>\n\
          </body></html>\n",
