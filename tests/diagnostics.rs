@@ -635,3 +635,50 @@ fn validate_passes_warnings_unless_denied() {
         (Some(3), Some(64))
     );
 }
+
+// ---- Rough plastic and rough glass (issue 14) ----
+
+#[test]
+fn rough_material_mistakes_are_located_at_their_fields() {
+    let (d, text) = diagnostics("rough_materials.ron");
+    // In the order of the file, whatever order the checks run in.
+    let mut got: Vec<_> = d
+        .iter()
+        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
+        .collect();
+    got.sort_by_key(|&(_, line, column)| (line, column));
+    let want = [
+        ("materials.coat.diffuse", 4, 39),
+        ("materials.coat.roughness", 4, 68),
+        ("materials.coat.ior", 4, 78),
+        ("materials.frost.roughness", 5, 40),
+        ("materials.frost.ior", 5, 51),
+        ("materials.frost.tint", 5, 60),
+        ("materials.milk.specular", 6, 54),
+        ("materials.milk.ior", 6, 78),
+    ]
+    .map(|(p, l, c)| (p.to_string(), l, c));
+    assert_eq!(got, want, "rendered:\n{text}");
+    let message = |path: &str| {
+        d.iter()
+            .find(|d| d.path.as_deref() == Some(path))
+            .map(|d| d.message.clone())
+            .unwrap_or_default()
+    };
+    assert!(message("materials.coat.diffuse").contains("negative colour"));
+    assert!(message("materials.coat.roughness").contains("roughness 1.5 is outside [0, 1]"));
+    assert!(message("materials.frost.roughness").contains("roughness -0.1 is outside [0, 1]"));
+    assert!(message("materials.coat.ior").contains("index of refraction 0 is outside (0, 10]"));
+    assert!(message("materials.milk.ior").contains("-1.5"));
+    assert!(message("materials.frost.ior").contains("index of refraction 1 does not scatter"));
+    assert!(message("materials.milk.specular").contains("above 1"));
+    let roughness_help = d
+        .iter()
+        .find(|d| d.path.as_deref() == Some("materials.coat.roughness"))
+        .and_then(|d| d.help.clone())
+        .unwrap_or_default();
+    assert!(
+        roughness_help.contains("α = roughness²") && roughness_help.contains("Mitsuba's alpha"),
+        "the help says how to write Mitsuba's α: {roughness_help}"
+    );
+}

@@ -97,6 +97,48 @@ pub enum MaterialDesc {
         #[serde(default)]
         fresnel: DielectricFresnelDesc,
     },
+    /// Mitsuba 3's `roughplastic` (`nonlinear: false`): a `diffuse` base under
+    /// a rough dielectric coat of index `ior` (η coat / η outside), whose
+    /// reflection is scaled by `specular` (keep 1 for a physical coat).
+    /// `roughness` ∈ [0, 1] with α = roughness², as for `CookTorrance`: Mitsuba's
+    /// `alpha` a is `roughness: sqrt(a)` (α 0.1 → 0.3162).
+    RoughPlastic {
+        /// Reflectance of the diffuse base per channel, in [0, 1].
+        diffuse: ColorDesc,
+        /// Factor on the coat's reflection per channel, in [0, 1] (default
+        /// white: a physical coat; Mitsuba's `specular_reflectance`).
+        #[serde(default = "white")]
+        specular: ColorDesc,
+        /// Microfacet normal distribution of the coat (default `Ggx`).
+        #[serde(default)]
+        distribution: DistributionDesc,
+        /// Perceptual roughness of the coat in [0, 1]; α = roughness².
+        #[schemars(range(min = 0, max = 1))]
+        roughness: f32,
+        /// Index of refraction of the coat over the outside, in (0, 10]
+        /// (default 1.5; Mitsuba's `int_ior/ext_ior`).
+        #[serde(default = "glass_ior")]
+        ior: f32,
+    },
+    /// Rough dielectric (Walter et al. 2007): frosted glass. `ior` = η inside /
+    /// η outside (≠ 1), `tint` colours transmitted light, `roughness` ∈ [0, 1]
+    /// with α = roughness².
+    RoughGlass {
+        /// Index of refraction η(inside)/η(outside), in (0, 10] and ≠ 1
+        /// (default 1.5).
+        #[serde(default = "glass_ior")]
+        ior: f32,
+        /// Colour of transmitted light, applied once per refraction, per
+        /// channel in [0, 1] (default white); reflections stay white.
+        #[serde(default = "white")]
+        tint: ColorDesc,
+        /// Microfacet normal distribution (default `Ggx`).
+        #[serde(default)]
+        distribution: DistributionDesc,
+        /// Perceptual roughness in [0, 1]; α = roughness².
+        #[schemars(range(min = 0, max = 1))]
+        roughness: f32,
+    },
 }
 
 fn white() -> ColorDesc {
@@ -179,6 +221,10 @@ impl MaterialDesc {
             MaterialDesc::MetalPlastic { base_color, .. } => vec![base_color],
             MaterialDesc::Mirror { tint } | MaterialDesc::Glass { tint, .. } => vec![tint],
             MaterialDesc::CookTorrance { .. } => Vec::new(),
+            MaterialDesc::RoughPlastic {
+                diffuse, specular, ..
+            } => vec![diffuse, specular],
+            MaterialDesc::RoughGlass { tint, .. } => vec![tint],
         }
     }
 }

@@ -7,8 +7,10 @@ use super::validate::Checker;
 use crate::desc::{ColorDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
 use crate::diagnostic::Problem;
 use crate::materials::{ColorTex, DielectricFresnel, Distribution, Fresnel, Material, Metal, Texture};
+use crate::materials::{Microfacet, RoughCoat};
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 impl Checker {
     /// A colour parameter: constants are range-checked; an image texture
@@ -103,6 +105,71 @@ impl Checker {
                     );
                 }
             }
+            MaterialDesc::RoughPlastic {
+                diffuse,
+                specular,
+                roughness,
+                ior,
+                ..
+            } => self.rough_plastic(path, diffuse, specular, *roughness, *ior),
+            MaterialDesc::RoughGlass {
+                ior, tint, roughness, ..
+            } => self.rough_glass(path, *ior, tint, *roughness),
+        }
+    }
+
+    /// `RoughPlastic`: base and coat colours, coat roughness and index.
+    fn rough_plastic(
+        &mut self,
+        path: &str,
+        diffuse: &ColorDesc,
+        specular: &ColorDesc,
+        roughness: f32,
+        ior: f32,
+    ) {
+        self.color_param(&format!("{path}.diffuse"), diffuse, Some(1.0));
+        self.color_param(&format!("{path}.specular"), specular, Some(1.0));
+        self.microfacet_roughness(&format!("{path}.roughness"), roughness);
+        self.coat_ior(
+            &format!("{path}.ior"),
+            ior,
+            "a plastic coat is about 1.5 (polypropylene 1.49)",
+        );
+    }
+
+    /// `RoughGlass`: tint, roughness, and an index that differs from 1 (a
+    /// rough boundary between equal indices would be a delta lobe).
+    fn rough_glass(&mut self, path: &str, ior: f32, tint: &ColorDesc, roughness: f32) {
+        self.color_param(&format!("{path}.tint"), tint, Some(1.0));
+        self.microfacet_roughness(&format!("{path}.roughness"), roughness);
+        self.coat_ior(
+            &format!("{path}.ior"),
+            ior,
+            "glass is about 1.5, water 1.33, diamond 2.42",
+        );
+        if ior == 1.0 {
+            self.push(
+                &format!("{path}.ior"),
+                "a rough boundary with index of refraction 1 does not scatter",
+                "light would pass straight through; use an ior other than 1",
+            );
+        }
+    }
+
+    /// Roughness in [0, 1], α = roughness², as for `CookTorrance`.
+    fn microfacet_roughness(&mut self, path: &str, roughness: f32) {
+        let help = "0 is polished, 1 is very rough (α = roughness²: Mitsuba's alpha a is roughness √a)";
+        self.range(path, roughness, 0.0, 1.0, "roughness", help);
+    }
+
+    /// A dielectric's relative index of refraction, in (0, 10].
+    fn coat_ior(&mut self, path: &str, ior: f32, help: &str) {
+        if !(ior > 0.0 && ior.is_finite() && ior <= 10.0) {
+            self.push(
+                path,
+                format!("index of refraction {ior} is outside (0, 10]"),
+                help,
+            );
         }
     }
 
@@ -175,6 +242,7 @@ pub fn build_materials(
         textures: Vec::new(),
         by_path: HashMap::new(),
         problems: Vec::new(),
+        coats: Vec::new(),
     };
     let mut materials = Vec::new();
     let mut index = HashMap::new();
@@ -263,6 +331,38 @@ fn build_material(b: &mut Builder, name: &str, m: &MaterialDesc) -> Material {
                 DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
             },
         },
+        MaterialDesc::RoughPlastic {
+            diffuse,
+            specular,
+            distribution,
+            roughness,
+            ior,
+        } => Material::RoughPlastic {
+            diffuse: b.color(diffuse, &p("diffuse")),
+            specular: b.color(specular, &p("specular")),
+            coat: b.coat(
+                Microfacet::from_roughness(distribution_of(*distribution), *roughness),
+                *ior,
+            ),
+        },
+        MaterialDesc::RoughGlass {
+            ior,
+            tint,
+            distribution,
+            roughness,
+        } => Material::RoughGlass {
+            distribution: distribution_of(*distribution),
+            roughness: *roughness,
+            ior: *ior,
+            tint: b.color(tint, &p("tint")),
+        },
+    }
+}
+
+fn distribution_of(d: DistributionDesc) -> Distribution {
+    match d {
+        DistributionDesc::Ggx => Distribution::Ggx,
+        DistributionDesc::Beckmann => Distribution::Beckmann,
     }
 }
 
@@ -281,9 +381,27 @@ struct Builder<'a> {
     textures: Vec<Texture>,
     by_path: HashMap<PathBuf, u32>,
     problems: Vec<Problem>,
+    /// Rough-plastic coats built so far: their tables cost ~0.1 s each, and
+    /// materials differing only in colour share one.
+    coats: Vec<Arc<RoughCoat>>,
 }
 
 impl Builder<'_> {
+    /// The coat of `microfacet` and `eta`, integrated once per load.
+    fn coat(&mut self, microfacet: Microfacet, eta: f32) -> Arc<RoughCoat> {
+        let same = |c: &&Arc<RoughCoat>| {
+            c.microfacet.distribution == microfacet.distribution
+                && c.microfacet.alpha == microfacet.alpha
+                && c.eta == eta
+        };
+        if let Some(c) = self.coats.iter().find(same) {
+            return c.clone();
+        }
+        let c = Arc::new(RoughCoat::new(microfacet, eta));
+        self.coats.push(c.clone());
+        c
+    }
+
     fn color(&mut self, c: &ColorDesc, path: &str) -> ColorTex {
         match c {
             ColorDesc::Rgb(c) => ColorTex::Const((*c).into()),
@@ -326,3 +444,7 @@ pub fn load_texture(path: &Path) -> Result<Texture, String> {
     let rgb = img.to_rgb8();
     Ok(Texture::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()))
 }
+
+#[cfg(test)]
+#[path = "tests/rough_materials.rs"]
+mod rough_tests;

@@ -10,7 +10,8 @@
 //!
 //! Opaque models are two-sided: a `wo` below the surface (z < 0) is handled as
 //! if the surface were flipped, and `wi` on the other side of `wo` gives zero.
-//! [`Glass`] is the exception: there z < 0 is the inside of the object.
+//! [`Glass`] and [`RoughGlass`] are the exception: there z < 0 is the inside
+//! of the object.
 //!
 //! A [`Material`] is what the scene says (colours may be textures); at a hit
 //! point it resolves to a [`Bsdf`], a plain value with every parameter fixed.
@@ -24,6 +25,8 @@
 //! | `cook_torrance.rs` | microfacet conductor (GGX or Beckmann) | visible normals / D·cos |
 //! | `metal_plastic.rs` | glTF metallic–roughness (Lambert + GGX) | mixture |
 //! | `mirror.rs`, `glass.rs` | smooth conductor / dielectric | delta |
+//! | `rough_plastic.rs` (+ `rough_coat.rs`) | Mitsuba's `roughplastic`: diffuse under a rough dielectric coat | mixture |
+//! | `rough_glass.rs` | rough dielectric (Walter 2007) | visible normals / D·cos, then F |
 
 pub mod blinn_phong;
 pub mod cook_torrance;
@@ -35,6 +38,9 @@ pub mod microfacet;
 pub mod mirror;
 pub mod oren_nayar;
 pub mod phong;
+pub mod rough_coat;
+pub mod rough_glass;
+pub mod rough_plastic;
 pub mod texture;
 
 #[cfg(test)]
@@ -50,6 +56,9 @@ pub use microfacet::{Distribution, Microfacet};
 pub use mirror::Mirror;
 pub use oren_nayar::OrenNayar;
 pub use phong::Phong;
+pub use rough_coat::RoughCoat;
+pub use rough_glass::RoughGlass;
+pub use rough_plastic::RoughPlastic;
 pub use texture::{ColorTex, Texture};
 
 use crate::math::Rgb;
@@ -152,7 +161,7 @@ pub trait Bxdf {
 
 /// A BSDF with all its parameters resolved at one hit point.
 #[derive(Clone, Copy, Debug)]
-pub enum Bsdf {
+pub enum Bsdf<'a> {
     /// Ideal diffuse.
     Lambert(Lambert),
     /// Rough diffuse.
@@ -169,6 +178,10 @@ pub enum Bsdf {
     Mirror(Mirror),
     /// Smooth dielectric.
     Glass(Glass),
+    /// Diffuse base under a rough dielectric coat (Mitsuba's `roughplastic`).
+    RoughPlastic(RoughPlastic<'a>),
+    /// Rough dielectric boundary.
+    RoughGlass(RoughGlass),
 }
 
 /// Forwards one `Bxdf` method to the variant (the match is the checklist).
@@ -183,11 +196,13 @@ macro_rules! forward {
             Bsdf::MetalPlastic($b) => $call,
             Bsdf::Mirror($b) => $call,
             Bsdf::Glass($b) => $call,
+            Bsdf::RoughPlastic($b) => $call,
+            Bsdf::RoughGlass($b) => $call,
         }
     };
 }
 
-impl Bxdf for Bsdf {
+impl Bxdf for Bsdf<'_> {
     #[inline]
     fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         forward!(self, b => b.eval(wo, wi))
@@ -279,6 +294,28 @@ pub enum Material {
     /// The surface of an area light: black and non-reflecting, as in the
     /// Mitsuba references.
     Emitter,
+    /// Mitsuba's `roughplastic` (`nonlinear = false`); `coat` holds the tables
+    /// integrated at load (shared by materials with the same distribution,
+    /// α and η).
+    RoughPlastic {
+        /// Reflectance of the diffuse base per channel, in [0, 1].
+        diffuse: ColorTex,
+        /// Factor on the coat's reflection per channel (1 for a physical coat).
+        specular: ColorTex,
+        /// The coat: distribution, α, η and its t(μ) and R_int tables.
+        coat: std::sync::Arc<RoughCoat>,
+    },
+    /// Rough dielectric boundary (Walter et al. 2007), sides as for `Glass`.
+    RoughGlass {
+        /// Microfacet normal distribution.
+        distribution: Distribution,
+        /// Perceptual roughness in [0, 1]; `alpha = roughness²`.
+        roughness: f32,
+        /// Index of refraction η(inside)/η(outside), > 0 and ≠ 1.
+        ior: f32,
+        /// Colour of transmitted light, applied once per refraction.
+        tint: ColorTex,
+    },
 }
 
 impl Material {
@@ -290,12 +327,16 @@ impl Material {
             Material::Phong { kd, ks, .. } | Material::BlinnPhong { kd, ks, .. } => t(kd) || t(ks),
             Material::MetalPlastic { base_color, .. } => t(base_color),
             Material::Mirror { tint } | Material::Glass { tint, .. } => t(tint),
+            Material::RoughPlastic {
+                diffuse, specular, ..
+            } => t(diffuse) || t(specular),
+            Material::RoughGlass { tint, .. } => t(tint),
             Material::CookTorrance { .. } | Material::Emitter => false,
         }
     }
 
     /// Resolves textures at surface coordinates `uv`.
-    pub fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf {
+    pub fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
         let tex = |c: &ColorTex| c.eval(uv, textures);
         match self {
             Material::Lambert { albedo } => Bsdf::Lambert(Lambert { albedo: tex(albedo) }),
@@ -324,6 +365,25 @@ impl Material {
                 fresnel: *fresnel,
             }),
             Material::Emitter => Bsdf::Lambert(Lambert { albedo: Rgb::ZERO }),
+            Material::RoughPlastic {
+                diffuse,
+                specular,
+                coat,
+            } => Bsdf::RoughPlastic(RoughPlastic {
+                diffuse: tex(diffuse),
+                specular: tex(specular),
+                coat,
+            }),
+            Material::RoughGlass {
+                distribution,
+                roughness,
+                ior,
+                tint,
+            } => Bsdf::RoughGlass(RoughGlass {
+                microfacet: Microfacet::from_roughness(*distribution, *roughness),
+                ior: *ior,
+                tint: tex(tint),
+            }),
         }
     }
 }

@@ -18,8 +18,8 @@ const SIGNIFICANCE: f64 = 0.01;
 /// tested at `1 − (1 − 0.01)^(1/RUNS)` so that the whole suite has a 1 %
 /// false-alarm rate. Count (update when adding runs): Lambert 3,
 /// Oren–Nayar 6, Phong 12, Blinn–Phong 18, Cook–Torrance 19,
-/// MetalPlastic 27, uniform sphere 1.
-pub const RUNS: u32 = 86;
+/// MetalPlastic 27, uniform sphere 1, RoughPlastic 21, RoughGlass 30.
+pub const RUNS: u32 = 137;
 
 /// Cell index of a unit direction.
 pub fn cell_of(w: Vec3A) -> usize {

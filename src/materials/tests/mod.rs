@@ -3,6 +3,7 @@
 //! reciprocity and the horizon. Models call [`check_all`] per setting.
 
 pub mod chi2;
+pub mod transmission;
 
 use super::Bxdf;
 use crate::math::{Pcg32, Rgb, sampling};
