@@ -8,7 +8,7 @@ use crate::accel::WideBvh;
 use crate::geometry::MeshHit;
 use crate::geometry::triangle::WatertightRay;
 use crate::geometry::{Geometry, Hit, Shape};
-use crate::lights::{Light, LightPicker};
+use crate::lights::{EnvironmentLight, Light, LightPicker};
 use crate::materials::{Material, Texture};
 use crate::math::Ray;
 use glam::Vec2;
@@ -19,9 +19,12 @@ pub struct Scene {
     pub materials: Vec<Material>,
     /// Decoded image textures, indexed by [`crate::materials::ColorTex::Image`].
     pub textures: Vec<Texture>,
-    /// Light sources, indexed by [`Hit::light`]; area lights are also quads in
-    /// `shapes`.
+    /// Light sources, indexed by [`Hit::light`]; area lights and emissive
+    /// shapes are also surfaces in `shapes`.
     pub lights: Vec<Light>,
+    /// Index in `lights` of the environment, if the scene has one: what rays
+    /// that miss everything see.
+    pub environment: Option<u32>,
     /// Chooses the light for next-event estimation.
     pub light_picker: LightPicker,
     /// Bounded shapes first (`..bounded`, in the BVH's leaf order), then
@@ -44,6 +47,16 @@ enum Nearest {
 }
 
 impl Scene {
+    /// The environment and its index in `lights`, if the scene has one.
+    #[inline]
+    pub fn environment(&self) -> Option<(u32, &EnvironmentLight)> {
+        let i = self.environment?;
+        match &self.lights[i as usize] {
+            Light::Environment(e) => Some((i, e)),
+            _ => None,
+        }
+    }
+
     /// Closest hit in `(0, t_max)`.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let geo = &self.geometry;

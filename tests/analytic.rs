@@ -196,3 +196,181 @@ fn whitted_equals_direct_without_specular_surfaces() {
         "Whitted differs from Direct on a purely diffuse scene"
     );
 }
+
+// ---- Light from everywhere (issue 14) ----
+
+/// White furnace: a convex Lambert sphere (albedo ρ) under a constant
+/// environment L receives E = πL from its hemisphere everywhere, so it has
+/// radiance ρL; rays that miss see L. Every integrator, within 1%.
+#[test]
+fn diffuse_sphere_under_constant_environment_has_radiance_rho_l() {
+    let text = |integrator: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: {integrator},
+            materials: {{ "half": Lambert(albedo: (0.5, 0.25, 0.75)) }},
+            lights: [Environment(radiance: (0.8, 0.8, 0.8))],
+            objects: [Sphere(center: (0, 0, 0), radius: 1, material: "half")],
+        )"#
+        )
+    };
+    let want = Vec3A::new(0.4, 0.2, 0.6);
+    let o = Vec3A::new(0.0, 0.0, 4.0);
+    for (integrator, n) in [
+        ("Path(max_depth: -1, rr_depth: 5)", 20_000),
+        ("Direct(light_samples: 4)", 20_000),
+        ("Whitted(max_depth: 5, light_samples: 4)", 20_000),
+    ] {
+        let s = scene(&text(integrator));
+        for target in [
+            Vec3A::ZERO,
+            Vec3A::new(0.7, 0.5, 0.2),
+            Vec3A::new(-0.2, -0.9, 0.1),
+        ] {
+            let got = mean_li(&s, Ray::new(o, (target - o).normalize()), n);
+            for c in 0..3 {
+                assert!(
+                    (got[c] - want[c]).abs() < 0.01 * want[c],
+                    "{integrator} toward {target}: channel {c} expected {}, got {}",
+                    want[c],
+                    got[c]
+                );
+            }
+        }
+        let miss = mean_li(&s, Ray::new(o, Vec3A::new(0.0, 0.8, -1.0).normalize()), 1);
+        assert!(
+            (miss - Vec3A::splat(0.8)).length() < 1e-6,
+            "{integrator}: the sky is {miss}"
+        );
+    }
+}
+
+/// The same furnace with the environment given as an image of one value
+/// (importance sampled through its tables), and hidden behind a background.
+#[test]
+fn diffuse_sphere_under_uniform_map_has_radiance_rho_l() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let img = image::Rgb32FImage::from_pixel(32, 16, image::Rgb([0.8, 0.8, 0.8]));
+    img.save(dir.path().join("grey.exr")).expect("write exr");
+    let s = common::load_in(
+        dir.path(),
+        r#"Scene(
+        camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40),
+        integrator: Path(max_depth: -1, rr_depth: 5),
+        materials: { "half": Lambert(albedo: (0.5, 0.5, 0.5)) },
+        lights: [Environment(map: "grey.exr", strength: 2, rotation_degrees: 70, visible: false, background: (0.1, 0.2, 0.3))],
+        objects: [Sphere(center: (0, 0, 0), radius: 1, material: "half")],
+    )"#,
+        &Overrides::default(),
+    );
+    let o = Vec3A::new(0.0, 0.0, 4.0);
+    for target in [Vec3A::ZERO, Vec3A::new(0.6, -0.6, 0.3)] {
+        let got = mean_li(&s, Ray::new(o, (target - o).normalize()), 20_000);
+        assert!(
+            (got.x - 0.8).abs() < 0.008,
+            "toward {target}: expected 0.8, got {}",
+            got.x
+        );
+    }
+    let miss = mean_li(&s, Ray::new(o, Vec3A::Y), 1);
+    assert!(
+        (miss - Vec3A::new(0.1, 0.2, 0.3)).length() < 1e-6,
+        "background {miss}"
+    );
+}
+
+/// An emissive sphere of radiance L and radius r, entirely above a point of
+/// a plane, gives it the irradiance of a point of intensity L·πr² at its
+/// centre: E = π L r² cos θ / d². A white Lambert plane then has radiance
+/// E/π. Direct lighting (cone sampling alone) and path tracing cut to direct
+/// light (cone and BSDF sampling by MIS) both, within 1%.
+#[test]
+fn emissive_sphere_gives_closed_form_irradiance_on_a_plane() {
+    let text = |integrator: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 1, 5), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: {integrator},
+            materials: {{ "white": Lambert(albedo: (1, 1, 1)), "black": Lambert(albedo: (0, 0, 0)) }},
+            objects: [
+                Plane(point: (0, 0, 0), normal: (0, 1, 0), material: "white"),
+                Sphere(center: (0.2, 1.5, -0.3), radius: 0.4, material: "black", emission: (radiance: (3, 2, 1))),
+            ],
+        )"#
+        )
+    };
+    let c = Vec3A::new(0.2, 1.5, -0.3);
+    for integrator in ["Direct(light_samples: 4)", "Path(max_depth: 2, rr_depth: 5)"] {
+        let s = scene(&text(integrator));
+        for x in [
+            Vec3A::ZERO,
+            Vec3A::new(1.2, 0.0, 0.5),
+            Vec3A::new(-0.4, 0.0, -1.5),
+        ] {
+            let to_c = c - x;
+            let d2 = to_c.length_squared();
+            let e = PI * 3.0 * 0.16 * (to_c.y / d2.sqrt()) / d2;
+            let want = e / PI;
+            let o = x + Vec3A::new(0.3, 1.0, 1.0);
+            let got = mean_li(&s, Ray::new(o, (x - o).normalize()), 20_000);
+            assert!(
+                (got.x - want).abs() < 0.01 * want,
+                "{integrator} at {x}: expected {want}, got {}",
+                got.x
+            );
+            assert!((got.y / got.x - 2.0 / 3.0).abs() < 1e-3, "colour kept");
+        }
+        // Seen directly, the sphere shows its radiance.
+        let o = Vec3A::new(0.0, 1.5, 3.0);
+        let got = mean_li(&s, Ray::new(o, (c - o).normalize()), 1);
+        assert!(
+            (got - Vec3A::new(3.0, 2.0, 1.0)).length() < 1e-5,
+            "{integrator}: {got}"
+        );
+    }
+}
+
+/// One map written as Radiance `.hdr` and as OpenEXR renders the same image:
+/// the values are exact in RGBE (an 8-bit mantissa under a shared exponent),
+/// so the two files hold the same floats.
+#[test]
+fn hdr_and_exr_of_the_same_map_render_the_same_image() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let img = image::Rgb32FImage::from_fn(32, 16, |i, j| {
+        // The largest channel has mantissa 128..=255, the others fewer bits.
+        let scale = 2f32.powi((i as i32 % 5) - 2) / 256.0;
+        let m = 128 + (7 * i + 13 * j) % 128;
+        image::Rgb([m as f32 * scale, (m / 2) as f32 * scale, (j * 8) as f32 * scale])
+    });
+    img.save(dir.path().join("map.exr")).expect("write exr");
+    img.save(dir.path().join("map.hdr")).expect("write hdr");
+    let render = |file: &str| {
+        let text = format!(
+            r#"Scene(
+            camera: (eye: (0, 0.5, 4), target: (0, 0, 0), fov_y_degrees: 50),
+            film: (width: 24, height: 16, spp: 4),
+            integrator: Path(max_depth: 4, rr_depth: 5),
+            materials: {{ "grey": Lambert(albedo: (0.6, 0.6, 0.6)), "gold": CookTorrance(roughness: 0.3, fresnel: Metal(Gold)) }},
+            lights: [Environment(map: "{file}", rotation_degrees: 25)],
+            objects: [
+                Sphere(center: (-0.6, 0, 0), radius: 0.5, material: "grey"),
+                Sphere(center: (0.6, 0, 0), radius: 0.5, material: "gold"),
+            ],
+        )"#
+        );
+        common::render_loaded(&common::load_in(dir.path(), &text, &Overrides::default()))
+    };
+    // The same RGBE file with the `#?RGBE` signature some tools write.
+    let hdr = std::fs::read(dir.path().join("map.hdr")).expect("read hdr");
+    let rest = &hdr[hdr.iter().position(|&b| b == b'\n').expect("a header line")..];
+    std::fs::write(dir.path().join("rgbe.hdr"), [b"#?RGBE".as_slice(), rest].concat()).expect("write");
+    let (exr, hdr) = (render("map.exr"), render("map.hdr"));
+    assert!(exr.pixels.iter().any(|p| p.x > 0.0), "the image is not black");
+    assert_eq!(exr, hdr, "the .hdr and .exr maps give different images");
+    assert_eq!(
+        render("rgbe.hdr"),
+        hdr,
+        "a `#?RGBE` file reads like a `#?RADIANCE` one"
+    );
+}

@@ -682,3 +682,113 @@ fn rough_material_mistakes_are_located_at_their_fields() {
         "the help says how to write Mitsuba's α: {roughness_help}"
     );
 }
+
+// ---- Environments and emissive shapes (issue 14) ----
+
+#[test]
+fn environment_and_emission_mistakes_are_located_together() {
+    let (d, text) = diagnostics("light_mistakes.ron");
+    let at: Vec<_> = d
+        .iter()
+        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
+        .collect();
+    // In the order of the file (two problems share lights[3]'s position).
+    let want = [
+        ("lights[0].map", 5, 26),
+        ("lights[0].strength", 5, 55),
+        ("lights[1]", 6, 9),
+        ("lights[1].background", 6, 54),
+        ("lights[2]", 7, 9),
+        ("lights[2].map", 7, 26),
+        ("lights[3]", 8, 9),
+        ("lights[3]", 8, 9),
+        ("objects[0].emission", 11, 81),
+        ("objects[1].emission.radiance", 12, 88),
+    ]
+    .map(|(p, l, c)| (p.to_string(), l, c));
+    assert_eq!(at, want, "rendered:\n{text}");
+    let of = |path: &str| -> Vec<&ronray::diagnostic::Diagnostic> {
+        d.iter().filter(|d| d.path.as_deref() == Some(path)).collect()
+    };
+    let message = |path: &str| {
+        of(path)
+            .iter()
+            .map(|d| d.message.clone())
+            .collect::<Vec<_>>()
+            .join(" | ")
+    };
+    // A missing map names the path it resolved to.
+    let resolved = fixture("sky/nowhere.exr").display().to_string();
+    let missing = of("lights[0].map")[0];
+    assert!(
+        missing
+            .message
+            .contains("cannot read environment map `sky/nowhere.exr`"),
+        "{missing}"
+    );
+    assert!(
+        missing.help.as_deref().is_some_and(|h| h.contains(&resolved)),
+        "{missing}"
+    );
+    assert!(message("lights[0].strength").contains("strength -2 must be ≥ 0"));
+    assert!(message("lights[1].background").contains("only seen when `visible` is false"));
+    assert!(message("lights[2].map").contains("`sky.png` is not a linear HDR image"));
+    let png = of("lights[2].map")[0];
+    assert!(
+        png.help
+            .as_deref()
+            .is_some_and(|h| h.contains(".exr") && h.contains(".hdr")),
+        "{png}"
+    );
+    assert!(message("lights[3]").contains("needs `radiance` or `map`"));
+    for second in ["lights[1]", "lights[2]", "lights[3]"] {
+        assert!(
+            message(second).contains("one environment, and lights[0] is already one"),
+            "{second}: {}",
+            message(second)
+        );
+    }
+    assert!(message("objects[0].emission").contains("infinite plane cannot emit"));
+    assert!(message("objects[1].emission.radiance").contains("negative colour"));
+}
+
+#[test]
+fn unreadable_environment_map_is_located_at_map() {
+    let (d, text) = diagnostics("bad_map.ron");
+    assert_eq!(d.len(), 1, "{text}");
+    assert_eq!(d[0].path.as_deref(), Some("lights[0].map"));
+    assert_eq!((d[0].line, d[0].column), (4, 31), "{}", d[0]);
+    assert!(d[0].message.contains("cannot read environment map"), "{}", d[0]);
+    assert!(
+        d[0].help.as_deref().is_some_and(|h| h.contains("OpenEXR")),
+        "{}",
+        d[0]
+    );
+}
+
+#[test]
+fn emissive_objects_and_environments_count_as_light() {
+    use ronray::load::load_str;
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/t.ron");
+    let scene = |extra: &str| {
+        format!(
+            r#"Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+            materials: {{ "w": Lambert(albedo: 0.5) }}, {extra})"#
+        )
+    };
+    let warnings = |text: &str| match load_str(&base, text, &Default::default()) {
+        Ok(l) => l.warnings.diagnostics.len(),
+        Err(e) => panic!("{e}\n{text}"),
+    };
+    let glow =
+        r#"objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w", emission: (radiance: (1, 1, 1)))]"#;
+    assert_eq!(warnings(&scene(glow)), 0, "an emissive sphere lights the scene");
+    let sky = r#"lights: [Environment(radiance: (0.5, 0.6, 0.8))], objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w")]"#;
+    assert_eq!(warnings(&scene(sky)), 0, "a sky lights the scene");
+    let dark = r#"lights: [Environment(radiance: (1, 1, 1), strength: 0)], objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w", emission: (radiance: (0, 0, 0)))]"#;
+    assert_eq!(
+        warnings(&scene(dark)),
+        1,
+        "zero strength and zero emission are dark"
+    );
+}

@@ -289,3 +289,25 @@ fn a_fifo_as_scene_or_include_is_refused_without_blocking() {
         "{d:?}"
     );
 }
+
+#[test]
+fn included_environment_map_stays_relative_to_its_file() {
+    let d = tempfile::tempdir().expect("tmp");
+    write(
+        d.path(),
+        "rig/sky.ron",
+        r#"Include(lights: [Environment(map: "maps/sky.exr", strength: 2)])"#,
+    );
+    std::fs::create_dir_all(d.path().join("rig/maps")).expect("mkdir");
+    image::Rgb32FImage::from_pixel(8, 4, image::Rgb([0.5, 0.6, 0.7]))
+        .save(d.path().join("rig/maps/sky.exr"))
+        .expect("write exr");
+    write(
+        d.path(),
+        "scene.ron",
+        &format!(r#"Scene(include: ["rig/sky.ron"], {CAMERA})"#),
+    );
+    let l = load_with(&d.path().join("scene.ron"), &Overrides::default()).expect("the sky is found");
+    let (_, env) = l.scene.environment().expect("an environment");
+    assert!((env.le(glam::Vec3A::Y) - glam::Vec3A::new(1.0, 1.2, 1.4)).length() < 1e-5);
+}

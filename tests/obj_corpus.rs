@@ -185,3 +185,59 @@ fn obj_broken_files_fail_cleanly() {
         }
     }
 }
+
+/// McGuire's Cornell box gets its light from the MTL file alone: the
+/// `light` material's `Ke 17 12 4` makes its group emit, with no light in
+/// the scene file (and no "no light" warning).
+#[test]
+fn mtl_ke_lights_the_cornell_box_with_no_light_in_the_scene() {
+    use ronray::lights::Light;
+    let dir = corpus().join("Akuna");
+    let text = |extra: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 1, 3.4), target: (0, 1, 0), fov_y_degrees: 40),
+            film: (width: 32, height: 32, spp: 16),
+            integrator: Path(max_depth: 8, rr_depth: 5),
+            materials: {{ "red": Lambert(albedo: (0.6, 0.1, 0.1)) }},
+            objects: [Mesh(file: "CornellBox-Original.obj"{extra})],
+        )"#
+        )
+    };
+    let loaded = common::load_in(&dir, &text(""), &Overrides::default());
+    assert!(
+        loaded.warnings.diagnostics.is_empty(),
+        "{}",
+        loaded.warnings.render(false)
+    );
+    let radiances: Vec<_> = loaded
+        .scene
+        .lights
+        .iter()
+        .map(|l| match l {
+            Light::Mesh(m) => (m.radiance, m.area()),
+            other => panic!("expected an emissive mesh, got {other:?}"),
+        })
+        .collect();
+    assert_eq!(radiances.len(), 1, "one emissive group: {radiances:?}");
+    let (radiance, area) = radiances[0];
+    assert_eq!(radiance.to_array(), [17.0, 12.0, 4.0]);
+    assert!((area - 0.47 * 0.38).abs() < 1e-4, "the light's area {area}");
+    let img = common::render_loaded(&loaded);
+    let mean = img.pixels.iter().map(|p| p.x).sum::<f32>() / img.pixels.len() as f32;
+    assert!(mean > 0.1, "the box is lit by its own light: mean red {mean}");
+    // Replacing the light's material replaces its emission too.
+    let dark = common::load_in(
+        &dir,
+        &text(r#", materials: { "light": "red" }"#),
+        &Overrides::default(),
+    );
+    assert!(dark.scene.lights.is_empty(), "an overridden group keeps no Ke");
+    // An object's `emission` wins over Ke for every group.
+    let all = common::load_in(
+        &dir,
+        &text(r#", emission: (radiance: (1, 1, 1), two_sided: true)"#),
+        &Overrides::default(),
+    );
+    assert_eq!(all.scene.lights.len(), 8, "every group of the box emits");
+}

@@ -136,6 +136,50 @@ fn path_matches_mitsuba_cornell_dof() {
 }
 
 #[test]
+fn path_matches_mitsuba_env_spheres() {
+    check("env_spheres.ron", "env_spheres", 64);
+}
+
+#[test]
+fn path_matches_mitsuba_emissive_shapes() {
+    check("emissive_shapes.ron", "emissive_shapes", 64);
+}
+
+/// Environment importance sampling (luminance × sin θ) against uniform
+/// sphere sampling of the same sky, at equal samples per pixel, both with
+/// MIS against BSDF sampling: the issue asks for an RMSE ratio below 0.3.
+#[test]
+fn environment_importance_sampling_beats_uniform_on_env_spheres() {
+    use ronray::lights::{EnvSampling, Light};
+    let reference_img = read_image(&root().join("tests/fixtures/refs/env_spheres_64.pfm")).expect("fixture");
+    let rmse = |sampling: EnvSampling| {
+        let o = Overrides {
+            spp: Some(32),
+            size: Some((64, 64)),
+            seed: Some(7),
+            ..Default::default()
+        };
+        let mut loaded = load_with(&root().join("scenes/env_spheres.ron"), &o).expect("scene loads");
+        let i = loaded.scene.environment.expect("an environment") as usize;
+        let Light::Environment(env) = &mut loaded.scene.lights[i] else {
+            panic!("light {i} is the environment");
+        };
+        env.sampling = sampling;
+        let img = render(&loaded.scene, &loaded.view, &Default::default()).0;
+        compare(&img, &reference_img, None).expect("same size").rmse
+    };
+    let (importance, uniform) = (rmse(EnvSampling::Importance), rmse(EnvSampling::Uniform));
+    let ratio = importance / uniform;
+    eprintln!(
+        "env_spheres, 64×64 at 32 spp: RMSE {importance:.5} importance vs {uniform:.5} uniform, ratio {ratio:.3}"
+    );
+    assert!(
+        ratio < 0.3,
+        "importance sampling RMSE {importance:.5} vs uniform {uniform:.5}: ratio {ratio:.3} ≥ 0.3"
+    );
+}
+
+#[test]
 fn downsampled_fixture_keeps_the_reference_mean() {
     // Guards the fixture itself: box downsampling preserves the mean.
     let img = read_image(&root().join("tests/fixtures/refs/cornell_diffuse_64.pfm")).expect("fixture");

@@ -252,6 +252,24 @@ fn print_stats(loaded: &Loaded, stats: &RenderStats) {
         b.mesh_accel_bytes as f64 / unique.max(1) as f64,
         geo.meshes.iter().map(|m| m.total_bytes()).sum::<usize>() as f64 / 1048576.0
     );
+    if let Some((env, map)) = loaded
+        .scene
+        .environment()
+        .and_then(|(_, e)| e.map().map(|m| (e, m)))
+    {
+        let px = (map.width as usize * map.height as usize) as f64;
+        eprintln!(
+            "environment: {}×{} map read in {:.1} ms, {:.1} MiB ({:.1} B/pixel); sampling tables built in {:.1} ms, {:.1} MiB ({:.2} B/pixel)",
+            map.width,
+            map.height,
+            b.env_read_time.as_secs_f64() * 1e3,
+            (map.rgb.len() * 4) as f64 / 1048576.0,
+            (map.rgb.len() * 4) as f64 / px,
+            b.env_table_time.as_secs_f64() * 1e3,
+            env.table_bytes() as f64 / 1048576.0,
+            env.table_bytes() as f64 / px
+        );
+    }
     for (i, m) in geo.meshes.iter().enumerate().take(8) {
         if let Some(s) = m.blas().map(|b| b.stats()) {
             eprintln!(

@@ -1,7 +1,39 @@
 //! Lights.
+//!
+//! ```
+//! let text = r#"
+//! Scene(
+//!     camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+//!     lights: [
+//!         // An HDR sky turned 90° about +y, at half strength.
+//!         Environment(map: "sky.exr", strength: 0.5, rotation_degrees: 90),
+//!     ],
+//! )"#;
+//! let scene: ronray::desc::SceneDesc = ron::Options::default()
+//!     .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+//!     .from_str(text)
+//!     .unwrap();
+//! assert_eq!(scene.lights.len(), 1);
+//! ```
 
 use super::{Color, V3};
 use serde::{Deserialize, Serialize};
+
+fn one() -> f32 {
+    1.0
+}
+fn is_one(x: &f32) -> bool {
+    *x == 1.0
+}
+fn is_zero(x: &f32) -> bool {
+    *x == 0.0
+}
+fn yes() -> bool {
+    true
+}
+fn is_true(b: &bool) -> bool {
+    *b
+}
 
 /// A light source, in world space (lights take no `transform`). Colours are linear
 /// RGB per channel, in the physical units each variant names.
@@ -70,4 +102,48 @@ pub enum LightDesc {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         material: Option<String>,
     },
+    /// Light from infinitely far away in every direction, at most one per
+    /// scene: a constant `radiance`, or an equirectangular `map` (linear
+    /// `.exr` or Radiance `.hdr`), times `strength`. Camera rays that miss
+    /// everything see it (unless `visible: false`). The map's centre column
+    /// looks along +z, its left and right edges along −z, row 0 straight up.
+    Environment {
+        /// Constant radiance in W/(m²·sr) per channel from every direction; give
+        /// this or `map`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        radiance: Option<Color>,
+        /// Equirectangular image, linear RGB, `.exr` or `.hdr`, relative to the
+        /// scene file; its values are radiance in W/(m²·sr). Give this or
+        /// `radiance`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        map: Option<String>,
+        /// Factor on the radiance or the map, ≥ 0 (default 1).
+        #[serde(default = "one", skip_serializing_if = "is_one")]
+        #[schemars(range(min = 0))]
+        strength: f32,
+        /// Turn about the vertical (+y) axis, right-handed, in degrees (default 0):
+        /// at 90, what the map shows along +z appears along +x.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        rotation_degrees: f32,
+        /// Whether camera rays that miss everything see the environment (default
+        /// true). With `false` it still lights the scene (and shows in
+        /// reflections and refractions), but the backdrop is `background`.
+        #[serde(default = "yes", skip_serializing_if = "is_true")]
+        visible: bool,
+        /// What camera rays that miss see when `visible` is false: a radiance in
+        /// W/(m²·sr) per channel (default black).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        background: Option<Color>,
+    },
+}
+
+impl LightDesc {
+    /// The file this light reads (an environment's `map`), for include
+    /// handling to keep it relative to the file that wrote it.
+    pub fn file_mut(&mut self) -> Option<&mut String> {
+        match self {
+            LightDesc::Environment { map, .. } => map.as_mut(),
+            _ => None,
+        }
+    }
 }

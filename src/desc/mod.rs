@@ -19,6 +19,7 @@
 
 mod camera;
 mod color;
+mod emission;
 mod light;
 mod material;
 mod object;
@@ -27,6 +28,7 @@ mod transform;
 
 pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, SamplerDesc};
 pub use color::ColorDesc;
+pub use emission::EmissionDesc;
 pub use light::LightDesc;
 pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
 pub use object::{MeshDesc, ObjectDesc};
@@ -63,7 +65,8 @@ pub struct SceneDesc {
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
     /// Light sources. Area lights (`Quad`, `Rect`) are also surfaces that camera
-    /// rays see; point and spot lights are not.
+    /// rays see; point and spot lights are not; an `Environment` (at most one)
+    /// surrounds the scene.
     #[serde(default)]
     pub lights: Vec<LightDesc>,
     /// The geometry; each entry names a material from `materials`.

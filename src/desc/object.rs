@@ -75,6 +75,9 @@ pub enum ObjectDesc {
         shape: super::SdfDesc,
         /// Name of the material in `materials`.
         material: String,
+        /// Light the surface emits (default none); see `EmissionDesc`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        emission: Option<super::EmissionDesc>,
         /// Placement steps applied in the order written (default none). Only
         /// rotations, uniform scales and translations: a distance field cannot be
         /// stretched.
@@ -93,6 +96,9 @@ pub enum ObjectDesc {
         radius: f32,
         /// Name of the material in `materials`.
         material: String,
+        /// Light the surface emits (default none); see `EmissionDesc`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        emission: Option<super::EmissionDesc>,
         /// Placement steps applied in the order written (default none); they must
         /// keep the sphere round (equal scale factors; use a `Mesh` for an
         /// ellipsoid).
@@ -107,6 +113,9 @@ pub enum ObjectDesc {
         normal: V3,
         /// Name of the material in `materials`.
         material: String,
+        /// Light the surface emits (default none); see `EmissionDesc`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        emission: Option<super::EmissionDesc>,
         /// Placement steps applied in the order written (default none).
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
@@ -121,6 +130,9 @@ pub enum ObjectDesc {
         edge_v: V3,
         /// Name of the material in `materials`.
         material: String,
+        /// Light the surface emits (default none); see `EmissionDesc`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        emission: Option<super::EmissionDesc>,
         /// Placement steps applied in the order written (default none).
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
@@ -135,6 +147,9 @@ pub enum ObjectDesc {
         half_v: V3,
         /// Name of the material in `materials`.
         material: String,
+        /// Light the surface emits (default none); see `EmissionDesc`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        emission: Option<super::EmissionDesc>,
         /// Placement steps applied in the order written (default none).
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
@@ -157,6 +172,10 @@ pub enum ObjectDesc {
         /// over `material` and over the MTL file.
         #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
         materials: BTreeMap<String, String>,
+        /// Light every triangle emits from its counter-clockwise front (default
+        /// none); without it, groups whose MTL material has `Ke` emit that.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        emission: Option<super::EmissionDesc>,
         /// Replace the file's normals by area-weighted vertex normals (default
         /// false): smooth shading for faceted files.
         #[serde(default, skip_serializing_if = "is_false")]
@@ -183,6 +202,10 @@ pub enum ObjectDesc {
         /// over `material` and over the MTL file.
         #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
         materials: BTreeMap<String, String>,
+        /// Light every triangle emits from its counter-clockwise front (default
+        /// none); without it, groups whose MTL material has `Ke` emit that.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        emission: Option<super::EmissionDesc>,
         /// Placement steps applied in the order written (default none); this
         /// instance's object-to-world transform.
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -201,6 +224,20 @@ impl ObjectDesc {
             | ObjectDesc::Quad { material, .. }
             | ObjectDesc::Rect { material, .. } => Some(material),
             ObjectDesc::Mesh { material, .. } | ObjectDesc::Instance { material, .. } => material.as_deref(),
+        }
+    }
+
+    /// The light the object emits, if it says so (a plane may say so, which
+    /// validation refuses).
+    pub fn emission(&self) -> Option<&super::EmissionDesc> {
+        match self {
+            ObjectDesc::Sdf { emission, .. }
+            | ObjectDesc::Sphere { emission, .. }
+            | ObjectDesc::Plane { emission, .. }
+            | ObjectDesc::Quad { emission, .. }
+            | ObjectDesc::Rect { emission, .. }
+            | ObjectDesc::Mesh { emission, .. }
+            | ObjectDesc::Instance { emission, .. } => emission.as_ref(),
         }
     }
 

@@ -7,8 +7,8 @@
 //! (pbrt-v4's `TransformedPrimitive`/`BVHAggregate` split,
 //! <https://pbr-book.org/4ed/Primitives_and_Intersection_Acceleration/Object_Instancing_and_Primitives_in_Motion>).
 
-use super::Hit;
 use super::mesh::{Mesh, MeshHit};
+use super::{Hit, NO_LIGHT};
 use crate::accel::Aabb;
 use crate::math::Ray;
 use glam::{Affine3A, Mat3A, Vec3A};
@@ -29,6 +29,9 @@ pub struct Instance {
     identity: bool,
     /// Scene material of each of the mesh's slots.
     pub materials: Box<[u32]>,
+    /// Light of each of the mesh's slots (an emissive group), or
+    /// [`NO_LIGHT`]; empty when nothing in the instance emits.
+    pub lights: Box<[u32]>,
 }
 
 impl Instance {
@@ -42,6 +45,7 @@ impl Instance {
             normal_from_object: world_from_object.matrix3.inverse().transpose(),
             identity: world_from_object == Affine3A::IDENTITY,
             materials,
+            lights: Box::default(),
         }
     }
 
@@ -75,11 +79,9 @@ impl Instance {
     pub fn hit(&self, ray: &Ray, h: MeshHit, meshes: &[Mesh]) -> Hit {
         let mesh = &meshes[self.mesh as usize];
         let mut hit = mesh.hit(h.tri, h.t, h.bc);
-        hit.material = self
-            .materials
-            .get(mesh.slot(h.tri) as usize)
-            .copied()
-            .unwrap_or(0);
+        let slot = mesh.slot(h.tri) as usize;
+        hit.material = self.materials.get(slot).copied().unwrap_or(0);
+        hit.light = self.lights.get(slot).copied().unwrap_or(NO_LIGHT);
         if !self.identity {
             hit.p = self.world_from_object.transform_point3a(hit.p);
             hit.ng = (self.normal_from_object * hit.ng).normalize_or(hit.ng);
@@ -88,6 +90,20 @@ impl Instance {
         // A point on the world-space ray is more accurate far from the origin.
         debug_assert!(hit.p.is_finite() && ray.at(h.t).is_finite());
         hit
+    }
+
+    /// Triangle `tri` of the mesh in world space, wound so that `(b − a) ×
+    /// (c − a)` points to the side [`Instance::hit`] reports as outside (a
+    /// mirroring transform would otherwise turn it inward).
+    pub fn world_triangle(&self, tri: u32, meshes: &[Mesh]) -> [Vec3A; 3] {
+        let (a, b, c) = meshes[self.mesh as usize].corners(tri);
+        let m = &self.world_from_object;
+        let [a, b, c] = [a, b, c].map(|p| m.transform_point3a(p));
+        if m.matrix3.determinant() < 0.0 {
+            [a, c, b]
+        } else {
+            [a, b, c]
+        }
     }
 
     /// World bounds: the mesh box's eight corners transformed.

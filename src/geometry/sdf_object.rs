@@ -45,6 +45,8 @@ pub struct SdfObject {
     pub material: u32,
     /// Centre of the spherical UV map: the middle of the bounds.
     pub uv_center: Vec3A,
+    /// Index of the light this surface is (an emissive SDF), or [`NO_LIGHT`].
+    pub light: u32,
 }
 
 impl SdfObject {
@@ -58,6 +60,7 @@ impl SdfObject {
             sdf,
             params,
             material,
+            light: NO_LIGHT,
         }
     }
 
@@ -113,7 +116,7 @@ impl SdfObject {
             ns: n,
             uv: Vec2::new(u, 1.0 - v),
             material: self.material,
-            light: NO_LIGHT,
+            light: self.light,
         }
     }
 }

@@ -1,6 +1,6 @@
 //! Analytic sphere.
 
-use super::{Hit, NO_LIGHT};
+use super::Hit;
 use crate::accel::Aabb;
 use crate::math::Ray;
 use glam::{Vec2, Vec3A};
@@ -15,6 +15,8 @@ pub struct Sphere {
     pub radius: f32,
     /// Index into the scene's materials.
     pub material: u32,
+    /// Index of the light this sphere is (an emissive sphere), or [`NO_LIGHT`](super::NO_LIGHT).
+    pub light: u32,
 }
 
 impl Sphere {
@@ -72,7 +74,7 @@ impl Sphere {
             ns: n,
             uv: Vec2::ZERO,
             material: self.material,
-            light: NO_LIGHT,
+            light: self.light,
         }
     }
 

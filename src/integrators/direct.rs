@@ -1,9 +1,8 @@
 //! Direct lighting: emission seen by the camera plus one bounce of light from
 //! every light, estimated by light sampling with shadow rays.
 
-use super::{Counters, emitted, shadow_ray};
+use super::{Counters, emitted, escaped, shadow_ray};
 use crate::geometry::Hit;
-use crate::lights::Light;
 use crate::materials::{Bsdf, Bxdf};
 use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
@@ -13,8 +12,9 @@ use crate::scene::Scene;
 /// contribution at the first hit, by light sampling only.
 #[derive(Clone, Copy, Debug)]
 pub struct Direct {
-    /// Shadow rays per area light per camera sample (the seed report's
-    /// `_nbLightSamples`); point and spot lights always take one.
+    /// Shadow rays per area light (and for the environment) per camera sample
+    /// (the seed report's `_nbLightSamples`); point and spot lights always take
+    /// one.
     pub light_samples: u32,
 }
 
@@ -24,7 +24,7 @@ impl Direct {
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
         counters.rays += 1;
         let Some(hit) = scene.intersect(ray, f32::INFINITY) else {
-            return Rgb::ZERO;
+            return escaped(scene, ray.d, true);
         };
         let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
         let frame = Frame::from_normal(hit.ns);
@@ -44,8 +44,9 @@ impl Direct {
     }
 }
 
-/// Reflected radiance from every light (N shadow rays per area light), the
-/// shading step shared by `Direct` and `Whitted`.
+/// Reflected radiance from every light (N shadow rays per area light and for
+/// the environment, one per point or spot light), the shading step shared by
+/// `Direct` and `Whitted`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn all_lights(
     scene: &Scene,
@@ -62,14 +63,10 @@ pub(crate) fn all_lights(
         return l;
     }
     for light in &scene.lights {
-        let n = if matches!(light, Light::Quad(_)) {
-            light_samples
-        } else {
-            1
-        };
+        let n = if light.is_delta() { 1 } else { light_samples };
         let mut sum = Rgb::ZERO;
         for _ in 0..n {
-            let Some(ls) = light.sample(hit.p, sampler.next_vec2()) else {
+            let Some(ls) = light.sample(hit.p, sampler.next_vec2(), &scene.geometry) else {
                 continue;
             };
             let wi = frame.to_local(ls.wi);

@@ -10,7 +10,7 @@ pub use path::Path;
 pub use whitted::Whitted;
 
 use crate::geometry::{Hit, NO_LIGHT};
-use crate::lights::{Light, LightSample};
+use crate::lights::LightSample;
 use crate::math::{Ray, Rgb, ray_epsilon};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -55,9 +55,19 @@ pub(crate) fn emitted(scene: &Scene, hit: &Hit, ray_dir: Vec3A) -> Rgb {
     if hit.light == NO_LIGHT {
         return Rgb::ZERO;
     }
-    match &scene.lights[hit.light as usize] {
-        Light::Quad(q) => q.emitted(-ray_dir),
-        _ => Rgb::ZERO,
+    scene.lights[hit.light as usize].emitted(hit, -ray_dir)
+}
+
+/// Radiance arriving along a ray of direction `d` that missed everything: the
+/// environment's, or black without one. A camera ray (`camera`) sees the
+/// background instead when the environment is not `visible`; rays after a
+/// bounce (reflections, refractions) always see the environment.
+#[inline]
+pub(crate) fn escaped(scene: &Scene, d: Vec3A, camera: bool) -> Rgb {
+    match scene.environment() {
+        Some((_, env)) if camera => env.seen_by_camera(d),
+        Some((_, env)) => env.le(d),
+        None => Rgb::ZERO,
     }
 }
 
@@ -88,10 +98,14 @@ fn offset_origin(p: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
 /// grazing angles the ray then crossed the light's own plane before its
 /// extent ended, and a floor beyond about 60° from a quad light went black.)
 /// Delta lights have no surface (`ls.n` is zero); their point is the target.
-/// The extent stops a relative 1e-4 short of the target.
+/// The extent stops a relative 1e-4 short of the target. A sample at infinite
+/// distance (the environment) gives an unbounded ray from the moved origin.
 #[inline]
 pub fn shadow_ray(hit: &Hit, ls: &LightSample) -> (Ray, f32) {
     let o = offset_origin(hit.p, hit.ng, ls.wi);
+    if ls.dist == f32::INFINITY {
+        return (Ray::new(o, ls.wi), f32::INFINITY);
+    }
     let target = if ls.n == Vec3A::ZERO {
         ls.p
     } else {

@@ -12,11 +12,16 @@
 //! Emitters reached by a BSDF sample after a non-delta vertex are weighted
 //! against light sampling; after a delta vertex (or from the camera) they
 //! count fully, since light sampling cannot produce those paths. Each path
-//! therefore counts every emitter exactly once.
+//! therefore counts every emitter exactly once. The environment is an
+//! emitter like the others: a BSDF sample that escapes the scene is weighted
+//! against the environment's own density (its luminance distribution), and
+//! next-event estimation picks it by power like any light. A camera ray that
+//! escapes sees the environment, or its background when it is not
+//! `visible`.
 
-use super::{Counters, emitted, shadow_ray, spawn};
+use super::{Counters, emitted, escaped, shadow_ray, spawn};
 use crate::geometry::NO_LIGHT;
-use crate::lights::{Light, LightPicker};
+use crate::lights::LightPicker;
 use crate::materials::Bxdf;
 use crate::math::sampling::power_heuristic;
 use crate::math::{Frame, Ray, Rgb};
@@ -46,10 +51,23 @@ impl Path {
         // (the camera ray counts as one: emitters it sees count fully).
         let mut prev_pdf = 0.0f32;
         let mut prev_delta = true;
+        // The vertex the ray left from: light densities for MIS are seen from it.
+        let mut prev_p = ray.o;
         let mut segments = 0u32;
         loop {
             counters.rays += 1;
             let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+                // The environment, reached by the previous BSDF sample.
+                let le = escaped(scene, ray.d, segments == 0);
+                if le != Rgb::ZERO {
+                    let w = match scene.environment() {
+                        Some((i, env)) if !prev_delta => {
+                            power_heuristic(prev_pdf, picker.pmf(i as usize) * env.pdf(ray.d))
+                        }
+                        _ => 1.0,
+                    };
+                    l += beta * le * w;
+                }
                 break;
             };
             segments += 1;
@@ -61,10 +79,8 @@ impl Path {
                     let w = if prev_delta {
                         1.0
                     } else {
-                        let light_pdf = match &scene.lights[hit.light as usize] {
-                            Light::Quad(q) => picker.pmf(hit.light as usize) * q.pdf(ray.d, hit.t),
-                            _ => 0.0,
-                        };
+                        let light = &scene.lights[hit.light as usize];
+                        let light_pdf = picker.pmf(hit.light as usize) * light.pdf(prev_p, ray.d, &hit);
                         power_heuristic(prev_pdf, light_pdf)
                     };
                     l += beta * le * w;
@@ -84,7 +100,7 @@ impl Path {
             {
                 let light = &scene.lights[li];
                 let u = sampler.next_vec2();
-                if let Some(ls) = light.sample(hit.p, u) {
+                if let Some(ls) = light.sample(hit.p, u, &scene.geometry) {
                     let wi = frame.to_local(ls.wi);
                     let f = bsdf.eval(wo, wi) * wi.z.abs();
                     if f != Rgb::ZERO {
@@ -117,6 +133,7 @@ impl Path {
             eta_scale *= bs.eta * bs.eta;
             prev_pdf = bs.pdf;
             prev_delta = bs.delta;
+            prev_p = hit.p;
             ray = spawn(&hit, frame.to_world(bs.wi));
 
             if segments >= self.rr_depth {

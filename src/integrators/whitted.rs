@@ -7,7 +7,7 @@
 //! both: the same expected image, a path instead of a tree.
 
 use super::direct::all_lights;
-use super::{Counters, emitted, spawn};
+use super::{Counters, emitted, escaped, spawn};
 use crate::materials::Bxdf;
 use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
@@ -34,6 +34,9 @@ impl Whitted {
         for depth in 0..=self.max_depth {
             counters.rays += 1;
             let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+                // Past a mirror or glass the environment counts fully: light
+                // sampling cannot reach it through a delta bounce.
+                l += beta * escaped(scene, ray.d, depth == 0);
                 break;
             };
             let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);

@@ -1,22 +1,49 @@
 //! Light sources. Units: point and spot lights give radiant intensity in
-//! W/sr, area lights emitted radiance in W/(m²·sr), per linear-RGB channel.
+//! W/sr, area lights and the environment emitted radiance in W/(m²·sr), per
+//! linear-RGB channel.
+//!
+//! | light | what emits | next-event estimation samples |
+//! |---|---|---|
+//! | `Point`, `Spot` | a point (delta) | its position |
+//! | `Quad` | a `Quad`/`Rect` light, or an emissive `Quad`/`Rect` object | uniformly by area |
+//! | `Sphere` | an emissive sphere | uniformly in the cone it subtends |
+//! | `Mesh` | the emissive triangles of a placed mesh (one material slot) | by area: a triangle by an alias table, then a uniform point |
+//! | `Sdf` | an emissive implicit surface | uniformly in its bounding sphere's cone, then marched |
+//! | `Environment` | the sky at infinity (at most one) | by the image's luminance × sin θ |
+//!
+//! Every light but points and spots is also reached by BSDF sampling (a
+//! surface in the BVH, or a ray that misses everything); the path tracer
+//! weighs the two strategies by MIS, so each emitter counts once.
 
+pub mod alias;
+pub mod environment;
+pub mod mesh;
 pub mod point;
 pub mod power;
 pub mod quad;
+pub mod sdf;
+pub mod sphere;
 pub mod spot;
 
+#[cfg(test)]
+mod tests;
+
+pub use environment::{EnvMap, EnvSampling, EnvironmentLight};
+pub use mesh::MeshLight;
 pub use point::PointLight;
 pub use power::LightPicker;
 pub use quad::QuadLight;
+pub use sdf::SdfLight;
+pub use sphere::SphereLight;
 pub use spot::SpotLight;
 
+use crate::geometry::{Geometry, Hit};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
 /// A light source of the runtime scene, in world space; a closed set, so an `enum`
 /// forwarded by `match`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub enum Light {
     /// Isotropic point light (a delta light).
     Point(PointLight),
@@ -25,6 +52,14 @@ pub enum Light {
     /// One-sided parallelogram area light; its surface is also a
     /// [`crate::geometry::Quad`] in the scene BVH.
     Quad(QuadLight),
+    /// An emissive sphere (also a [`crate::geometry::Sphere`] in the BVH).
+    Sphere(SphereLight),
+    /// Emissive triangles of a placed mesh.
+    Mesh(MeshLight),
+    /// An emissive implicit surface.
+    Sdf(SdfLight),
+    /// The environment, at infinity.
+    Environment(Box<EnvironmentLight>),
 }
 
 /// Light arriving at a shading point from one sampled point of a light.
@@ -32,7 +67,8 @@ pub enum Light {
 pub struct LightSample {
     /// Unit direction from the shading point toward the light.
     pub wi: Vec3A,
-    /// Distance from the shading point to the sampled point.
+    /// Distance from the shading point to the sampled point; infinite for the
+    /// environment (its shadow ray is unbounded).
     pub dist: f32,
     /// The sampled point on the light.
     pub p: Vec3A,
@@ -40,8 +76,8 @@ pub struct LightSample {
     /// without a surface (points, spots): shadow rays stop short of a
     /// surface by leaving it along this normal (`integrators::shadow_ray`).
     pub n: Vec3A,
-    /// Incident radiance (area lights) or `I/r²` (delta lights), to be
-    /// divided by `pdf`.
+    /// Incident radiance (area lights, environment) or `I/r²` (delta lights),
+    /// to be divided by `pdf`.
     pub li: Rgb,
     /// Solid-angle density of `wi`; 1 for delta lights.
     pub pdf: f32,
@@ -52,29 +88,67 @@ pub struct LightSample {
 
 impl Light {
     /// Samples light arriving at world-space point `p`, `u` ∈ [0, 1)² choosing the
-    /// point on an area light; `None` if no light reaches `p` (behind an area light,
-    /// outside a spot's cone, or at the light's own position).
+    /// point on an area light or the direction toward the environment; `None` if
+    /// no light reaches `p` (behind an area light, outside a spot's cone, or at
+    /// the light's own position). `geo` is for SDF emitters, which are marched.
     #[inline]
-    pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+    pub fn sample(&self, p: Vec3A, u: Vec2, geo: &Geometry) -> Option<LightSample> {
         match self {
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
             Light::Quad(l) => l.sample(p, u),
+            Light::Sphere(l) => l.sample(p, u),
+            Light::Mesh(l) => l.sample(p, u),
+            Light::Sdf(l) => l.sample(p, u, geo),
+            Light::Environment(l) => l.sample(p, u),
         }
     }
 
-    /// Total emitted power in W per channel.
+    /// Radiance the surface at `hit` (this light's surface) emits toward `w`
+    /// (unit, leaving the surface); zero for lights without a surface.
+    #[inline]
+    pub fn emitted(&self, hit: &Hit, w: Vec3A) -> Rgb {
+        match self {
+            Light::Quad(l) => l.emitted(w),
+            Light::Sphere(l) => l.emitted(hit.ng, w),
+            Light::Mesh(l) => l.emitted(hit.ng, w),
+            Light::Sdf(l) => l.emitted(hit.ng, w),
+            Light::Point(_) | Light::Spot(_) | Light::Environment(_) => Rgb::ZERO,
+        }
+    }
+
+    /// Solid-angle density with which [`Light::sample`] from `p` draws the
+    /// direction `wi` of a ray that reached this light's surface at `hit`
+    /// (for MIS); 0 for lights without a surface.
+    #[inline]
+    pub fn pdf(&self, p: Vec3A, wi: Vec3A, hit: &Hit) -> f32 {
+        match self {
+            Light::Quad(l) => l.pdf(wi, hit.t),
+            Light::Sphere(l) => l.pdf(p, wi, hit.t, hit.ng),
+            Light::Mesh(l) => l.pdf(wi, hit.t, hit.ng),
+            Light::Sdf(l) => l.pdf(p),
+            Light::Point(_) | Light::Spot(_) | Light::Environment(_) => 0.0,
+        }
+    }
+
+    /// Total emitted power in W per channel (for the environment, the power
+    /// through the scene's bounding disk; for an SDF, that of its bounding
+    /// sphere): what light selection weighs.
     pub fn power(&self) -> Rgb {
         match self {
             Light::Point(l) => l.power(),
             Light::Spot(l) => l.power(),
             Light::Quad(l) => l.power(),
+            Light::Sphere(l) => l.power(),
+            Light::Mesh(l) => l.power(),
+            Light::Sdf(l) => l.power(),
+            Light::Environment(l) => l.power(),
         }
     }
 
     /// True for lights without area (point, spot): sampled exactly, never hit by
     /// rays.
     pub fn is_delta(&self) -> bool {
-        !matches!(self, Light::Quad(_))
+        matches!(self, Light::Point(_) | Light::Spot(_))
     }
 }

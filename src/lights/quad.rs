@@ -1,4 +1,5 @@
-//! One-sided parallelogram area light.
+//! Parallelogram area light, one-sided (a `Quad`/`Rect` light) or two-sided
+//! (an emissive `Quad`/`Rect` object that asks for it).
 
 use super::LightSample;
 use crate::math::Rgb;
@@ -21,6 +22,8 @@ pub struct QuadLight {
     pub area: f32,
     /// Emitted radiance, W/(m²·sr).
     pub radiance: Rgb,
+    /// Whether the back (against `n`) emits too.
+    pub two_sided: bool,
 }
 
 impl QuadLight {
@@ -35,13 +38,14 @@ impl QuadLight {
             n: c.normalize(),
             area: c.length(),
             radiance,
+            two_sided: false,
         }
     }
 
     /// Radiance leaving the light toward direction `w` (from the light).
     #[inline]
     pub fn emitted(&self, w: Vec3A) -> Rgb {
-        if self.n.dot(w) > 0.0 {
+        if self.two_sided || self.n.dot(w) > 0.0 {
             self.radiance
         } else {
             Rgb::ZERO
@@ -55,7 +59,7 @@ impl QuadLight {
         let dist2 = d.length_squared();
         let dist = dist2.sqrt();
         let wi = d / dist;
-        let cos_l = -wi.dot(self.n);
+        let cos_l = self.facing(-wi.dot(self.n));
         if cos_l <= 0.0 || dist2 == 0.0 {
             return None;
         }
@@ -73,7 +77,7 @@ impl QuadLight {
     /// Solid-angle density of hitting this light at distance `dist` along
     /// `wi` (for MIS); matches [`QuadLight::sample`].
     pub fn pdf(&self, wi: Vec3A, dist: f32) -> f32 {
-        let cos_l = -wi.dot(self.n);
+        let cos_l = self.facing(-wi.dot(self.n));
         if cos_l <= 0.0 {
             0.0
         } else {
@@ -81,8 +85,16 @@ impl QuadLight {
         }
     }
 
-    /// Φ = π A L for a one-sided Lambertian emitter.
+    /// The cosine at the light of a direction whose cosine to `n` is `cos_n`:
+    /// itself one-sided (≤ 0 means the back), its magnitude two-sided.
+    #[inline]
+    fn facing(&self, cos_n: f32) -> f32 {
+        if self.two_sided { cos_n.abs() } else { cos_n }
+    }
+
+    /// Φ = π A L for a one-sided Lambertian emitter, twice that two-sided.
     pub fn power(&self) -> Rgb {
-        PI * self.area * self.radiance
+        let sides = if self.two_sided { 2.0 } else { 1.0 };
+        sides * PI * self.area * self.radiance
     }
 }

@@ -39,6 +39,10 @@ pub struct BuildStats {
     pub instances: usize,
     /// Bytes of the meshes' BVHs and inline triangles (each mesh once).
     pub mesh_accel_bytes: usize,
+    /// Time to read the environment map (zero without one).
+    pub env_read_time: Duration,
+    /// Time to build the environment's sampling tables.
+    pub env_table_time: Duration,
     /// What the build repaired or defaulted (an OBJ group without a
     /// material, an MTL feature not supported), for the commands to show.
     pub notes: Vec<String>,
@@ -61,6 +65,8 @@ pub(super) struct BuildContext<'a> {
     /// scene's own.
     pub mtl: MtlMaterials,
     pub lights: Vec<Light>,
+    /// Index in `lights` of the environment, once built.
+    pub environment: Option<u32>,
     /// Bounded shapes (they go in the BVH), in the order built.
     pub shapes: Vec<Shape>,
     /// Unbounded shapes (planes, unbounded SDFs): every ray tests them.
@@ -71,6 +77,8 @@ pub(super) struct BuildContext<'a> {
     pub triangles: usize,
     pub problems: Vec<Problem>,
     pub notes: Vec<String>,
+    /// Environment map read and table build times, for the stats.
+    pub env_times: (Duration, Duration),
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
@@ -103,6 +111,7 @@ pub fn build_with(
         emitter,
         mtl: MtlMaterials::new(materials.len() as u32, textures.len() as u32),
         lights: Vec::new(),
+        environment: None,
         shapes: Vec::new(),
         unbounded: Vec::new(),
         geometry: Geometry::default(),
@@ -110,9 +119,10 @@ pub fn build_with(
         triangles: 0,
         problems: Vec::new(),
         notes: Vec::new(),
+        env_times: Default::default(),
     };
-    for l in &desc.lights {
-        super::light::build_light(&mut ctx, l);
+    for (i, l) in desc.lights.iter().enumerate() {
+        super::light::build_light(&mut ctx, i, l);
     }
     for (i, o) in desc.objects.iter().enumerate() {
         let (shapes, unbounded) = (ctx.shapes.len(), ctx.unbounded.len());
@@ -129,6 +139,13 @@ pub fn build_with(
     let t1 = Instant::now();
     let (shapes, bounded, bvh) = bvh_and_leaf_order(ctx.shapes, ctx.unbounded, &ctx.geometry);
     let bvh_time = t1.elapsed();
+    // The environment's power (for light selection) is its flux through the
+    // scene's bounding disk.
+    if let Some(Light::Environment(env)) = ctx.environment.map(|i| &mut ctx.lights[i as usize]) {
+        let b = bvh.bounds();
+        let r = 0.5 * (b.max - b.min).length();
+        env.scene_radius = if r.is_finite() && r > 0.0 { r } else { 1.0 };
+    }
 
     let stats = BuildStats {
         bvh_time,
@@ -139,6 +156,8 @@ pub fn build_with(
         instances: ctx.geometry.instances.len(),
         mesh_accel_bytes: ctx.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),
         notes: ctx.notes,
+        env_read_time: ctx.env_times.0,
+        env_table_time: ctx.env_times.1,
     };
     let uniform = matches!(
         desc.integrator,
@@ -152,6 +171,7 @@ pub fn build_with(
         materials,
         textures,
         lights: ctx.lights,
+        environment: ctx.environment,
         shapes,
         bounded,
         geometry: ctx.geometry,

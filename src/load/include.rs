@@ -237,6 +237,11 @@ impl Composer {
             }
             self.merge_material(file, &full, &text, name, m);
         }
+        for l in &mut inc_desc.lights {
+            if let Some(f) = l.file_mut() {
+                fix(f);
+            }
+        }
         for mut o in std::mem::take(&mut inc_desc.objects) {
             if let ObjectDesc::Mesh { file: f, .. } = &mut o {
                 fix(f);

@@ -1,14 +1,21 @@
 //! Lights: the checks of each `lights` entry and the build step that turns
 //! them into runtime [`Light`]s. An area light is also a shape in the
-//! scene's BVH (camera rays see it), so it adds its quad to the shapes.
+//! scene's BVH (camera rays see it), so it adds its quad to the shapes. An
+//! environment reads its map here (`.exr` or `.hdr` through the `image`
+//! crate) and builds its sampling tables.
 
 use super::build::BuildContext;
 use super::validate::Checker;
 use crate::desc::LightDesc;
 use crate::diagnostic::{Problem, suggest};
 use crate::geometry::{Quad, Shape};
-use crate::lights::{Light, PointLight, QuadLight, SpotLight};
+use crate::lights::{EnvMap, EnvironmentLight, Light, PointLight, QuadLight, SpotLight};
+use crate::math::Rgb;
 use glam::Vec3A;
+use std::path::Path;
+
+/// File extensions an environment map may have: linear formats only.
+const MAP_EXTENSIONS: [&str; 2] = ["exr", "hdr"];
 
 impl Checker {
     pub(super) fn light(&mut self, path: &str, l: &LightDesc, materials: &[&str]) {
@@ -76,12 +83,104 @@ impl Checker {
                 self.color(&p("radiance"), radiance, None);
                 surface(self, material);
             }
+            LightDesc::Environment {
+                radiance,
+                map,
+                strength,
+                rotation_degrees,
+                visible,
+                background,
+            } => {
+                self.environment(path, radiance.as_ref(), map.as_deref(), *strength);
+                if !rotation_degrees.is_finite() {
+                    self.push(
+                        &p("rotation_degrees"),
+                        "non-finite angle",
+                        "use a finite angle in degrees",
+                    );
+                }
+                if let Some(b) = background {
+                    self.color(&p("background"), b, None);
+                    if *visible {
+                        self.push(
+                            &p("background"),
+                            "`background` is only seen when `visible` is false",
+                            "add `visible: false` to hide the environment behind the scene, or remove `background`",
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// An environment's source (exactly one of `radiance` and `map`) and strength.
+    fn environment(&mut self, path: &str, radiance: Option<&[f32; 3]>, map: Option<&str>, strength: f32) {
+        let p = |f: &str| format!("{path}.{f}");
+        match (radiance, map) {
+            (None, None) => self.push(
+                path,
+                "an environment needs `radiance` or `map`",
+                "give a constant `radiance: (0.8, 0.9, 1.0)` or an equirectangular `map: \"sky.exr\"`",
+            ),
+            (Some(_), Some(_)) => self.push(
+                &p("radiance"),
+                "an environment takes `radiance` or `map`, not both",
+                "remove one; `strength` scales a map",
+            ),
+            _ => {}
+        }
+        if let Some(c) = radiance {
+            self.color(&p("radiance"), c, None);
+        }
+        if let Some(f) = map {
+            let ext = Path::new(f)
+                .extension()
+                .and_then(|e| e.to_str())
+                .unwrap_or("")
+                .to_ascii_lowercase();
+            if MAP_EXTENSIONS.contains(&ext.as_str()) {
+                self.file(&p("map"), f, "environment map");
+            } else {
+                self.push(
+                    &p("map"),
+                    format!("environment map `{f}` is not a linear HDR image"),
+                    "use an OpenEXR (`.exr`) or Radiance (`.hdr`) file: 8-bit images clip the sun and sky",
+                );
+            }
+        }
+        if !(strength >= 0.0 && strength.is_finite()) {
+            self.push(
+                &p("strength"),
+                format!("strength {strength} must be ≥ 0 and finite"),
+                "it multiplies the radiance or map; 1 keeps it as given",
+            );
+        }
+    }
+
+    /// At most one environment among all lights (includes counted): the second
+    /// and later ones are errors.
+    pub(super) fn one_environment(&mut self, lights: &[LightDesc]) {
+        let mut envs = lights
+            .iter()
+            .enumerate()
+            .filter(|(_, l)| matches!(l, LightDesc::Environment { .. }))
+            .map(|(i, _)| i);
+        let Some(first) = envs.next() else {
+            return;
+        };
+        for i in envs {
+            self.push(
+                &format!("lights[{i}]"),
+                format!("a scene has one environment, and lights[{first}] is already one"),
+                "merge them into one `Environment`",
+            );
         }
     }
 }
 
-/// Adds the runtime light of `l` (and the quad of an area light) to `ctx`.
-pub(super) fn build_light(ctx: &mut BuildContext, l: &LightDesc) {
+/// Adds the runtime light of `l`, entry `i` of the scene's lights (and the quad
+/// of an area light), to `ctx`.
+pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
     // An area light's surface is black unless the scene gives it a material.
     let surface = |ctx: &BuildContext, m: &Option<String>| {
         m.as_ref()
@@ -134,7 +233,95 @@ pub(super) fn build_light(ctx: &mut BuildContext, l: &LightDesc) {
             let m = surface(ctx, material);
             push_quad_light(ctx, m, q);
         }
+        LightDesc::Environment {
+            radiance,
+            map,
+            strength,
+            rotation_degrees,
+            visible,
+            background,
+        } => {
+            let t0 = std::time::Instant::now();
+            let env = match (radiance, map) {
+                (_, Some(file)) => match read_map(&ctx.base.join(file)) {
+                    Ok(m) => {
+                        let t1 = std::time::Instant::now();
+                        let env = EnvironmentLight::from_map(m, *strength, *rotation_degrees);
+                        ctx.env_times = (t1 - t0, t1.elapsed());
+                        env
+                    }
+                    Err(e) => {
+                        let at = format!("lights[{i}].map");
+                        ctx.problems.push(Problem::new(at, e).help(
+                            "the file must be an equirectangular image in linear OpenEXR or Radiance HDR",
+                        ));
+                        return;
+                    }
+                },
+                (c, None) => EnvironmentLight::constant(Rgb::from(c.unwrap_or_default()) * *strength),
+            };
+            let mut env = Box::new(env);
+            env.visible = *visible;
+            env.background = background.map_or(Rgb::ZERO, Rgb::from);
+            ctx.environment = Some(ctx.lights.len() as u32);
+            ctx.lights.push(Light::Environment(env));
+        }
     }
+}
+
+/// Reads an environment map into linear RGB floats: `.exr` through the `exr`
+/// crate (blocks decompressed on all cores, pixels written straight into the
+/// map), `.hdr` through `image`.
+pub fn read_map(path: &Path) -> Result<EnvMap, String> {
+    let is_exr = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    let map = if is_exr { read_exr(path) } else { read_hdr(path) }
+        .map_err(|e| format!("cannot read environment map {}: {e}", path.display()))?;
+    if map.width == 0 || map.height == 0 {
+        return Err(format!("environment map {} is empty", path.display()));
+    }
+    Ok(map)
+}
+
+fn read_exr(path: &Path) -> Result<EnvMap, String> {
+    use exr::prelude::{ReadChannels, ReadLayers};
+    let image = exr::prelude::read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .rgba_channels(
+            |size, _| EnvMap {
+                width: size.width() as u32,
+                height: size.height() as u32,
+                rgb: vec![0.0; 3 * size.area()],
+            },
+            |m: &mut EnvMap, pos, (r, g, b, _): (f32, f32, f32, f32)| {
+                let k = 3 * (pos.y() * m.width as usize + pos.x());
+                m.rgb[k..k + 3].copy_from_slice(&[r, g, b]);
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(path)
+        .map_err(|e| e.to_string())?;
+    Ok(image.layer_data.channel_data.pixels)
+}
+
+/// Radiance RGBE. Files that begin `#?RGBE` (Mitsuba, some HDR tools) are read
+/// as `#?RADIANCE`, the only signature `image` accepts; the format is the same.
+fn read_hdr(path: &Path) -> Result<EnvMap, String> {
+    let mut bytes = std::fs::read(path).map_err(|e| e.to_string())?;
+    if bytes.starts_with(b"#?") && !bytes.starts_with(b"#?RADIANCE") {
+        let end = bytes.iter().position(|&b| b == b'\n').unwrap_or(0);
+        bytes.splice(..end, b"#?RADIANCE".iter().copied());
+    }
+    let img = image::load_from_memory_with_format(&bytes, image::ImageFormat::Hdr)
+        .map_err(|e| e.to_string())?
+        .into_rgb32f();
+    let (width, height) = img.dimensions();
+    Ok(EnvMap {
+        width,
+        height,
+        rgb: img.into_raw(),
+    })
 }
 
 fn push_quad_light(ctx: &mut BuildContext, material: u32, q: QuadLight) {

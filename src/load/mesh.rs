@@ -6,6 +6,12 @@
 //! name": "scene material" }`, then the object's `material`, then the group's
 //! MTL material (see `mtl.rs`), then a grey default (with a note).
 //!
+//! A group emits the object's `emission` if it has one, else the `Ke` of its
+//! MTL material when the group keeps that material (a scene material that
+//! replaces it replaces its emission too). Each emitting group of each
+//! placed mesh is one [`MeshLight`] with its own world-space copy of the
+//! group's triangles.
+//!
 //! The check step only makes sure each OBJ file exists (`Checker::file`);
 //! parsing the file is the build's work, and its problems are reported at
 //! the object or `meshes` entry that names it.
@@ -16,7 +22,8 @@ use crate::desc::{MeshDesc, ObjectDesc};
 use crate::diagnostic::{Problem, suggest};
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::{ObjData, ObjGroup};
-use crate::geometry::{Instance, MeshTriangle, Shape};
+use crate::geometry::{Instance, MeshTriangle, NO_LIGHT, Shape};
+use crate::lights::{Light, MeshLight};
 use crate::materials::{ColorTex, Material};
 use crate::math::Rgb;
 use glam::{Affine3A, Mat4, Vec3};
@@ -73,12 +80,21 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     };
     let overrides = o.material_overrides().cloned().unwrap_or_default();
     let materials = resolve(ctx, &path, &loaded, o.material(), &overrides);
+    let emission = slot_emission(ctx, o, &loaded, &materials);
     let id = ctx.geometry.instances.len() as u32;
-    ctx.geometry.instances.push(Instance::new(
-        loaded.mesh,
-        transform,
-        materials.into_boxed_slice(),
-    ));
+    let mut instance = Instance::new(loaded.mesh, transform, materials.into_boxed_slice());
+    if emission.iter().any(Option::is_some) {
+        instance.lights = emission
+            .iter()
+            .enumerate()
+            .map(|(slot, e)| {
+                e.map_or(NO_LIGHT, |(radiance, two_sided)| {
+                    mesh_light(ctx, &instance, slot, radiance, two_sided)
+                })
+            })
+            .collect();
+    }
+    ctx.geometry.instances.push(instance);
     let mesh = &ctx.geometry.meshes[loaded.mesh as usize];
     ctx.triangles += mesh.triangle_count();
     if flatten {
@@ -92,6 +108,51 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         }));
     } else {
         ctx.shapes.push(Shape::Instance(id));
+    }
+}
+
+/// What each slot (OBJ group) emits, as radiance and two-sidedness: the
+/// object's `emission` for every slot, else the `Ke` of each slot that kept
+/// its MTL material.
+fn slot_emission(
+    ctx: &BuildContext,
+    o: &ObjectDesc,
+    l: &LoadedMesh,
+    materials: &[u32],
+) -> Vec<Option<(Rgb, bool)>> {
+    if let Some(e) = o.emission() {
+        return vec![Some((Rgb::from(e.radiance), e.two_sided)); materials.len()];
+    }
+    l.groups
+        .iter()
+        .zip(materials)
+        .map(|(g, &m)| {
+            let mtl = g.material.map(|k| l.mtl[k]).filter(|&k| k == m)?;
+            ctx.mtl.emission(mtl).map(|ke| (ke, false))
+        })
+        .collect()
+}
+
+/// The light of the triangles of `slot` in `instance` (not yet pushed), or
+/// `NO_LIGHT` when they have no area.
+fn mesh_light(
+    ctx: &mut BuildContext,
+    instance: &Instance,
+    slot: usize,
+    radiance: Rgb,
+    two_sided: bool,
+) -> u32 {
+    let mesh = &ctx.geometry.meshes[instance.mesh as usize];
+    let tris: Vec<_> = (0..mesh.triangle_count() as u32)
+        .filter(|&t| mesh.slot(t) as usize == slot)
+        .map(|t| instance.world_triangle(t, &ctx.geometry.meshes))
+        .collect();
+    match MeshLight::new(tris, radiance, two_sided) {
+        Some(light) => {
+            ctx.lights.push(Light::Mesh(light));
+            ctx.lights.len() as u32 - 1
+        }
+        None => NO_LIGHT,
     }
 }
 
@@ -224,8 +285,15 @@ fn quoted(names: &[String]) -> String {
         .join(", ")
 }
 
-/// Transforms positions and normals of `data` into world space.
+/// Transforms positions and normals of `data` into world space. A mirroring
+/// transform reverses the winding, so it is reversed back: the
+/// counter-clockwise front (where an emissive mesh emits) stays outside.
 fn bake(data: &mut ObjData, m: Mat4) {
+    if m.determinant() < 0.0 {
+        for t in &mut data.mesh.indices {
+            t.swap(1, 2);
+        }
+    }
     let normal_m = m.inverse().transpose();
     for p in &mut data.mesh.positions {
         *p = m.transform_point3(Vec3::from(*p)).into();

@@ -9,9 +9,10 @@
 //! | `Ks` non-zero | `Phong(diffuse: Kd, specular: Ks, exponent: Ns)` |
 //! | otherwise | `Lambert(albedo: Kd)` (`map_Kd` → sRGB image texture) |
 //!
-//! Colours are clamped to [0, 1]. `Ke` (emission) is not supported: such a
-//! group gets its `Kd` and a note, since an OBJ light would need an area
-//! light per triangle.
+//! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), not
+//! clamped) makes the groups that use the material emit from the
+//! counter-clockwise front of their triangles (see `mesh.rs`); the material
+//! itself is mapped as above, so the surface also reflects its `Kd`.
 
 use crate::materials::{ColorTex, DielectricFresnel, Material, Texture};
 use crate::math::Rgb;
@@ -26,6 +27,8 @@ pub struct MtlMaterials {
     first_texture: u32,
     pub materials: Vec<Material>,
     names: Vec<Option<String>>,
+    /// `Ke` of each material, when positive.
+    emission: Vec<Option<Rgb>>,
     pub textures: Vec<Texture>,
     textures_by_path: HashMap<PathBuf, Option<u32>>,
 }
@@ -41,6 +44,7 @@ impl MtlMaterials {
             first_texture,
             materials: Vec::new(),
             names: Vec::new(),
+            emission: Vec::new(),
             textures: Vec::new(),
             textures_by_path: HashMap::new(),
         }
@@ -50,7 +54,14 @@ impl MtlMaterials {
     pub fn push(&mut self, m: Material) -> u32 {
         self.materials.push(m);
         self.names.push(None);
+        self.emission.push(None);
         self.first + self.materials.len() as u32 - 1
+    }
+
+    /// The `Ke` of scene material `i`, if it came from an MTL file that gives a
+    /// positive one.
+    pub fn emission(&self, i: u32) -> Option<Rgb> {
+        *self.emission.get(i.checked_sub(self.first)? as usize)?
     }
 
     /// The MTL name of scene material `i`, if it came from an MTL file.
@@ -68,12 +79,10 @@ impl MtlMaterials {
             .get("Tr")
             .and_then(|t| t.trim().parse::<f32>().ok());
         let transparent = m.dissolve.is_some_and(|d| d < 1.0) || tr.is_some_and(|t| t > 0.0);
-        if m.emissive.is_some_and(|e| e.iter().any(|&x| x > 0.0)) {
-            notes.push(format!(
-                "MTL material `{}` emits light (Ke); OBJ emission is not supported, it is shaded by its Kd",
-                m.name
-            ));
-        }
+        let ke = m
+            .emissive
+            .map(|e| Rgb::from(e).max(Rgb::ZERO))
+            .filter(|e| e.is_finite() && e.max_element() > 0.0);
         let albedo = match m
             .diffuse_texture
             .as_deref()
@@ -122,6 +131,7 @@ impl MtlMaterials {
         };
         let i = self.push(material);
         *self.names.last_mut().expect("just pushed") = Some(m.name.clone());
+        *self.emission.last_mut().expect("just pushed") = ke;
         i
     }
 

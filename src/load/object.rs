@@ -1,12 +1,16 @@
 //! Objects: the checks of each `objects` entry (shape parameters, the names
-//! it refers to, its transform) and the build step that places the analytic
-//! shapes. `Mesh` and `Instance` objects are built by `mesh.rs`, `Sdf`
-//! objects by `sdf/`; the transform helpers here serve all of them.
+//! it refers to, its transform, its emission) and the build step that places
+//! the analytic shapes, with the light of an emissive one. `Mesh` and
+//! `Instance` objects are built by `mesh.rs`, `Sdf` objects by `sdf/`; the
+//! transform helpers here serve all of them.
 
 use super::build::BuildContext;
 use super::validate::Checker;
-use crate::desc::{ObjectDesc, SceneDesc, TransformDesc};
+use crate::desc::{EmissionDesc, ObjectDesc, SceneDesc, TransformDesc};
+use crate::diagnostic::Problem;
 use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
+use crate::lights::{Light, QuadLight, SdfLight, SphereLight};
+use crate::math::Rgb;
 use glam::{Mat4, Vec3, Vec3A};
 
 impl Checker {
@@ -16,6 +20,22 @@ impl Checker {
         self.object_refs(path, o, scene);
         self.shape(path, o);
         self.transform(path, o);
+        if let Some(e) = o.emission() {
+            self.emission(&format!("{path}.emission"), o, e);
+        }
+    }
+
+    /// An object's `emission`: a radiance ≥ 0, on a shape that can carry it.
+    fn emission(&mut self, path: &str, o: &ObjectDesc, e: &EmissionDesc) {
+        if let ObjectDesc::Plane { .. } = o {
+            self.push(
+                path,
+                "an infinite plane cannot emit: its power would be infinite",
+                "use a large emissive `Rect`, or an `Environment` light for light from everywhere",
+            );
+            return;
+        }
+        self.color(&format!("{path}.radiance"), &e.radiance, None);
     }
 
     fn object_refs(&mut self, path: &str, o: &ObjectDesc, scene: &SceneDesc) {
@@ -136,6 +156,13 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
     let m = compose(o.transform());
     let point = |p: &[f32; 3]| Vec3A::from(m.transform_point3(Vec3::from(*p)));
     let vector = |v: &[f32; 3]| Vec3A::from(m.transform_vector3(Vec3::from(*v)));
+    let emission = o.emission();
+    // The index the object's light gets, if it emits.
+    let light = if emission.is_some() {
+        ctx.lights.len() as u32
+    } else {
+        NO_LIGHT
+    };
     let shape = match o {
         ObjectDesc::Sdf { shape, march, .. } => {
             let (s, bounded) = super::sdf::build_sdf(ctx, shape, march, &m, material);
@@ -143,15 +170,28 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
                 ctx.unbounded.push(s);
                 return;
             }
+            if let (Some(e), Shape::Sdf(k)) = (emission, s) {
+                push_sdf_light(ctx, i, k, e);
+            }
             s
         }
         ObjectDesc::Sphere { center, radius, .. } => {
             let scale = m.transform_vector3(Vec3::X).length();
-            Shape::Sphere(Sphere {
+            let sphere = Sphere {
                 center: point(center),
                 radius: radius * scale,
                 material,
-            })
+                light,
+            };
+            if let Some(e) = emission {
+                ctx.lights.push(Light::Sphere(SphereLight {
+                    center: sphere.center,
+                    radius: sphere.radius,
+                    radiance: Rgb::from(e.radiance),
+                    two_sided: e.two_sided,
+                }));
+            }
+            Shape::Sphere(sphere)
         }
         ObjectDesc::Plane { point: p, normal, .. } => {
             let n = m
@@ -171,13 +211,14 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             edge_u,
             edge_v,
             ..
-        } => Shape::Quad(Quad::new(
+        } => quad(
+            ctx,
             point(corner),
             vector(edge_u),
             vector(edge_v),
             material,
-            NO_LIGHT,
-        )),
+            emission,
+        ),
         ObjectDesc::Rect {
             center,
             half_u,
@@ -185,17 +226,52 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             ..
         } => {
             let (u, v) = (vector(half_u), vector(half_v));
-            Shape::Quad(Quad::new(
-                point(center) - u - v,
-                2.0 * u,
-                2.0 * v,
-                material,
-                NO_LIGHT,
-            ))
+            quad(ctx, point(center) - u - v, 2.0 * u, 2.0 * v, material, emission)
         }
         ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => return super::mesh::add(ctx, i, o, m),
     };
     ctx.shapes.push(shape);
+}
+
+/// A quad object, with its light when it emits (one-sided along `u × v` unless
+/// two-sided).
+fn quad(
+    ctx: &mut BuildContext,
+    c: Vec3A,
+    u: Vec3A,
+    v: Vec3A,
+    material: u32,
+    e: Option<&EmissionDesc>,
+) -> Shape {
+    let Some(e) = e else {
+        return Shape::Quad(Quad::new(c, u, v, material, NO_LIGHT));
+    };
+    let mut q = QuadLight::new(c, u, v, Rgb::from(e.radiance));
+    q.two_sided = e.two_sided;
+    let id = ctx.lights.len() as u32;
+    ctx.lights.push(Light::Quad(q));
+    Shape::Quad(Quad::new(c, u, v, material, id))
+}
+
+/// The light of emissive SDF `k` (object `i`), sampled through its bounding
+/// sphere; an unbounded SDF cannot emit (validation rejects those already).
+fn push_sdf_light(ctx: &mut BuildContext, i: usize, k: u32, e: &EmissionDesc) {
+    let Some(b) = ctx.geometry.sdfs[k as usize].bounds() else {
+        ctx.problems.push(
+            Problem::new(format!("objects[{i}].emission"), "an unbounded SDF cannot emit")
+                .help("intersect it with a bounded shape"),
+        );
+        return;
+    };
+    let id = ctx.lights.len() as u32;
+    ctx.geometry.sdfs[k as usize].light = id;
+    ctx.lights.push(Light::Sdf(SdfLight {
+        sdf: k,
+        center: 0.5 * (b.min + b.max),
+        radius: 0.5 * (b.max - b.min).length(),
+        radiance: Rgb::from(e.radiance),
+        two_sided: e.two_sided,
+    }));
 }
 
 /// A 4×4 matrix written as rows.

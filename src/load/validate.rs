@@ -49,6 +49,7 @@ pub fn validate(scene: &SceneDesc, base: &Path) -> Vec<Problem> {
     for (i, l) in scene.lights.iter().enumerate() {
         v.light(&format!("lights[{i}]"), l, &names);
     }
+    v.one_environment(&scene.lights);
     for (i, o) in scene.objects.iter().enumerate() {
         v.object(&format!("objects[{i}]"), o, scene);
     }

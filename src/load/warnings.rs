@@ -5,8 +5,10 @@
 //! Each rule errs on the side of silence: a warning that fires on a scene
 //! that was fine teaches people to ignore warnings. The rules:
 //!
-//! - **No light.** Nothing emits (no `lights`, or all of zero power): the
-//!   image is black. [`emits`] is the one place that knows what emits.
+//! - **No light.** Nothing emits (no `lights`, no emissive object, or all of
+//!   zero power): the image is black. [`emits`] is the one place that knows
+//!   what emits; a mesh that keeps its MTL materials counts as emitting
+//!   (its `Ke` is not known without reading the files).
 //! - **Specular under `Direct`.** An object, mesh override or area light
 //!   surface uses a material that is perfectly specular ([`specular_kind`]),
 //!   and the integrator is `Direct` (the default), which never follows a
@@ -78,17 +80,25 @@ pub fn located(composition: &Composition, problems: &[Problem]) -> Report {
     report
 }
 
-/// Whether anything in the scene emits light. Today only `lights` do (OBJ
-/// `Ke` is not supported, see `build_mtl`); emissive shapes or an
-/// environment, when they come, must be counted here.
+/// Whether anything in the scene emits light: a light of positive power, an
+/// object with positive `emission`, or a mesh that keeps some of its MTL
+/// materials (an MTL `Ke` emits, and reading the files to find out is the
+/// build's work: such a mesh errs on the side of silence).
 pub fn emits(desc: &SceneDesc) -> bool {
-    desc.lights.iter().any(|l| {
-        let power = match l {
-            LightDesc::Point { intensity, .. } | LightDesc::Spot { intensity, .. } => intensity,
-            LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => radiance,
-        };
-        power.iter().any(|&c| c > 0.0)
-    })
+    let positive = |c: &[f32; 3]| c.iter().any(|&x| x > 0.0);
+    let light = desc.lights.iter().any(|l| match l {
+        LightDesc::Point { intensity, .. } | LightDesc::Spot { intensity, .. } => positive(intensity),
+        LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => positive(radiance),
+        LightDesc::Environment {
+            radiance, strength, ..
+        } => *strength > 0.0 && radiance.as_ref().is_none_or(positive),
+    });
+    let object = desc.objects.iter().any(|o| {
+        let mtl =
+            matches!(o, ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. }) && o.material().is_none();
+        mtl || o.emission().is_some_and(|e| positive(&e.radiance))
+    });
+    light || object
 }
 
 fn no_light(desc: &SceneDesc) -> Option<Problem> {
@@ -96,13 +106,14 @@ fn no_light(desc: &SceneDesc) -> Option<Problem> {
         return None;
     }
     let message = if desc.lights.is_empty() {
-        "the scene has no lights: it will render black"
+        "the scene has no lights and no emissive objects: it will render black"
     } else {
         "every light has zero intensity or radiance: the scene will render black"
     };
     Some(Problem::new("lights", message).help(
         "add a light with a positive intensity or radiance, e.g. \
-         `lights: [Rect(center: (0, 3, 0), half_u: (1, 0, 0), half_v: (0, 0, 1), radiance: (5, 5, 5))]`",
+         `lights: [Rect(center: (0, 3, 0), half_u: (1, 0, 0), half_v: (0, 0, 1), radiance: (5, 5, 5))]`, \
+         a sky (`lights: [Environment(radiance: (0.8, 0.9, 1))]`), or an object's `emission`",
     ))
 }
 

@@ -4,6 +4,7 @@
 
 pub mod exact_sum;
 pub mod frame;
+pub mod piecewise;
 pub mod ray;
 pub mod rng;
 pub mod sampling;

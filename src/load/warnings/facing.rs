@@ -116,7 +116,7 @@ fn area_light(l: &LightDesc) -> Option<(Vec3, Vec3, Vec3, [&'static str; 2])> {
                 ["half_u", "half_v"],
             ))
         }
-        LightDesc::Point { .. } | LightDesc::Spot { .. } => None,
+        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Environment { .. } => None,
     }
 }
 

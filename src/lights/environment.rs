@@ -1,0 +1,302 @@
+//! The environment: radiance arriving from infinitely far away, a constant
+//! colour or an equirectangular (latitude–longitude) image, at most one per
+//! scene. Camera rays that miss everything see it.
+//!
+//! # Mapping
+//! The radiance arriving from unit direction `d` (pointing from the scene
+//! toward the sky), in the environment's own frame, is the image at
+//! `u = atan2(d.x, −d.z) / 2π` (wrapped to [0, 1)) and `v = acos(d.y) / π` (computed as `atan2(sin θ, d.y)`),
+//! bilinearly interpolated between pixel centres at `((i + ½)/W, (j + ½)/H)`:
+//! u = ½ looks along +z, ¼ along +x, the seam is at −z and row 0 is straight
+//! up (Mitsuba 3's `envmap`). Columns wrap; rows clamp at the poles. The
+//! environment's frame is the world's turned by `rotation` about +y
+//! (right-handed).
+//!
+//! # Sampling
+//! An image is importance sampled by a piecewise-constant distribution over
+//! its pixels ([`PiecewiseConstant2d`]) with weights `luminance × sin θ`:
+//! the luminance is the mean of the bilinear radiance over the pixel's cell
+//! (weights ⅛, ¾, ⅛ over the 3 × 3 neighbourhood in each direction), so every
+//! cell the interpolated image lights has a non-zero probability and light
+//! sampling alone (`Direct`, `Whitted`) misses nothing; `sin θ` is the
+//! solid angle of the row. A point `(u, v)` of density `p(u, v)` is the
+//! direction of density `p(u, v) / (2π² sin θ)`. The tables take 4 bytes per
+//! pixel (CDFs only, see `math/piecewise.rs`), the image 12 (f32 RGB).
+//! A constant environment is sampled uniformly over the sphere.
+
+use super::LightSample;
+use crate::math::piecewise::PiecewiseConstant2d;
+use crate::math::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
+use crate::math::{Rgb, luminance};
+use glam::{Vec2, Vec3A};
+use rayon::prelude::*;
+use std::f32::consts::PI;
+
+/// A linear-RGB equirectangular image, row 0 at the top.
+#[derive(Clone, Debug)]
+pub struct EnvMap {
+    /// Width in pixels (around the horizon).
+    pub width: u32,
+    /// Height in pixels (pole to pole).
+    pub height: u32,
+    /// `3·width·height` floats, RGB interleaved, row-major from the top.
+    pub rgb: Vec<f32>,
+}
+
+impl EnvMap {
+    /// Pixel `(i, j)` (column, row).
+    #[inline]
+    fn pixel(&self, i: usize, j: usize) -> Rgb {
+        let k = 3 * (j * self.width as usize + i);
+        Rgb::new(self.rgb[k], self.rgb[k + 1], self.rgb[k + 2])
+    }
+
+    /// Bilinear lookup at `(u, v)` ∈ [0, 1]² between pixel centres.
+    #[inline]
+    pub fn lookup(&self, uv: Vec2) -> Rgb {
+        let (w, h) = (self.width as usize, self.height as usize);
+        // Columns wrap: left of the first centre blends the last column in.
+        let x = (uv.x * w as f32 - 0.5).clamp(-1.0, w as f32 - 1.0);
+        let x0 = x.floor();
+        let fx = x - x0;
+        let (i0, i1) = if x0 < 0.0 {
+            (w - 1, 0)
+        } else {
+            let i0 = (x0 as usize).min(w - 1);
+            (i0, if i0 + 1 == w { 0 } else { i0 + 1 })
+        };
+        // Rows clamp at the poles.
+        let y = (uv.y * h as f32 - 0.5).clamp(0.0, (h - 1) as f32);
+        let j0 = y as usize;
+        let j1 = (j0 + 1).min(h - 1);
+        let fy = y - j0 as f32;
+        let top = self.pixel(i0, j0) * (1.0 - fx) + self.pixel(i1, j0) * fx;
+        let bottom = self.pixel(i0, j1) * (1.0 - fx) + self.pixel(i1, j1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+
+    /// Luminance of the mean bilinear radiance over each cell of row `j`, into
+    /// `out`: weights ⅛, ¾, ⅛ over the neighbours in each direction (columns
+    /// wrap, rows clamp), computed separably from the three rows' luminances.
+    fn cell_luminance_row(&self, j: usize, out: &mut [f32]) {
+        const K: [f32; 3] = [0.125, 0.75, 0.125];
+        let (w, h) = (self.width as usize, self.height as usize);
+        // Vertical pass: a weighted sum of the luminances of rows j−1, j, j+1.
+        out.fill(0.0);
+        for (b, kb) in K.iter().enumerate() {
+            let jj = (j + b).saturating_sub(1).min(h - 1);
+            let row = &self.rgb[3 * jj * w..3 * (jj + 1) * w];
+            for (o, px) in out.iter_mut().zip(row.chunks_exact(3)) {
+                *o += kb * luminance(Rgb::new(px[0], px[1], px[2])).max(0.0);
+            }
+        }
+        // Horizontal pass, wrapping around the seam.
+        let (first, last) = (out[0], out[w - 1]);
+        let mut prev = last;
+        for i in 0..w {
+            let next = if i + 1 < w { out[i + 1] } else { first };
+            let here = out[i];
+            out[i] = K[0] * prev + K[1] * here + K[2] * next;
+            prev = here;
+        }
+    }
+}
+
+/// How next-event estimation picks directions toward the environment.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum EnvSampling {
+    /// By the image's luminance × sin θ (uniform for a constant environment).
+    #[default]
+    Importance,
+    /// Uniformly over the sphere: only for comparisons (`tests/reference.rs`
+    /// measures what importance sampling gains).
+    Uniform,
+}
+
+/// Radiance from infinitely far away in every direction; see the module docs.
+#[derive(Clone, Debug)]
+pub struct EnvironmentLight {
+    /// Multiplies the image (or is the constant radiance), W/(m²·sr).
+    scale: Rgb,
+    map: Option<EnvMap>,
+    distribution: Option<PiecewiseConstant2d>,
+    /// cos and sin of the rotation about +y (world from environment).
+    cos_sin: (f32, f32),
+    /// Which directions next-event estimation draws.
+    pub sampling: EnvSampling,
+    /// Whether camera rays that miss see the environment (else `background`).
+    pub visible: bool,
+    /// What camera rays that miss see when not `visible`, W/(m²·sr).
+    pub background: Rgb,
+    /// Radius of the scene's bounding sphere, for [`Self::power`].
+    pub scene_radius: f32,
+    /// Power, ∫ L dω over the sphere, W/(m²) per channel (cached).
+    radiant_exitance: Rgb,
+}
+
+impl EnvironmentLight {
+    /// A constant environment of radiance `radiance` (W/(m²·sr)) from every
+    /// direction.
+    pub fn constant(radiance: Rgb) -> Self {
+        Self {
+            scale: radiance,
+            map: None,
+            distribution: None,
+            cos_sin: (1.0, 0.0),
+            sampling: EnvSampling::Importance,
+            visible: true,
+            background: Rgb::ZERO,
+            scene_radius: 1.0,
+            radiant_exitance: 4.0 * PI * radiance,
+        }
+    }
+
+    /// The image `map` times `strength`, turned by `rotation_degrees` about +y;
+    /// builds the sampling tables on all cores.
+    pub fn from_map(map: EnvMap, strength: f32, rotation_degrees: f32) -> Self {
+        let (w, h) = (map.width as usize, map.height as usize);
+        let sin_row = |j: usize| (PI * (j as f32 + 0.5) / h as f32).sin();
+        let distribution = PiecewiseConstant2d::new(w, h, |j, row| {
+            map.cell_luminance_row(j, row);
+            let s = sin_row(j);
+            row.iter_mut().for_each(|x| *x *= s);
+        });
+        // ∫ L dω ≈ Σ L(pixel) · sin θ · (2π/W)(π/H).
+        let sum: [f64; 3] = map
+            .rgb
+            .par_chunks(3 * w)
+            .enumerate()
+            .map(|(j, row)| {
+                let s = sin_row(j) as f64;
+                let mut acc = [0.0f64; 3];
+                for px in row.chunks_exact(3) {
+                    for c in 0..3 {
+                        acc[c] += px[c].max(0.0) as f64 * s;
+                    }
+                }
+                acc
+            })
+            .reduce(|| [0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
+        let cell = 2.0 * std::f64::consts::PI * std::f64::consts::PI / (w * h) as f64;
+        let integral = Rgb::new(sum[0] as f32, sum[1] as f32, sum[2] as f32) * (cell as f32);
+        let (s, c) = rotation_degrees.to_radians().sin_cos();
+        Self {
+            scale: Rgb::splat(strength),
+            map: Some(map),
+            distribution: Some(distribution),
+            cos_sin: (c, s),
+            sampling: EnvSampling::Importance,
+            visible: true,
+            background: Rgb::ZERO,
+            scene_radius: 1.0,
+            radiant_exitance: strength * integral,
+        }
+    }
+
+    /// World direction `d` in the environment's frame (turned back by the rotation).
+    #[inline]
+    fn to_env(&self, d: Vec3A) -> Vec3A {
+        let (c, s) = self.cos_sin;
+        Vec3A::new(c * d.x - s * d.z, d.y, s * d.x + c * d.z)
+    }
+
+    /// Environment direction `d` in the world (turned by the rotation).
+    #[inline]
+    fn to_world(&self, d: Vec3A) -> Vec3A {
+        let (c, s) = self.cos_sin;
+        Vec3A::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
+    }
+
+    /// Image coordinates of environment-frame direction `d` (unit).
+    #[inline]
+    fn uv(d: Vec3A) -> Vec2 {
+        let mut u = d.x.atan2(-d.z) / (2.0 * PI);
+        if u < 0.0 {
+            u += 1.0;
+        }
+        // θ = atan2(sin θ, cos θ): acos(d.y) loses precision near the poles.
+        let sin_t = (d.x * d.x + d.z * d.z).sqrt();
+        Vec2::new(u.min(1.0 - f32::EPSILON), sin_t.atan2(d.y) / PI)
+    }
+
+    /// Radiance arriving from world direction `d` (unit, pointing away from the
+    /// scene), W/(m²·sr).
+    #[inline]
+    pub fn le(&self, d: Vec3A) -> Rgb {
+        match &self.map {
+            Some(m) => self.scale * m.lookup(Self::uv(self.to_env(d))),
+            None => self.scale,
+        }
+    }
+
+    /// What a camera ray that misses everything sees along `d`: the
+    /// environment, or the background when the environment is not `visible`.
+    #[inline]
+    pub fn seen_by_camera(&self, d: Vec3A) -> Rgb {
+        if self.visible { self.le(d) } else { self.background }
+    }
+
+    /// A direction toward the environment for `u` ∈ [0, 1)²; the sample's
+    /// distance is infinite (shadow rays are unbounded).
+    pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+        let (wi, pdf, li) = match (&self.distribution, self.sampling) {
+            (Some(dist), EnvSampling::Importance) => {
+                let (uv, uv_pdf) = dist.sample(u);
+                let (sin_t, cos_t) = (PI * uv.y).sin_cos();
+                if sin_t <= 0.0 || uv_pdf <= 0.0 {
+                    return None;
+                }
+                let (sin_p, cos_p) = (2.0 * PI * uv.x).sin_cos();
+                let d = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
+                // The image at the sampled point: no atan2/acos round trip.
+                let li = self.scale * self.map.as_ref().map_or(Rgb::ONE, |m| m.lookup(uv));
+                (self.to_world(d), uv_pdf / (2.0 * PI * PI * sin_t), li)
+            }
+            _ => {
+                let d = uniform_sphere(u);
+                (d, UNIFORM_SPHERE_PDF, self.le(d))
+            }
+        };
+        Some(LightSample {
+            wi,
+            dist: f32::INFINITY,
+            p,
+            n: Vec3A::ZERO,
+            li,
+            pdf,
+            delta: false,
+        })
+    }
+
+    /// Solid-angle density with which [`Self::sample`] draws world direction `d`.
+    #[inline]
+    pub fn pdf(&self, d: Vec3A) -> f32 {
+        match (&self.distribution, self.sampling) {
+            (Some(dist), EnvSampling::Importance) => {
+                let e = self.to_env(d);
+                let sin_t = (e.x * e.x + e.z * e.z).sqrt();
+                if sin_t <= 0.0 {
+                    return 0.0;
+                }
+                dist.pdf(Self::uv(e)) / (2.0 * PI * PI * sin_t)
+            }
+            _ => UNIFORM_SPHERE_PDF,
+        }
+    }
+
+    /// Power for light selection: the flux through the scene's bounding disk,
+    /// π·R²·∫L dω (pbrt-v4's `ImageInfiniteLight::Phi`), W per channel.
+    pub fn power(&self) -> Rgb {
+        PI * self.scene_radius * self.scene_radius * self.radiant_exitance
+    }
+
+    /// The image, if the environment has one (not a constant).
+    pub fn map(&self) -> Option<&EnvMap> {
+        self.map.as_ref()
+    }
+
+    /// Heap bytes of the sampling tables (the image itself not included).
+    pub fn table_bytes(&self) -> usize {
+        self.distribution.as_ref().map_or(0, PiecewiseConstant2d::bytes)
+    }
+}

@@ -1,0 +1,149 @@
+//! An emissive sphere, sampled by the cone of directions it subtends.
+
+use super::LightSample;
+use crate::math::{Frame, Rgb};
+use glam::{Vec2, Vec3A};
+use std::f32::consts::PI;
+
+/// A sphere emitting uniform radiance outward from its surface (and inward too
+/// when `two_sided`); its surface is also a [`crate::geometry::Sphere`] in the
+/// scene BVH.
+#[derive(Clone, Copy, Debug)]
+pub struct SphereLight {
+    /// Centre, in world space.
+    pub center: Vec3A,
+    /// Radius in scene units, > 0.
+    pub radius: f32,
+    /// Emitted radiance, W/(m²·sr).
+    pub radiance: Rgb,
+    /// Whether the inside emits too.
+    pub two_sided: bool,
+}
+
+impl SphereLight {
+    /// Radiance leaving a point of outward normal `n` toward `w`.
+    #[inline]
+    pub fn emitted(&self, n: Vec3A, w: Vec3A) -> Rgb {
+        if self.two_sided || n.dot(w) > 0.0 {
+            self.radiance
+        } else {
+            Rgb::ZERO
+        }
+    }
+
+    /// `sin²θmax` and `1 − cos θmax` of the cone the sphere subtends from `p`,
+    /// or `None` when `p` is inside (or on) it. The difference is computed by
+    /// its series for small cones, where `1 − cos` would cancel (pbrt-v4
+    /// `Sphere::Sample`, below sin² 1.5°).
+    #[inline]
+    fn cone(&self, p: Vec3A) -> Option<(f32, f32)> {
+        let dc2 = (p - self.center).length_squared();
+        let r2 = self.radius * self.radius;
+        if dc2 <= r2 * (1.0 + 1e-5) {
+            return None;
+        }
+        let sin2_max = r2 / dc2;
+        let one_minus_cos = if sin2_max < 0.000_685_23 {
+            0.5 * sin2_max
+        } else {
+            1.0 - (1.0 - sin2_max).max(0.0).sqrt()
+        };
+        Some((sin2_max, one_minus_cos))
+    }
+
+    /// From outside, uniform over the cone of directions the sphere subtends (its
+    /// visible cap: pdf 1/(2π(1 − cos θmax))); from inside a two-sided sphere,
+    /// uniform by area (pdf d²/(|cos θl|·4πr²)); `None` from inside a one-sided
+    /// one, which sends no light inward.
+    pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+        let Some((sin2_max, one_minus_cos)) = self.cone(p) else {
+            return self.sample_inside(p, u);
+        };
+        // A direction in the cone at angle θ to the centre, uniform in cos θ.
+        let (cos_t, sin2_t) = if sin2_max < 0.000_685_23 {
+            let s2 = sin2_max * u.x;
+            ((1.0 - s2).sqrt(), s2)
+        } else {
+            let c = 1.0 - one_minus_cos * u.x;
+            (c, (1.0 - c * c).max(0.0))
+        };
+        // The angle α at the centre between the sphere point the direction meets
+        // and the direction back to `p` (law of sines), then the point itself.
+        let sin_max = sin2_max.sqrt();
+        let cos_a = sin2_t / sin_max + cos_t * (1.0 - sin2_t / sin2_max).max(0.0).sqrt();
+        let sin_a = (1.0 - cos_a * cos_a).max(0.0).sqrt();
+        let phi = 2.0 * PI * u.y;
+        let to_p = (p - self.center).normalize();
+        let f = Frame::from_normal(to_p);
+        let n = f.to_world(Vec3A::new(sin_a * phi.cos(), sin_a * phi.sin(), cos_a));
+        let q = self.center + n * self.radius;
+        let d = q - p;
+        let dist = d.length();
+        if dist.is_nan() || dist <= 0.0 {
+            return None;
+        }
+        Some(LightSample {
+            wi: d / dist,
+            dist,
+            p: q,
+            n,
+            li: self.radiance,
+            pdf: 1.0 / (2.0 * PI * one_minus_cos),
+            delta: false,
+        })
+    }
+
+    fn sample_inside(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+        if !self.two_sided {
+            return None;
+        }
+        let n = crate::math::sampling::uniform_sphere(u);
+        let q = self.center + n * self.radius;
+        let d = q - p;
+        let dist2 = d.length_squared();
+        let dist = dist2.sqrt();
+        let wi = d / dist;
+        let cos_l = wi.dot(n).abs();
+        if !(dist > 0.0 && cos_l > 0.0) {
+            return None;
+        }
+        Some(LightSample {
+            wi,
+            dist,
+            p: q,
+            n,
+            li: self.radiance,
+            pdf: dist2 / (cos_l * self.area()),
+            delta: false,
+        })
+    }
+
+    /// Solid-angle density of [`Self::sample`] from `p` for a ray that reached
+    /// the sphere along unit `wi` at distance `dist` with outward normal `n`.
+    #[inline]
+    pub fn pdf(&self, p: Vec3A, wi: Vec3A, dist: f32, n: Vec3A) -> f32 {
+        match self.cone(p) {
+            Some((_, one_minus_cos)) => 1.0 / (2.0 * PI * one_minus_cos),
+            None if self.two_sided => {
+                let cos_l = wi.dot(n).abs();
+                if cos_l > 0.0 {
+                    dist * dist / (cos_l * self.area())
+                } else {
+                    0.0
+                }
+            }
+            None => 0.0,
+        }
+    }
+
+    /// Surface area 4πr².
+    pub fn area(&self) -> f32 {
+        4.0 * PI * self.radius * self.radius
+    }
+
+    /// Φ = π·A·L, twice that when two-sided.
+    pub fn power(&self) -> Rgb {
+        let sides = if self.two_sided { 2.0 } else { 1.0 };
+        sides * PI * self.area() * self.radiance
+    }
+}

@@ -1,0 +1,296 @@
+//! Every area light and the environment against closed forms: the
+//! estimate of irradiance (or of ∫ L dω) from `sample` matches the exact
+//! value, and the density `sample` reports is the one `pdf` gives for the
+//! same direction (what MIS relies on).
+
+use super::*;
+use crate::geometry::{Geometry, Hit, NO_LIGHT};
+use crate::math::Pcg32;
+use crate::math::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
+use std::f32::consts::PI;
+
+/// The hit record a ray along `ls.wi` would make on the light's surface.
+fn hit_of(ls: &LightSample) -> Hit {
+    Hit {
+        t: ls.dist,
+        p: ls.p,
+        ng: ls.n,
+        ns: ls.n,
+        uv: Vec2::ZERO,
+        material: 0,
+        light: NO_LIGHT,
+    }
+}
+
+/// Irradiance at `p` (normal `n`) estimated from `n_samples` light samples,
+/// checking on the way that each sample's pdf is `Light::pdf`'s.
+fn irradiance(light: &Light, p: Vec3A, n: Vec3A, n_samples: u32) -> f64 {
+    let geo = Geometry::default();
+    let mut rng = Pcg32::new(11, 3);
+    let mut sum = 0.0f64;
+    for _ in 0..n_samples {
+        let Some(ls) = light.sample(p, rng.next_vec2(), &geo) else {
+            continue;
+        };
+        assert!(ls.pdf > 0.0 && ls.pdf.is_finite(), "pdf {}", ls.pdf);
+        assert!((ls.wi.length() - 1.0).abs() < 1e-4);
+        let again = light.pdf(p, ls.wi, &hit_of(&ls));
+        assert!(
+            (again - ls.pdf).abs() <= 2e-3 * ls.pdf,
+            "sample pdf {} vs pdf() {again}",
+            ls.pdf
+        );
+        sum += (ls.li.x * ls.wi.dot(n).max(0.0) / ls.pdf) as f64;
+    }
+    sum / n_samples as f64
+}
+
+#[test]
+fn sphere_light_irradiance_is_point_like() {
+    // A uniform sphere fully above the horizon lights like a point of intensity
+    // L·πr²: E = π L r² cos θ / d².
+    let light = Light::Sphere(SphereLight {
+        center: Vec3A::new(0.3, 2.0, -0.2),
+        radius: 0.5,
+        radiance: Rgb::splat(3.0),
+        two_sided: false,
+    });
+    for p in [Vec3A::ZERO, Vec3A::new(1.5, 0.0, 0.4)] {
+        let to_c = Vec3A::new(0.3, 2.0, -0.2) - p;
+        let d2 = to_c.length_squared();
+        let want = PI * 3.0 * 0.25 * (to_c.y / d2.sqrt()) / d2;
+        let got = irradiance(&light, p, Vec3A::Y, 200_000);
+        assert!(
+            ((got - want as f64) / want as f64).abs() < 0.01,
+            "at {p}: {got} vs {want}"
+        );
+    }
+    // Far away, the cone is tiny (the series branch).
+    let far = Light::Sphere(SphereLight {
+        center: Vec3A::new(0.0, 100.0, 0.0),
+        radius: 0.5,
+        radiance: Rgb::ONE,
+        two_sided: false,
+    });
+    let want = PI * 0.25 / 10_000.0;
+    let got = irradiance(&far, Vec3A::ZERO, Vec3A::Y, 20_000);
+    assert!(
+        ((got - want as f64) / want as f64).abs() < 0.01,
+        "far: {got} vs {want}"
+    );
+}
+
+#[test]
+fn two_sided_sphere_lights_its_inside() {
+    // Inside a two-sided sphere of radiance L, every direction sees L: E = π L.
+    let light = Light::Sphere(SphereLight {
+        center: Vec3A::ZERO,
+        radius: 2.0,
+        radiance: Rgb::splat(0.5),
+        two_sided: true,
+    });
+    let got = irradiance(&light, Vec3A::new(0.4, -0.3, 0.2), Vec3A::Y, 200_000);
+    assert!((got - 0.5 * PI as f64).abs() < 0.01 * PI as f64, "{got}");
+    let one_sided = Light::Sphere(SphereLight {
+        two_sided: false,
+        center: Vec3A::ZERO,
+        radius: 2.0,
+        radiance: Rgb::ONE,
+    });
+    assert!(
+        one_sided
+            .sample(Vec3A::ZERO, Vec2::splat(0.5), &Geometry::default())
+            .is_none()
+    );
+}
+
+/// Lambert's polygon formula, E = L/2 Σ βᵢ n·γᵢ.
+fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {
+    let mut sum = 0.0;
+    for i in 0..verts.len() {
+        let a = (verts[i] - x).normalize();
+        let b = (verts[(i + 1) % verts.len()] - x).normalize();
+        let beta = a.dot(b).clamp(-1.0, 1.0).acos();
+        sum += beta * n.dot(a.cross(b).normalize());
+    }
+    0.5 * l * sum.abs()
+}
+
+#[test]
+fn mesh_light_irradiance_matches_polygon_formula() {
+    // Two triangles of very different areas facing down, and a back-facing one
+    // that must not light the point below.
+    let (a, b, c, d) = (
+        Vec3A::new(-1.0, 2.0, -1.0),
+        Vec3A::new(1.0, 2.0, -1.0),
+        Vec3A::new(1.0, 2.0, 1.0),
+        Vec3A::new(-0.8, 2.0, 1.0),
+    );
+    let tris = vec![[a, b, c], [a, c, d]];
+    // Counter-clockwise seen from below: (b − a) × (c − a) points down.
+    assert!((b - a).cross(c - a).y < 0.0);
+    let light = Light::Mesh(MeshLight::new(tris, Rgb::splat(2.0), false).expect("area"));
+    for p in [Vec3A::ZERO, Vec3A::new(0.7, 0.5, -0.3)] {
+        let want = polygon_irradiance(p, Vec3A::Y, &[a, b, c, d], 2.0);
+        let got = irradiance(&light, p, Vec3A::Y, 200_000);
+        assert!(
+            ((got - want as f64) / want as f64).abs() < 0.01,
+            "at {p}: {got} vs {want}"
+        );
+    }
+    assert_eq!(
+        irradiance(&light, Vec3A::new(0.0, 3.0, 0.0), Vec3A::NEG_Y, 1000),
+        0.0
+    );
+    assert!((light.power().x - PI * 2.0 * 3.8).abs() < 1e-3, "Φ = π A L");
+}
+
+#[test]
+fn two_sided_quad_emits_and_is_sampled_from_behind() {
+    let mut q = QuadLight::new(Vec3A::new(-0.5, 1.0, -0.5), Vec3A::Z, Vec3A::X, Rgb::ONE);
+    // u × v = z × x = +y: the front faces up, the point below sees the back.
+    assert!(q.n.y > 0.0);
+    let below = Vec3A::ZERO;
+    assert_eq!(irradiance(&Light::Quad(q), below, Vec3A::Y, 100), 0.0);
+    q.two_sided = true;
+    let verts = [
+        Vec3A::new(-0.5, 1.0, -0.5),
+        Vec3A::new(-0.5, 1.0, 0.5),
+        Vec3A::new(0.5, 1.0, 0.5),
+        Vec3A::new(0.5, 1.0, -0.5),
+    ];
+    let want = polygon_irradiance(below, Vec3A::Y, &verts, 1.0);
+    let got = irradiance(&Light::Quad(q), below, Vec3A::Y, 100_000);
+    assert!(
+        ((got - want as f64) / want as f64).abs() < 0.01,
+        "{got} vs {want}"
+    );
+    assert!((q.power().x - 2.0 * PI).abs() < 1e-5, "Φ = 2π A L two-sided");
+}
+
+/// A 16 × 8 map: a dim gradient and one bright pixel, off-centre.
+fn test_map() -> EnvMap {
+    let (w, h) = (16u32, 8u32);
+    let mut rgb = Vec::new();
+    for j in 0..h {
+        for i in 0..w {
+            let v = if (i, j) == (11, 2) {
+                40.0
+            } else {
+                0.1 + 0.05 * (i + j) as f32
+            };
+            rgb.extend_from_slice(&[v, 0.5 * v, 0.25 * v]);
+        }
+    }
+    EnvMap {
+        width: w,
+        height: h,
+        rgb,
+    }
+}
+
+#[test]
+fn environment_mapping_follows_the_reference_convention() {
+    // A map whose pixel (i, j) is (i, j, 0): the bilinear lookup at a pixel
+    // centre returns it, so directions decode to pixel coordinates.
+    let (w, h) = (8u32, 4u32);
+    let rgb = (0..h)
+        .flat_map(|j| (0..w).flat_map(move |i| [i as f32, j as f32, 0.0]))
+        .collect();
+    let env = EnvironmentLight::from_map(
+        EnvMap {
+            width: w,
+            height: h,
+            rgb,
+        },
+        1.0,
+        0.0,
+    );
+    let centre = |i: f32, j: f32| {
+        let (u, v) = ((i + 0.5) / w as f32, (j + 0.5) / h as f32);
+        let (st, ct) = (PI * v).sin_cos();
+        let (sp, cp) = (2.0 * PI * u).sin_cos();
+        Vec3A::new(st * sp, ct, -st * cp)
+    };
+    for (i, j) in [(0.0, 0.0), (3.0, 1.0), (6.0, 3.0)] {
+        let got = env.le(centre(i, j));
+        assert!(
+            (got - Vec3A::new(i, j, 0.0)).length() < 1e-3,
+            "pixel ({i}, {j}): {got}"
+        );
+    }
+    // u = 0.5 looks along +z, 0.25 along +x, 0.75 along −x; v = 0 is up.
+    let u_of = |d: Vec3A| env.le(d).x / w as f32 + 0.5 / w as f32;
+    assert!((u_of(Vec3A::Z) - 0.5).abs() < 1e-3 && (u_of(Vec3A::X) - 0.25).abs() < 1e-3);
+    assert!((u_of(Vec3A::NEG_X) - 0.75).abs() < 1e-3);
+    assert!(env.le(Vec3A::Y).y < 1e-3 && (env.le(Vec3A::NEG_Y).y - 3.0).abs() < 1e-3);
+    // Turned by 90° about +y, what the map shows along +z appears along +x.
+    let turned = EnvironmentLight::from_map(test_map(), 1.0, 90.0);
+    let plain = EnvironmentLight::from_map(test_map(), 1.0, 0.0);
+    let d = Vec3A::new(0.0, 0.3, 1.0).normalize();
+    let d_turned = Vec3A::new(1.0, 0.3, 0.0).normalize();
+    assert!((turned.le(d_turned) - plain.le(d)).length() < 1e-5);
+}
+
+#[test]
+fn environment_sampling_integrates_the_map() {
+    for rotation in [0.0, 37.0] {
+        let env = EnvironmentLight::from_map(test_map(), 2.0, rotation);
+        let light = Light::Environment(Box::new(env.clone()));
+        let geo = Geometry::default();
+        // Reference ∫ L dω by uniform sphere sampling, and the cached one.
+        let mut rng = Pcg32::new(1, 2);
+        let n = 400_000;
+        let mut uniform = 0.0f64;
+        let mut sampled = 0.0f64;
+        for _ in 0..n {
+            uniform += (env.le(uniform_sphere(rng.next_vec2())).x / UNIFORM_SPHERE_PDF) as f64;
+            let ls = light
+                .sample(Vec3A::ZERO, rng.next_vec2(), &geo)
+                .expect("a direction");
+            assert!(ls.dist.is_infinite() && ls.pdf > 0.0);
+            let again = env.pdf(ls.wi);
+            assert!((again - ls.pdf).abs() <= 2e-3 * ls.pdf, "{} vs {again}", ls.pdf);
+            assert!((ls.li - env.le(ls.wi)).length() <= 1e-3 * ls.li.length() + 1e-6);
+            sampled += (ls.li.x / ls.pdf) as f64;
+        }
+        let (uniform, sampled) = (uniform / n as f64, sampled / n as f64);
+        let cached = (env.power().x / (PI * env.scene_radius * env.scene_radius)) as f64;
+        assert!(
+            (sampled - uniform).abs() < 0.01 * uniform,
+            "importance {sampled} vs uniform {uniform}"
+        );
+        assert!(
+            (cached - uniform).abs() < 0.01 * uniform,
+            "power {cached} vs {uniform}"
+        );
+    }
+}
+
+#[test]
+fn environment_pdf_integrates_to_one() {
+    let env = EnvironmentLight::from_map(test_map(), 1.0, 0.0);
+    let mut rng = Pcg32::new(4, 4);
+    let n = 400_000;
+    let sum: f64 = (0..n)
+        .map(|_| (env.pdf(uniform_sphere(rng.next_vec2())) / UNIFORM_SPHERE_PDF) as f64)
+        .sum();
+    assert!(
+        (sum / n as f64 - 1.0).abs() < 0.01,
+        "∫ pdf dω = {}",
+        sum / n as f64
+    );
+}
+
+#[test]
+fn constant_environment_power_and_uniform_mode() {
+    let mut env = EnvironmentLight::constant(Rgb::splat(0.5));
+    env.scene_radius = 2.0;
+    assert!(
+        (env.power().x - PI * 4.0 * 4.0 * PI * 0.5).abs() < 1e-3,
+        "π R² · 4π L"
+    );
+    let mut map = EnvironmentLight::from_map(test_map(), 1.0, 0.0);
+    map.sampling = EnvSampling::Uniform;
+    assert_eq!(map.pdf(Vec3A::Y), UNIFORM_SPHERE_PDF);
+}
