@@ -374,3 +374,84 @@ fn hdr_and_exr_of_the_same_map_render_the_same_image() {
         "a `#?RGBE` file reads like a `#?RADIANCE` one"
     );
 }
+
+/// An emissive SDF sphere (sampled through its bounding sphere's cone and
+/// marched) gives the same closed-form irradiance as the analytic one.
+#[test]
+fn emissive_sdf_sphere_gives_closed_form_irradiance() {
+    let text = |integrator: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 1, 5), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: {integrator},
+            materials: {{ "white": Lambert(albedo: (1, 1, 1)), "black": Lambert(albedo: (0, 0, 0)) }},
+            objects: [
+                Plane(point: (0, 0, 0), normal: (0, 1, 0), material: "white"),
+                Sdf(shape: Sphere(radius: 0.4), material: "black", transform: [Translate((0.2, 1.5, -0.3))],
+                    emission: (radiance: (3, 2, 1))),
+            ],
+        )"#
+        )
+    };
+    let c = Vec3A::new(0.2, 1.5, -0.3);
+    for integrator in ["Direct(light_samples: 4)", "Path(max_depth: 2, rr_depth: 5)"] {
+        let s = scene(&text(integrator));
+        for x in [Vec3A::ZERO, Vec3A::new(1.2, 0.0, 0.5)] {
+            let to_c = c - x;
+            let d2 = to_c.length_squared();
+            let want = 3.0 * 0.16 * (to_c.y / d2.sqrt()) / d2;
+            let o = x + Vec3A::new(0.3, 1.0, 1.0);
+            // Two thirds of the bounding cone misses the sphere: more samples.
+            let got = mean_li(&s, Ray::new(o, (x - o).normalize()), 60_000);
+            assert!(
+                (got.x - want).abs() < 0.02 * want,
+                "{integrator} at {x}: expected {want}, got {}",
+                got.x
+            );
+        }
+    }
+}
+
+/// A mirroring transform must not turn a one-sided emissive mesh inside out:
+/// the octahedron mirrored in x (baked `Mesh` or `Instance`) lights the
+/// mirrored floor point as the original lights the original point.
+#[test]
+fn mirrored_emissive_mesh_still_emits_outward() {
+    let text = |object: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 1, 5), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: Direct(light_samples: 4),
+            materials: {{ "white": Lambert(albedo: (1, 1, 1)), "black": Lambert(albedo: (0, 0, 0)) }},
+            meshes: {{ "octa": (file: "assets/glow_octahedron.obj") }},
+            objects: [
+                Plane(point: (0, 0, 0), normal: (0, 1, 0), material: "white"),
+                {object},
+            ],
+        )"#
+        )
+    };
+    let at = |object: &str, x: Vec3A| {
+        let s = scene(&text(object));
+        let o = x + Vec3A::new(0.0, 1.0, 1.5);
+        mean_li(&s, Ray::new(o, (x - o).normalize()), 20_000).z
+    };
+    let emission = r#"material: "black", emission: (radiance: (2, 4, 9))"#;
+    let here = Vec3A::new(0.6, 0.0, -0.2);
+    let there = Vec3A::new(-0.6, 0.0, -0.2);
+    let original = at(
+        &format!(r#"Mesh(file: "assets/glow_octahedron.obj", {emission})"#),
+        here,
+    );
+    assert!(original > 0.1, "the octahedron lights the floor: {original}");
+    for mirrored in [
+        format!(r#"Mesh(file: "assets/glow_octahedron.obj", {emission}, transform: [Scale((-1, 1, 1))])"#),
+        format!(r#"Instance(mesh: "octa", {emission}, transform: [Scale((-1, 1, 1))])"#),
+    ] {
+        let got = at(&mirrored, there);
+        assert!(
+            (got - original).abs() < 0.015 * original,
+            "{mirrored}: {got} vs the original's {original}"
+        );
+    }
+}

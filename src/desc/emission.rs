@@ -11,7 +11,10 @@
 //!                emission: (radiance: (12, 7, 3))),
 //!     ],
 //! )"#;
-//! let scene: ronray::desc::SceneDesc = ron::from_str(text).unwrap();
+//! let scene: ronray::desc::SceneDesc = ron::Options::default()
+//!     .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+//!     .from_str(text)
+//!     .unwrap();
 //! assert!(scene.objects[0].emission().is_some());
 //! ```
 
