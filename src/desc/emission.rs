@@ -11,7 +11,9 @@
 //!                emission: (radiance: (12, 7, 3))),
 //!     ],
 //! )"#;
-//! let scene: ronray::desc::SceneDesc = ron::from_str(text).unwrap();
+//! // Optional fields are written bare (`emission: (…)`), as ronray reads them.
+//! let ron = ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+//! let scene: ronray::desc::SceneDesc = ron.from_str(text).unwrap();
 //! assert!(scene.objects[0].emission().is_some());
 //! ```
 
