@@ -1,7 +1,7 @@
 //! The README tells the truth: every RON example loads (a whole scene as a
-//! file in `scenes/`, a lone object inside a minimal scene), the annotated
-//! scene is the shipped file it says it is, and the shell examples name
-//! files of the clone only.
+//! file in `scenes/`, scene fields beside a camera, a lone object inside a
+//! minimal scene), the annotated scene is the shipped file it says it is,
+//! and the shell examples name files of the clone only.
 
 mod common;
 
@@ -27,6 +27,12 @@ fn blocks(readme: &str, lang: &str) -> Vec<(usize, String)> {
     out
 }
 
+/// The camera the README's fragments are placed before.
+const CAMERA: &str = "camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),";
+/// The material names the README's fragments use.
+const MATERIALS: &str = "materials: { \"teal\": Lambert(albedo: (0.1, 0.5, 0.5)), \
+                         \"clay\": Lambert(albedo: 0.7), \"black\": Lambert(albedo: 0) },";
+
 fn readme() -> String {
     std::fs::read_to_string(root().join("README.md")).expect("README.md")
 }
@@ -45,14 +51,26 @@ fn readme_ron_examples_load() {
         // Examples are written as files in `scenes/`: relative paths resolve
         // from there.
         let path = root().join("scenes").join(format!("readme_line_{line}.ron"));
-        let scene = if body.trim_start().starts_with("Scene(") {
+        let first = body.trim_start();
+        let field = first
+            .split_once(':')
+            .is_some_and(|(k, _)| !k.is_empty() && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'));
+        let scene = if first.starts_with("Scene(") {
             text.clone()
+        } else if field {
+            // Fields of a scene (`lights: [...]`): beside a camera and the
+            // materials the examples name, unless they bring their own.
+            let materials = if body.contains("materials:") {
+                ""
+            } else {
+                MATERIALS
+            };
+            format!("Scene(\n    {CAMERA}\n    {materials}\n{text})\n")
         } else {
             // A lone object: placed in a minimal scene with the materials it
             // may name.
             format!(
-                "Scene(\n    camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),\n    \
-                 materials: {{ \"teal\": Lambert(albedo: (0.1, 0.5, 0.5)), \"clay\": Lambert(albedo: 0.7) }},\n    \
+                "Scene(\n    {CAMERA}\n    {MATERIALS}\n    \
                  lights: [Point(position: (0, 3, 3), intensity: (10, 10, 10))],\n    objects: [\n{text}    ],\n)\n"
             )
         };
