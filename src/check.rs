@@ -1,37 +1,46 @@
 //! Regression checks: render each scene at its `test` settings and compare
 //! with its golden image, `golden/<scene name>.png` beside the scene file.
 //!
-//! # Metric
-//! Relative MSE on linear RGB, `mean((a − g)² / (g² + 0.01))` over pixels
-//! and channels, computed on both images box-downsampled by
-//! [`COMPARE_FACTOR`] (4×4 pixels → 1), after the new render has gone through
-//! the same 8-bit sRGB encoding as the golden (so an unchanged renderer
-//! scores exactly 0). Relative error weighs dark regions as much as bright
-//! ones; the downsampling divides Monte Carlo noise variance by 16 while
-//! keeping what a regression changes (a colour, a shadow, a highlight), so
-//! a harmless change of noise pattern passes and a changed material does
-//! not. The threshold is the scene's `test.tolerance` (default
-//! [`DEFAULT_TOLERANCE`]).
+//! The metric ([`metric`]) judges each region against its own noise: the
+//! largest mean over 16×16-pixel windows of the squared z-scores of 4×4-cell
+//! differences, the noise estimated from both images, after the new render
+//! has gone through the same 8-bit sRGB encoding as the golden (so an
+//! unchanged renderer scores exactly 0). The threshold is the scene's
+//! `test.tolerance` (default [`DEFAULT_TOLERANCE`]) unless the
+//! command line gives one. A failure leaves the new render and a heat map
+//! beside the golden, and an HTML page showing the three side by side
+//! ([`report`]).
+
+pub mod metric;
+pub mod report;
 
 use crate::desc::TestDesc;
-use crate::imageio::{Image, compare, metrics, read_image, srgb_decode, srgb8, write_image};
+use crate::imageio::{Image, metrics, read_image, srgb_decode, srgb8, write_image};
 use crate::load::{LoadError, Overrides, load_with};
 use crate::render::{RenderOptions, render};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 pub use crate::desc::DEFAULT_TOLERANCE;
-/// Box-downsampling factor applied before comparing.
-pub const COMPARE_FACTOR: u32 = 4;
+pub use metric::{COMPARE_FACTOR, Score, WINDOW, score};
 
-/// The documented metric: relative MSE after box downsampling.
+/// The judged figure of [`score`]: the worst window's mean squared z-score.
 pub fn golden_error(new: &Image, golden: &Image) -> Result<f64, String> {
-    compare(
-        &new.downsample(COMPARE_FACTOR),
-        &golden.downsample(COMPARE_FACTOR),
-        None,
-    )
-    .map(|c| c.rel_mse)
+    score(new, golden).map(|s| s.worst)
+}
+
+/// What `ronray check` was asked, beside the scenes.
+#[derive(Clone, Debug, Default)]
+pub struct CheckOptions {
+    /// Rewrite the goldens that fail or are missing.
+    pub bless: bool,
+    /// Worker threads (default: all cores); the image does not depend on it.
+    pub threads: Option<usize>,
+    /// `--set path=value` overrides, applied before the test settings are
+    /// read (`--set test.seed=7` re-seeds the check).
+    pub sets: Vec<String>,
+    /// Replaces every scene's `test.tolerance`.
+    pub tolerance: Option<f64>,
 }
 
 /// What checking one scene against its golden image found.
@@ -39,16 +48,16 @@ pub fn golden_error(new: &Image, golden: &Image) -> Result<f64, String> {
 pub enum Outcome {
     /// The render matches its golden image within tolerance.
     Pass {
-        /// Relative MSE of the render against the golden image (see the module docs).
-        error: f64,
-        /// The scene's `test.tolerance`: the largest relative MSE that passes.
+        /// The render's score against the golden image (see [`metric`]).
+        score: Score,
+        /// The largest score that passes (`test.tolerance` or `--tolerance`).
         tolerance: f64,
     },
     /// The render differs from its golden image by more than the tolerance.
     Fail {
-        /// Relative MSE of the render against the golden image.
-        error: f64,
-        /// The scene's `test.tolerance`.
+        /// The render's score against the golden image.
+        score: Score,
+        /// The largest score that passes.
         tolerance: f64,
         /// Where the new render was written (`golden/<name>.new.png`), for review.
         new: PathBuf,
@@ -63,8 +72,8 @@ pub enum Outcome {
     },
     /// Golden written by `--bless`.
     Blessed {
-        /// Error against the previous golden, if there was one.
-        error: Option<f64>,
+        /// Score against the previous golden, if there was one.
+        score: Option<Score>,
     },
     /// The scene did not load (I/O error or invalid scene); nothing was rendered.
     Invalid(LoadError),
@@ -130,10 +139,28 @@ fn quantise(img: &Image) -> Image {
     out
 }
 
-/// Renders `scene` at its test settings.
-pub fn render_test(scene: &Path, threads: Option<usize>) -> Result<(Image, TestDesc), LoadError> {
-    let full = load_with(scene, &Overrides::default())?;
-    let t = full.desc.test.clone().unwrap_or_default();
+/// Renders `scene` at its test settings (after `sets`), 8-bit quantised.
+/// `sets` whose path starts with `test` change those settings even when the
+/// scene has no `test` entry (`--set test.seed=7` re-seeds the check).
+pub fn render_test(
+    scene: &Path,
+    threads: Option<usize>,
+    sets: &[String],
+) -> Result<(Image, TestDesc), LoadError> {
+    let (test_sets, scene_sets): (Vec<String>, Vec<String>) = sets
+        .iter()
+        .cloned()
+        .partition(|s| s.trim_start().starts_with("test"));
+    let with_sets = Overrides {
+        sets: scene_sets,
+        ..Default::default()
+    };
+    let full = load_with(scene, &with_sets)?;
+    let mut desc = full.desc.clone();
+    desc.test = Some(desc.test.unwrap_or_default());
+    crate::load::set::apply_sets(&mut desc, &test_sets)
+        .map_err(|problems| LoadError::Invalid(crate::load::source::command_line(&problems)))?;
+    let t = desc.test.unwrap_or_default();
     let (fw, fh) = (full.desc.film.width as f32, full.desc.film.height as f32);
     let height = t
         .height
@@ -142,7 +169,7 @@ pub fn render_test(scene: &Path, threads: Option<usize>) -> Result<(Image, TestD
         spp: Some(t.spp),
         size: Some((t.width, height)),
         seed: Some(t.seed),
-        ..Default::default()
+        ..with_sets
     };
     let loaded = load_with(scene, &o)?;
     let (img, _) = render(
@@ -156,28 +183,37 @@ pub fn render_test(scene: &Path, threads: Option<usize>) -> Result<(Image, TestD
     Ok((quantise(&img), t))
 }
 
+/// The by-products of a failed check beside the golden: `<name>.new.png`,
+/// `<name>.diff.png` and `<name>.html`.
+fn by_product(golden: &Path, suffix: &str) -> PathBuf {
+    golden.with_extension(suffix)
+}
+
+fn remove_by_products(golden: &Path) {
+    for s in ["new.png", "diff.png", "html"] {
+        let _ = std::fs::remove_file(by_product(golden, s));
+    }
+}
+
 /// Checks one scene; with `bless`, a failed or missing golden is rewritten.
-pub fn check_scene(scene: &Path, bless: bool, threads: Option<usize>) -> CheckResult {
+pub fn check_scene(scene: &Path, opts: &CheckOptions) -> CheckResult {
     let start = Instant::now();
     let golden = golden_path(scene);
-    let sibling = |suffix: &str| golden.with_extension(format!("{suffix}.png"));
-    let outcome = match render_test(scene, threads) {
+    let outcome = match render_test(scene, opts.threads, &opts.sets) {
         Err(e) => Outcome::Invalid(e),
         Ok((img, t)) => {
-            let tolerance = t.tolerance as f64;
+            let tolerance = opts.tolerance.unwrap_or(t.tolerance as f64);
             let previous = read_image(&golden).ok();
-            let error = previous.as_ref().and_then(|g| golden_error(&img, g).ok());
-            match (error, bless) {
-                (Some(e), _) if e <= tolerance => {
-                    let _ = std::fs::remove_file(sibling("new"));
-                    let _ = std::fs::remove_file(sibling("diff"));
-                    Outcome::Pass { error: e, tolerance }
+            let score = previous.as_ref().and_then(|g| score(&img, g).ok());
+            match (score, opts.bless) {
+                (Some(s), _) if s.worst <= tolerance => {
+                    remove_by_products(&golden);
+                    Outcome::Pass { score: s, tolerance }
                 }
-                (error, true) => match write_image(&img, &golden) {
+                (score, true) => match write_image(&img, &golden) {
                     Ok(()) => {
-                        let _ = std::fs::remove_file(sibling("new"));
-                        let _ = std::fs::remove_file(sibling("diff"));
-                        Outcome::Blessed { error }
+                        remove_by_products(&golden);
+                        Outcome::Blessed { score }
                     }
                     Err(e) => Outcome::Invalid(LoadError::Io {
                         path: golden.clone(),
@@ -185,18 +221,18 @@ pub fn check_scene(scene: &Path, bless: bool, threads: Option<usize>) -> CheckRe
                     }),
                 },
                 (None, false) => {
-                    let new = sibling("new");
+                    let new = by_product(&golden, "new.png");
                     let _ = write_image(&img, &new);
                     Outcome::Missing { new }
                 }
-                (Some(error), false) => {
-                    let (new, heatmap) = (sibling("new"), sibling("diff"));
+                (Some(score), false) => {
+                    let (new, heatmap) = (by_product(&golden, "new.png"), by_product(&golden, "diff.png"));
                     let _ = write_image(&img, &new);
                     if let Some(g) = &previous {
                         let _ = write_image(&metrics::heatmap(&img, g, 0.1), &heatmap);
                     }
                     Outcome::Fail {
-                        error,
+                        score,
                         tolerance,
                         new,
                         heatmap,
@@ -212,29 +248,26 @@ pub fn check_scene(scene: &Path, bless: bool, threads: Option<usize>) -> CheckRe
     }
 }
 
-/// The summary table printed by `ronray check`.
+/// The summary table printed by `ronray check`: the judged score (worst
+/// window) beside the whole-image figure.
 pub fn summary(results: &[CheckResult]) -> String {
     let mut s = format!(
-        "{:<40} {:>8} {:>12} {:>10} {:>8}\n",
-        "scene", "status", "relMSE", "tolerance", "time"
+        "{:<40} {:>8} {:>12} {:>12} {:>10} {:>8}\n",
+        "scene", "status", "score", "whole relMSE", "tolerance", "time"
     );
+    let figures = |sc: &Score| (format!("{:.3}", sc.worst), format!("{:.6}", sc.whole));
     for r in results {
         let name = r.scene.display().to_string();
-        let (status, err, tol) = match &r.outcome {
-            Outcome::Pass { error, tolerance } => ("ok", format!("{error:.6}"), format!("{tolerance:.4}")),
-            Outcome::Fail { error, tolerance, .. } => {
-                ("FAIL", format!("{error:.6}"), format!("{tolerance:.4}"))
-            }
-            Outcome::Missing { .. } => ("MISSING", "-".into(), "-".into()),
-            Outcome::Blessed { error } => (
-                "blessed",
-                error.map_or("-".into(), |e| format!("{e:.6}")),
-                "-".into(),
-            ),
-            Outcome::Invalid(_) => ("INVALID", "-".into(), "-".into()),
+        let dash = || ("-".to_string(), "-".to_string());
+        let (status, (worst, whole), tol) = match &r.outcome {
+            Outcome::Pass { score, tolerance } => ("ok", figures(score), format!("{tolerance:.4}")),
+            Outcome::Fail { score, tolerance, .. } => ("FAIL", figures(score), format!("{tolerance:.4}")),
+            Outcome::Missing { .. } => ("MISSING", dash(), "-".into()),
+            Outcome::Blessed { score } => ("blessed", score.as_ref().map_or_else(dash, figures), "-".into()),
+            Outcome::Invalid(_) => ("INVALID", dash(), "-".into()),
         };
         s += &format!(
-            "{name:<40} {status:>8} {err:>12} {tol:>10} {:>7.2}s\n",
+            "{name:<40} {status:>8} {worst:>12} {whole:>12} {tol:>10} {:>7.2}s\n",
             r.time.as_secs_f64()
         );
     }

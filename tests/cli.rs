@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{ronray, root};
+use common::{ronray, ronray_in, root};
 use std::path::{Path, PathBuf};
 
 fn tempdir() -> tempfile::TempDir {
@@ -160,4 +160,48 @@ fn diff_reports_metrics_and_threshold() {
     let sized = ronray(&["diff", path_str(&a), path_str(&small)]);
     assert_eq!(sized.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&sized.stderr).contains("sizes differ"));
+}
+
+/// `ronray new NAME` writes a commented starter scene that validates
+/// without a warning and renders; it never replaces an existing file.
+#[test]
+fn new_writes_a_starter_scene_that_validates_and_renders() {
+    let dir = tempfile::tempdir().expect("tmp");
+    let d = dir.path();
+    let o = ronray_in(d, &["new", "first"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(d.join("first.ron")).expect("first.ron written");
+    assert!(
+        text.contains("ronray render first.ron"),
+        "the comments name the file:\n{text}"
+    );
+    for part in ["camera:", "lights:", "Plane(", "Sphere(", "// "] {
+        assert!(text.contains(part), "starter has {part}:\n{text}");
+    }
+    let v = ronray_in(d, &["validate", "--deny-warnings", "first.ron"]);
+    assert!(v.status.success(), "{}", String::from_utf8_lossy(&v.stderr));
+    let r = ronray_in(
+        d,
+        &[
+            "render",
+            "first.ron",
+            "--size",
+            "64x36",
+            "--spp",
+            "4",
+            "-o",
+            "first.png",
+        ],
+    );
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let img = ronray::imageio::read_image(&d.join("first.png")).expect("rendered");
+    let mean: f32 = img.pixels.iter().map(|p| p.x + p.y + p.z).sum::<f32>() / img.pixels.len() as f32;
+    assert!(mean > 0.05, "the starter scene is lit (mean {mean})");
+    let again = ronray_in(d, &["new", "first"]);
+    assert_eq!(again.status.code(), Some(1), "an existing scene is not replaced");
+    assert_eq!(std::fs::read_to_string(d.join("first.ron")).expect("read"), text);
+    assert!(
+        ronray::syntax::format(&text, false).is_ok_and(|f| f == text),
+        "the starter is already formatted"
+    );
 }

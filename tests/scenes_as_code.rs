@@ -189,8 +189,10 @@ fn validate_json_format_is_machine_readable() {
     );
 }
 
+/// `fmt` keeps comments; the canonical rewrite (`--canonical`) refuses to
+/// drop them unless told to.
 #[test]
-fn fmt_is_canonical_and_refuses_to_drop_comments() {
+fn fmt_keeps_comments_and_canonical_refuses_to_drop_them() {
     let dir = tempfile::tempdir().expect("tmp");
     let p = dir.path().join("s.ron");
     let original =
@@ -198,7 +200,15 @@ fn fmt_is_canonical_and_refuses_to_drop_comments() {
     let with_comment = format!("// keep me\n{}", original.replace("whtie", "white"));
     std::fs::write(&p, &with_comment).expect("write");
     let ps = p.to_str().expect("utf-8");
-    let o = ronray(&["fmt", ps]);
+    assert!(ronray(&["fmt", ps]).status.success());
+    assert!(
+        std::fs::read_to_string(&p)
+            .expect("read")
+            .starts_with("// keep me\n"),
+        "fmt keeps comments"
+    );
+    std::fs::write(&p, &with_comment).expect("write");
+    let o = ronray(&["fmt", "--canonical", ps]);
     assert_eq!(o.status.code(), Some(1), "comments must not be dropped silently");
     assert!(String::from_utf8_lossy(&o.stderr).contains("comments"));
     assert_eq!(
@@ -206,13 +216,17 @@ fn fmt_is_canonical_and_refuses_to_drop_comments() {
         with_comment,
         "file untouched"
     );
-    assert!(ronray(&["fmt", "--drop-comments", ps]).status.success());
     assert!(
-        ronray(&["fmt", "--check", ps]).status.success(),
+        ronray(&["fmt", "--canonical", "--drop-comments", ps])
+            .status
+            .success()
+    );
+    assert!(
+        ronray(&["fmt", "--canonical", "--check", ps]).status.success(),
         "formatted output is canonical"
     );
     let once = std::fs::read_to_string(&p).expect("read");
-    assert!(ronray(&["fmt", ps]).status.success());
+    assert!(ronray(&["fmt", "--canonical", ps]).status.success());
     assert_eq!(
         std::fs::read_to_string(&p).expect("read"),
         once,

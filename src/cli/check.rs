@@ -1,5 +1,6 @@
 //! `ronray check` (golden-image regressions) and `ronray gallery`.
 use super::{print_load_error, print_out};
+use crate::check::CheckOptions;
 use crate::imageio::write_image;
 use crate::load::{Overrides, load_with};
 use crate::render::{RenderOptions, render};
@@ -35,14 +36,14 @@ fn scenes_in(paths: Vec<PathBuf>) -> Option<Vec<PathBuf>> {
     }
 }
 
-pub(super) fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>) -> ExitCode {
-    use crate::check::{Outcome, check_scene, summary};
+pub(super) fn cmd_check(paths: Vec<PathBuf>, opts: &CheckOptions) -> ExitCode {
+    use crate::check::{Outcome, check_scene, report, summary};
     let Some(scenes) = scenes_in(paths) else {
         return ExitCode::FAILURE;
     };
     let mut results = Vec::new();
     for scene in &scenes {
-        let r = check_scene(scene, bless, threads);
+        let r = check_scene(scene, opts);
         match &r.outcome {
             Outcome::Invalid(e) => print_load_error(e, ""),
             Outcome::Fail { new, heatmap, .. } => {
@@ -66,11 +67,16 @@ pub(super) fn cmd_check(paths: Vec<PathBuf>, bless: bool, threads: Option<usize>
     let failed = results.iter().filter(|r| r.failed()).count();
     if failed == 0 {
         println!("{} scenes checked, all match their goldens", results.len());
-        ExitCode::SUCCESS
-    } else {
-        println!("{failed} of {} scenes failed", results.len());
-        ExitCode::FAILURE
+        return ExitCode::SUCCESS;
     }
+    println!("{failed} of {} scenes failed", results.len());
+    for page in report::write_all(&results) {
+        match page {
+            Ok(p) => println!("report: {}", p.display()),
+            Err(e) => eprintln!("error: cannot write the HTML report: {e}"),
+        }
+    }
+    ExitCode::FAILURE
 }
 
 pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) -> ExitCode {

@@ -1,79 +1,132 @@
-//! `ronray fmt`: canonical RON or JSON, never silently dropping comments.
+//! `ronray fmt`: lays scene files out again, keeping what the author wrote
+//! (comments, headers, number spellings, omitted defaults); `--canonical`
+//! is the old rewrite from the parsed scene, which keeps none of those.
 use super::print_out;
-use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-pub(super) fn cmd_fmt(
-    paths: &[PathBuf],
-    check: bool,
-    stdout: bool,
-    json: bool,
-    drop_comments: bool,
-) -> ExitCode {
-    use crate::load::format::{has_comments, to_json, to_ron};
+/// What `ronray fmt` was asked.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct FmtOptions {
+    pub check: bool,
+    pub stdout: bool,
+    /// Write the canonical JSON twin `<scene>.json`.
+    pub json: bool,
+    pub canonical: bool,
+    pub drop_comments: bool,
+}
+
+pub(super) fn cmd_fmt(paths: &[PathBuf], o: FmtOptions) -> ExitCode {
     let mut failed = false;
     for p in paths {
-        let text = match std::fs::read_to_string(p) {
-            Ok(t) => t,
-            Err(e) => {
-                eprintln!("error: cannot read {}: {e}", p.display());
-                failed = true;
-                continue;
-            }
-        };
-        let desc = match crate::load::pipeline::parse(p, &text) {
-            Ok(d) => d,
-            Err(r) => {
-                eprint!("{}", r.render(std::io::stderr().is_terminal()));
-                failed = true;
-                continue;
-            }
-        };
-        let (out_text, target) = if json {
-            (to_json(&desc), p.with_extension("json"))
-        } else {
-            (to_ron(&desc), p.clone())
-        };
-        let out_text = match out_text {
-            Ok(t) => t,
-            Err(e) => {
-                eprintln!("error: {}: {e}", p.display());
-                failed = true;
-                continue;
-            }
-        };
-        if check {
-            if out_text != text {
-                print_out(&format!("{}: not in canonical form\n", p.display()));
-                failed = true;
-            }
-            continue;
-        }
-        if stdout {
-            print_out(&out_text);
-            continue;
-        }
-        if has_comments(&text) && !json && !drop_comments {
-            eprintln!(
-                "error: {} has comments, which ron cannot keep through formatting; nothing was changed \
-                 (pass --drop-comments to format it anyway, or --stdout to see the result)",
-                p.display()
-            );
+        if let Err(e) = fmt_one(p, o, &mut failed) {
+            eprintln!("error: {}: {e}", p.display());
             failed = true;
-            continue;
         }
-        let tmp = target.with_extension("fmt.tmp");
-        if let Err(e) = std::fs::write(&tmp, &out_text).and_then(|_| std::fs::rename(&tmp, &target)) {
-            eprintln!("error: cannot write {}: {e}", target.display());
-            failed = true;
-            continue;
-        }
-        eprintln!("formatted {}", target.display());
     }
     if failed {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
     }
+}
+
+fn is_json(p: &Path) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("json"))
+}
+
+fn fmt_one(p: &Path, o: FmtOptions, failed: &mut bool) -> Result<(), String> {
+    let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read: {e}"))?;
+    let (out_text, target) = if o.json || o.canonical {
+        let desc = match crate::load::source::parse(p, &text) {
+            Ok(d) => d,
+            Err(r) => {
+                eprint!("{}", r.render(std::io::stderr().is_terminal()));
+                return Err("not formatted".into());
+            }
+        };
+        let target = if o.json {
+            p.with_extension("json")
+        } else {
+            p.to_path_buf()
+        };
+        // The target's own format: `fmt --canonical scene.json` stays JSON.
+        let t = if is_json(&target) {
+            crate::load::format::to_json(&desc)
+        } else {
+            crate::load::format::to_ron(&desc)
+        }?;
+        let keeps_comments = is_json(&target) && !is_json(p);
+        if crate::load::format::has_comments(&text)
+            && !keeps_comments
+            && !o.drop_comments
+            && !o.stdout
+            && !o.check
+        {
+            return Err(
+                "the canonical form drops comments; nothing was changed (pass --drop-comments to \
+                        do it anyway, or use `ronray fmt` without --canonical, which keeps them)"
+                    .into(),
+            );
+        }
+        (t, target)
+    } else {
+        let t = crate::syntax::format(&text, is_json(p)).map_err(|e| e.to_string())?;
+        (t, p.to_path_buf())
+    };
+    if o.check {
+        let old = if target == p {
+            text
+        } else {
+            std::fs::read_to_string(&target).unwrap_or_default()
+        };
+        if out_text != old {
+            print_out(&unified_diff(&target, &old, &out_text));
+            *failed = true;
+        }
+        return Ok(());
+    }
+    if o.stdout {
+        print_out(&out_text);
+        return Ok(());
+    }
+    if target == p && out_text == text {
+        return Ok(());
+    }
+    write_safely(&target, &out_text).map_err(|e| format!("cannot write {}: {e}", target.display()))?;
+    eprintln!("formatted {}", target.display());
+    Ok(())
+}
+
+/// `diff -u` of the file against its formatted text.
+pub(super) fn unified_diff(path: &Path, old: &str, new: &str) -> String {
+    let name = path.display().to_string();
+    similar::TextDiff::from_lines(old, new)
+        .unified_diff()
+        .context_radius(3)
+        .header(&name, &format!("{name} (formatted)"))
+        .to_string()
+}
+
+/// Writes through a new temporary file in the target's folder (created
+/// exclusively under a random name, so nothing planted there is followed),
+/// with the target's permissions, renamed over the target: a reader sees the
+/// old file or the new one, never half of one, and a symbolic link at the
+/// target is replaced, not written through.
+fn write_safely(target: &Path, text: &str) -> std::io::Result<()> {
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut tmp = tempfile::Builder::new().prefix(".ronray-fmt").tempfile_in(dir)?;
+    tmp.write_all(text.as_bytes())?;
+    tmp.as_file().sync_all()?;
+    if let Ok(m) = std::fs::symlink_metadata(target)
+        && m.is_file()
+    {
+        tmp.as_file().set_permissions(m.permissions())?;
+    }
+    tmp.persist(target).map_err(|e| e.error)?;
+    Ok(())
 }

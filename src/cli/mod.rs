@@ -6,6 +6,8 @@ mod bench;
 mod check;
 mod diff;
 mod fmt;
+mod lsp;
+mod new;
 mod render;
 mod validate;
 
@@ -104,26 +106,47 @@ pub enum Command {
         #[arg(long)]
         deny_warnings: bool,
     },
-    /// Rewrite scenes in canonical form (stable field order and layout).
+    /// Lay scene files out again (indentation, spacing, trailing commas, one
+    /// entry per line or short vectors on one line), keeping comments,
+    /// headers, number spellings and omitted defaults. RON stays RON, JSON
+    /// stays JSON.
     Fmt {
         /// Scene files to format.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
-        /// Only report files that are not canonical (exit 1 if any).
+        /// Change nothing; print a unified diff of what would change (exit 1
+        /// if anything would).
         #[arg(long)]
         check: bool,
         /// Print to standard output instead of rewriting.
         #[arg(long)]
         stdout: bool,
-        /// Write JSON (to `<scene>.json`) instead of RON.
+        /// Write the canonical JSON twin `<scene>.json` (from the parsed
+        /// scene: comments and spellings are not kept).
         #[arg(long)]
         json: bool,
-        /// Format files with comments anyway (ron cannot keep comments).
+        /// Rewrite from the parsed scene instead: fields in declaration order,
+        /// every default written out, comments dropped.
+        #[arg(long)]
+        canonical: bool,
+        /// With `--canonical`, format files with comments anyway.
         #[arg(long)]
         drop_comments: bool,
     },
     /// Print the JSON Schema of the scene format.
     Schema,
+    /// Serve the Language Server Protocol on standard input and output:
+    /// diagnostics as you type, hover, completion, go to definition.
+    Lsp,
+    /// Write a commented starter scene `NAME.ron` (camera, a light, a floor,
+    /// an object) that validates and renders.
+    New {
+        /// Scene name or path; `.ron` is added when missing.
+        name: PathBuf,
+        /// Replace an existing file.
+        #[arg(long)]
+        force: bool,
+    },
     /// Render every scene of the folders given into one folder of PNGs and
     /// print a Markdown gallery (what the README shows).
     Gallery {
@@ -150,6 +173,14 @@ pub enum Command {
         /// Worker threads (default: all cores; at most 1024).
         #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
+        /// Typed override `path=value` (value in RON), applied before the
+        /// test settings are read: `--set test.seed=7` re-seeds.
+        #[arg(long = "set", value_name = "PATH=VALUE")]
+        sets: Vec<String>,
+        /// Largest accepted score (worst 16×16 window's relative MSE),
+        /// replacing every scene's `test.tolerance`.
+        #[arg(long)]
+        tolerance: Option<f64>,
     },
     /// Compare two images (PNG, EXR, PFM): RMSE, relative MSE, PSNR, means.
     Diff {
@@ -260,14 +291,26 @@ pub fn run(cli: Cli) -> ExitCode {
             check,
             stdout,
             json,
+            canonical,
             drop_comments,
-        } => cmd_fmt(&scenes, check, stdout, json, drop_comments),
+        } => cmd_fmt(
+            &scenes,
+            fmt::FmtOptions {
+                check,
+                stdout,
+                json,
+                canonical,
+                drop_comments,
+            },
+        ),
         Command::Gallery {
             paths,
             out,
             width,
             spp,
         } => cmd_gallery(paths, &out, width, spp),
+        Command::Lsp => lsp::cmd_lsp(),
+        Command::New { name, force } => new::cmd_new(&name, force),
         Command::Schema => {
             print_out(&crate::schema::schema_json());
             ExitCode::SUCCESS
@@ -276,7 +319,17 @@ pub fn run(cli: Cli) -> ExitCode {
             paths,
             bless,
             threads,
-        } => cmd_check(paths, bless, threads),
+            sets,
+            tolerance,
+        } => cmd_check(
+            paths,
+            &crate::check::CheckOptions {
+                bless,
+                threads,
+                sets,
+                tolerance,
+            },
+        ),
         Command::Watch {
             scene,
             output,

@@ -124,7 +124,9 @@ pub struct TestDesc {
     /// renderer gives the same image.
     #[serde(default)]
     pub seed: u64,
-    /// Largest accepted relative MSE against the golden image.
+    /// Largest accepted score against the golden image: the worst
+    /// 16×16-pixel window's mean squared z-score of the difference against
+    /// the noise measured in it (about 1 for noise alone; `crate::check`).
     #[serde(default = "test_tolerance")]
     pub tolerance: f32,
 }
@@ -135,9 +137,11 @@ fn test_width() -> u32 {
 fn test_spp() -> u32 {
     16
 }
-/// Default largest relative MSE of a regression render against its golden
-/// image (`test.tolerance`; the metric is `crate::check`'s).
-pub const DEFAULT_TOLERANCE: f32 = 0.02;
+/// Default largest score of a regression render against its golden image
+/// (`test.tolerance`; the metric is `crate::check::metric`'s). Re-seeded
+/// renders of the shipped scenes score at most 1.7, a small sphere
+/// recoloured or shrunk 6 and more (`tests/check.rs`).
+pub const DEFAULT_TOLERANCE: f32 = 3.5;
 
 fn test_tolerance() -> f32 {
     DEFAULT_TOLERANCE

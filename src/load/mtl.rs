@@ -6,7 +6,7 @@
 //! |---|---|
 //! | `illum` 4, 6, 7, or `d` < 1 / `Tr` > 0 | `Glass(ior: Ni or 1.5)`, tinted by `Tf` if given |
 //! | `illum` 3 (ray-traced reflection) | `Mirror(tint: Ks)` |
-//! | `Ks` non-zero | `Phong(kd: Kd, ks: Ks, exponent: Ns)` |
+//! | `Ks` non-zero | `Phong(diffuse: Kd, specular: Ks, exponent: Ns)` |
 //! | otherwise | `Lambert(albedo: Kd)` (`map_Kd` → sRGB image texture) |
 //!
 //! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), not

@@ -14,6 +14,7 @@ use std::time::SystemTime;
 
 type Stamp = (Option<SystemTime>, u64);
 
+/// Parsed OBJ files by path, reused while the file is unchanged.
 #[derive(Default)]
 pub struct MeshCache {
     entries: RefCell<HashMap<PathBuf, (Stamp, ObjData)>>,

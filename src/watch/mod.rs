@@ -11,7 +11,7 @@
 
 mod debounce;
 mod hub;
-mod mesh_cache;
+pub mod mesh_cache;
 mod progressive;
 mod server;
 mod status;

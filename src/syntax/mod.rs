@@ -1,0 +1,70 @@
+//! Scene text as text: a lossless tokenizer ([`lex`]), the tokens grouped
+//! with their comments ([`tree`]), a layout printer ([`print`]) for
+//! `ronray fmt`, and the position queries of the language server
+//! ([`cursor`]). Nothing here knows the scene types; the loader does.
+
+pub mod cursor;
+pub mod lex;
+pub mod print;
+pub mod tree;
+
+use lex::{Kind, tokenize};
+
+/// Why a file was not formatted.
+#[derive(Debug, PartialEq, thiserror::Error)]
+pub enum FormatError {
+    /// The text does not tokenize or its brackets do not balance.
+    #[error("cannot format: {message} (byte {at})")]
+    Syntax {
+        /// Byte offset of the problem.
+        at: usize,
+        /// What is wrong, in words.
+        message: String,
+    },
+    /// The layout would have changed a token: a bug, and nothing is written.
+    #[error("internal error: formatting would change the scene's tokens ({0}); nothing was written")]
+    Changed(String),
+}
+
+/// Lays out RON (or, with `json`, JSON) text again, keeping every token and
+/// comment as written; see [`print`] for the rules. The result is checked to
+/// hold the same tokens as `src` (trailing commas aside) before it is
+/// returned.
+pub fn format(src: &str, json: bool) -> Result<String, FormatError> {
+    let doc = tree::parse(src).map_err(|e| FormatError::Syntax {
+        at: e.at,
+        message: e.message,
+    })?;
+    let out = print::print(&doc, json);
+    same_tokens(src, &out).map_err(FormatError::Changed)?;
+    Ok(out)
+}
+
+/// Compares the tokens of two texts, ignoring commas before a closing
+/// bracket and trailing spaces of comments.
+pub fn same_tokens(a: &str, b: &str) -> Result<(), String> {
+    let sig = |s: &str| -> Result<Vec<String>, String> {
+        let toks = tokenize(s).map_err(|e| e.message)?;
+        Ok(toks
+            .iter()
+            .enumerate()
+            .filter(|(i, t)| {
+                t.kind != Kind::Comma
+                    || !matches!(
+                        toks[i + 1..].iter().find(|t| !t.is_comment()).map(|t| t.kind),
+                        Some(Kind::Close(_))
+                    )
+            })
+            .map(|(_, t)| t.text(s).trim_end().to_string())
+            .collect())
+    };
+    let (x, y) = (sig(a)?, sig(b)?);
+    match x.iter().zip(&y).position(|(p, q)| p != q) {
+        Some(i) => Err(format!("token {i}: `{}` became `{}`", x[i], y[i])),
+        None if x.len() != y.len() => Err(format!("{} tokens became {}", x.len(), y.len())),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests;

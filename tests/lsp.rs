@@ -1,0 +1,304 @@
+//! `ronray lsp` driven over standard input and output by a scripted client:
+//! located diagnostics for a scene with mistakes, updated after an edit;
+//! hover, completion and go-to-definition answers.
+
+mod common;
+
+use serde_json::{Value, json};
+use std::io::{BufRead, BufReader, Read, Write};
+use std::path::Path;
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::mpsc::{Receiver, channel};
+use std::time::{Duration, Instant};
+
+struct Client {
+    child: Child,
+    stdin: ChildStdin,
+    incoming: Receiver<Value>,
+    /// Notifications received while waiting for something else.
+    backlog: Vec<Value>,
+    next_id: i64,
+}
+
+impl Client {
+    fn start() -> Self {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ronray"))
+            .arg("lsp")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .expect("ronray lsp starts");
+        let stdin = child.stdin.take().expect("stdin");
+        let stdout = child.stdout.take().expect("stdout");
+        let (tx, incoming) = channel();
+        std::thread::spawn(move || {
+            let mut r = BufReader::new(stdout);
+            loop {
+                let mut len = 0;
+                loop {
+                    let mut line = String::new();
+                    if r.read_line(&mut line).unwrap_or(0) == 0 {
+                        return;
+                    }
+                    let line = line.trim();
+                    if line.is_empty() {
+                        break;
+                    }
+                    if let Some(n) = line.strip_prefix("Content-Length: ") {
+                        len = n.parse().expect("length");
+                    }
+                }
+                let mut body = vec![0; len];
+                if r.read_exact(&mut body).is_err() {
+                    return;
+                }
+                let v: Value = serde_json::from_slice(&body).expect("JSON message");
+                if tx.send(v).is_err() {
+                    return;
+                }
+            }
+        });
+        let mut c = Client {
+            child,
+            stdin,
+            incoming,
+            backlog: Vec::new(),
+            next_id: 1,
+        };
+        let init = c.request(
+            "initialize",
+            json!({"capabilities": {}, "processId": null, "rootUri": null}),
+        );
+        assert!(
+            init["capabilities"]["hoverProvider"].as_bool().unwrap_or(false),
+            "{init}"
+        );
+        c.notify("initialized", json!({}));
+        c
+    }
+
+    fn send(&mut self, v: Value) {
+        let body = v.to_string();
+        write!(self.stdin, "Content-Length: {}\r\n\r\n{body}", body.len()).expect("write");
+        self.stdin.flush().expect("flush");
+    }
+
+    fn notify(&mut self, method: &str, params: Value) {
+        self.send(json!({"jsonrpc": "2.0", "method": method, "params": params}));
+    }
+
+    fn recv(&mut self) -> Value {
+        self.incoming
+            .recv_timeout(Duration::from_secs(60))
+            .expect("the server answers within a minute")
+    }
+
+    fn request(&mut self, method: &str, params: Value) -> Value {
+        let id = self.next_id;
+        self.next_id += 1;
+        self.send(json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        loop {
+            let v = self.recv();
+            if v["id"] == json!(id) {
+                assert!(v.get("error").is_none(), "{method} failed: {v}");
+                return v["result"].clone();
+            }
+            self.backlog.push(v);
+        }
+    }
+
+    /// The next diagnostics published for `uri`.
+    fn diagnostics(&mut self, uri: &str) -> Vec<Value> {
+        let deadline = Instant::now() + Duration::from_secs(60);
+        loop {
+            if let Some(i) = self
+                .backlog
+                .iter()
+                .position(|v| v["method"] == "textDocument/publishDiagnostics" && v["params"]["uri"] == uri)
+            {
+                let v = self.backlog.remove(i);
+                return v["params"]["diagnostics"].as_array().cloned().unwrap_or_default();
+            }
+            assert!(Instant::now() < deadline, "no diagnostics for {uri}");
+            let v = self.recv();
+            self.backlog.push(v);
+        }
+    }
+
+    fn at(&mut self, method: &str, uri: &str, (line, character): (usize, usize)) -> Value {
+        self.request(
+            method,
+            json!({"textDocument": {"uri": uri}, "position": {"line": line, "character": character}}),
+        )
+    }
+}
+
+/// Line and column (0-based; the texts are ASCII) of the `n`-th `needle`,
+/// plus `delta` columns.
+fn pos(text: &str, needle: &str, n: usize, delta: usize) -> (usize, usize) {
+    let off = text
+        .match_indices(needle)
+        .nth(n)
+        .unwrap_or_else(|| panic!("no {needle} #{n}"))
+        .0
+        + delta;
+    let line = text[..off].matches('\n').count();
+    let col = off - text[..off].rfind('\n').map_or(0, |i| i + 1);
+    (line, col)
+}
+
+fn uri(p: &Path) -> String {
+    format!("file://{}", p.display())
+}
+
+const BROKEN: &str = r#"Scene(
+    include: ["lib.ron"],
+    camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+    integrator: Direct(light_samples: 2),
+    materials: {
+        "white": Lambert(albedo: (0.8, 0.8, 0.8)),
+    },
+    lights: [Point(position: (0, 3, 0), intensity: (10, 10, 10))],
+    objects: [
+        Sphere(center: (0, 0, 0), radius: -1, material: "whte"),
+        Sphere(center: (2, 0, 0), radius: 1, material: "brick"),
+    ],
+)
+"#;
+
+const LIB: &str = "// A material library.\nInclude(\n    materials: {\n        \"brick\": Lambert(albedo: (0.6, 0.3, 0.2)),\n    },\n)\n";
+
+#[test]
+fn lsp_client_gets_diagnostics_hover_completion_and_definitions() {
+    let dir = tempfile::tempdir().expect("tmp");
+    let scene = dir.path().join("scene.ron");
+    let lib = dir.path().join("lib.ron");
+    std::fs::write(&lib, LIB).expect("write");
+    std::fs::write(&scene, BROKEN).expect("write");
+    let (s_uri, lib_uri) = (uri(&scene), uri(&lib));
+    let mut c = Client::start();
+
+    // Open with two mistakes: both located, with their help.
+    c.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": s_uri, "languageId": "ron", "version": 1, "text": BROKEN}}),
+    );
+    let d = c.diagnostics(&s_uri);
+    assert_eq!(d.len(), 2, "two mistakes, two diagnostics: {d:#?}");
+    let whte = d
+        .iter()
+        .find(|x| x["message"].as_str().unwrap_or("").contains("whte"))
+        .expect("unknown material");
+    let (line, col) = pos(BROKEN, "\"whte\"", 0, 0);
+    assert_eq!(
+        whte["range"]["start"],
+        json!({"line": line, "character": col}),
+        "{whte}"
+    );
+    assert_eq!(whte["severity"], 1, "an error");
+    assert!(
+        whte["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("did you mean `white`?"),
+        "help line: {whte}"
+    );
+    let radius = d
+        .iter()
+        .find(|x| x["message"].as_str().unwrap_or("").contains("radius"))
+        .expect("radius");
+    assert_eq!(
+        radius["range"]["start"]["line"],
+        pos(BROKEN, "-1", 0, 0).0,
+        "{radius}"
+    );
+
+    // Edit: both fixed, the diagnostics clear.
+    let fixed = BROKEN
+        .replace("radius: -1", "radius: 1")
+        .replace("\"whte\"", "\"white\"");
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": s_uri, "version": 2}, "contentChanges": [{"text": fixed}]}),
+    );
+    let d = c.diagnostics(&s_uri);
+    assert!(d.is_empty(), "fixed: {d:#?}");
+    // Edit: a syntax error is located too.
+    let broken = fixed.replace("fov_y_degrees: 40", "fov_y_degree: 40");
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": s_uri, "version": 3}, "contentChanges": [{"text": broken}]}),
+    );
+    let d = c.diagnostics(&s_uri);
+    assert_eq!(d.len(), 1, "{d:#?}");
+    assert_eq!(d[0]["range"]["start"]["line"], 2);
+    assert!(
+        d[0]["message"]
+            .as_str()
+            .unwrap_or("")
+            .contains("did you mean `fov_y_degrees`"),
+        "{d:#?}"
+    );
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": s_uri, "version": 4}, "contentChanges": [{"text": fixed}]}),
+    );
+    assert!(c.diagnostics(&s_uri).is_empty());
+    let text = fixed;
+
+    // Hover: documentation, type, default and range of a field.
+    let h = c.at("textDocument/hover", &s_uri, pos(&text, "fov_y_degrees", 0, 2));
+    let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
+    assert!(md.contains("Full vertical field of view"), "{md}");
+    assert!(md.contains("range: ≥ 0, ≤ 180"), "{md}");
+    assert!(md.contains("(required)"), "{md}");
+    let h = c.at("textDocument/hover", &s_uri, pos(&text, "light_samples", 0, 1));
+    let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
+    assert!(md.contains("default: `1`") && md.contains("integer"), "{md}");
+    let h = c.at("textDocument/hover", &s_uri, pos(&text, "Lambert", 0, 1));
+    assert!(
+        h["contents"]["value"].as_str().unwrap_or("").contains("albedo"),
+        "{h}"
+    );
+
+    // Completion: missing fields, variants, the scene's material names.
+    let labels = |v: &Value| -> Vec<String> {
+        v.as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|i| i["label"].as_str().map(String::from))
+            .collect()
+    };
+    let items = labels(&c.at("textDocument/completion", &s_uri, pos(&text, "eye", 0, 0)));
+    assert!(
+        items.contains(&"up".into()) && items.contains(&"aperture_radius".into()),
+        "{items:?}"
+    );
+    assert!(
+        !items.contains(&"eye".into()),
+        "fields already written are not offered: {items:?}"
+    );
+    let items = labels(&c.at("textDocument/completion", &s_uri, pos(&text, "Direct", 0, 0)));
+    for v in ["Direct", "Whitted", "Path"] {
+        assert!(items.contains(&v.into()), "{items:?}");
+    }
+    let items = labels(&c.at("textDocument/completion", &s_uri, pos(&text, "\"brick\"", 0, 1)));
+    assert_eq!(items, ["brick", "white"], "own and included material names");
+
+    // Go to definition: a material to its entry, here or in the included
+    // file; an include to its file.
+    let d = c.at("textDocument/definition", &s_uri, pos(&text, "\"white\"", 1, 2));
+    assert_eq!(d["uri"], s_uri.as_str());
+    assert_eq!(d["range"]["start"], json!({"line": 5, "character": 8}), "{d}");
+    let d = c.at("textDocument/definition", &s_uri, pos(&text, "\"brick\"", 0, 2));
+    assert_eq!(d["uri"], lib_uri.as_str(), "{d}");
+    assert_eq!(d["range"]["start"], json!({"line": 3, "character": 8}), "{d}");
+    let d = c.at("textDocument/definition", &s_uri, pos(&text, "lib.ron", 0, 1));
+    assert_eq!(d["uri"], lib_uri.as_str(), "{d}");
+
+    c.request("shutdown", Value::Null);
+    c.notify("exit", Value::Null);
+    let status = c.child.wait().expect("exits");
+    assert!(status.success(), "ronray lsp exits cleanly: {status}");
+}
