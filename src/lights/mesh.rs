@@ -49,11 +49,7 @@ impl MeshLight {
     /// toward `w`.
     #[inline]
     pub fn emitted(&self, n: Vec3A, w: Vec3A) -> Rgb {
-        if self.two_sided || n.dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Rgb::ZERO
-        }
+        super::sided(self.radiance, self.two_sided, n, w)
     }
 
     /// Uniform by area over all triangles, converted to solid angle:

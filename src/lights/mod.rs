@@ -152,3 +152,35 @@ impl Light {
         matches!(self, Light::Point(_) | Light::Spot(_))
     }
 }
+
+/// `radiance` leaving a surface of normal `n` toward `w`: from the side `n`
+/// points to, or from both sides when `two_sided`. The rule every emitting
+/// shape (sphere, mesh, SDF) follows.
+#[inline]
+pub(crate) fn sided(radiance: Rgb, two_sided: bool, n: Vec3A, w: Vec3A) -> Rgb {
+    if two_sided || n.dot(w) > 0.0 {
+        radiance
+    } else {
+        Rgb::ZERO
+    }
+}
+
+/// `sin²θmax` and `1 − cos θmax` of the cone a sphere subtends from `p`, or
+/// `None` when `p` is within `margin` times its squared radius of the centre
+/// (inside). The difference is computed by its series for small cones, where
+/// `1 − cos` would cancel (pbrt-v4 `Sphere::Sample`, below sin² 1.5°).
+#[inline]
+pub(crate) fn sphere_cone(center: Vec3A, radius: f32, p: Vec3A, margin: f32) -> Option<(f32, f32)> {
+    let dc2 = (p - center).length_squared();
+    let r2 = radius * radius;
+    if dc2 <= r2 * margin {
+        return None;
+    }
+    let sin2_max = r2 / dc2;
+    let one_minus_cos = if sin2_max < 0.000_685_23 {
+        0.5 * sin2_max
+    } else {
+        1.0 - (1.0 - sin2_max).max(0.0).sqrt()
+    };
+    Some((sin2_max, one_minus_cos))
+}

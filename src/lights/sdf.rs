@@ -36,27 +36,13 @@ impl SdfLight {
     /// Radiance leaving a point of outward normal `n` toward `w`.
     #[inline]
     pub fn emitted(&self, n: Vec3A, w: Vec3A) -> Rgb {
-        if self.two_sided || n.dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Rgb::ZERO
-        }
+        super::sided(self.radiance, self.two_sided, n, w)
     }
 
     /// `1 − cos θmax` of the bounding sphere's cone from `p`; `None` inside it.
     #[inline]
     fn one_minus_cos(&self, p: Vec3A) -> Option<f32> {
-        let dc2 = (p - self.center).length_squared();
-        let r2 = self.radius * self.radius;
-        if dc2 <= r2 {
-            return None;
-        }
-        let s2 = r2 / dc2;
-        Some(if s2 < 0.000_685_23 {
-            0.5 * s2
-        } else {
-            1.0 - (1.0 - s2).sqrt()
-        })
+        super::sphere_cone(self.center, self.radius, p, 1.0).map(|(_, c)| c)
     }
 
     /// A direction toward the bounding sphere, and the emitting point the

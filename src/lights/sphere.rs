@@ -24,31 +24,14 @@ impl SphereLight {
     /// Radiance leaving a point of outward normal `n` toward `w`.
     #[inline]
     pub fn emitted(&self, n: Vec3A, w: Vec3A) -> Rgb {
-        if self.two_sided || n.dot(w) > 0.0 {
-            self.radiance
-        } else {
-            Rgb::ZERO
-        }
+        super::sided(self.radiance, self.two_sided, n, w)
     }
 
     /// `sin²θmax` and `1 − cos θmax` of the cone the sphere subtends from `p`,
-    /// or `None` when `p` is inside (or on) it. The difference is computed by
-    /// its series for small cones, where `1 − cos` would cancel (pbrt-v4
-    /// `Sphere::Sample`, below sin² 1.5°).
+    /// or `None` when `p` is inside (or on) it.
     #[inline]
     fn cone(&self, p: Vec3A) -> Option<(f32, f32)> {
-        let dc2 = (p - self.center).length_squared();
-        let r2 = self.radius * self.radius;
-        if dc2 <= r2 * (1.0 + 1e-5) {
-            return None;
-        }
-        let sin2_max = r2 / dc2;
-        let one_minus_cos = if sin2_max < 0.000_685_23 {
-            0.5 * sin2_max
-        } else {
-            1.0 - (1.0 - sin2_max).max(0.0).sqrt()
-        };
-        Some((sin2_max, one_minus_cos))
+        super::sphere_cone(self.center, self.radius, p, 1.0 + 1e-5)
     }
 
     /// From outside, uniform over the cone of directions the sphere subtends (its

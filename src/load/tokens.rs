@@ -70,22 +70,10 @@ pub(super) fn tokenize(src: &str) -> Vec<Token> {
 /// A nested RON block comment starting at `i`: the index after it, or an
 /// [`Tok::Unclosed`] token when it runs to the end.
 fn block_comment(b: &[u8], start: usize) -> (Option<Token>, usize) {
-    let (mut i, mut depth) = (start, 0);
-    while i < b.len() {
-        if b[i] == b'/' && b.get(i + 1) == Some(&b'*') {
-            depth += 1;
-            i += 2;
-        } else if b[i] == b'*' && b.get(i + 1) == Some(&b'/') {
-            depth -= 1;
-            i += 2;
-            if depth == 0 {
-                return (None, i);
-            }
-        } else {
-            i += 1;
-        }
+    match crate::syntax::lex::block_comment_end(b, start) {
+        Some(end) => (None, end),
+        None => (Some((Tok::Unclosed("/*"), start..start + 2)), b.len()),
     }
-    (Some((Tok::Unclosed("/*"), start..start + 2)), b.len())
 }
 
 /// A `"…"` string or `'…'` character starting at `start`.

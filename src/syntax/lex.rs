@@ -194,7 +194,9 @@ fn is_word_byte(c: u8) -> bool {
     c.is_ascii_alphanumeric() || matches!(c, b'_' | b'.' | b'+' | b'-') || c >= 0x80
 }
 
-fn block_comment_end(b: &[u8], mut i: usize) -> Option<usize> {
+/// The index just after the nested block comment starting at `i`, or
+/// `None` when it runs to the end (the loader's tokenizer uses it too).
+pub(crate) fn block_comment_end(b: &[u8], mut i: usize) -> Option<usize> {
     let mut depth = 0;
     while i < b.len() {
         if b[i] == b'/' && b.get(i + 1) == Some(&b'*') {

@@ -75,6 +75,12 @@ fn assert_agrees<B: Bxdf>(b: &B, wo: Vec3A, s: super::BsdfSample, what: &str) {
         !s.delta && s.eta == 1.0,
         "{what}: a reflection sample is neither delta nor refracted"
     );
+    assert_pdf_and_weight(b, wo, &s, what);
+}
+
+/// `pdf > 0`, `pdf == pdf(wo, wi)` and `weight == eval·|cos|/pdf` for one
+/// sample: the part of the agreement check every harness shares.
+pub(super) fn assert_pdf_and_weight<B: Bxdf>(b: &B, wo: Vec3A, s: &super::BsdfSample, what: &str) {
     assert!(
         s.pdf > 0.0 && s.weight.is_finite(),
         "{what}: pdf {} weight {}",

@@ -66,26 +66,7 @@ fn assert_agrees<B: Bxdf>(b: &B, ior: f32, wo: Vec3A, s: BsdfSample, what: &str)
         wo,
         s.wi
     );
-    assert!(
-        s.pdf > 0.0 && s.weight.is_finite(),
-        "{what}: pdf {} weight {}",
-        s.pdf,
-        s.weight
-    );
-    let pdf = b.pdf(wo, s.wi);
-    assert!(
-        (pdf - s.pdf).abs() <= 2e-3 * s.pdf,
-        "{what}: sample pdf {} but pdf(wo, wi) = {pdf} at wi = {}",
-        s.pdf,
-        s.wi
-    );
-    let want = b.eval(wo, s.wi) * s.wi.z.abs() / pdf;
-    let err = (want - s.weight).abs().max_element();
-    assert!(
-        err <= 2e-3 * want.max_element() + 1e-6,
-        "{what}: weight {} ≠ f·cos/pdf {want}",
-        s.weight
-    );
+    super::assert_pdf_and_weight(b, wo, &s, what);
 }
 
 fn check_generalised_reciprocity<B: Bxdf>(b: &B, ior: f32, rng: &mut Pcg32, what: &str) {
