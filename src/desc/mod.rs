@@ -19,6 +19,7 @@
 
 mod camera;
 mod color;
+mod display;
 mod emission;
 mod light;
 mod material;
@@ -26,8 +27,9 @@ mod object;
 mod sdf;
 mod transform;
 
-pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, SamplerDesc};
+pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc, SamplerDesc};
 pub use color::ColorDesc;
+pub use display::{FilterDesc, TonemapDesc};
 pub use emission::EmissionDesc;
 pub use light::LightDesc;
 pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
