@@ -124,7 +124,7 @@ impl Checker {
             FilterDesc::Box => {}
             FilterDesc::Gaussian { radius: r, sigma } => {
                 radius(self, r);
-                if !(sigma >= MIN_FILTER_SIGMA && sigma <= MAX_FILTER_RADIUS) {
+                if !(MIN_FILTER_SIGMA..=MAX_FILTER_RADIUS).contains(&sigma) {
                     self.push(
                         "film.filter.sigma",
                         format!("sigma {sigma} is outside [{MIN_FILTER_SIGMA}, {MAX_FILTER_RADIUS}]"),
@@ -156,7 +156,7 @@ impl Checker {
 
     pub(super) fn film(&mut self, f: &FilmDesc) {
         self.filter(&f.filter);
-        if !(f.exposure.abs() <= MAX_EXPOSURE) {
+        if !f.exposure.is_finite() || f.exposure.abs() > MAX_EXPOSURE {
             self.push(
                 "film.exposure",
                 format!(
