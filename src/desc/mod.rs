@@ -13,7 +13,11 @@
 //!     lights: [Point(position: (0, 3, 0), intensity: (10, 10, 10))],
 //!     objects: [Sphere(center: (0, 0, 0), radius: 1, material: "white")],
 //! )"#;
-//! let scene: ronray::desc::SceneDesc = ron::from_str(text).unwrap();
+//! // As the loader reads it: optional fields are written bare (`40`, not `Some(40)`).
+//! let scene: ronray::desc::SceneDesc = ron::Options::default()
+//!     .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+//!     .from_str(text)
+//!     .unwrap();
 //! assert_eq!(scene.objects.len(), 1);
 //! ```
 
