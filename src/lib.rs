@@ -14,6 +14,7 @@ pub mod cli;
 pub mod desc;
 pub mod diagnostic;
 pub mod farm;
+pub mod film;
 pub mod geometry;
 pub mod imageio;
 pub mod integrators;

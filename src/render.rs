@@ -269,9 +269,11 @@ impl Work<'_> {
                         let mut sum = ExactSum::ZERO;
                         for s in s0..s0 + spp {
                             let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
-                            let jitter = sampler.next_vec2();
+                            // The sample's place in the pixel, drawn from the
+                            // filter (`Box`: the two numbers themselves).
+                            let (offset, weight) = self.view.filter.sample(sampler.next_vec2());
                             let film_pos =
-                                Vec2::new((x as f32 + jitter.x) / w as f32, (y as f32 + jitter.y) / h as f32);
+                                Vec2::new((x as f32 + offset.x) / w as f32, (y as f32 + offset.y) / h as f32);
                             let ray = self.view.camera.ray(film_pos, aspect, sampler.next_vec2());
                             let li = self
                                 .view
@@ -280,7 +282,7 @@ impl Work<'_> {
                             // A non-finite sample (a numerical bug, caught by
                             // debug asserts) must not poison the pixel in release.
                             if li.is_finite() {
-                                sum.add_sample(li);
+                                sum.add_sample(if weight == 1.0 { li } else { li * weight });
                             }
                         }
                         px.push(finish(sum));

@@ -4,6 +4,8 @@
 //! query, and one scene can be rendered through several views.
 
 use crate::camera::Camera;
+use crate::film::Filter;
+use crate::imageio::Display;
 use crate::integrators::Integrator;
 use crate::sampler::SamplerKind;
 use std::path::{Path, PathBuf};
@@ -26,10 +28,14 @@ pub struct Film {
 /// Camera, film, integrator and output of one render.
 #[derive(Clone, Debug)]
 pub struct View {
-    /// The perspective camera, in world space.
+    /// The camera, in world space.
     pub camera: Camera,
     /// Image size and sampling.
     pub film: Film,
+    /// Where each camera sample lands around its pixel, and its weight.
+    pub filter: Filter,
+    /// Exposure, tone map and bit depth of PNG outputs (and the watch page).
+    pub display: Display,
     /// The light-transport estimator.
     pub integrator: Integrator,
     /// The scene's `film.output`, resolved against the scene file's folder;

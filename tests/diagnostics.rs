@@ -792,3 +792,50 @@ fn emissive_objects_and_environments_count_as_light() {
         "zero strength and zero emission are dark"
     );
 }
+
+// ---- Cameras, filters, exposure and tone maps (issue 15) ----
+
+#[test]
+fn lens_and_film_mistakes_are_located_at_their_fields() {
+    let (d, text) = diagnostics("lens_mistakes.ron");
+    let mut got: Vec<_> = d
+        .iter()
+        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
+        .collect();
+    got.sort_by_key(|&(_, line, column)| (line, column));
+    let want = [
+        ("camera.fov_y_degrees", 2, 64),
+        ("camera.projection.view_height", 2, 106),
+        ("film.filter.radius", 6, 34),
+        ("film.filter.b", 6, 40),
+        ("film.exposure", 7, 19),
+        ("film.png_bits", 8, 19),
+        ("film.output", 9, 17),
+    ]
+    .map(|(p, l, c)| (p.to_string(), l, c));
+    assert_eq!(got, want, "rendered:\n{text}");
+    let message = |path: &str| at(&d, path).message.clone();
+    assert!(message("camera.fov_y_degrees").contains("does nothing for an orthographic camera"));
+    assert!(message("film.filter.radius").contains("filter radius 0 is outside (0, 8]"));
+    assert!(message("film.exposure").contains("NaN"));
+    assert!(message("film.png_bits").contains("neither 8 nor 16"));
+}
+
+#[test]
+fn unknown_tonemap_suggests_the_closest_and_perspective_needs_a_field_of_view() {
+    let d = diagnostics_of(
+        "tonemap.ron",
+        "Scene(camera: (eye: (0, 0, 5), target: (0, 0, 0)), film: (tonemap: Agx))",
+    );
+    assert_eq!(
+        at(&d, "film.tonemap").help.as_deref(),
+        Some("did you mean `AgX`?"),
+        "{}",
+        list(&d)
+    );
+    assert!(
+        at(&d, "camera").message.contains("no `fov_y_degrees`"),
+        "{}",
+        list(&d)
+    );
+}

@@ -252,6 +252,10 @@ fn lsp_client_gets_diagnostics_hover_completion_and_definitions() {
     let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
     assert!(md.contains("Full vertical field of view"), "{md}");
     assert!(md.contains("range: ≥ 0, ≤ 180"), "{md}");
+    // Only perspective cameras need a field of view; `eye` every camera.
+    assert!(!md.contains("(required)"), "{md}");
+    let h = c.at("textDocument/hover", &s_uri, pos(&text, "eye", 0, 1));
+    let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
     assert!(md.contains("(required)"), "{md}");
     let h = c.at("textDocument/hover", &s_uri, pos(&text, "light_samples", 0, 1));
     let md = h["contents"]["value"].as_str().unwrap_or("").to_string();

@@ -120,7 +120,7 @@ fn set_overrides_nested_fields_and_rejects_missing_ones() {
     };
     let l = load_with(&p, &o).expect("valid overrides");
     assert_eq!(l.desc.film.spp, 3);
-    assert_eq!(l.desc.camera.fov_y_degrees, 30.0);
+    assert_eq!(l.desc.camera.fov_y_degrees, Some(30.0));
     let white = &l.desc.materials["white"];
     assert_eq!(format!("{white:?}"), "Lambert { albedo: Rgb([0.2, 0.2, 0.2]) }");
     // Typed: the CLI flag beats the file, `--spp` beats `--set film.spp`.

@@ -47,7 +47,8 @@ pub struct Cli {
 /// The commands; each is one file of `cli/`.
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Render a scene to PNG (8-bit sRGB) or EXR (linear float).
+    /// Render a scene to PNG (sRGB, exposed and tone mapped) or EXR, PFM or HDR
+    /// (linear float).
     Render {
         /// The scene file (RON, or JSON by its extension).
         scene: PathBuf,
@@ -229,16 +230,38 @@ pub struct RenderSettings {
     /// `--set film.spp=256 --set materials.floor.albedo=(0.2,0.2,0.2)`.
     #[arg(long = "set", value_name = "PATH=VALUE")]
     pub sets: Vec<String>,
+    /// Exposure of PNG outputs in stops (+1 doubles); `--set film.exposure=X`.
+    #[arg(long, allow_hyphen_values = true, value_name = "STOPS")]
+    pub exposure: Option<f32>,
+    /// Tone map of PNG outputs: Clamp, Reinhard, Aces or AgX; `--set
+    /// film.tonemap=NAME`.
+    #[arg(long, value_name = "NAME")]
+    pub tonemap: Option<String>,
+    /// Bits per channel of PNG outputs, 8 or 16; `--set film.png_bits=N`.
+    #[arg(long, value_name = "BITS")]
+    pub png_bits: Option<u8>,
 }
 
 impl RenderSettings {
-    /// The settings the loader applies to the scene.
+    /// The settings the loader applies to the scene. The display flags are
+    /// typed overrides, so the loader checks them like the scene's own
+    /// fields (an unknown tone map gets a suggestion).
     pub fn overrides(&self) -> Overrides {
+        let mut sets = self.sets.clone();
+        if let Some(e) = self.exposure {
+            sets.push(format!("film.exposure={e:?}"));
+        }
+        if let Some(t) = &self.tonemap {
+            sets.push(format!("film.tonemap={t}"));
+        }
+        if let Some(b) = self.png_bits {
+            sets.push(format!("film.png_bits={b}"));
+        }
         Overrides {
             spp: self.spp,
             size: self.size,
             seed: self.seed,
-            sets: self.sets.clone(),
+            sets,
         }
     }
 }

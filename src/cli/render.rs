@@ -3,7 +3,7 @@
 use super::{RenderSettings, USAGE, print_load_error, print_warnings};
 use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::{Existing, PieceSpec, Region, TileIndex, existing_piece, piece_meta, write_piece};
-use crate::imageio::{PixelRect, write_image};
+use crate::imageio::{PixelRect, write_image_with};
 use crate::load::{Loaded, load_with};
 use crate::render::{RenderOptions, RenderStats, TileDone, render_image, render_sums};
 use clap::Args;
@@ -115,9 +115,9 @@ pub(super) fn cmd_render(
         );
         return USAGE.into();
     }
-    if ext != "png" && ext != "exr" {
+    if !crate::imageio::WRITTEN_EXTENSIONS.contains(&ext.as_str()) {
         eprintln!(
-            "error: output {} must end in .png or .exr; nothing was written",
+            "error: output {} must end in .png, .exr, .pfm or .hdr; nothing was written",
             out.display()
         );
         return ExitCode::FAILURE;
@@ -194,7 +194,10 @@ pub(super) fn cmd_render(
         }
         None => {
             let (image, stats) = render_image(&loaded.scene, &loaded.view, &opts, &cancel, &report);
-            (write_image(&image, &out).map_err(|e| e.to_string()), stats)
+            (
+                write_image_with(&image, &out, &loaded.view.display).map_err(|e| e.to_string()),
+                stats,
+            )
         }
     };
     if let Err(e) = written {

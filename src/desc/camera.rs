@@ -1,9 +1,11 @@
 //! Camera, film and integrator settings.
 
 use super::V3;
+use super::display::{FilterDesc, TonemapDesc};
 use serde::{Deserialize, Serialize};
 
-/// A perspective camera looking from `eye` toward `target`.
+/// A camera looking from `eye` toward `target`: perspective (the default,
+/// with `fov_y_degrees`), orthographic or spherical by `projection`.
 /// Image x runs along `normalize(forward × up)` (to the right), image row 0 is
 /// at the top.
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
@@ -19,15 +21,42 @@ pub struct CameraDesc {
     /// or perpendicular to the view, but must not be parallel to `target − eye`.
     #[serde(default = "default_up")]
     pub up: V3,
-    /// Full vertical field of view, in degrees, in (0, 180).
+    /// Full vertical field of view, in degrees, in (0, 180); required by the
+    /// perspective projection, meaningless for the others.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(range(min = 0, max = 180))]
-    pub fov_y_degrees: f32,
-    /// Thin-lens aperture radius in scene units; 0 is a pinhole.
+    pub fov_y_degrees: Option<f32>,
+    /// How the image is formed: `Perspective` (default), `Orthographic(view_height:
+    /// ..)` or `Spherical`.
+    #[serde(default)]
+    pub projection: ProjectionDesc,
+    /// Thin-lens aperture radius in scene units; 0 is a pinhole (perspective only).
     #[serde(default)]
     pub aperture_radius: f32,
     /// Distance from `eye` to the plane in focus; defaults to |target − eye|.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub focus_distance: Option<f32>,
+}
+
+/// The camera's projection.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub enum ProjectionDesc {
+    /// Rays through the eye (a pinhole, or a thin lens with `aperture_radius`),
+    /// with the camera's `fov_y_degrees`.
+    #[default]
+    Perspective,
+    /// Parallel rays along the view: sizes do not shrink with distance. The
+    /// image shows a rectangle `view_height` scene units tall (and `view_height ×
+    /// width / height` wide) centred on `eye`, perpendicular to the view.
+    Orthographic {
+        /// Height of the rectangle seen, in scene units, > 0.
+        view_height: f32,
+    },
+    /// Every direction around `eye`, latitude–longitude (equirectangular), with
+    /// the environment map's mapping: the image centre looks at `target`, row 0
+    /// straight up along `up`, the seam is behind. Use a 2:1 image.
+    Spherical,
 }
 
 fn default_up() -> V3 {
@@ -53,13 +82,33 @@ pub struct FilmDesc {
     /// Seed of every random stream: same seed, same image.
     #[serde(default)]
     pub seed: u64,
-    /// Default output path (relative to the scene file); `.png` or `.exr`.
+    /// Default output path (relative to the scene file): `.png` (display-referred:
+    /// exposure and tone map applied, 8- or 16-bit sRGB), `.exr`, `.pfm` or `.hdr`
+    /// (scene-linear radiance, as rendered).
     /// Defaults to the scene's file name with `.png`, in the current folder.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub output: Option<String>,
     /// How sample positions are drawn.
     #[serde(default)]
     pub sampler: SamplerDesc,
+    /// Pixel filter: `Box` (default), `Gaussian(..)` or `Mitchell(..)`.
+    #[serde(default)]
+    pub filter: FilterDesc,
+    /// Exposure of PNG outputs in stops (default 0): +1 doubles the linear
+    /// values before tone mapping. EXR, PFM and HDR outputs stay as rendered.
+    #[serde(default)]
+    pub exposure: f32,
+    /// Tone map of PNG outputs: `Clamp` (default), `Reinhard`, `Aces` or `AgX`.
+    #[serde(default)]
+    pub tonemap: TonemapDesc,
+    /// Bits per channel of PNG outputs: 8 (default) or 16.
+    #[serde(default = "default_png_bits")]
+    #[schemars(range(min = 8, max = 16))]
+    pub png_bits: u8,
+}
+
+fn default_png_bits() -> u8 {
+    8
 }
 
 /// Sample generator; all are deterministic per (pixel, sample, seed).
@@ -93,6 +142,10 @@ impl Default for FilmDesc {
             seed: 0,
             output: None,
             sampler: SamplerDesc::default(),
+            filter: FilterDesc::default(),
+            exposure: 0.0,
+            tonemap: TonemapDesc::default(),
+            png_bits: default_png_bits(),
         }
     }
 }

@@ -13,12 +13,17 @@
 //!     lights: [Point(position: (0, 3, 0), intensity: (10, 10, 10))],
 //!     objects: [Sphere(center: (0, 0, 0), radius: 1, material: "white")],
 //! )"#;
-//! let scene: ronray::desc::SceneDesc = ron::from_str(text).unwrap();
+//! // As the loader reads it: optional fields are written bare (`40`, not `Some(40)`).
+//! let scene: ronray::desc::SceneDesc = ron::Options::default()
+//!     .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+//!     .from_str(text)
+//!     .unwrap();
 //! assert_eq!(scene.objects.len(), 1);
 //! ```
 
 mod camera;
 mod color;
+mod display;
 mod emission;
 mod light;
 mod material;
@@ -26,8 +31,9 @@ mod object;
 mod sdf;
 mod transform;
 
-pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, SamplerDesc};
+pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc, SamplerDesc};
 pub use color::ColorDesc;
+pub use display::{FilterDesc, TonemapDesc};
 pub use emission::EmissionDesc;
 pub use light::LightDesc;
 pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};

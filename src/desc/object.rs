@@ -16,7 +16,11 @@
 //!         Instance(mesh: "bunny", transform: [Translate((-1, 0, 0))]),
 //!     ],
 //! )"#;
-//! let scene: ronray::desc::SceneDesc = ron::from_str(text).unwrap();
+//! // As the loader reads it: optional fields are written bare (`40`, not `Some(40)`).
+//! let scene: ronray::desc::SceneDesc = ron::Options::default()
+//!     .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+//!     .from_str(text)
+//!     .unwrap();
 //! assert_eq!(scene.objects.len(), 4);
 //! ```
 

@@ -1,21 +1,28 @@
-//! Images in and out: a linear float RGB buffer, read from PNG/EXR/PFM,
-//! written to PNG (sRGB, 8-bit) or EXR (linear float) atomically, and
+//! Images in and out: a linear float RGB buffer, read from PNG/EXR/PFM/HDR,
+//! written to PNG (sRGB, 8- or 16-bit, exposed and tone mapped), EXR, PFM or
+//! HDR (linear float) atomically, and
 //! compared by metrics; [`PixelRect`] names a part of one and
 //! [`SampleSums`] holds its exact per-pixel sample sums.
 
+pub mod encode;
 pub mod metrics;
 pub mod read;
 pub mod rect;
 pub mod sample_sums;
+pub mod tonemap;
 pub mod write;
 
 pub use metrics::{Block, Comparison, blocks, compare};
 pub use read::read_image;
 pub use rect::PixelRect;
 pub use sample_sums::SampleSums;
-pub use write::{write_atomic, write_image};
+pub use tonemap::{Display, Tonemap};
+pub use write::{write_atomic, write_image, write_image_with};
 
 use crate::math::Rgb;
+
+/// Extensions [`write_image`] writes (and [`read_image`] reads), lower case.
+pub const WRITTEN_EXTENSIONS: [&str; 4] = ["png", "exr", "pfm", "hdr"];
 
 /// Linear RGB pixels, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,11 +126,11 @@ pub enum ImageError {
         reason: String,
     },
     /// The file name's extension is not an image format ronray handles.
-    #[error("unsupported image extension for {path} (use .png or .exr{pfm})", pfm = if *.reading { ", .pfm" } else { "" })]
+    #[error("unsupported image extension for {path} (use .png, .exr, .pfm or .hdr)")]
     Extension {
         /// The image file.
         path: std::path::PathBuf,
-        /// True when reading (which also accepts `.pfm`), false when writing.
+        /// True when reading, false when writing.
         reading: bool,
     },
 }

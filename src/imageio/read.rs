@@ -1,11 +1,12 @@
-//! Reading PNG (sRGB-decoded to linear), EXR and PFM (linear).
+//! Reading PNG (8- or 16-bit, sRGB-decoded to linear), EXR, PFM and
+//! Radiance HDR (linear).
 
 use super::{Image, ImageError, srgb_decode};
 use crate::math::Rgb;
 use std::path::Path;
 
 /// Reads `path` into linear RGB, choosing the format by extension: `.png`
-/// (sRGB-decoded), `.exr` or `.pfm` (linear as stored).
+/// (sRGB-decoded), `.exr`, `.pfm` or `.hdr` (linear as stored).
 pub fn read_image(path: &Path) -> Result<Image, ImageError> {
     let ext = path
         .extension()
@@ -22,7 +23,14 @@ pub fn read_image(path: &Path) -> Result<Image, ImageError> {
             read_pfm(&bytes).map_err(err)
         }
         "png" => {
-            let img = image::open(path).map_err(|e| err(e.to_string()))?.to_rgb8();
+            let img = image::open(path).map_err(|e| err(e.to_string()))?;
+            if matches!(
+                img.color().bits_per_pixel() / u16::from(img.color().channel_count()),
+                16
+            ) {
+                return Ok(decode_png16(&img.to_rgb16()));
+            }
+            let img = img.to_rgb8();
             let pixels = img
                 .pixels()
                 .map(|p| {
@@ -39,7 +47,7 @@ pub fn read_image(path: &Path) -> Result<Image, ImageError> {
                 pixels,
             })
         }
-        "exr" => {
+        "exr" | "hdr" => {
             let img = image::open(path).map_err(|e| err(e.to_string()))?.to_rgb32f();
             let pixels = img.pixels().map(|p| Rgb::new(p[0], p[1], p[2])).collect();
             Ok(Image {
@@ -52,6 +60,19 @@ pub fn read_image(path: &Path) -> Result<Image, ImageError> {
             path: path.to_path_buf(),
             reading: true,
         }),
+    }
+}
+
+/// A 16-bit PNG's pixels, sRGB-decoded.
+fn decode_png16(img: &image::ImageBuffer<image::Rgb<u16>, Vec<u16>>) -> Image {
+    let d = |v: u16| srgb_decode(f32::from(v) / 65535.0);
+    Image {
+        width: img.width(),
+        height: img.height(),
+        pixels: img
+            .pixels()
+            .map(|p| Rgb::new(d(p[0]), d(p[1]), d(p[2])))
+            .collect(),
     }
 }
 

@@ -2,13 +2,20 @@
 //! folder, then rename over the target, so a viewer never sees half an image
 //! and a failed write leaves the previous file untouched.
 
-use super::{Image, ImageError};
+use super::tonemap::Display;
+use super::{Image, ImageError, encode};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// Writes `img` to `path` atomically, choosing the format by extension: `.png`
-/// (clamped, 8-bit sRGB) or `.exr` (linear float).
+/// (clamped, 8-bit sRGB), `.exr`, `.pfm` or `.hdr` (linear).
 pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
+    write_image_with(img, path, &Display::default())
+}
+
+/// As [`write_image`], with `display` (exposure, tone map, bit depth)
+/// applied to PNG outputs; EXR, PFM and HDR outputs stay linear.
+pub fn write_image_with(img: &Image, path: &Path, display: &Display) -> Result<(), ImageError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -19,16 +26,9 @@ pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
         reason,
     };
     match ext.as_str() {
-        "png" => {
-            let bytes = super::to_srgb8(img);
-            let rgb = image::RgbImage::from_raw(img.width, img.height, bytes)
-                .ok_or_else(|| err("size mismatch".into()))?;
-            write_atomic(path, |w| {
-                image::DynamicImage::ImageRgb8(rgb)
-                    .write_to(w, image::ImageFormat::Png)
-                    .map_err(|e| e.to_string())
-            })
-        }
+        "png" => write_atomic(path, |w| encode::png(img, display, w)),
+        "pfm" => write_atomic(path, |w| encode::pfm(img, w)),
+        "hdr" => write_atomic(path, |w| encode::hdr(img, w)),
         "exr" => {
             if img.pixels.len() != img.width as usize * img.height as usize {
                 return Err(err("size mismatch".into()));

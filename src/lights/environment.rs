@@ -233,9 +233,10 @@ impl EnvironmentLight {
         Vec3A::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
     }
 
-    /// Image coordinates of environment-frame direction `d` (unit).
+    /// Image coordinates of environment-frame direction `d` (unit); the
+    /// spherical camera (`camera/spherical.rs`) inverts it.
     #[inline]
-    fn uv(d: Vec3A) -> Vec2 {
+    pub fn uv(d: Vec3A) -> Vec2 {
         let mut u = d.x.atan2(-d.z) / (2.0 * PI);
         if u < 0.0 {
             u += 1.0;

@@ -138,7 +138,8 @@ fn stand_in_camera() -> CameraDesc {
         eye: [0.0, 0.0, 1.0],
         target: [0.0; 3],
         up: [0.0, 1.0, 0.0],
-        fov_y_degrees: 40.0,
+        fov_y_degrees: Some(40.0),
+        projection: crate::desc::ProjectionDesc::Perspective,
         aperture_radius: 0.0,
         focus_distance: None,
     }

@@ -71,9 +71,13 @@ fn apply_one(tree: &Value, s: &str) -> Result<Value, Problem> {
     match serde_json::from_value::<SceneDesc>(next.clone()) {
         Ok(_) => Ok(next),
         Err(e) => {
-            let (why, _) = super::words::serde_message(&e.to_string());
-            Err(Problem::new(path, format!("`{text}` does not fit here: {why}"))
-                .help("check the value's type: numbers, `(r, g, b)` colours, `\"strings\"`"))
+            // The serde help (a close variant name) when there is one.
+            let (why, help) = super::words::serde_message(&e.to_string());
+            Err(
+                Problem::new(path, format!("`{text}` does not fit here: {why}")).help(help.unwrap_or_else(
+                    || "check the value's type: numbers, `(r, g, b)` colours, `\"strings\"`".into(),
+                )),
+            )
         }
     }
 }

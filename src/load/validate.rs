@@ -25,6 +25,14 @@ pub const MAX_COORD: f32 = 1e15;
 pub const MAX_RR_DEPTH: u32 = 1024;
 /// Largest accepted Whitted recursion depth.
 pub const MAX_DEPTH: u32 = 64;
+/// Largest pixel-filter radius, in pixels: wider filters only blur, and
+/// their samples stray far outside their pixel.
+pub const MAX_FILTER_RADIUS: f32 = 8.0;
+/// Smallest Gaussian filter deviation, in pixels: narrower ones fall between
+/// the sampling table's bins (64 per pixel).
+pub const MIN_FILTER_SIGMA: f32 = 0.05;
+/// Largest exposure magnitude, in stops (2⁶⁴ is far beyond any scene).
+pub const MAX_EXPOSURE: f32 = 64.0;
 
 /// Every problem of `scene`, found before anything is built: values out of
 /// range, unknown names, and files that are missing (paths resolve against

@@ -1,9 +1,16 @@
 //! Camera, film and integrator: their checks, and the [`View`] they build
 //! (what `render()` needs beside the scene).
 
-use super::validate::{Checker, MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_RESOLUTION, MAX_RR_DEPTH, MAX_SPP};
-use crate::camera::Camera;
-use crate::desc::{CameraDesc, FilmDesc, IntegratorDesc, SamplerDesc, SceneDesc};
+use super::validate::{
+    Checker, MAX_COORD, MAX_DEPTH, MAX_EXPOSURE, MAX_FILTER_RADIUS, MAX_LIGHT_SAMPLES, MAX_RESOLUTION,
+    MAX_RR_DEPTH, MAX_SPP, MIN_FILTER_SIGMA,
+};
+use crate::camera::{Camera, Projection};
+use crate::desc::{
+    CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc, SceneDesc, TonemapDesc,
+};
+use crate::film::{Filter, FilterKind};
+use crate::imageio::{Display, Tonemap};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
 use crate::sampler::SamplerKind;
 use crate::view::{Film, View};
@@ -35,13 +42,7 @@ impl Checker {
                 );
             }
         }
-        if !(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0) {
-            self.push(
-                "camera.fov_y_degrees",
-                format!("field of view {} is outside (0, 180)", c.fov_y_degrees),
-                "it is the full vertical angle in degrees; typical values are 30–90",
-            );
-        }
+        self.projection(c);
         if !(c.aperture_radius >= 0.0 && c.aperture_radius.is_finite()) {
             self.push(
                 "camera.aperture_radius",
@@ -58,7 +59,120 @@ impl Checker {
         }
     }
 
+    /// The projection and the fields that belong to it: a perspective camera
+    /// needs `fov_y_degrees`; the others take none of the lens fields.
+    fn projection(&mut self, c: &CameraDesc) {
+        match c.projection {
+            ProjectionDesc::Perspective => match c.fov_y_degrees {
+                None => self.push(
+                    "camera",
+                    "the camera has no `fov_y_degrees`",
+                    "a perspective camera needs its full vertical field of view in degrees, e.g. `fov_y_degrees: 40`; or choose `projection: Orthographic(view_height: ..)` or `Spherical`",
+                ),
+                Some(f) if !(f > 0.0 && f < 180.0) => self.push(
+                    "camera.fov_y_degrees",
+                    format!("field of view {f} is outside (0, 180)"),
+                    "it is the full vertical angle in degrees; typical values are 30–90",
+                ),
+                Some(_) => {}
+            },
+            ProjectionDesc::Orthographic { view_height } => {
+                if !(view_height > 0.0 && view_height <= MAX_COORD) {
+                    self.push(
+                        "camera.projection.view_height",
+                        format!("view height {view_height} is not a positive size"),
+                        "it is the height of the rectangle the image shows, in scene units, e.g. 2",
+                    );
+                }
+            }
+            ProjectionDesc::Spherical => {}
+        }
+        if c.projection != ProjectionDesc::Perspective {
+            let name = match c.projection {
+                ProjectionDesc::Spherical => "a spherical",
+                _ => "an orthographic",
+            };
+            let lens = [
+                ("fov_y_degrees", c.fov_y_degrees.is_some()),
+                ("aperture_radius", c.aperture_radius != 0.0),
+                ("focus_distance", c.focus_distance.is_some()),
+            ];
+            for (field, set) in lens {
+                if set {
+                    self.push(
+                        &format!("camera.{field}"),
+                        format!("`{field}` does nothing for {name} camera"),
+                        "remove it; field of view and depth of field belong to `Perspective`",
+                    );
+                }
+            }
+        }
+    }
+
+    /// The pixel filter's parameters.
+    fn filter(&mut self, f: &FilterDesc) {
+        let radius = |v: &mut Self, r: f32| {
+            if !(r > 0.0 && r <= MAX_FILTER_RADIUS) {
+                v.push(
+                    "film.filter.radius",
+                    format!("filter radius {r} is outside (0, {MAX_FILTER_RADIUS}]"),
+                    "it is the half-width in pixels: 1.5 for `Gaussian`, 2 for `Mitchell` are typical",
+                );
+            }
+        };
+        match *f {
+            FilterDesc::Box => {}
+            FilterDesc::Gaussian { radius: r, sigma } => {
+                radius(self, r);
+                if !(MIN_FILTER_SIGMA..=MAX_FILTER_RADIUS).contains(&sigma) {
+                    self.push(
+                        "film.filter.sigma",
+                        format!("sigma {sigma} is outside [{MIN_FILTER_SIGMA}, {MAX_FILTER_RADIUS}]"),
+                        "it is the standard deviation in pixels; 0.5 is typical (pbrt's default)",
+                    );
+                }
+            }
+            FilterDesc::Mitchell { radius: r, b, c } => {
+                radius(self, r);
+                self.range(
+                    "film.filter.b",
+                    b,
+                    0.0,
+                    1.0,
+                    "B",
+                    "B = C = ⅓ is Mitchell and Netravali's recommendation",
+                );
+                self.range(
+                    "film.filter.c",
+                    c,
+                    0.0,
+                    1.0,
+                    "C",
+                    "B = C = ⅓ is Mitchell and Netravali's recommendation",
+                );
+            }
+        }
+    }
+
     pub(super) fn film(&mut self, f: &FilmDesc) {
+        self.filter(&f.filter);
+        if !f.exposure.is_finite() || f.exposure.abs() > MAX_EXPOSURE {
+            self.push(
+                "film.exposure",
+                format!(
+                    "exposure {} is not a number of stops within ±{MAX_EXPOSURE}",
+                    f.exposure
+                ),
+                "it is in stops: +1 doubles the brightness of PNG outputs, −1 halves it; 0 leaves it",
+            );
+        }
+        if f.png_bits != 8 && f.png_bits != 16 {
+            self.push(
+                "film.png_bits",
+                format!("PNG bit depth {} is neither 8 nor 16", f.png_bits),
+                "write 16 for smooth gradients, or leave it out for 8",
+            );
+        }
         for (name, v) in [("width", f.width), ("height", f.height)] {
             if v == 0 || v > MAX_RESOLUTION {
                 self.push(
@@ -81,11 +195,11 @@ impl Checker {
                 .and_then(|e| e.to_str())
                 .unwrap_or("")
                 .to_ascii_lowercase();
-            if ext != "png" && ext != "exr" {
+            if !crate::imageio::WRITTEN_EXTENSIONS.contains(&ext.as_str()) {
                 self.push(
                     "film.output",
                     format!("output `{out}` has no supported extension"),
-                    "end it in `.png` (8-bit sRGB) or `.exr` (linear float)",
+                    "end it in `.png` (sRGB, tone mapped), or `.exr`, `.pfm` or `.hdr` (linear float)",
                 );
             }
             // A scene from someone else's repository must not write outside
@@ -154,7 +268,15 @@ impl Checker {
 /// The view of a checked scene; `base` resolves `film.output`.
 pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
     let c = &desc.camera;
-    let mut camera = Camera::look_at(c.eye.into(), c.target.into(), c.up.into(), c.fov_y_degrees);
+    let f = &desc.film;
+    let projection = match c.projection {
+        ProjectionDesc::Perspective => Projection::Perspective,
+        ProjectionDesc::Orthographic { view_height } => Projection::Orthographic { view_height },
+        ProjectionDesc::Spherical => Projection::Spherical { rows: f.height },
+    };
+    let fov = c.fov_y_degrees.unwrap_or(40.0);
+    let mut camera =
+        Camera::look_at(c.eye.into(), c.target.into(), c.up.into(), fov).with_projection(projection);
     camera.aperture_radius = c.aperture_radius;
     if let Some(f) = c.focus_distance {
         camera.focus_distance = f;
@@ -175,7 +297,21 @@ pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
             rr_depth,
         }),
     };
-    let f = &desc.film;
+    let filter = Filter::new(match f.filter {
+        FilterDesc::Box => FilterKind::Box,
+        FilterDesc::Gaussian { radius, sigma } => FilterKind::Gaussian { radius, sigma },
+        FilterDesc::Mitchell { radius, b, c } => FilterKind::Mitchell { radius, b, c },
+    });
+    let display = Display {
+        exposure: f.exposure,
+        tonemap: match f.tonemap {
+            TonemapDesc::Clamp => Tonemap::Clamp,
+            TonemapDesc::Reinhard => Tonemap::Reinhard,
+            TonemapDesc::Aces => Tonemap::Aces,
+            TonemapDesc::AgX => Tonemap::AgX,
+        },
+        png_bits: f.png_bits,
+    };
     View {
         camera,
         film: Film {
@@ -189,6 +325,8 @@ pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
                 SamplerDesc::Sobol => SamplerKind::Sobol,
             },
         },
+        filter,
+        display,
         integrator,
         output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
     }

@@ -184,7 +184,7 @@ fn specular_under_direct(desc: &SceneDesc) -> Vec<Problem> {
 /// A field of view under [`MIN_FOV_DEGREES`]; the help offers the radian
 /// reading when it would be a valid angle.
 fn narrow_fov(camera: &CameraDesc) -> Option<Problem> {
-    let f = camera.fov_y_degrees;
+    let f = camera.fov_y_degrees?;
     if f >= MIN_FOV_DEGREES {
         return None;
     }

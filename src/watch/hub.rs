@@ -4,6 +4,7 @@
 //! Only the latest event of each kind is kept: a browser that falls behind
 //! skips straight to the newest pass instead of replaying every one.
 
+use crate::imageio::{Display, Image};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard, PoisonError};
 use std::time::Duration;
 
@@ -34,8 +35,20 @@ impl Kind {
 pub struct Snapshot {
     pub seq: u64,
     pub events: [(u64, String); 3],
-    /// The latest pass as PNG, whatever format the output file is.
-    pub png: Option<Arc<Vec<u8>>>,
+    /// The latest pass, whatever format the output file is.
+    pub frame: Option<Arc<Frame>>,
+}
+
+/// A pass as the page shows it: the PNG at the scene's own display
+/// settings, and the linear image to encode again at another exposure.
+#[derive(Debug)]
+pub struct Frame {
+    /// PNG bytes at the scene's exposure and tone map (8-bit).
+    pub png: Vec<u8>,
+    /// The pass's linear pixels.
+    pub image: Image,
+    /// The scene's exposure and tone map.
+    pub display: Display,
 }
 
 #[derive(Default)]
@@ -49,13 +62,13 @@ impl Hub {
         self.state.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    pub fn publish(&self, kind: Kind, json: String, png: Option<Vec<u8>>) {
+    pub fn publish(&self, kind: Kind, json: String, frame: Option<Frame>) {
         let mut s = self.lock();
         s.seq += 1;
         let seq = s.seq;
         s.events[kind as usize] = (seq, json);
-        if let Some(png) = png {
-            s.png = Some(Arc::new(png));
+        if let Some(frame) = frame {
+            s.frame = Some(Arc::new(frame));
         }
         drop(s);
         self.changed.notify_all();

@@ -194,9 +194,16 @@ impl Session {
         self.cache.retain(&loaded.files);
         self.rearm(WatchSet::new(&loaded.files));
         let output = loaded.view.output_path(&self.scene, self.output.clone());
-        let ext = output.extension().and_then(|e| e.to_str()).unwrap_or("");
-        if !ext.eq_ignore_ascii_case("png") && !ext.eq_ignore_ascii_case("exr") {
-            let msg = format!("error: output {} must end in .png or .exr", output.display());
+        let ext = output
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        if !crate::imageio::WRITTEN_EXTENSIONS.contains(&ext.as_str()) {
+            let msg = format!(
+                "error: output {} must end in .png, .exr, .pfm or .hdr",
+                output.display()
+            );
             return self.reporter.problem(generation, &msg);
         }
         if let Some(input) = loaded.input_at(&output) {

@@ -7,8 +7,9 @@
 //! its job being cancelled; a cancelled job writes nothing more, so an
 //! invalid edit leaves the last good image on disk as it was.
 
+use super::hub::Frame;
 use super::status::{PassInfo, Reporter};
-use crate::imageio::{Image, PixelRect, write_image};
+use crate::imageio::{Display, Image, PixelRect, write_image_with};
 use crate::render::{RenderOptions, SampleSums, render_accumulate};
 use crate::scene::Scene;
 use crate::view::View;
@@ -100,11 +101,15 @@ fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
         done = target;
         // The same division `render` does, on the same sums.
         let image = sums.mean(done);
-        if let Err(e) = write_image(&image, &job.output) {
+        if let Err(e) = write_image_with(&image, &job.output, &job.view.display) {
             reporter.failed(&format!("{e}; watching for the next change"));
             return;
         }
-        let png = reporter.serving().then(|| encode_png(&image));
+        let frame = reporter.serving().then(|| Frame {
+            png: encode_png(&image, &job.view.display),
+            image,
+            display: job.view.display,
+        });
         let info = PassInfo {
             generation: job.generation,
             pass,
@@ -116,14 +121,14 @@ fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
             output: job.output.clone(),
             size: (film.width, film.height),
         };
-        reporter.pass_written(&info, png);
+        reporter.pass_written(&info, frame);
     }
 }
 
-/// The web page's copy of a pass: 8-bit sRGB like a PNG output file, even
-/// when the output is EXR.
-fn encode_png(img: &Image) -> Vec<u8> {
-    let bytes = crate::imageio::to_srgb8(img);
+/// The web page's copy of a pass: 8-bit sRGB through `display` (exposure
+/// and tone map) like a PNG output file, even when the output is EXR.
+pub fn encode_png(img: &Image, display: &Display) -> Vec<u8> {
+    let bytes = crate::imageio::encode::to_display8(img, display);
     let mut png = Vec::new();
     let encoder = image::codecs::png::PngEncoder::new(&mut png);
     let ok = image::ImageEncoder::write_image(

@@ -3,10 +3,13 @@
 //! Plain HTTP/1.1 on std's `TcpListener`, one thread per connection and
 //! `Connection: close`, which is all a page on loopback needs; a framework
 //! would dwarf the rest of watch mode. Endpoints: `/` (the page), `/image.png`
-//! (the latest pass), `/events` (server-sent events: `pass`, `diagnostics`,
+//! (the latest pass; `?exposure=STOPS` re-encodes it that many stops
+//! brighter than the scene's exposure, for the page's exposure control), `/events` (server-sent events: `pass`, `diagnostics`,
 //! `progress`, each JSON) and `/state` (the same, as one JSON object).
 
 use super::hub::{Hub, KINDS, Snapshot};
+use super::progressive::encode_png;
+use crate::imageio::Display;
 use std::io::{self, BufRead, BufReader, Read, Write};
 use std::net::{SocketAddr, TcpListener, TcpStream, ToSocketAddrs};
 use std::sync::Arc;
@@ -92,8 +95,19 @@ fn handle(mut stream: TcpStream, hub: &Hub) -> io::Result<()> {
     }
     match path {
         "/" | "/index.html" => respond(&mut stream, "200 OK", "text/html; charset=utf-8", PAGE.as_bytes()),
-        "/image.png" => match hub.snapshot().png {
-            Some(png) => respond(&mut stream, "200 OK", "image/png", &png),
+        "/image.png" => match hub.snapshot().frame {
+            Some(frame) => match exposure_of(&target) {
+                // The page's exposure control: stops added to the scene's.
+                Some(stops) if stops != 0.0 => {
+                    let display = Display {
+                        exposure: frame.display.exposure + stops,
+                        ..frame.display
+                    };
+                    let png = encode_png(&frame.image, &display);
+                    respond(&mut stream, "200 OK", "image/png", &png)
+                }
+                _ => respond(&mut stream, "200 OK", "image/png", &frame.png),
+            },
             None => respond(&mut stream, "404 Not Found", "text/plain", b"no image yet"),
         },
         "/state" => respond(
@@ -105,6 +119,22 @@ fn handle(mut stream: TcpStream, hub: &Hub) -> io::Result<()> {
         "/events" => events(stream, hub),
         _ => respond(&mut stream, "404 Not Found", "text/plain", b"not found"),
     }
+}
+
+/// Largest exposure offset the page may ask for, in stops.
+const MAX_PAGE_STOPS: f32 = 20.0;
+
+/// The `exposure=STOPS` query parameter of `target`, clamped to
+/// ±[`MAX_PAGE_STOPS`]; `None` when absent or not a number.
+fn exposure_of(target: &str) -> Option<f32> {
+    let query = target.split_once('?')?.1.split('#').next()?;
+    let value = query
+        .split('&')
+        .find_map(|kv| kv.strip_prefix("exposure="))?
+        .parse::<f32>()
+        .ok()
+        .filter(|x| x.is_finite())?;
+    Some(value.clamp(-MAX_PAGE_STOPS, MAX_PAGE_STOPS))
 }
 
 /// The request line's method and target, and the `Host` header; other
@@ -237,6 +267,56 @@ mod tests {
         assert!(get(addr, "/state", "localhost:8765").starts_with("HTTP/1.1 200"));
         assert!(get(addr, "/state", "[::1]:8765").starts_with("HTTP/1.1 200"));
         assert!(get(addr, "/state", "evil.example:8765").starts_with("HTTP/1.1 403"));
+    }
+
+    /// The page's exposure control: `?exposure=1` serves the pass one stop
+    /// brighter (linear values doubled before the sRGB encoding).
+    #[test]
+    fn image_exposure_parameter_re_exposes_the_latest_pass() {
+        use crate::imageio::{Image, srgb_decode};
+        let hub = Arc::new(Hub::default());
+        let mut image = Image::new(2, 1);
+        image.pixels[0] = crate::math::Rgb::splat(0.1);
+        image.pixels[1] = crate::math::Rgb::splat(0.3);
+        let display = Display::default();
+        let frame = super::super::hub::Frame {
+            png: encode_png(&image, &display),
+            image,
+            display,
+        };
+        hub.publish(super::super::hub::Kind::Pass, "{}".into(), Some(frame));
+        let addr = start("0", hub).expect("start");
+        let fetch = |path: &str| {
+            let mut s = TcpStream::connect(addr).expect("connect");
+            write!(s, "GET {path} HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n").expect("send");
+            let mut out = Vec::new();
+            s.read_to_end(&mut out).expect("read");
+            let body = out
+                .windows(4)
+                .position(|w| w == b"\r\n\r\n")
+                .expect("headers end")
+                + 4;
+            let img = image::load_from_memory(&out[body..]).expect("a PNG").to_rgb8();
+            [0, 1].map(|x| srgb_decode(f32::from(img.get_pixel(x, 0)[0]) / 255.0))
+        };
+        let plain = fetch("/image.png?v=1");
+        let brighter = fetch("/image.png?v=1&exposure=1");
+        let darker = fetch("/image.png?v=1&exposure=-1");
+        for (i, x) in [0.1f32, 0.3].into_iter().enumerate() {
+            assert!((plain[i] - x).abs() < 0.01, "plain {plain:?}");
+            assert!(
+                (brighter[i] - 2.0 * x).abs() < 0.01,
+                "+1 stop: {brighter:?}, expected {}",
+                2.0 * x
+            );
+            assert!(
+                (darker[i] - 0.5 * x).abs() < 0.01,
+                "−1 stop: {darker:?}, expected {}",
+                0.5 * x
+            );
+        }
+        assert_eq!(exposure_of("/image.png?v=3&exposure=nan"), None);
+        assert_eq!(exposure_of("/image.png?exposure=99"), Some(MAX_PAGE_STOPS));
     }
 
     /// 64 pages open `/events` and close: the server frees their

@@ -3,7 +3,7 @@
 //! line per event otherwise (for scripts and tests), and the same news as
 //! JSON for the web page.
 
-use super::hub::{Hub, Kind, json_str};
+use super::hub::{Frame, Hub, Kind, json_str};
 use crate::diagnostic::Report;
 use crate::load::LoadError;
 use std::io::Write;
@@ -71,9 +71,9 @@ impl Reporter {
         let _ = err.flush();
     }
 
-    fn publish(&self, kind: Kind, json: String, png: Option<Vec<u8>>) {
+    fn publish(&self, kind: Kind, json: String, frame: Option<Frame>) {
         if let Some(hub) = &self.hub {
-            hub.publish(kind, json, png);
+            hub.publish(kind, json, frame);
         }
     }
 
@@ -143,7 +143,7 @@ impl Reporter {
         }
     }
 
-    pub fn pass_written(&self, p: &PassInfo, png: Option<Vec<u8>>) {
+    pub fn pass_written(&self, p: &PassInfo, frame: Option<Frame>) {
         let version = self.version.fetch_add(1, Ordering::Relaxed) + 1;
         let json = format!(
             r#"{{"version":{version},"generation":{},"pass":{},"passes":{},"spp":{},"spp_total":{},"seconds":{:.3},"width":{},"height":{},"output":{}}}"#,
@@ -157,7 +157,7 @@ impl Reporter {
             p.size.1,
             json_str(&p.output.display().to_string())
         );
-        self.publish(Kind::Pass, json, png);
+        self.publish(Kind::Pass, json, frame);
         let state = if p.pass == p.passes { "done" } else { "rendering" };
         self.progress(state, p.pass, p.passes, p.spp, p.spp_total);
         self.line(&format!(

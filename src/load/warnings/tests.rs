@@ -105,15 +105,15 @@ fn no_light_counts_power_not_entries() {
 fn narrow_fov_offers_radians_only_when_they_make_sense() {
     let lit = "lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))]";
     let mut d = scene(lit);
-    d.camera.fov_y_degrees = MIN_FOV_DEGREES;
+    d.camera.fov_y_degrees = Some(MIN_FOV_DEGREES);
     assert!(warnings(&d).is_empty(), "5° itself is fine");
-    d.camera.fov_y_degrees = 4.0;
+    d.camera.fov_y_degrees = Some(4.0);
     let w = warnings(&d);
     assert_eq!(w.len(), 1);
     assert!(
         !w[0].help.as_deref().unwrap_or("").contains("radians"),
         "4 rad > 180°: {w:?}"
     );
-    d.camera.fov_y_degrees = 1.0;
+    d.camera.fov_y_degrees = Some(1.0);
     assert!(warnings(&d)[0].help.as_deref().unwrap_or("").contains("57.3"));
 }
