@@ -13,6 +13,7 @@
 //! (outward for reflection and shadows, inward for refraction); closer, the
 //! ray is already "hit" at its origin, or starts on the wrong side.
 
+use super::bounding_sphere::clip_to_sphere;
 use super::tree::Sdf;
 use crate::accel::Aabb;
 use crate::math::Ray;
@@ -75,9 +76,18 @@ pub struct SdfTrace {
 /// First hit of `ray` with the surface in `[t_min, t_max]`. `ray.d` need not
 /// be unit length; `t` is the ray parameter.
 pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams) -> SdfTrace {
-    let Some((t_start, t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
+    let Some((mut t_start, mut t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
         return SdfTrace { hit: None, steps: 0 };
     };
+    if let Some((c, r)) = sdf.bounding_sphere() {
+        // Rays that miss the ball never march; the others start at it.
+        match clip_to_sphere(c, r, ray.o, ray.d) {
+            Some((t0, t1)) if t0.max(t_start) <= t1.min(t_end) => {
+                (t_start, t_end) = (t0.max(t_start), t1.min(t_end));
+            }
+            _ => return SdfTrace { hit: None, steps: 0 },
+        }
+    }
     let exact = sdf.is_exact();
     let omega = if exact {
         params.over_relax
