@@ -9,7 +9,7 @@
 //! shifted, so the layout is depth-first and identical for any thread count.
 //! At the top levels, where `join` has not yet found work for every thread,
 //! binning and partitioning are themselves split over fixed-size chunks
-//! (pbrt-v4 and Embree do the same): the chunks, and so the tree, do not
+//! (as Embree's parallel partition does): the chunks, and so the tree, do not
 //! depend on the thread count.
 
 use glam::{Vec3A, Vec4};

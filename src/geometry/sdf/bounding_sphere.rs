@@ -145,7 +145,7 @@ mod tests {
         let (mut hits, mut misses) = (0, 0);
         for _ in 0..10_000 {
             let o = c + uniform_sphere(rng.next_vec2()) * 4.0;
-            let d = (uniform_sphere(rng.next_vec2()) * 0.8 + (c - o).normalize()) * 2.0;
+            let d = (uniform_sphere(rng.next_vec2()) * 0.5 + (c - o).normalize()) * 2.0;
             // Closest approach of the ray's line to the centre.
             let t_mid = (c - o).dot(d) / d.length_squared();
             let gap = (o + d * t_mid - c).length();

@@ -1,8 +1,9 @@
 //! Sphere tracing (Hart 1996, <https://doi.org/10.1007/s003710050084>): the
 //! one place where rays meet SDFs.
 //!
-//! The ray first clips `[t_min, t_max]` to [`Sdf::bounds`], then advances by
-//! the distance to the surface (times [`MarchParams::estimate_step`] when the
+//! The ray first clips `[t_min, t_max]` to [`Sdf::bounds`] and to
+//! [`Sdf::bounding_sphere`], then advances by the distance to the surface
+//! (over-relaxed for a bound, times [`MarchParams::estimate_step`] when the
 //! distance is only an estimate) until it is within the hit threshold
 //! [`MarchParams::eps_at`], which grows with the distance travelled like a
 //! pixel's cone, so far surfaces cost no more steps than near ones.
@@ -39,8 +40,12 @@ pub struct MarchParams {
     /// empty ball is taken back, so no surface is skipped; it saves steps
     /// where the ray runs close to a surface (measured: 29% on a torus).
     pub over_relax: f32,
-    /// Fraction of the distance stepped when [`Sdf::is_exact`] is false
-    /// (no over-relaxation: the estimate is not a bound to check against).
+    /// Fraction of the distance stepped when [`Sdf::is_exact`] is false.
+    /// No over-relaxation: the estimate is not a bound to check against, and
+    /// relaxing its `estimate_step` ball with the same check measured 5%
+    /// *more* steps on the Mandelbulb (2000 rays at 8 iterations: 32,292
+    /// plain, 34,022 relaxed), the taken-back steps costing more than the
+    /// long ones save.
     pub estimate_step: f32,
 }
 
