@@ -78,7 +78,7 @@ pub(super) fn clip_to_sphere(c: Vec3A, r: f32, o: Vec3A, d: Vec3A) -> Option<(f3
     // when the origin is far (pbrt-v4's sphere test).
     let perp = oc - d * (b / a);
     let disc = a * (r * r - perp.length_squared());
-    if !(disc >= 0.0) {
+    if disc.is_nan() || disc < 0.0 {
         return None;
     }
     // Stable roots: q = −(b + sign(b)·√disc), t = q/a and k/q.

@@ -104,7 +104,7 @@ pub(crate) fn pow8_step(w: Vec3A) -> Vec3A {
     // cos 8θ = 2 cos² 4θ − 1, times r⁸.
     let wy = -16.0 * y2 * k3 * k4 * k4 + k1 * k1;
     let rho = k3.sqrt();
-    if !(rho > 0.0) {
+    if rho.is_nan() || rho <= 0.0 {
         // On the polar axis sin θ = 0: no azimuthal part.
         return Vec3A::new(0.0, wy, 0.0);
     }
