@@ -1,8 +1,9 @@
 //! Sphere tracing (Hart 1996, <https://doi.org/10.1007/s003710050084>): the
 //! one place where rays meet SDFs.
 //!
-//! The ray first clips `[t_min, t_max]` to [`Sdf::bounds`], then advances by
-//! the distance to the surface (times [`MarchParams::estimate_step`] when the
+//! The ray first clips `[t_min, t_max]` to [`Sdf::bounds`] and to
+//! [`Sdf::bounding_sphere`], then advances by the distance to the surface
+//! (over-relaxed for a bound, times [`MarchParams::estimate_step`] when the
 //! distance is only an estimate) until it is within the hit threshold
 //! [`MarchParams::eps_at`], which grows with the distance travelled like a
 //! pixel's cone, so far surfaces cost no more steps than near ones.
@@ -13,6 +14,7 @@
 //! (outward for reflection and shadows, inward for refraction); closer, the
 //! ray is already "hit" at its origin, or starts on the wrong side.
 
+use super::bounding_sphere::clip_to_sphere;
 use super::tree::Sdf;
 use crate::accel::Aabb;
 use crate::math::Ray;
@@ -38,8 +40,12 @@ pub struct MarchParams {
     /// empty ball is taken back, so no surface is skipped; it saves steps
     /// where the ray runs close to a surface (measured: 29% on a torus).
     pub over_relax: f32,
-    /// Fraction of the distance stepped when [`Sdf::is_exact`] is false
-    /// (no over-relaxation: the estimate is not a bound to check against).
+    /// Fraction of the distance stepped when [`Sdf::is_exact`] is false.
+    /// No over-relaxation: the estimate is not a bound to check against, and
+    /// relaxing its `estimate_step` ball with the same check measured 5%
+    /// *more* steps on the Mandelbulb (2000 rays at 8 iterations: 32,292
+    /// plain, 34,022 relaxed), the taken-back steps costing more than the
+    /// long ones save.
     pub estimate_step: f32,
 }
 
@@ -75,9 +81,18 @@ pub struct SdfTrace {
 /// First hit of `ray` with the surface in `[t_min, t_max]`. `ray.d` need not
 /// be unit length; `t` is the ray parameter.
 pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams) -> SdfTrace {
-    let Some((t_start, t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
+    let Some((mut t_start, mut t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
         return SdfTrace { hit: None, steps: 0 };
     };
+    if let Some((c, r)) = sdf.bounding_sphere() {
+        // Rays that miss the ball never march; the others start at it.
+        match clip_to_sphere(c, r, ray.o, ray.d) {
+            Some((t0, t1)) if t0.max(t_start) <= t1.min(t_end) => {
+                (t_start, t_end) = (t0.max(t_start), t1.min(t_end));
+            }
+            _ => return SdfTrace { hit: None, steps: 0 },
+        }
+    }
     let exact = sdf.is_exact();
     let omega = if exact {
         params.over_relax

@@ -19,6 +19,7 @@
 //! with [`validate()`], then builds an [`Sdf`]; the renderer uses [`trace`],
 //! [`occluded`], [`normal`] and [`Sdf::bounds`] (for the BVH).
 
+pub mod bounding_sphere;
 pub mod bounds;
 pub mod fractal;
 pub mod march;

@@ -9,6 +9,7 @@
 //! 1-Lipschitz; a 1-Lipschitz function never exceeds the distance to its own
 //! zero set. (`tree_is_one_lipschitz` checks this numerically.)
 
+use super::bounding_sphere::bounding_sphere;
 use super::bounds::bounds_of;
 use super::fractal::{mandelbulb, menger};
 use super::node::SdfNode;
@@ -26,6 +27,8 @@ pub struct Sdf {
     is_exact: bool,
     /// World-space bounds of the surface, computed once for every trace.
     bounds: Aabb,
+    /// A ball holding the surface where the tree knows one (centre, radius).
+    sphere: Option<(Vec3A, f32)>,
 }
 
 impl Sdf {
@@ -54,11 +57,13 @@ impl Sdf {
         }
         let is_exact = !nodes.iter().any(|n| matches!(n, SdfNode::Mandelbulb { .. }));
         let bounds = bounds_of(&nodes, root).0;
+        let sphere = bounding_sphere(&nodes, root);
         Self {
             nodes,
             root,
             is_exact,
             bounds,
+            sphere,
         }
     }
 
@@ -79,6 +84,13 @@ impl Sdf {
     #[inline]
     pub fn bounds(&self) -> Aabb {
         self.bounds
+    }
+
+    /// A ball (centre, radius) holding the surface, for trees made of balls
+    /// (see `bounding_sphere.rs`); `None` when only [`Self::bounds`] is known.
+    #[inline]
+    pub fn bounding_sphere(&self) -> Option<(Vec3A, f32)> {
+        self.sphere
     }
 
     /// True when [`Self::distance`] never exceeds the true distance, so a ray

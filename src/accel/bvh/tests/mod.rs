@@ -262,6 +262,29 @@ fn bvh_build_is_deterministic() {
 }
 
 #[test]
+fn bvh_top_levels_are_identical_on_1_and_2_threads() {
+    // Over 2^16 references, so the root's binning and partition run over
+    // parallel chunks; the tree must not depend on how they were scheduled.
+    let tris = soup(8, 150_000, 1.0, Vec3A::ZERO, false);
+    let bounds: Vec<Aabb> = tris.iter().map(Tri::bounds).collect();
+    let on = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| Bvh::build(&bounds))
+    };
+    let (a, b) = (on(1), on(2));
+    assert!(
+        a.nodes == b.nodes && a.indices == b.indices,
+        "1 and 2 threads built different trees: {:?} vs {:?}",
+        a.stats(),
+        b.stats()
+    );
+    check_structure(&a, &bounds);
+}
+
+#[test]
 fn bvh_stats_are_plausible() {
     let tris = soup(10, 10_000, 1.0, Vec3A::ZERO, false);
     let bvh = build(&tris);
