@@ -58,7 +58,10 @@ struct Case {
 pub fn run(b: &SceneBench) -> Result<(), String> {
     let cases = find_cases(b.refs, b.scenes)?;
     if cases.is_empty() {
-        return Err(format!("no `<name>_ref.exr` or `<name>_ref.pfm` in {}", b.refs.display()));
+        return Err(format!(
+            "no `<name>_ref.exr` or `<name>_ref.pfm` in {}",
+            b.refs.display()
+        ));
     }
     let threads = b.settings.threads;
     let samplers: Vec<Option<&str>> = if b.samplers.is_empty() {
@@ -71,7 +74,12 @@ pub fn run(b: &SceneBench) -> Result<(), String> {
     out!("|---|---|---|---|---|---|---|---|---|");
     for case in &cases {
         let Some(scene) = &case.scene else {
-            out!("| {} | no ronray scene in {} or {} | | | | | | | |", case.name, b.refs.display(), b.scenes.display());
+            out!(
+                "| {} | no ronray scene in {} or {} | | | | | | | |",
+                case.name,
+                b.refs.display(),
+                b.scenes.display()
+            );
             continue;
         };
         for sampler in &samplers {
@@ -100,7 +108,10 @@ pub fn run(b: &SceneBench) -> Result<(), String> {
                 out!(
                     "| {} | {} | {spp} | {secs:.2} | {cpu_s:.2} | {:.3} | {:.3} | {whole:.5} | {} |",
                     case.name,
-                    sampler.map_or_else(|| format!("{:?} (scene)", loaded.view.film.sampler), str::to_string),
+                    sampler.map_or_else(
+                        || format!("{:?} (scene)", loaded.view.film.sampler),
+                        str::to_string
+                    ),
                     stats.samples as f64 / secs / 1e6,
                     stats.rays as f64 / secs / 1e6,
                     off.map_or_else(|| "no mask".to_string(), |e| format!("{e:.5}"))
@@ -122,7 +133,9 @@ fn find_cases(refs: &Path, scenes: &Path) -> Result<Vec<Case>, String> {
         // Prefer the EXR when both formats are there.
         for ext in ["_ref.exr", "_ref.pfm"] {
             if let Some(name) = file.strip_suffix(ext)
-                && !names.iter().any(|(n, p)| n == name && p.extension().is_some_and(|e| e == "exr"))
+                && !names
+                    .iter()
+                    .any(|(n, p)| n == name && p.extension().is_some_and(|e| e == "exr"))
             {
                 names.retain(|(n, _)| n != name);
                 names.push((name.to_string(), path.clone()));
@@ -138,7 +151,10 @@ fn find_cases(refs: &Path, scenes: &Path) -> Result<Vec<Case>, String> {
             let light = if mask_path.exists() {
                 let m = read_image(&mask_path).map_err(|e| format!("{}: {e}", mask_path.display()))?;
                 if (m.width, m.height) != (reference.width, reference.height) {
-                    return Err(format!("{}: mask size differs from the reference", mask_path.display()));
+                    return Err(format!(
+                        "{}: mask size differs from the reference",
+                        mask_path.display()
+                    ));
                 }
                 // 8-bit grey decoded to linear: 128 is about 0.22 (`ronray diff --mask`'s rule).
                 Some(m.pixels.iter().map(|p| p.x >= 0.2).collect())
@@ -161,7 +177,11 @@ fn twin(name: &str, refs: &Path, scenes: &Path) -> Option<PathBuf> {
     let alias = ALIASES.iter().find(|(n, _)| *n == name).map(|(_, a)| *a);
     [refs, scenes]
         .iter()
-        .flat_map(|dir| std::iter::once(name).chain(alias).map(move |n| dir.join(format!("{n}.ron"))))
+        .flat_map(|dir| {
+            std::iter::once(name)
+                .chain(alias)
+                .map(move |n| dir.join(format!("{n}.ron")))
+        })
         .find(|p| p.is_file())
 }
 
@@ -173,8 +193,14 @@ mod tests {
     fn twin_finds_aliases_and_prefers_the_reference_folder() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         let scenes = root.join("scenes");
-        assert_eq!(twin("cornell_diffuse", Path::new("/nonexistent"), &scenes), Some(scenes.join("cornell.ron")));
-        assert_eq!(twin("cornell_dof", Path::new("/nonexistent"), &scenes), Some(scenes.join("cornell_dof.ron")));
+        assert_eq!(
+            twin("cornell_diffuse", Path::new("/nonexistent"), &scenes),
+            Some(scenes.join("cornell.ron"))
+        );
+        assert_eq!(
+            twin("cornell_dof", Path::new("/nonexistent"), &scenes),
+            Some(scenes.join("cornell_dof.ron"))
+        );
         assert_eq!(twin("no_such_scene", Path::new("/nonexistent"), &scenes), None);
     }
 }

@@ -135,19 +135,34 @@ mod tests {
 
     /// A 2 × 1 rectangle in the plane y = 1, normal down, corner at (−1, 1, −0.5).
     fn rect_from(p: Vec3A) -> Option<SphericalRect> {
-        SphericalRect::new(p, Vec3A::new(-1.0, 1.0, -0.5), Vec3A::X, Vec3A::Z, Vec3A::NEG_Y, Vec2::new(2.0, 1.0))
+        SphericalRect::new(
+            p,
+            Vec3A::new(-1.0, 1.0, -0.5),
+            Vec3A::X,
+            Vec3A::Z,
+            Vec3A::NEG_Y,
+            Vec2::new(2.0, 1.0),
+        )
     }
 
     #[test]
     fn spherical_rect_solid_angle_matches_integral() {
         // Ω = ∫ cos θl / d² dA by a fine midpoint rule over the rectangle.
-        for p in [Vec3A::ZERO, Vec3A::new(0.9, 0.95, 0.3), Vec3A::new(3.0, 2.0, -4.0)] {
+        for p in [
+            Vec3A::ZERO,
+            Vec3A::new(0.9, 0.95, 0.3),
+            Vec3A::new(3.0, 2.0, -4.0),
+        ] {
             let r = rect_from(p).expect("off the plane");
             let n = 400;
             let mut want = 0.0f64;
             for i in 0..n {
                 for j in 0..n {
-                    let q = Vec3A::new(-1.0 + 2.0 * (i as f32 + 0.5) / n as f32, 1.0, -0.5 + (j as f32 + 0.5) / n as f32);
+                    let q = Vec3A::new(
+                        -1.0 + 2.0 * (i as f32 + 0.5) / n as f32,
+                        1.0,
+                        -0.5 + (j as f32 + 0.5) / n as f32,
+                    );
                     let d = q - p;
                     let d2 = d.length_squared();
                     want += (d.y.abs() / d2.sqrt() / d2) as f64 * 2.0 / (n * n) as f64;
@@ -175,8 +190,15 @@ mod tests {
         }
         // The x of u = (½, ·) splits Ω in halves.
         let mid = r.sample(Vec2::new(0.5, 0.5));
-        let left = SphericalRect::new(p, Vec3A::new(-1.0, 1.0, -0.5), Vec3A::X, Vec3A::Z, Vec3A::NEG_Y, Vec2::new(mid.x + 1.0, 1.0))
-            .expect("left part");
+        let left = SphericalRect::new(
+            p,
+            Vec3A::new(-1.0, 1.0, -0.5),
+            Vec3A::X,
+            Vec3A::Z,
+            Vec3A::NEG_Y,
+            Vec2::new(mid.x + 1.0, 1.0),
+        )
+        .expect("left part");
         assert!(
             (left.solid_angle / r.solid_angle - 0.5).abs() < 1e-3,
             "left of u.x = ½ holds {} of Ω",

@@ -182,7 +182,11 @@ fn cornell_light() -> QuadLight {
 impl QuadLight {
     /// The same light with its emitting side down (u and v swapped if needed).
     fn flipped_if_up(self) -> Self {
-        if self.n.y > 0.0 { QuadLight::new(self.corner, self.v, self.u, self.radiance) } else { self }
+        if self.n.y > 0.0 {
+            QuadLight::new(self.corner, self.v, self.u, self.radiance)
+        } else {
+            self
+        }
     }
 }
 
@@ -202,7 +206,10 @@ fn rect_light_irradiance_matches_polygon_formula_near_and_far() {
     ] {
         let want = polygon_irradiance(p, n, &verts, 1.0);
         let got = irradiance(&Light::Quad(q), p, n, 100_000);
-        assert!(((got - want as f64) / want as f64).abs() < 0.01, "at {p}: {got} vs {want}");
+        assert!(
+            ((got - want as f64) / want as f64).abs() < 0.01,
+            "at {p}: {got} vs {want}"
+        );
     }
 }
 
@@ -219,7 +226,9 @@ fn rect_light_sampling_has_lower_variance_than_area_sampling() {
         let (mut rng, mut s, mut s2) = (Pcg32::new(3, 1), 0.0f64, 0.0f64);
         let m = 20_000;
         for _ in 0..m {
-            let e = q.sample(p, rng.next_vec2()).map_or(0.0, |ls| (ls.wi.dot(n).max(0.0) / ls.pdf) as f64);
+            let e = q
+                .sample(p, rng.next_vec2())
+                .map_or(0.0, |ls| (ls.wi.dot(n).max(0.0) / ls.pdf) as f64);
             s += e;
             s2 += e * e;
         }
@@ -227,7 +236,10 @@ fn rect_light_sampling_has_lower_variance_than_area_sampling() {
         (s2 / m as f64 - mean * mean).sqrt() / mean
     };
     let (by_angle, by_area) = (spread(rect), spread(area_only));
-    assert!(by_angle < 0.5 * by_area, "relative std dev {by_angle} by solid angle vs {by_area} by area");
+    assert!(
+        by_angle < 0.5 * by_area,
+        "relative std dev {by_angle} by solid angle vs {by_area} by area"
+    );
 }
 
 #[test]
@@ -237,7 +249,11 @@ fn rect_light_pdf_integrates_to_one() {
     // from points where each branch (solid angle, area fallback) is taken.
     let q = cornell_light();
     let mut rng = Pcg32::new(21, 4);
-    for p in [Vec3A::new(0.1, -0.9, 0.2), Vec3A::new(0.3, 0.9, 0.1), Vec3A::new(3.0, -80.0, 1.0)] {
+    for p in [
+        Vec3A::new(0.1, -0.9, 0.2),
+        Vec3A::new(0.3, 0.9, 0.1),
+        Vec3A::new(3.0, -80.0, 1.0),
+    ] {
         let m = 100_000;
         let mut sum = 0.0f64;
         for _ in 0..m {
