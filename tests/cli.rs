@@ -205,3 +205,58 @@ fn new_writes_a_starter_scene_that_validates_and_renders() {
         "the starter is already formatted"
     );
 }
+
+#[test]
+fn bench_scenes_renders_each_reference_twin_and_reports_its_error() {
+    // A folder laid out like ../shared/refs: the 64² Cornell reference and
+    // mask, and a reference with no ronray twin.
+    let dir = tempdir();
+    let refs = root().join("tests/fixtures/refs");
+    std::fs::copy(
+        refs.join("cornell_diffuse_64.pfm"),
+        dir.path().join("cornell_diffuse_ref.pfm"),
+    )
+    .expect("copy");
+    std::fs::copy(
+        refs.join("cornell_diffuse_64.pfm"),
+        dir.path().join("no_twin_ref.pfm"),
+    )
+    .expect("copy");
+    let scenes = root().join("scenes");
+    let o = ronray(&[
+        "bench",
+        "--scenes",
+        path_str(dir.path()),
+        "--ronray-scenes",
+        path_str(&scenes),
+        "--spp",
+        "2,8",
+        "--sampler",
+        "Independent",
+        "--threads",
+        "2",
+    ]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "bench failed: {}{out}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let rows: Vec<Vec<&str>> = out
+        .lines()
+        .filter(|l| l.starts_with("| cornell_diffuse |"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    assert_eq!(rows.len(), 2, "one row per spp:\n{out}");
+    // Columns: scene, sampler, spp, s, CPU s, Msamples/s, Mrays/s, RMSE, off light.
+    let rmse = |r: &Vec<&str>| r[8].parse::<f64>().unwrap_or(f64::NAN);
+    assert!(
+        rmse(&rows[0]) > rmse(&rows[1]),
+        "more samples, less error:\n{out}"
+    );
+    assert!(
+        rows.iter().all(|r| r[9] == "no mask"),
+        "no mask was given:\n{out}"
+    );
+    assert!(out.contains("| no_twin | no ronray scene"), "{out}");
+}

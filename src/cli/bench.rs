@@ -123,7 +123,7 @@ pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
 
 /// User + system CPU time of this process (all threads), 10 ms ticks; NaN
 /// where `/proc` is missing.
-fn cpu_seconds() -> f64 {
+pub(super) fn cpu_seconds() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
     let f: Vec<&str> = stat.rsplit(')').next().unwrap_or("").split_whitespace().collect();
     f.get(11..13).map_or(f64::NAN, |t| {
@@ -132,7 +132,7 @@ fn cpu_seconds() -> f64 {
 }
 
 /// `/proc/loadavg`'s first three fields, or "unknown".
-fn load_average() -> String {
+pub(super) fn load_average() -> String {
     std::fs::read_to_string("/proc/loadavg")
         .ok()
         .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))

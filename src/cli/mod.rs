@@ -3,6 +3,7 @@
 
 mod assemble;
 mod bench;
+mod bench_scenes;
 mod check;
 mod diff;
 mod fmt;
@@ -199,14 +200,37 @@ pub enum Command {
         #[arg(long)]
         mask: Option<PathBuf>,
     },
-    /// Time BVH build and closest-hit throughput on an OBJ mesh.
+    /// Time BVH build and closest-hit throughput on an OBJ mesh, or (with
+    /// `--scenes DIR`) render the scenes that have a reference in DIR and
+    /// print speed and error against it.
     Bench {
         /// The Wavefront OBJ mesh to measure.
-        obj: PathBuf,
+        #[arg(required_unless_present = "scenes", conflicts_with = "scenes")]
+        obj: Option<PathBuf>,
         /// Threads for the multi-threaded figures (default: all cores; at
-        /// most 1024).
+        /// most 1024); with `--scenes`, the render's threads.
         #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
+        /// Folder of `<name>_ref.exr` references (and `<name>_emitter_mask.png`),
+        /// e.g. `../shared/refs`: render each one's ronray twin `<name>.ron`.
+        #[arg(long, value_name = "DIR")]
+        scenes: Option<PathBuf>,
+        /// With `--scenes`: where the ronray twins are looked up after DIR.
+        #[arg(long, value_name = "DIR", default_value = "scenes")]
+        ronray_scenes: PathBuf,
+        /// With `--scenes`: samples per pixel, comma-separated.
+        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..), default_value = "16,64,256")]
+        spp: Vec<u32>,
+        /// With `--scenes`: samplers to compare, comma-separated scene-file
+        /// names (`Independent,Sobol`); default each scene's own.
+        #[arg(long, value_delimiter = ',')]
+        sampler: Vec<String>,
+        /// With `--scenes`: seed of the random streams.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// With `--scenes`: typed override `path=value`, as for `render`.
+        #[arg(long = "set", value_name = "PATH=VALUE")]
+        sets: Vec<String>,
     },
 }
 
@@ -372,7 +396,32 @@ pub fn run(cli: Cli) -> ExitCode {
             max_rmse,
             mask,
         } => cmd_diff(&a, &b, heatmap.as_deref(), max_rmse, mask.as_deref()),
-        Command::Bench { obj, threads } => bench::run(&obj, threads).map_or_else(
+        Command::Bench {
+            obj,
+            threads,
+            scenes,
+            ronray_scenes,
+            spp,
+            sampler,
+            seed,
+            sets,
+        } => match (obj, scenes) {
+            (_, Some(refs)) => bench_scenes::run(&bench_scenes::SceneBench {
+                refs: &refs,
+                scenes: &ronray_scenes,
+                spp: &spp,
+                samplers: &sampler,
+                settings: &RenderSettings {
+                    threads,
+                    seed,
+                    sets,
+                    ..Default::default()
+                },
+            }),
+            (Some(obj), None) => bench::run(&obj, threads),
+            (None, None) => Err("name an OBJ mesh or `--scenes DIR`".into()),
+        }
+        .map_or_else(
             |e| {
                 eprintln!("error: {e}");
                 ExitCode::FAILURE

@@ -5,7 +5,7 @@
 //! | light | what emits | next-event estimation samples |
 //! |---|---|---|
 //! | `Point`, `Spot` | a point (delta) | its position |
-//! | `Quad` | a `Quad`/`Rect` light, or an emissive `Quad`/`Rect` object | uniformly by area |
+//! | `Quad` | a `Quad`/`Rect` light, or an emissive `Quad`/`Rect` object | rectangles uniformly in solid angle (spherical rectangles), other parallelograms by area |
 //! | `Sphere` | an emissive sphere | uniformly in the cone it subtends |
 //! | `Mesh` | the emissive triangles of a placed mesh (one material slot) | by area: a triangle by an alias table, then a uniform point |
 //! | `Sdf` | an emissive implicit surface | uniformly in its bounding sphere's cone, then marched |
@@ -23,6 +23,7 @@ pub mod power;
 pub mod quad;
 pub mod sdf;
 pub mod sphere;
+pub mod spherical_rect;
 pub mod spot;
 
 #[cfg(test)]
@@ -123,7 +124,7 @@ impl Light {
     #[inline]
     pub fn pdf(&self, p: Vec3A, wi: Vec3A, hit: &Hit) -> f32 {
         match self {
-            Light::Quad(l) => l.pdf(wi, hit.t),
+            Light::Quad(l) => l.pdf(p, wi, hit.t),
             Light::Sphere(l) => l.pdf(p, wi, hit.t, hit.ng),
             Light::Mesh(l) => l.pdf(wi, hit.t, hit.ng),
             Light::Sdf(l) => l.pdf(p),

@@ -1,10 +1,26 @@
 //! Parallelogram area light, one-sided (a `Quad`/`Rect` light) or two-sided
 //! (an emissive `Quad`/`Rect` object that asks for it).
+//!
+//! Rectangles (perpendicular edges, every `Rect`) are sampled uniformly in
+//! the solid angle they subtend ([`SphericalRect`]), other parallelograms and
+//! rectangles seen under a tiny or near-hemispherical solid angle uniformly by
+//! area. [`QuadLight::pdf`] makes the same choice from the same point, so MIS
+//! weighs each direction with the density that drew it.
 
 use super::LightSample;
+use super::spherical_rect::SphericalRect;
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
+
+/// Distance from a rectangle light's centre, in units of √area, beyond which
+/// it is sampled by area. Measured on the Cornell boxes (64², 32 spp, six
+/// seeds; callgrind at 64², 8 spp): solid-angle sampling everywhere lowered
+/// the RMSE off the light by 2.5% (diffuse, thin lens) and 0% (specular) for
+/// 24% more instructions per sample, within 2·√area by 0.2% for 3% more. So
+/// it is kept for points right at a light, where area sampling's d²/cos θl
+/// spread is worst, and costs one distance test elsewhere.
+const NEAR: f32 = 1.0;
 
 /// One-sided parallelogram `corner + s·u + t·v`, s,t ∈ [0, 1], emitting uniform
 /// radiance from the side `u × v` points to.
@@ -24,6 +40,9 @@ pub struct QuadLight {
     pub radiance: Rgb,
     /// Whether the back (against `n`) emits too.
     pub two_sided: bool,
+    /// Unit edges and their lengths when the edges are perpendicular (a
+    /// rectangle, sampled by solid angle); `None` for other parallelograms.
+    rect: Option<(Vec3A, Vec3A, Vec2)>,
 }
 
 impl QuadLight {
@@ -31,6 +50,10 @@ impl QuadLight {
     /// `radiance` in W/(m²·sr) toward `u × v`.
     pub fn new(corner: Vec3A, u: Vec3A, v: Vec3A, radiance: Rgb) -> Self {
         let c = u.cross(v);
+        let (lu, lv) = (u.length(), v.length());
+        // Perpendicular to f32 precision: the spherical parametrisation
+        // assumes right angles.
+        let rect = (u.dot(v).abs() <= 1e-5 * lu * lv).then(|| (u / lu, v / lv, Vec2::new(lu, lv)));
         Self {
             corner,
             u,
@@ -39,7 +62,20 @@ impl QuadLight {
             area: c.length(),
             radiance,
             two_sided: false,
+            rect,
         }
+    }
+
+    /// The light's rectangle seen from `p`, when it is one and solid-angle
+    /// sampling pays there: within [`NEAR`] · √area of its centre.
+    #[inline]
+    fn spherical(&self, p: Vec3A) -> Option<SphericalRect> {
+        let (ex, ey, len) = self.rect?;
+        let centre = self.corner + 0.5 * (self.u + self.v);
+        if (centre - p).length_squared() > NEAR * NEAR * self.area {
+            return None;
+        }
+        SphericalRect::new(p, self.corner, ex, ey, self.n, len).filter(SphericalRect::worth_it)
     }
 
     /// Radiance leaving the light toward direction `w` (from the light).
@@ -52,9 +88,14 @@ impl QuadLight {
         }
     }
 
-    /// Uniform by area, converted to solid angle: pdf = d² / (cos θl · A).
+    /// Uniform in solid angle (pdf = 1/Ω) for rectangles, else uniform by area
+    /// converted to solid angle (pdf = d² / (cos θl · A)).
     pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
-        let q = self.corner + u.x * self.u + u.y * self.v;
+        let sph = self.spherical(p);
+        let q = match &sph {
+            Some(s) => s.sample(u),
+            None => self.corner + u.x * self.u + u.y * self.v,
+        };
         let d = q - p;
         let dist2 = d.length_squared();
         let dist = dist2.sqrt();
@@ -69,17 +110,22 @@ impl QuadLight {
             p: q,
             n: self.n,
             li: self.radiance,
-            pdf: dist2 / (cos_l * self.area),
+            pdf: match sph {
+                Some(s) => 1.0 / s.solid_angle,
+                None => dist2 / (cos_l * self.area),
+            },
             delta: false,
         })
     }
 
-    /// Solid-angle density of hitting this light at distance `dist` along
-    /// `wi` (for MIS); matches [`QuadLight::sample`].
-    pub fn pdf(&self, wi: Vec3A, dist: f32) -> f32 {
+    /// Solid-angle density with which [`QuadLight::sample`] from `p` draws the
+    /// direction `wi` that hits this light at distance `dist` (for MIS).
+    pub fn pdf(&self, p: Vec3A, wi: Vec3A, dist: f32) -> f32 {
         let cos_l = self.facing(-wi.dot(self.n));
         if cos_l <= 0.0 {
             0.0
+        } else if let Some(s) = self.spherical(p) {
+            1.0 / s.solid_angle
         } else {
             dist * dist / (cos_l * self.area)
         }

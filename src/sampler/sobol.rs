@@ -17,6 +17,10 @@ pub fn sample_2d(i: u32) -> (u32, u32) {
 pub fn sample_2d_reversed(mut i: u32) -> (u32, u32) {
     // Dimension 0 is the van der Corput sequence: reversed, the index.
     let x = i;
+    // Up to 256 spp, dimension 1 from a table (1 KiB, stays in L1).
+    if let Some(&y) = DIM1_REVERSED.get(i as usize) {
+        return (x, y);
+    }
     // Dimension 1: generator matrix of the polynomial x + 1, whose columns
     // are built by v ← v ⊕ (v >> 1) from the top bit; reversed, v ← v ⊕
     // (v << 1) from the bottom one. Branch-free: the index bits are random.
@@ -30,6 +34,24 @@ pub fn sample_2d_reversed(mut i: u32) -> (u32, u32) {
     (x, y)
 }
 
+/// Dimension 1 of the first 256 points, bit-reversed: the loop of
+/// [`sample_2d_reversed`] run at compile time.
+static DIM1_REVERSED: [u32; 256] = {
+    let mut t = [0u32; 256];
+    let mut k = 0;
+    while k < 256 {
+        let (mut i, mut y, mut v) = (k as u32, 0u32, 1u32);
+        while i != 0 {
+            y ^= v & (i & 1).wrapping_neg();
+            i >>= 1;
+            v ^= v << 1;
+        }
+        t[k] = y;
+        k += 1;
+    }
+    t
+};
+
 /// Laine–Karras style hash acting as a nested uniform scramble on
 /// bit-reversed values: each bit is flipped depending only on the bits above
 /// it, which is exactly Owen scrambling.
@@ -39,14 +61,32 @@ pub fn owen_scramble(x: u32, seed: u32) -> u32 {
 }
 
 /// [`owen_scramble`] of the value whose reversed bits are `r`.
-#[inline]
+#[cfg(test)]
 pub fn owen_scramble_reversed(r: u32, seed: u32) -> u32 {
+    laine_karras(r, seed).reverse_bits()
+}
+
+/// Laine and Karras's hash: each bit of the result depends only on the bits
+/// below it (and the seed), so on reversed bits it is an Owen scramble.
+#[inline]
+fn laine_karras(r: u32, seed: u32) -> u32 {
     let mut v = r.wrapping_add(seed);
     v ^= v.wrapping_mul(0x6c50_b47c);
     v ^= v.wrapping_mul(0xb82f_1e52);
     v ^= v.wrapping_mul(0xc7af_e638);
     v ^= v.wrapping_mul(0x8d22_f6e6);
-    v.reverse_bits()
+    v
+}
+
+/// [`owen_scramble_reversed`] of `rx` and `ry` with seeds `sx`, `sy`: each
+/// scrambled as its own 32-bit lane (a carry from one into the other would
+/// break Owen's nesting), both bit-reversed by one 64-bit reversal, which
+/// costs what one 32-bit reversal does.
+#[inline]
+pub fn owen_scramble_reversed_2d(rx: u32, ry: u32, sx: u32, sy: u32) -> (u32, u32) {
+    // Reversing (y, x) as one u64 gives (reverse x, reverse y).
+    let both = ((laine_karras(ry, sy) as u64) << 32 | laine_karras(rx, sx) as u64).reverse_bits();
+    ((both >> 32) as u32, both as u32)
 }
 
 #[cfg(test)]
@@ -70,6 +110,20 @@ mod tests {
         };
         for i in (0..4096).chain([u32::MAX, 0x8000_0001, 123_456_789]) {
             assert_eq!(sample_2d(i), plain(i), "point {i}");
+        }
+    }
+
+    #[test]
+    fn scramble_2d_is_two_1d_scrambles() {
+        for (rx, ry, sx, sy) in [
+            (0u32, 0u32, 1u32, 2u32),
+            (123, 456, 0xdead_beef, 77),
+            (u32::MAX, 5, 9, u32::MAX),
+        ] {
+            assert_eq!(
+                owen_scramble_reversed_2d(rx, ry, sx, sy),
+                (owen_scramble_reversed(rx, sx), owen_scramble_reversed(ry, sy))
+            );
         }
     }
 
