@@ -1,0 +1,3 @@
+//! Image reading: PNG, EXR, HDR and PFM (`diff`, `check`) and textures.
+#![no_main]
+libfuzzer_sys::fuzz_target!(|data: &[u8]| ronray::fuzzing::image(data));
