@@ -46,7 +46,11 @@ fn too_large(limit: u64) -> Error {
 /// is resolved through its nearest existing ancestor.
 pub fn resolved(path: &Path) -> PathBuf {
     // `Path::new("")` is the parent of a bare file name: the current folder.
-    let path = if path.as_os_str().is_empty() { Path::new(".") } else { path };
+    let path = if path.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        path
+    };
     if let Ok(p) = std::fs::canonicalize(path) {
         return p;
     }

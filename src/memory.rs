@@ -19,7 +19,12 @@ const PROGRESSIVE_BYTES_PER_PIXEL: u64 = 2 * 48;
 /// (the scene's own memory — meshes, textures, BVHs — is already allocated
 /// when this is asked, and is not counted).
 pub fn film_bytes(width: u32, height: u32, progressive: bool) -> u64 {
-    let per_pixel = RENDER_BYTES_PER_PIXEL + if progressive { PROGRESSIVE_BYTES_PER_PIXEL } else { 0 };
+    let per_pixel = RENDER_BYTES_PER_PIXEL
+        + if progressive {
+            PROGRESSIVE_BYTES_PER_PIXEL
+        } else {
+            0
+        };
     u64::from(width) * u64::from(height) * per_pixel
 }
 
@@ -105,7 +110,10 @@ mod tests {
         let four_gib = 4 << 30;
         let e = check_film(16384, 16384, false, Some(four_gib)).expect_err("too large");
         let msg = e.to_string();
-        assert!(msg.contains("16384×16384") && msg.contains("GiB") && msg.contains("--max-memory"), "{msg}");
+        assert!(
+            msg.contains("16384×16384") && msg.contains("GiB") && msg.contains("--max-memory"),
+            "{msg}"
+        );
         assert!(check_film(64, 64, true, Some(four_gib)).is_ok());
     }
 }

@@ -50,15 +50,26 @@ fn check_reports_a_corrupt_or_wrong_size_golden_and_bless_keeps_it() {
         std::fs::write(&golden, &bytes).expect("write");
         let o = ronray_in(d, &["check", "scenes"]);
         assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-        assert!(text(&o).contains(expect) && !text(&o).contains("MISSING"), "{}", text(&o));
+        assert!(
+            text(&o).contains(expect) && !text(&o).contains("MISSING"),
+            "{}",
+            text(&o)
+        );
         let o = ronray_in(d, &["check", "scenes", "--bless"]);
         assert_eq!(o.status.code(), Some(1), "bless refuses: {}", text(&o));
         assert!(text(&o).contains("--force"), "{}", text(&o));
-        assert_eq!(std::fs::read(&golden).expect("read"), bytes, "the golden was kept");
+        assert_eq!(
+            std::fs::read(&golden).expect("read"),
+            bytes,
+            "the golden was kept"
+        );
     }
     let o = ronray_in(d, &["check", "scenes", "--bless", "--force"]);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(ronray_in(d, &["check", "scenes"]).status.success(), "the forced golden passes");
+    assert!(
+        ronray_in(d, &["check", "scenes"]).status.success(),
+        "the forced golden passes"
+    );
 }
 
 /// Two scenes of one name in different folders would write one gallery
@@ -71,7 +82,11 @@ fn gallery_refuses_two_scenes_of_the_same_name() {
     tiny_scene(d, "b", "room");
     let o = ronray_in(d, &["gallery", "a", "b", "--out", "g", "--width", "8"]);
     assert_eq!(o.status.code(), Some(1), "{}", text(&o));
-    assert!(text(&o).contains("a/room.ron") && text(&o).contains("b/room.ron"), "{}", text(&o));
+    assert!(
+        text(&o).contains("a/room.ron") && text(&o).contains("b/room.ron"),
+        "{}",
+        text(&o)
+    );
     assert!(!d.join("g/room.png").exists(), "nothing was rendered");
 }
 
@@ -122,13 +137,28 @@ fn a_film_larger_than_memory_is_refused_before_allocating() {
     tiny_scene(d, "scenes", "s");
     let o = ronray_in(
         d,
-        &["render", "scenes/s.ron", "--size", "16384x16384", "--max-memory", "1", "-o", "big.png"],
+        &[
+            "render",
+            "scenes/s.ron",
+            "--size",
+            "16384x16384",
+            "--max-memory",
+            "1",
+            "-o",
+            "big.png",
+        ],
     );
     let t = text(&o);
     assert_eq!(o.status.code(), Some(1), "{t}");
-    assert!(t.contains("16384×16384") && t.contains("GiB") && t.contains("--max-memory"), "{t}");
+    assert!(
+        t.contains("16384×16384") && t.contains("GiB") && t.contains("--max-memory"),
+        "{t}"
+    );
     assert!(!d.join("big.png").exists());
-    let o = ronray_in(d, &["render", "scenes/s.ron", "--max-memory", "1", "-o", "small.png"]);
+    let o = ronray_in(
+        d,
+        &["render", "scenes/s.ron", "--max-memory", "1", "-o", "small.png"],
+    );
     assert!(o.status.success(), "{}", text(&o));
 }
 
@@ -140,7 +170,16 @@ fn an_interrupted_render_leaves_no_temporary_file() {
     let d = dir.path();
     tiny_scene(d, "scenes", "s");
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_ronray"))
-        .args(["render", "scenes/s.ron", "--size", "2048x2048", "--spp", "64", "-o", "out.exr"])
+        .args([
+            "render",
+            "scenes/s.ron",
+            "--size",
+            "2048x2048",
+            "--spp",
+            "64",
+            "-o",
+            "out.exr",
+        ])
         .current_dir(d)
         .stderr(std::process::Stdio::null())
         .spawn()

@@ -200,7 +200,10 @@ fn fmt_keeps_the_schema_header_and_exact_numbers() {
         assert_eq!(out.matches("16777217").count(), 2, "{f}: {out}");
         assert!(out.contains("1e-50"), "{f}: {out}");
         if f == "a.ron" {
-            assert!(out.starts_with("#![schema = \"../schema/scene.schema.json\"]\n"), "{out}");
+            assert!(
+                out.starts_with("#![schema = \"../schema/scene.schema.json\"]\n"),
+                "{out}"
+            );
         }
     }
 }

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{root, ronray_in};
+use common::{ronray_in, root};
 use ronray::load::{Overrides, load_str};
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -15,7 +15,10 @@ const HEAD: &str = r#"camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees:
     lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))],"#;
 
 fn mkfifo(p: &Path) {
-    let ok = std::process::Command::new("mkfifo").arg(p).status().expect("mkfifo");
+    let ok = std::process::Command::new("mkfifo")
+        .arg(p)
+        .status()
+        .expect("mkfifo");
     assert!(ok.success());
 }
 
@@ -44,8 +47,16 @@ fn a_fifo_or_device_as_obj_or_mtl_is_refused_without_blocking() {
     }
     // The MTL is a FIFO: the mesh loads with a note, without blocking.
     let loaded = ronray::geometry::obj::load_obj_data(&d.join("uses_pipe.obj")).expect("loads");
-    assert!(loaded.warnings.iter().any(|w| w.contains("not a regular file")), "{:?}", loaded.warnings);
-    assert!(t0.elapsed() < Duration::from_secs(10), "blocked for {:?}", t0.elapsed());
+    assert!(
+        loaded.warnings.iter().any(|w| w.contains("not a regular file")),
+        "{:?}",
+        loaded.warnings
+    );
+    assert!(
+        t0.elapsed() < Duration::from_secs(10),
+        "blocked for {:?}",
+        t0.elapsed()
+    );
 }
 
 /// `bench` on an OBJ whose vertices are near ±3e38 (the BVH once indexed an
@@ -69,17 +80,25 @@ fn check_and_gallery_finish_their_summary_despite_a_hostile_scene() {
     let dir = tempfile::tempdir().expect("tmp");
     let d = dir.path();
     std::fs::create_dir_all(d.join("scenes")).expect("mkdir");
-    let good = format!("Scene({HEAD} test: (width: 8, spp: 1), objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"m\")])");
+    let good = format!(
+        "Scene({HEAD} test: (width: 8, spp: 1), objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"m\")])"
+    );
     let bad = good.replace("radius: 1,", "radius: 2e19,");
     std::fs::write(d.join("scenes/a_bad.ron"), bad).expect("w");
     std::fs::write(d.join("scenes/b_good.ron"), good).expect("w");
     let o = ronray_in(d, &["check", "scenes"]);
     let out = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(1), "{out}");
-    assert!(out.contains("a_bad.ron") && out.contains("INVALID") && out.contains("b_good.ron"), "{out}");
+    assert!(
+        out.contains("a_bad.ron") && out.contains("INVALID") && out.contains("b_good.ron"),
+        "{out}"
+    );
     let o = ronray_in(d, &["gallery", "scenes", "--out", "g", "--width", "8"]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("b_good"), "the good scene is in the gallery");
+    assert!(
+        String::from_utf8_lossy(&o.stdout).contains("b_good"),
+        "the good scene is in the gallery"
+    );
     assert!(d.join("g/b_good.png").exists());
 }
 
@@ -89,7 +108,11 @@ fn check_and_gallery_finish_their_summary_despite_a_hostile_scene() {
 fn non_ascii_text_in_an_include_or_json_is_located_without_panic() {
     let dir = tempfile::tempdir().expect("tmp");
     let d = dir.path();
-    std::fs::write(d.join("inc.ron"), "\u{feff}(materials: { \"é\": Lambert(albedo: (0.5,\u{a0}0.5 0.5)) })").expect("w");
+    std::fs::write(
+        d.join("inc.ron"),
+        "\u{feff}(materials: { \"é\": Lambert(albedo: (0.5,\u{a0}0.5 0.5)) })",
+    )
+    .expect("w");
     std::fs::write(d.join("s.ron"), format!("Scene({HEAD} include: [\"inc.ron\"])")).expect("w");
     std::fs::write(
         d.join("s.json"),
@@ -116,6 +139,7 @@ fn one_texture_spelled_two_ways_is_decoded_once() {
         HEAD.replace("materials: { \"m\": Lambert(albedo: (0.5, 0.5, 0.5)) },", "")
     );
     std::fs::create_dir_all(d.join("sub")).expect("mkdir");
-    let l = load_str(&d.join("s.ron"), &text, &Overrides::default()).unwrap_or_else(|e| panic!("{}", common::message(&e)));
+    let l = load_str(&d.join("s.ron"), &text, &Overrides::default())
+        .unwrap_or_else(|e| panic!("{}", common::message(&e)));
     assert_eq!(l.scene.textures.len(), 1, "one texture for three spellings");
 }

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{root, ronray_in};
+use common::{ronray_in, root};
 use ronray::load::{Overrides, load_str};
 use std::path::Path;
 
@@ -22,7 +22,11 @@ fn layout() -> tempfile::TempDir {
     let obj = root().join("tests/fixtures/hardening/block.obj");
     std::fs::copy(&obj, outside.join("block.obj")).expect("copy");
     std::fs::copy(&obj, inside.join("block.obj")).expect("copy");
-    std::fs::write(outside.join("secret.ron"), "materials: { \"stolen\": Lambert(albedo: (1, 1, 1)) }").expect("w");
+    std::fs::write(
+        outside.join("secret.ron"),
+        "(materials: { \"stolen\": Lambert(albedo: (1, 1, 1)) })",
+    )
+    .expect("w");
     std::fs::write(outside.join("secret.txt"), "password=hunter2\n").expect("w");
     std::os::unix::fs::symlink(outside.join("secret.ron"), inside.join("linked.ron")).expect("link");
     std::os::unix::fs::symlink(outside.join("block.obj"), inside.join("linked.obj")).expect("link");
@@ -30,10 +34,22 @@ fn layout() -> tempfile::TempDir {
     std::fs::copy(root().join("assets/sky_sun.exr"), outside.join("sky.exr")).expect("copy");
     // An OBJ inside whose MTL (and the MTL's texture) is outside.
     let text = std::fs::read_to_string(&obj).expect("read");
-    std::fs::write(inside.join("with_mtl.obj"), format!("mtllib ../outside/m.mtl\nusemtl red\n{text}")).expect("w");
+    std::fs::write(
+        inside.join("with_mtl.obj"),
+        format!("mtllib ../outside/m.mtl\nusemtl red\n{text}"),
+    )
+    .expect("w");
     std::fs::write(outside.join("m.mtl"), "newmtl red\nKd 1 0 0\n").expect("w");
-    std::fs::write(inside.join("m_in.mtl"), "newmtl red\nKd 1 0 0\nmap_Kd ../outside/tex.png\n").expect("w");
-    std::fs::write(inside.join("tex_mtl.obj"), format!("mtllib m_in.mtl\nusemtl red\n{text}")).expect("w");
+    std::fs::write(
+        inside.join("m_in.mtl"),
+        "newmtl red\nKd 1 0 0\nmap_Kd ../outside/tex.png\n",
+    )
+    .expect("w");
+    std::fs::write(
+        inside.join("tex_mtl.obj"),
+        format!("mtllib m_in.mtl\nusemtl red\n{text}"),
+    )
+    .expect("w");
     dir
 }
 
@@ -52,13 +68,44 @@ fn root_refuses_every_input_outside_it() {
     let inside = dir.path().join("inside");
     let m = r#"materials: { "m": Lambert(albedo: (0.5, 0.5, 0.5)) },"#;
     let cases = [
-        ("include", format!("Scene({HEAD} include: [\"linked.ron\"])"), "secret.ron"),
-        ("OBJ", format!("Scene({HEAD} {m} objects: [Mesh(file: \"linked.obj\", material: \"m\")])"), "block.obj"),
-        ("OBJ ..", format!("Scene({HEAD} {m} objects: [Mesh(file: \"../outside/block.obj\", material: \"m\")])"), "block.obj"),
-        ("texture", format!("Scene({HEAD} materials: {{ \"t\": Lambert(albedo: \"../outside/tex.png\") }}, objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"t\")])"), "tex.png"),
-        ("environment map", format!("Scene({HEAD} lights: [Environment(map: \"../outside/sky.exr\")])").replace("lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))],", ""), "sky.exr"),
-        ("MTL", format!("Scene({HEAD} objects: [Mesh(file: \"with_mtl.obj\")])"), "m.mtl"),
-        ("MTL texture", format!("Scene({HEAD} objects: [Mesh(file: \"tex_mtl.obj\")])"), "tex.png"),
+        (
+            "include",
+            format!("Scene({HEAD} include: [\"linked.ron\"])"),
+            "secret.ron",
+        ),
+        (
+            "OBJ",
+            format!("Scene({HEAD} {m} objects: [Mesh(file: \"linked.obj\", material: \"m\")])"),
+            "block.obj",
+        ),
+        (
+            "OBJ ..",
+            format!("Scene({HEAD} {m} objects: [Mesh(file: \"../outside/block.obj\", material: \"m\")])"),
+            "block.obj",
+        ),
+        (
+            "texture",
+            format!(
+                "Scene({HEAD} materials: {{ \"t\": Lambert(albedo: \"../outside/tex.png\") }}, objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"t\")])"
+            ),
+            "tex.png",
+        ),
+        (
+            "environment map",
+            format!("Scene({HEAD} lights: [Environment(map: \"../outside/sky.exr\")])")
+                .replace("lights: [Point(position: (0, 3, 0), intensity: (1, 1, 1))],", ""),
+            "sky.exr",
+        ),
+        (
+            "MTL",
+            format!("Scene({HEAD} objects: [Mesh(file: \"with_mtl.obj\")])"),
+            "m.mtl",
+        ),
+        (
+            "MTL texture",
+            format!("Scene({HEAD} objects: [Mesh(file: \"tex_mtl.obj\")])"),
+            "tex.png",
+        ),
     ];
     for (what, text, named) in cases {
         let scene = inside.join("s.ron");
@@ -71,7 +118,12 @@ fn root_refuses_every_input_outside_it() {
             shown.contains("outside") && shown.contains(named),
             "{what}: {shown}"
         );
-        let located = e.report().expect("diagnostics").diagnostics.iter().any(|d| d.line > 0);
+        let located = e
+            .report()
+            .expect("diagnostics")
+            .diagnostics
+            .iter()
+            .any(|d| d.line > 0);
         assert!(located, "{what}: not located: {shown}");
         if what != "include" {
             assert!(
@@ -81,12 +133,30 @@ fn root_refuses_every_input_outside_it() {
         }
     }
     // The scene file itself, from the command line.
-    let o = ronray_in(dir.path(), &["validate", "outside/secret.ron", "--root", "inside"]);
+    let o = ronray_in(
+        dir.path(),
+        &["validate", "outside/secret.ron", "--root", "inside"],
+    );
     assert_eq!(o.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("outside --root"), "{o:?}");
-    let ok = format!("Scene({HEAD} objects: [Mesh(file: \"block.obj\", material: \"m\")], materials: {{ \"m\": Lambert(albedo: (0.5, 0.5, 0.5)) }})");
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("outside --root"),
+        "{o:?}"
+    );
+    let ok = format!(
+        "Scene({HEAD} objects: [Mesh(file: \"block.obj\", material: \"m\")], materials: {{ \"m\": Lambert(albedo: (0.5, 0.5, 0.5)) }})"
+    );
     std::fs::write(inside.join("ok.ron"), ok).expect("w");
-    let o = ronray_in(dir.path(), &["render", "inside/ok.ron", "-o", "inside/ok.png", "--root", "inside"]);
+    let o = ronray_in(
+        dir.path(),
+        &[
+            "render",
+            "inside/ok.ron",
+            "-o",
+            "inside/ok.png",
+            "--root",
+            "inside",
+        ],
+    );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
@@ -109,17 +179,28 @@ fn an_include_of_any_readable_file_does_not_echo_its_content() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{inc}: {err}");
         assert!(err.contains(expect), "{inc}: {err}");
-        assert!(!err.contains("hunter2") && !err.contains("root:") && !err.contains("stolen"), "{inc} echoed: {err}");
+        assert!(
+            !err.contains("hunter2") && !err.contains("root:") && !err.contains("stolen"),
+            "{inc} echoed: {err}"
+        );
     }
     // A non-UTF-8 fragment beside the scene: refused, none of it shown.
     std::fs::write(inside.join("binary.ron"), b"materials: \xff\xfe secret \x80").expect("w");
-    std::fs::write(inside.join("s.ron"), format!("Scene({HEAD} include: [\"binary.ron\"])")).expect("w");
+    std::fs::write(
+        inside.join("s.ron"),
+        format!("Scene({HEAD} include: [\"binary.ron\"])"),
+    )
+    .expect("w");
     let o = ronray_in(&inside, &["validate", "s.ron"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1));
     assert!(err.contains("UTF-8") && !err.contains("secret"), "{err}");
     // --root widens where includes may come from.
-    std::fs::write(inside.join("s.ron"), format!("Scene({HEAD} include: [\"../outside/secret.ron\"])")).expect("w");
+    std::fs::write(
+        inside.join("s.ron"),
+        format!("Scene({HEAD} include: [\"../outside/secret.ron\"])"),
+    )
+    .expect("w");
     let o = ronray_in(dir.path(), &["validate", "inside/s.ron", "--root", "."]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
@@ -139,9 +220,18 @@ fn validate_lists_inputs_and_outputs_resolved() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let real = |p: &Path| std::fs::canonicalize(p).expect("exists").display().to_string();
-    assert!(out.contains(&format!("reads  {}", real(&inside.join("s.ron")))), "{out}");
-    assert!(out.contains(&format!("reads  {}", real(&dir.path().join("outside/block.obj")))), "the link is resolved: {out}");
-    assert!(out.contains(&format!("writes {}", real(&inside).to_string() + "/out/o.png")), "{out}");
+    assert!(
+        out.contains(&format!("reads  {}", real(&inside.join("s.ron")))),
+        "{out}"
+    );
+    assert!(
+        out.contains(&format!("reads  {}", real(&dir.path().join("outside/block.obj")))),
+        "the link is resolved: {out}"
+    );
+    assert!(
+        out.contains(&format!("writes {}", real(&inside).to_string() + "/out/o.png")),
+        "{out}"
+    );
     let o = ronray_in(&inside, &["render", "s.ron"]);
     assert!(String::from_utf8_lossy(&o.stderr).contains("wrote"), "{o:?}");
 }

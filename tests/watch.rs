@@ -441,7 +441,11 @@ fn watch_survives_hostile_edits_and_renders_the_next_good_one() {
     }
     let before = changes(&w.log());
     std::thread::sleep(SETTLE);
-    assert_eq!(changes(&w.log()), before, "the output-as-texture edit reloads for ever");
+    assert_eq!(
+        changes(&w.log()),
+        before,
+        "the output-as-texture edit reloads for ever"
+    );
     assert_eq!(w.image(), good, "a refused edit touched the image");
     std::fs::write(w.path("scene.ron"), scene("0.2, 0.3, 0.9", 0.4, "tri.obj")).expect("fix");
     w.wait_finals(2);

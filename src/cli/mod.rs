@@ -357,7 +357,15 @@ pub fn run(cli: Cli) -> ExitCode {
             settings,
             piece,
             stats,
-        } => cmd_render(&scene, output, &settings, &piece, stats, root.as_deref(), cli.max_memory),
+        } => cmd_render(
+            &scene,
+            output,
+            &settings,
+            &piece,
+            stats,
+            root.as_deref(),
+            cli.max_memory,
+        ),
         Command::Assemble { pieces, output } => cmd_assemble(&pieces, &output),
         Command::Validate {
             scenes,

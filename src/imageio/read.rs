@@ -66,9 +66,16 @@ pub fn decode_image(bytes: &[u8], ext: &str) -> Result<Image, String> {
             })
             .collect()
     } else {
-        img.to_rgb32f().pixels().map(|p| Rgb::new(p[0], p[1], p[2])).collect()
+        img.to_rgb32f()
+            .pixels()
+            .map(|p| Rgb::new(p[0], p[1], p[2]))
+            .collect()
     };
-    Ok(Image { width, height, pixels })
+    Ok(Image {
+        width,
+        height,
+        pixels,
+    })
 }
 
 /// Decodes `bytes` (format guessed when `None`) refusing, from the header

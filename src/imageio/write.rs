@@ -144,12 +144,18 @@ pub fn write_atomic(
         {
             use std::os::unix::fs::PermissionsExt;
             let mode = std::fs::metadata(&target).map_or(0o644, |m| m.permissions().mode() & 0o7777);
-            let _ = tmp.as_file().set_permissions(std::fs::Permissions::from_mode(mode));
+            let _ = tmp
+                .as_file()
+                .set_permissions(std::fs::Permissions::from_mode(mode));
         }
         Ok(())
     })();
     let tmp_path = tmp.path().to_path_buf();
-    let result = written.and_then(|()| tmp.persist(&target).map(drop).map_err(|e| err(e.error.to_string())));
+    let result = written.and_then(|()| {
+        tmp.persist(&target)
+            .map(drop)
+            .map_err(|e| err(e.error.to_string()))
+    });
     pending(&tmp_path, false);
     result
 }
@@ -236,8 +242,17 @@ mod tests {
         let link = dir.path().join("link.png");
         std::os::unix::fs::symlink("real/image.png", &link).expect("symlink");
         write_image(&Image::new(2, 2), &link).expect("write through the link");
-        assert!(std::fs::symlink_metadata(&link).expect("meta").file_type().is_symlink());
-        assert_ne!(std::fs::read(&real).expect("read"), b"old", "the target was written");
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .expect("meta")
+                .file_type()
+                .is_symlink()
+        );
+        assert_ne!(
+            std::fs::read(&real).expect("read"),
+            b"old",
+            "the target was written"
+        );
         assert!(leftovers(dir.path()).is_empty() && leftovers(&real_dir).is_empty());
     }
 }

@@ -120,7 +120,10 @@ pub fn compose(
         done: HashSet::new(),
         fence: match root {
             Some(r) => (r.to_path_buf(), "the --root folder"),
-            None => (path.parent().unwrap_or(Path::new(".")).to_path_buf(), "the scene's folder"),
+            None => (
+                path.parent().unwrap_or(Path::new(".")).to_path_buf(),
+                "the scene's folder",
+            ),
         },
     };
     let stack = vec![canonical(path)];
@@ -314,7 +317,10 @@ impl Composer {
     /// or `.json` file, or outside the fence (symlinks followed). Refused
     /// before reading, so nothing of it is shown.
     fn not_a_fragment(&mut self, full: &Path, at: &Site) -> bool {
-        let ext = full.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let ext = full
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
         if !matches!(ext.as_deref(), Some("ron" | "json")) {
             let msg = format!("included file {} is not a scene file", full.display());
             let help = "include only .ron or .json scene fragments; the file is not read".to_string();

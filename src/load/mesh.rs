@@ -68,7 +68,10 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
             bake(&mut data, world_from_object);
             flatten = data.mesh.triangle_count() <= FLATTEN_MAX;
             data.mesh.prepare();
-            (push_mesh(ctx, data, file, &format!("{path}.file")), Affine3A::IDENTITY)
+            (
+                push_mesh(ctx, data, file, &format!("{path}.file")),
+                Affine3A::IDENTITY,
+            )
         }
         ObjectDesc::Instance { mesh, .. } => {
             let Some(l) = shared(ctx, mesh) else {

@@ -147,7 +147,11 @@ impl MtlMaterials {
         if let Some(t) = self.textures_by_path.get(path) {
             return *t;
         }
-        if let Some(why) = self.root.as_deref().and_then(|r| crate::files::outside_root(r, path)) {
+        if let Some(why) = self
+            .root
+            .as_deref()
+            .and_then(|r| crate::files::outside_root(r, path))
+        {
             self.refused.push(format!("MTL texture {why}"));
             return None;
         }

@@ -208,10 +208,11 @@ fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<(SceneDesc, C
     let mut desc = parsed.desc;
     let mut found = parsed.diagnostics;
     let root = overrides.root.as_deref();
-    let composition = super::include::compose(path, text, parsed.gaps, &mut desc, root).map_err(|mut r| {
-        r.diagnostics.append(&mut found);
-        r
-    })?;
+    let composition =
+        super::include::compose(path, text, parsed.gaps, &mut desc, root).map_err(|mut r| {
+            r.diagnostics.append(&mut found);
+            r
+        })?;
     found.extend(composition.diagnostics.iter().cloned());
     let bad_sets = super::set::apply_sets(&mut desc, &overrides.sets)
         .err()

@@ -158,7 +158,11 @@ impl Checker {
             return;
         }
         let full = self.base.join(file);
-        if let Some(why) = self.root.as_deref().and_then(|r| crate::files::outside_root(r, &full)) {
+        if let Some(why) = self
+            .root
+            .as_deref()
+            .and_then(|r| crate::files::outside_root(r, &full))
+        {
             self.push(
                 path,
                 format!("{what} {why}"),
