@@ -95,7 +95,7 @@ pub fn parse_obj_data(
     };
     let mtl_errors = std::cell::RefCell::new(Vec::new());
     let material_loader = |name: &Path| match mtl(name) {
-        Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(b)),
+        Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(complete_colours(&b))),
         Err(e) => {
             mtl_errors.borrow_mut().push(e);
             Err(tobj::LoadError::OpenFileFailed)
@@ -204,6 +204,34 @@ pub fn parse_obj_data(
         materials,
         warnings,
     })
+}
+
+/// MTL text with every colour line (`Ka`, `Kd`, `Ks`, `Ke`) given three
+/// values: the format lets `g b` default to `r`, and tobj panics on fewer
+/// than three (found by the `obj` fuzz target). A colour line with no value
+/// is dropped, so the material keeps its default.
+fn complete_colours(mtl: &[u8]) -> Vec<u8> {
+    let text = String::from_utf8_lossy(mtl);
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let mut words = line.split_whitespace();
+        let key = words.next().unwrap_or("");
+        if !matches!(key, "Ka" | "Kd" | "Ks" | "Ke") {
+            out.push_str(line);
+            continue;
+        }
+        let values: Vec<&str> = words.collect();
+        match values.len() {
+            0 => {}
+            1 | 2 => {
+                let r = values[0];
+                let g = values.get(1).copied().unwrap_or(r);
+                out.push_str(&format!("{key} {r} {g} {r}\n"));
+            }
+            _ => out.push_str(line),
+        }
+    }
+    out.into_bytes()
 }
 
 /// Room for `vertices` more vertices and `triangles` more triangles, or an
