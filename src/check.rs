@@ -41,6 +41,13 @@ pub struct CheckOptions {
     pub sets: Vec<String>,
     /// Replaces every scene's `test.tolerance`.
     pub tolerance: Option<f64>,
+    /// With `bless`, also replace a golden that is corrupt or of another
+    /// size ([`Outcome::BadGolden`]); without it such a golden is kept, since
+    /// it may be a file someone put there by mistake or a size change that
+    /// deserves a look.
+    pub force: bool,
+    /// `--root`: inputs outside it are refused (see [`Overrides::root`]).
+    pub root: Option<PathBuf>,
 }
 
 /// What checking one scene against its golden image found.
@@ -70,6 +77,16 @@ pub enum Outcome {
         /// make it the golden.
         new: PathBuf,
     },
+    /// A golden file that is there but cannot serve: it does not decode
+    /// (`corrupt golden: …`) or its size is not the render's (`golden is
+    /// 64×48, render is 64×64`). A failure; `--bless` replaces it only with
+    /// `--force`.
+    BadGolden {
+        /// What is wrong with it, one sentence.
+        reason: String,
+        /// Where the new render was written (`golden/<name>.new.png`).
+        new: PathBuf,
+    },
     /// Golden written by `--bless`.
     Blessed {
         /// Score against the previous golden, if there was one.
@@ -96,7 +113,7 @@ impl CheckResult {
     pub fn failed(&self) -> bool {
         matches!(
             self.outcome,
-            Outcome::Fail { .. } | Outcome::Missing { .. } | Outcome::Invalid(_)
+            Outcome::Fail { .. } | Outcome::Missing { .. } | Outcome::BadGolden { .. } | Outcome::Invalid(_)
         )
     }
 }
@@ -147,12 +164,23 @@ pub fn render_test(
     threads: Option<usize>,
     sets: &[String],
 ) -> Result<(Image, TestDesc), LoadError> {
+    render_test_in(scene, threads, sets, None)
+}
+
+/// As [`render_test`], refusing inputs outside `root` (`--root`).
+pub fn render_test_in(
+    scene: &Path,
+    threads: Option<usize>,
+    sets: &[String],
+    root: Option<&Path>,
+) -> Result<(Image, TestDesc), LoadError> {
     let (test_sets, scene_sets): (Vec<String>, Vec<String>) = sets
         .iter()
         .cloned()
         .partition(|s| s.trim_start().starts_with("test"));
     let with_sets = Overrides {
         sets: scene_sets,
+        root: root.map(Path::to_path_buf),
         ..Default::default()
     };
     let full = load_with(scene, &with_sets)?;
@@ -195,15 +223,53 @@ fn remove_by_products(golden: &Path) {
     }
 }
 
-/// Checks one scene; with `bless`, a failed or missing golden is rewritten.
+/// What is at a scene's golden path.
+enum Golden {
+    /// Nothing: the golden is missing.
+    Absent,
+    /// A golden of the render's size.
+    Usable(Image),
+    /// A file that does not decode or has another size: why.
+    Bad(String),
+}
+
+fn golden_state(golden: &Path, img: &Image) -> Golden {
+    if std::fs::symlink_metadata(golden).is_err() {
+        return Golden::Absent;
+    }
+    match read_image(golden) {
+        Err(e) => Golden::Bad(format!("corrupt golden: {e}")),
+        Ok(g) if (g.width, g.height) != (img.width, img.height) => Golden::Bad(format!(
+            "golden is {}×{}, render is {}×{}",
+            g.width, g.height, img.width, img.height
+        )),
+        Ok(g) => Golden::Usable(g),
+    }
+}
+
+/// Checks one scene; with `bless`, a failed or missing golden is rewritten
+/// (a corrupt or wrong-size one only with `force`).
 pub fn check_scene(scene: &Path, opts: &CheckOptions) -> CheckResult {
     let start = Instant::now();
     let golden = golden_path(scene);
-    let outcome = match render_test(scene, opts.threads, &opts.sets) {
+    let outcome = match render_test_in(scene, opts.threads, &opts.sets, opts.root.as_deref()) {
         Err(e) => Outcome::Invalid(e),
         Ok((img, t)) => {
             let tolerance = opts.tolerance.unwrap_or(t.tolerance as f64);
-            let previous = read_image(&golden).ok();
+            let previous = match golden_state(&golden, &img) {
+                Golden::Usable(g) => Some(g),
+                Golden::Absent => None,
+                Golden::Bad(_) if opts.bless && opts.force => None,
+                Golden::Bad(reason) => {
+                    let new = by_product(&golden, "new.png");
+                    let _ = write_image(&img, &new);
+                    return CheckResult {
+                        scene: scene.to_path_buf(),
+                        outcome: Outcome::BadGolden { reason, new },
+                        time: start.elapsed(),
+                    };
+                }
+            };
             let score = previous.as_ref().and_then(|g| score(&img, g).ok());
             match (score, opts.bless) {
                 (Some(s), _) if s.worst <= tolerance => {
@@ -263,6 +329,7 @@ pub fn summary(results: &[CheckResult]) -> String {
             Outcome::Pass { score, tolerance } => ("ok", figures(score), format!("{tolerance:.4}")),
             Outcome::Fail { score, tolerance, .. } => ("FAIL", figures(score), format!("{tolerance:.4}")),
             Outcome::Missing { .. } => ("MISSING", dash(), "-".into()),
+            Outcome::BadGolden { .. } => ("BAD", dash(), "-".into()),
             Outcome::Blessed { score } => ("blessed", score.as_ref().map_or_else(dash, figures), "-".into()),
             Outcome::Invalid(_) => ("INVALID", dash(), "-".into()),
         };

@@ -180,3 +180,30 @@ fn fmt_cli_check_diff_json_and_safe_write() {
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("drops comments"));
 }
+
+/// `fmt` once dropped the `#![schema]` header without `--drop-comments`
+/// and rounded `16777217` (not an `f32`) and `1e-50` (below the smallest
+/// `f32`) silently: the layout printer keeps every spelling and the header,
+/// in RON and JSON alike.
+#[test]
+fn fmt_keeps_the_schema_header_and_exact_numbers() {
+    let dir = tempfile::tempdir().expect("tmp");
+    let d = dir.path();
+    let ron = "#![schema = \"../schema/scene.schema.json\"]\nScene(camera:(eye:(0,1,16777217),target:(0,0,1e-50),fov_y_degrees:40),film:(seed:16777217))\n";
+    let json = "{\"camera\":{\"eye\":[0,1,16777217],\"target\":[0,0,1e-50],\"fov_y_degrees\":40},\"film\":{\"seed\":16777217}}\n";
+    std::fs::write(d.join("a.ron"), ron).expect("write");
+    std::fs::write(d.join("a.json"), json).expect("write");
+    for f in ["a.ron", "a.json"] {
+        let o = ronray_in(d, &["fmt", f]);
+        assert!(o.status.success(), "{f}: {}", String::from_utf8_lossy(&o.stderr));
+        let out = std::fs::read_to_string(d.join(f)).expect("read");
+        assert_eq!(out.matches("16777217").count(), 2, "{f}: {out}");
+        assert!(out.contains("1e-50"), "{f}: {out}");
+        if f == "a.ron" {
+            assert!(
+                out.starts_with("#![schema = \"../schema/scene.schema.json\"]\n"),
+                "{out}"
+            );
+        }
+    }
+}

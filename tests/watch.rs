@@ -404,3 +404,50 @@ fn watch_prints_warnings_and_still_renders() {
     );
     assert_eq!(w.image(), w.reference(), "and the scene renders as written");
 }
+
+/// Hostile edits (issue 13) neither kill watch mode nor stop it rendering:
+/// a syntax error beside a byte-order mark and a non-breaking space (the
+/// diagnostic printer once panicked there), an instance scaled by 2e19
+/// (once a panic in the BVH), and the output named as a texture the scene
+/// reads (once a reload loop for ever). Each is reported and the next good
+/// save renders.
+#[test]
+fn watch_survives_hostile_edits_and_renders_the_next_good_one() {
+    let w = Watch::start();
+    let good = w.image();
+    let base = scene("0.8, 0.2, 0.2", 0.4, "tri.obj");
+    let non_ascii = format!("\u{feff}{}", base.replace("radius: 0.4,", "radius:\u{a0}0.4 «,"));
+    let huge = base.replace(
+        "Mesh(file: \"tri.obj\", material: \"grey\"),",
+        "Mesh(file: \"tri.obj\", material: \"grey\", transform: [Scale((2e19, 2e19, 2e19))]),",
+    );
+    let texture_is_output = base.replace(
+        "\"grey\": Lambert(albedo: (0.6, 0.6, 0.6))",
+        "\"grey\": Lambert(albedo: \"out.png\")",
+    );
+    assert!(huge != base && texture_is_output != base);
+    for (k, edit) in [non_ascii, huge, texture_is_output].into_iter().enumerate() {
+        std::fs::write(w.path("scene.ron"), edit).expect("edit");
+        w.wait_until("the edit's diagnostics", |log| {
+            log.iter().filter(|l| l.contains("error")).count() > k
+        });
+        let log = w.settle();
+        assert!(
+            !log.iter().any(|l| l.contains("panicked")),
+            "edit {k} panicked:\n{}",
+            log.join("\n")
+        );
+        assert_eq!(finals(&log), 1, "edit {k} rendered:\n{}", log.join("\n"));
+    }
+    let before = changes(&w.log());
+    std::thread::sleep(SETTLE);
+    assert_eq!(
+        changes(&w.log()),
+        before,
+        "the output-as-texture edit reloads for ever"
+    );
+    assert_eq!(w.image(), good, "a refused edit touched the image");
+    std::fs::write(w.path("scene.ron"), scene("0.2, 0.3, 0.9", 0.4, "tri.obj")).expect("fix");
+    w.wait_finals(2);
+    assert_eq!(w.image(), w.reference());
+}

@@ -15,7 +15,7 @@
 //! the code does when it gets the cores it asked for.
 
 use crate::camera::Camera;
-use crate::geometry::obj::load_obj;
+use crate::geometry::obj::load_obj_data_in;
 use crate::geometry::ray_sets::incoherent_rays;
 use crate::math::Ray;
 use glam::{Vec2, Vec3A};
@@ -31,7 +31,10 @@ macro_rules! out {
 }
 
 /// Runs the benchmark and prints a table; the error names the file.
-pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
+pub fn run(path: &Path, threads: Option<usize>, root: Option<&Path>) -> Result<(), String> {
+    if let Some(why) = root.and_then(|r| crate::files::outside_root(r, path)) {
+        return Err(format!("OBJ file {why}"));
+    }
     let n = threads.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let pool = |t: usize| {
         rayon::ThreadPoolBuilder::new()
@@ -41,7 +44,7 @@ pub fn run(path: &Path, threads: Option<usize>) -> Result<(), String> {
     };
     let (p1, pn) = (pool(1)?, pool(n)?);
     let t0 = Instant::now();
-    let raw = load_obj(path)?;
+    let raw = load_obj_data_in(path, root)?.mesh;
     out!(
         "{}: {} triangles, parsed in {:.0} ms; load {}",
         path.display(),

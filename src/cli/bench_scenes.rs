@@ -43,6 +43,8 @@ pub struct SceneBench<'a> {
     pub samplers: &'a [String],
     /// Threads, seed and `--set` overrides.
     pub settings: &'a RenderSettings,
+    /// `--root DIR`: inputs outside it are refused.
+    pub root: Option<&'a Path>,
 }
 
 /// A reference image found in the folder, its mask, and the scene to render.
@@ -93,6 +95,7 @@ pub fn run(b: &SceneBench) -> Result<(), String> {
                     size: Some((case.reference.width, case.reference.height)),
                     seed: b.settings.seed,
                     sets,
+                    root: b.root.map(Path::to_path_buf),
                 };
                 let loaded = load_with(scene, &o).map_err(|e| format!("{}: {e}", scene.display()))?;
                 let opts = RenderOptions {

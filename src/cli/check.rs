@@ -54,6 +54,11 @@ pub(super) fn cmd_check(paths: Vec<PathBuf>, opts: &CheckOptions) -> ExitCode {
                     heatmap.display()
                 )
             }
+            Outcome::BadGolden { reason, new } => eprintln!(
+                "{}: {reason}; new render written to {} (delete the golden, or run `ronray check --bless --force` to replace it)",
+                scene.display(),
+                new.display()
+            ),
             Outcome::Missing { new } => eprintln!(
                 "{}: no golden image; new render written to {} (run `ronray check --bless` to accept it)",
                 scene.display(),
@@ -79,14 +84,29 @@ pub(super) fn cmd_check(paths: Vec<PathBuf>, opts: &CheckOptions) -> ExitCode {
     ExitCode::FAILURE
 }
 
-pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Option<u32>) -> ExitCode {
+pub(super) fn cmd_gallery(
+    paths: Vec<PathBuf>,
+    out: &Path,
+    width: u32,
+    spp: Option<u32>,
+    root: Option<&Path>,
+    max_memory: Option<u64>,
+) -> ExitCode {
+    let fenced = Overrides {
+        root: root.map(Path::to_path_buf),
+        ..Default::default()
+    };
     let Some(scenes) = scenes_in(paths) else {
         return ExitCode::FAILURE;
     };
+    if let Some(clash) = same_names(&scenes) {
+        eprintln!("error: {clash}");
+        return ExitCode::FAILURE;
+    }
     let mut md = String::from("| scene | image |\n|---|---|\n");
     let mut failed = false;
     for scene in &scenes {
-        let full = match load_with(scene, &Overrides::default()) {
+        let full = match load_with(scene, &fenced) {
             Ok(l) => l,
             Err(e) => {
                 print_load_error(&e, "");
@@ -101,11 +121,22 @@ pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Opti
         let o = Overrides {
             size: Some((width, height)),
             spp,
-            ..Default::default()
+            ..fenced.clone()
         };
-        let Ok(loaded) = load_with(scene, &o) else {
+        let loaded = match load_with(scene, &o) {
+            Ok(l) => l,
+            Err(e) => {
+                print_load_error(&e, "");
+                failed = true;
+                continue;
+            }
+        };
+        let film = loaded.view.film;
+        if let Err(e) = crate::memory::check_film(film.width, film.height, false, max_memory) {
+            eprintln!("error: {}: {e}", scene.display());
+            failed = true;
             continue;
-        };
+        }
         let stem = scene.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
         let target = out.join(format!("{stem}.png"));
         let (img, stats) = render(
@@ -130,4 +161,23 @@ pub(super) fn cmd_gallery(paths: Vec<PathBuf>, out: &Path, width: u32, spp: Opti
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// Two scenes whose images would have the same name in the gallery folder
+/// (`a/cornell.ron`, `b/cornell.ron`): one would overwrite the other, so the
+/// gallery refuses before rendering anything, naming both.
+fn same_names(scenes: &[PathBuf]) -> Option<String> {
+    let mut seen: std::collections::HashMap<&std::ffi::OsStr, &Path> = std::collections::HashMap::new();
+    for s in scenes {
+        let stem = s.file_stem().unwrap_or(s.as_os_str());
+        if let Some(first) = seen.insert(stem, s) {
+            return Some(format!(
+                "{} and {} would both be written to {}.png; rename one, or make a gallery of each folder with its own --out",
+                first.display(),
+                s.display(),
+                stem.to_string_lossy()
+            ));
+        }
+    }
+    None
 }

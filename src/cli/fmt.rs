@@ -37,7 +37,7 @@ fn is_json(p: &Path) -> bool {
 }
 
 fn fmt_one(p: &Path, o: FmtOptions, failed: &mut bool) -> Result<(), String> {
-    let text = std::fs::read_to_string(p).map_err(|e| format!("cannot read: {e}"))?;
+    let text = crate::load::source::read_text(p).map_err(|e| format!("cannot read: {e}"))?;
     let (out_text, target) = if o.json || o.canonical {
         let desc = match crate::load::source::parse(p, &text) {
             Ok(d) => d,

@@ -43,6 +43,17 @@ pub struct Cli {
     /// The command to run.
     #[command(subcommand)]
     pub command: Command,
+    /// Refuse every input (scene, include, OBJ, MTL, texture, environment
+    /// map) that resolves, symlinks followed, outside DIR: for rendering
+    /// untrusted scenes in CI. Applies to render, watch, validate, check,
+    /// gallery and bench.
+    #[arg(long, global = true, value_name = "DIR")]
+    pub root: Option<PathBuf>,
+    /// Largest estimated memory a render may need, in GiB (default: what
+    /// the machine has available, `MemAvailable`); a larger render is
+    /// refused before anything is allocated.
+    #[arg(long, global = true, value_name = "GIB", value_parser = parse_gib)]
+    pub max_memory: Option<u64>,
 }
 
 /// The commands; each is one file of `cli/`.
@@ -99,6 +110,10 @@ pub enum Command {
         /// Scene files to check.
         #[arg(required = true)]
         scenes: Vec<PathBuf>,
+        /// Also list every file each scene reads and the image it would
+        /// write, resolved (symlinks followed).
+        #[arg(short = 'v', long)]
+        inputs: bool,
         /// `human` (source excerpts) or `json` (one JSON object per line:
         /// file, line, column, path, severity, message, suggestion).
         #[arg(long, default_value = "human", value_parser = ["human", "json"])]
@@ -157,8 +172,8 @@ pub enum Command {
         /// Output folder.
         #[arg(short, long, default_value = "docs/gallery")]
         out: PathBuf,
-        /// Image width (the height keeps each scene's aspect).
-        #[arg(long, default_value_t = 320)]
+        /// Image width (the height keeps each scene's aspect), 1..=16384.
+        #[arg(long, default_value_t = 320, value_parser = parse_width)]
         width: u32,
         /// Samples per pixel (default: each scene's own).
         #[arg(long)]
@@ -172,6 +187,10 @@ pub enum Command {
         /// Rewrite the goldens that fail or are missing, on purpose.
         #[arg(long)]
         bless: bool,
+        /// With --bless, also replace goldens that are corrupt or of
+        /// another size (without it they are reported and kept).
+        #[arg(long, requires = "bless")]
+        force: bool,
         /// Worker threads (default: all cores; at most 1024).
         #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
@@ -181,7 +200,7 @@ pub enum Command {
         sets: Vec<String>,
         /// Largest accepted score (worst 16×16 window's relative MSE),
         /// replacing every scene's `test.tolerance`.
-        #[arg(long)]
+        #[arg(long, value_parser = parse_tolerance)]
         tolerance: Option<f64>,
     },
     /// Compare two images (PNG, EXR, PFM): RMSE, relative MSE, PSNR, means.
@@ -194,7 +213,7 @@ pub enum Command {
         #[arg(long)]
         heatmap: Option<PathBuf>,
         /// Exit with status 1 when the RMSE is above this.
-        #[arg(long)]
+        #[arg(long, value_parser = parse_max_rmse)]
         max_rmse: Option<f64>,
         /// Grey image; pixels ≥ 128 are left out of the error metrics.
         #[arg(long)]
@@ -286,6 +305,7 @@ impl RenderSettings {
             size: self.size,
             seed: self.seed,
             sets,
+            root: None,
         }
     }
 }
@@ -305,6 +325,42 @@ fn parse_threads(s: &str) -> Result<usize, String> {
     Ok(n)
 }
 
+/// `gallery --width`: 0 would render nothing and say nothing.
+fn parse_width(s: &str) -> Result<u32, String> {
+    let max = crate::load::validate::MAX_RESOLUTION;
+    match s.trim().parse::<u32>() {
+        Ok(w) if (1..=max).contains(&w) => Ok(w),
+        Ok(w) => Err(format!("width {w} is outside 1..={max}")),
+        Err(_) => Err(format!("`{s}` is not a whole number")),
+    }
+}
+
+/// A finite number at least `min` (`exclusive`: above it): a NaN gate would
+/// let everything pass, a negative one fail everything.
+fn parse_number(s: &str, min: f64, exclusive: bool) -> Result<f64, String> {
+    let x: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a number"))?;
+    let ok = x.is_finite() && if exclusive { x > min } else { x >= min };
+    if !ok {
+        let rel = if exclusive { ">" } else { "≥" };
+        return Err(format!("{x} must be a finite number {rel} {min}"));
+    }
+    Ok(x)
+}
+
+/// `--max-memory`: GiB (fractions allowed) → bytes.
+fn parse_gib(s: &str) -> Result<u64, String> {
+    let gib = parse_number(s, 0.0, true)?;
+    Ok((gib * f64::from(1u32 << 30)).min(u64::MAX as f64) as u64)
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    parse_number(s, 0.0, true)
+}
+
+fn parse_max_rmse(s: &str) -> Result<f64, String> {
+    parse_number(s, 0.0, false)
+}
+
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
@@ -317,8 +373,30 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((p(w)?, p(h)?))
 }
 
+/// Ctrl-C ends the process without running destructors, which would leave
+/// the temporary file of an image being written: remove it, then exit with
+/// the usual 130. (Watch mode stops cleanly on its own.)
+fn remove_temporaries_on_interrupt() {
+    let _ = ctrlc::set_handler(|| {
+        crate::imageio::write::remove_pending();
+        std::process::exit(130);
+    });
+}
+
 /// Runs one command; the exit code says whether it succeeded.
 pub fn run(cli: Cli) -> ExitCode {
+    let root = cli.root;
+    if let Some(r) = root.as_ref().filter(|r| !r.is_dir()) {
+        eprintln!("error: --root {} is not a folder", r.display());
+        return ExitCode::FAILURE;
+    }
+    let with_root = |mut o: Overrides| {
+        o.root = root.clone();
+        o
+    };
+    if !matches!(cli.command, Command::Watch { .. } | Command::Lsp) {
+        remove_temporaries_on_interrupt();
+    }
     match cli.command {
         Command::Render {
             scene,
@@ -326,13 +404,22 @@ pub fn run(cli: Cli) -> ExitCode {
             settings,
             piece,
             stats,
-        } => cmd_render(&scene, output, &settings, &piece, stats),
+        } => cmd_render(
+            &scene,
+            output,
+            &settings,
+            &piece,
+            stats,
+            root.as_deref(),
+            cli.max_memory,
+        ),
         Command::Assemble { pieces, output } => cmd_assemble(&pieces, &output),
         Command::Validate {
             scenes,
+            inputs,
             format,
             deny_warnings,
-        } => cmd_validate(&scenes, format == "json", deny_warnings),
+        } => cmd_validate(&scenes, format == "json", deny_warnings, inputs, root.as_deref()),
         Command::Fmt {
             scenes,
             check,
@@ -355,7 +442,7 @@ pub fn run(cli: Cli) -> ExitCode {
             out,
             width,
             spp,
-        } => cmd_gallery(paths, &out, width, spp),
+        } => cmd_gallery(paths, &out, width, spp, root.as_deref(), cli.max_memory),
         Command::Lsp => lsp::cmd_lsp(),
         Command::New { name, force } => new::cmd_new(&name, force),
         Command::Schema => {
@@ -365,6 +452,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Command::Check {
             paths,
             bless,
+            force,
             threads,
             sets,
             tolerance,
@@ -375,6 +463,8 @@ pub fn run(cli: Cli) -> ExitCode {
                 threads,
                 sets,
                 tolerance,
+                force,
+                root: root.clone(),
             },
         ),
         Command::Watch {
@@ -385,9 +475,10 @@ pub fn run(cli: Cli) -> ExitCode {
         } => crate::watch::run(crate::watch::WatchArgs {
             scene,
             output,
-            overrides: settings.overrides(),
+            overrides: with_root(settings.overrides()),
             threads: settings.threads,
             serve,
+            max_memory: cli.max_memory,
         }),
         Command::Diff {
             a,
@@ -417,8 +508,9 @@ pub fn run(cli: Cli) -> ExitCode {
                     sets,
                     ..Default::default()
                 },
+                root: root.as_deref(),
             }),
-            (Some(obj), None) => bench::run(&obj, threads),
+            (Some(obj), None) => bench::run(&obj, threads, root.as_deref()),
             (None, None) => Err("name an OBJ mesh or `--scenes DIR`".into()),
         }
         .map_or_else(

@@ -69,9 +69,15 @@ pub(super) fn cmd_render(
     settings: &RenderSettings,
     piece: &PieceArgs,
     show_stats: bool,
+    root: Option<&Path>,
+    max_memory: Option<u64>,
 ) -> ExitCode {
     let json = piece.progress.as_deref() == Some("json");
-    let loaded = match load_with(path, &settings.overrides()) {
+    let overrides = crate::load::Overrides {
+        root: root.map(Path::to_path_buf),
+        ..settings.overrides()
+    };
+    let loaded = match load_with(path, &overrides) {
         Ok(l) => l,
         Err(e) => {
             print_load_error(&e, "; nothing was written");
@@ -136,6 +142,13 @@ pub(super) fn cmd_render(
         tile: None,
     });
     let is_piece = piece.is_piece();
+    // Refused before anything is allocated: a piece keeps exact sums per
+    // pixel, like a progressive render.
+    let (rw, rh) = (spec.rect.x1 - spec.rect.x0, spec.rect.y1 - spec.rect.y0);
+    if let Err(e) = crate::memory::check_film(rw, rh, is_piece, max_memory) {
+        eprintln!("error: {e}; nothing was written");
+        return ExitCode::FAILURE;
+    }
     let meta = match is_piece.then(|| piece_meta(&loaded, &spec)).transpose() {
         Ok(m) => m,
         Err(e) => {

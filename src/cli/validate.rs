@@ -8,11 +8,24 @@ use crate::load::{LoadError, Overrides, load_with};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-pub(super) fn cmd_validate(paths: &[PathBuf], json: bool, deny_warnings: bool) -> ExitCode {
+pub(super) fn cmd_validate(
+    paths: &[PathBuf],
+    json: bool,
+    deny_warnings: bool,
+    inputs: bool,
+    root: Option<&Path>,
+) -> ExitCode {
     let mut failed = 0;
+    let fenced = Overrides {
+        root: root.map(Path::to_path_buf),
+        ..Default::default()
+    };
     for p in paths {
-        match load_with(p, &Overrides::default()) {
+        match load_with(p, &fenced) {
             Ok(loaded) => {
+                if inputs && !json {
+                    print_out(&files_of(p, &loaded));
+                }
                 let warnings = &loaded.warnings;
                 let n = warnings.count(Severity::Warning);
                 let denied = deny_warnings && n > 0;
@@ -85,4 +98,21 @@ fn report_lines(r: &Report) -> String {
             format!("{v}\n")
         })
         .collect()
+}
+
+/// `validate -v`: every file the scene reads and the image `render` would
+/// write, each resolved (symlinks followed) so that what is really touched
+/// is what is shown.
+fn files_of(scene: &Path, loaded: &crate::load::Loaded) -> String {
+    let mut out = format!("{}:\n", scene.display());
+    let mut seen = std::collections::HashSet::new();
+    for f in &loaded.files {
+        let real = crate::files::resolved(f);
+        if seen.insert(real.clone()) {
+            out += &format!("  reads  {}\n", real.display());
+        }
+    }
+    let target = loaded.view.output_path(scene, None);
+    out += &format!("  writes {}\n", crate::files::resolved(&target).display());
+    out
 }

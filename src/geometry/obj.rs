@@ -43,24 +43,81 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
     load_obj_data(path).map(|d| d.mesh)
 }
 
+/// Largest OBJ file read: 1 GiB (about 20 million triangles). Raise it
+/// here; the mesh's own arrays are reserved fallibly, so a file that fits
+/// but does not fit in memory is an error, not an abort.
+pub const MAX_OBJ_FILE_BYTES: u64 = 1 << 30;
+/// Largest MTL file read (hand-written material lists are kilobytes).
+pub const MAX_MTL_FILE_BYTES: u64 = 64 << 20;
+
+/// How an MTL refused by `--root` is told apart from a missing one (which
+/// is only a warning).
+const OUTSIDE_ROOT: &str = "refused: ";
+
 /// Loads `path` with its groups and MTL materials; the error is a sentence
 /// naming what is wrong and where.
 pub fn load_obj_data(path: &Path) -> Result<ObjData, String> {
+    load_obj_data_in(path, None)
+}
+
+/// As [`load_obj_data`], refusing an MTL file outside `root` (`--root`).
+/// The OBJ and its MTL files must be regular files below their size limits:
+/// a FIFO would block, `/dev/zero` would never end.
+pub fn load_obj_data_in(path: &Path, root: Option<&Path>) -> Result<ObjData, String> {
+    let bytes = crate::files::read_regular(path, MAX_OBJ_FILE_BYTES).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => format!("cannot open OBJ file {}", path.display()),
+        _ => format!("cannot read OBJ file {}: {e}", path.display()),
+    })?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mtl = |name: &Path| -> Result<Vec<u8>, String> {
+        let full = dir.join(name);
+        if let Some(why) = root.and_then(|r| crate::files::outside_root(r, &full)) {
+            return Err(format!("{}{why}", OUTSIDE_ROOT));
+        }
+        crate::files::read_regular(&full, MAX_MTL_FILE_BYTES).map_err(|e| format!("{}: {e}", full.display()))
+    };
+    parse_obj_data(path, &bytes, &mtl)
+}
+
+/// Parses OBJ text (`bytes`, named `path` in messages), reading each MTL
+/// file it names through `mtl`. The one OBJ parser of ronray: files,
+/// watch mode's cache and the fuzz target all come through here.
+pub fn parse_obj_data(
+    path: &Path,
+    bytes: &[u8],
+    mtl: &dyn Fn(&Path) -> Result<Vec<u8>, String>,
+) -> Result<ObjData, String> {
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
     };
+    let mtl_errors = std::cell::RefCell::new(Vec::new());
+    let material_loader = |name: &Path| match mtl(name) {
+        Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(complete_colours(&b))),
+        Err(e) => {
+            mtl_errors.borrow_mut().push(e);
+            Err(tobj::LoadError::OpenFileFailed)
+        }
+    };
     // tobj is not ours: a panic on some input we did not foresee becomes an
     // error rather than taking the renderer down.
-    let loaded = std::panic::catch_unwind(|| tobj::load_obj(path, &opts))
-        .map_err(|_| format!("invalid OBJ file {}: the OBJ parser gave up", path.display()))?;
+    let loaded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, material_loader)
+    }))
+    .map_err(|_| format!("invalid OBJ file {}: the OBJ parser gave up", path.display()))?;
     let (models, mtl) = loaded.map_err(|e| match e {
-        tobj::LoadError::OpenFileFailed => format!("cannot open OBJ file {}", path.display()),
         tobj::LoadError::ReadError => format!("cannot read OBJ file {}", path.display()),
         other => format!("invalid OBJ file {}: {other}", path.display()),
     })?;
+    if let Some(why) = mtl_errors.borrow().iter().find(|e| e.contains(OUTSIDE_ROOT)) {
+        return Err(format!("{}: its MTL file {why}", path.display()));
+    }
+    let mtl = mtl.map_err(|e| match mtl_errors.borrow().last() {
+        Some(why) => why.clone(),
+        None => e.to_string(),
+    });
     let mut warnings = Vec::new();
     let materials = mtl.unwrap_or_else(|e| {
         warnings.push(format!("{}: its MTL file was not loaded ({e})", path.display()));
@@ -86,6 +143,7 @@ pub fn load_obj_data(path: &Path) -> Result<ObjData, String> {
                 ));
             }
         }
+        reserve(&mut mesh, nv, mm.indices.len() / 3).map_err(|e| format!("{}: {e}", path.display()))?;
         mesh.positions
             .extend(mm.positions.chunks_exact(3).map(|p| Vec3A::new(p[0], p[1], p[2])));
         let normals_ok = mm.normals.len() == mm.positions.len()
@@ -148,6 +206,45 @@ pub fn load_obj_data(path: &Path) -> Result<ObjData, String> {
     })
 }
 
+/// MTL text with every colour line (`Ka`, `Kd`, `Ks`, `Ke`) given three
+/// values: the format lets `g b` default to `r`, and tobj panics on fewer
+/// than three (found by the `obj` fuzz target). A colour line with no value
+/// is dropped, so the material keeps its default.
+fn complete_colours(mtl: &[u8]) -> Vec<u8> {
+    let text = String::from_utf8_lossy(mtl);
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let mut words = line.split_whitespace();
+        let key = words.next().unwrap_or("");
+        if !matches!(key, "Ka" | "Kd" | "Ks" | "Ke") {
+            out.push_str(line);
+            continue;
+        }
+        let values: Vec<&str> = words.collect();
+        match values.len() {
+            0 => {}
+            1 | 2 => {
+                let r = values[0];
+                let g = values.get(1).copied().unwrap_or(r);
+                out.push_str(&format!("{key} {r} {g} {r}\n"));
+            }
+            _ => out.push_str(line),
+        }
+    }
+    out.into_bytes()
+}
+
+/// Room for `vertices` more vertices and `triangles` more triangles, or an
+/// error instead of an abort when memory runs out.
+fn reserve(mesh: &mut Mesh, vertices: usize, triangles: usize) -> Result<(), String> {
+    let fail = |_| format!("not enough memory for {vertices} more vertices and {triangles} more triangles");
+    mesh.positions.try_reserve(vertices).map_err(fail)?;
+    mesh.normals.try_reserve(vertices).map_err(fail)?;
+    mesh.uvs.try_reserve(vertices).map_err(fail)?;
+    mesh.indices.try_reserve(triangles).map_err(fail)?;
+    mesh.slots.try_reserve(triangles).map_err(fail)
+}
+
 /// The image file of a `map_Kd` value, skipping MTL texture options
 /// (`-o 0.1 0 0 file.jpg`, `-clamp on file.png`, `file.png -bm 1`).
 pub fn texture_file(spec: &str) -> Option<&str> {
@@ -175,6 +272,16 @@ pub fn texture_file(spec: &str) -> Option<&str> {
 #[cfg(test)]
 mod tests {
     use super::texture_file;
+
+    /// Running out of memory for a mesh is an error, not an abort (here a
+    /// request no machine can meet).
+    #[test]
+    fn a_mesh_too_large_for_memory_is_an_error() {
+        let mut mesh = super::Mesh::default();
+        let e = super::reserve(&mut mesh, usize::MAX / 64, 1).expect_err("cannot fit");
+        assert!(e.contains("not enough memory"), "{e}");
+        assert!(super::reserve(&mut mesh, 3, 1).is_ok());
+    }
 
     #[test]
     fn obj_texture_file_skips_options() {

@@ -5,8 +5,13 @@ use super::{Image, ImageError, srgb_decode};
 use crate::math::Rgb;
 use std::path::Path;
 
+/// Largest image file read for comparison (`diff`, `check`): 4 GiB, room
+/// for a 16384² float EXR. Raise it here.
+pub const MAX_IMAGE_FILE_BYTES: u64 = 4 << 30;
+
 /// Reads `path` into linear RGB, choosing the format by extension: `.png`
-/// (sRGB-decoded), `.exr`, `.pfm` or `.hdr` (linear as stored).
+/// (sRGB-decoded), `.exr`, `.hdr` or `.pfm` (linear as stored). Regular
+/// files only, sizes checked before decoding.
 pub fn read_image(path: &Path) -> Result<Image, ImageError> {
     let ext = path
         .extension()
@@ -17,50 +22,103 @@ pub fn read_image(path: &Path) -> Result<Image, ImageError> {
         path: path.to_path_buf(),
         reason,
     };
-    match ext.as_str() {
-        "pfm" => {
-            let bytes = std::fs::read(path).map_err(|e| err(e.to_string()))?;
-            read_pfm(&bytes).map_err(err)
-        }
-        "png" => {
-            let img = image::open(path).map_err(|e| err(e.to_string()))?;
-            if matches!(
-                img.color().bits_per_pixel() / u16::from(img.color().channel_count()),
-                16
-            ) {
-                return Ok(decode_png16(&img.to_rgb16()));
-            }
-            let img = img.to_rgb8();
-            let pixels = img
-                .pixels()
-                .map(|p| {
-                    Rgb::new(
-                        srgb_decode(p[0] as f32 / 255.0),
-                        srgb_decode(p[1] as f32 / 255.0),
-                        srgb_decode(p[2] as f32 / 255.0),
-                    )
-                })
-                .collect();
-            Ok(Image {
-                width: img.width(),
-                height: img.height(),
-                pixels,
-            })
-        }
-        "exr" | "hdr" => {
-            let img = image::open(path).map_err(|e| err(e.to_string()))?.to_rgb32f();
-            let pixels = img.pixels().map(|p| Rgb::new(p[0], p[1], p[2])).collect();
-            Ok(Image {
-                width: img.width(),
-                height: img.height(),
-                pixels,
-            })
-        }
-        _ => Err(ImageError::Extension {
+    if !matches!(ext.as_str(), "pfm" | "png" | "exr" | "hdr") {
+        return Err(ImageError::Extension {
             path: path.to_path_buf(),
             reading: true,
-        }),
+        });
     }
+    let bytes = crate::files::read_regular(path, MAX_IMAGE_FILE_BYTES).map_err(|e| err(e.to_string()))?;
+    decode_image(&bytes, &ext).map_err(err)
+}
+
+/// Decodes an image held in memory as `ext` (`png`, `exr`, `hdr` or
+/// `pfm`) into linear RGB, its size checked against [`MAX_IMAGE_SIDE`]
+/// before pixels are allocated. What [`read_image`] and the fuzz target
+/// call.
+pub fn decode_image(bytes: &[u8], ext: &str) -> Result<Image, String> {
+    let format = match ext {
+        "pfm" => {
+            let img = read_pfm(bytes)?;
+            if img.width.max(img.height) > MAX_IMAGE_SIDE {
+                return Err(format!(
+                    "{}×{} is above the limit of {MAX_IMAGE_SIDE} pixels a side",
+                    img.width, img.height
+                ));
+            }
+            return Ok(img);
+        }
+        "png" => image::ImageFormat::Png,
+        "exr" => image::ImageFormat::OpenExr,
+        "hdr" => image::ImageFormat::Hdr,
+        other => return Err(format!("unsupported image format `{other}`")),
+    };
+    let img = decode_limited(bytes, Some(format), u64::from(MAX_IMAGE_SIDE).pow(2))?;
+    let (width, height) = (img.width(), img.height());
+    if format == image::ImageFormat::Png
+        && img.color().bits_per_pixel() / u16::from(img.color().channel_count()) == 16
+    {
+        return Ok(decode_png16(&img.to_rgb16()));
+    }
+    let pixels = if format == image::ImageFormat::Png {
+        img.to_rgb8()
+            .pixels()
+            .map(|p| {
+                Rgb::new(
+                    srgb_decode(p[0] as f32 / 255.0),
+                    srgb_decode(p[1] as f32 / 255.0),
+                    srgb_decode(p[2] as f32 / 255.0),
+                )
+            })
+            .collect()
+    } else {
+        img.to_rgb32f()
+            .pixels()
+            .map(|p| Rgb::new(p[0], p[1], p[2]))
+            .collect()
+    };
+    Ok(Image {
+        width,
+        height,
+        pixels,
+    })
+}
+
+/// Decodes `bytes` (format guessed when `None`) refusing, from the header
+/// and before decoding, more than `max_pixels` pixels or a side above
+/// [`MAX_IMAGE_SIDE`]; the decoder's own allocations are capped too.
+fn decode_limited(
+    bytes: &[u8],
+    format: Option<image::ImageFormat>,
+    max_pixels: u64,
+) -> Result<image::DynamicImage, String> {
+    let open = || {
+        let cursor = std::io::Cursor::new(bytes);
+        match format {
+            Some(f) => Ok(image::ImageReader::with_format(cursor, f)),
+            None => image::ImageReader::new(cursor)
+                .with_guessed_format()
+                .map_err(|e| e.to_string()),
+        }
+    };
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    // Room for the decoded pixels at 32-bit float RGBA, and no more.
+    limits.max_alloc = Some(max_pixels * 16);
+    let mut header = open()?;
+    header.limits(limits.clone());
+    let (w, h) = header.into_dimensions().map_err(|e| e.to_string())?;
+    if u64::from(w) * u64::from(h) > max_pixels || w.max(h) > MAX_IMAGE_SIDE {
+        return Err(format!("{w}×{h} is above the limit of {max_pixels} pixels"));
+    }
+    let mut reader = open()?;
+    reader.limits(limits);
+    // The decoders are not ours: a panic on input nobody foresaw becomes an
+    // error rather than taking the renderer down.
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(move || reader.decode()))
+        .map_err(|_| "the image decoder gave up".to_string())?
+        .map_err(|e| e.to_string())
 }
 
 /// A 16-bit PNG's pixels, sRGB-decoded.
@@ -137,15 +195,16 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
             f32::from_be_bytes(b)
         }
     };
-    for px in 0..(w * h) as usize {
-        let (x, row) = (px as u32 % w, px as u32 / w);
+    let (w, h) = (w as usize, h as usize);
+    for px in 0..w * h {
+        let (x, row) = (px % w, px / w);
         let k = px * channels;
         let v = if channels == 3 {
             Rgb::new(value(k), value(k + 1), value(k + 2))
         } else {
             Rgb::splat(value(k))
         };
-        img.pixels[((h - 1 - row) * w + x) as usize] = v;
+        img.pixels[(h - 1 - row) * w + x] = v;
     }
     Ok(img)
 }
@@ -157,38 +216,29 @@ pub const MAX_IMAGE_SIDE: u32 = 16_384;
 /// from the header and refused before decoding. Raise it here.
 pub const MAX_TEXTURE_PIXELS: u64 = 8192 * 8192;
 
+/// Largest texture file read: 1 GiB.
+pub const MAX_TEXTURE_FILE_BYTES: u64 = 1 << 30;
+
 /// Decodes an image file for use as a texture: regular files only, its size
 /// checked from the header against [`MAX_TEXTURE_PIXELS`] before anything is
 /// decoded, and the decoder's own allocation capped.
 pub fn decode_texture(path: &Path) -> Result<image::DynamicImage, String> {
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    if !meta.is_file() {
-        return Err(format!("{} is not a regular file", path.display()));
-    }
-    let open = || {
-        image::ImageReader::open(path)
-            .and_then(|r| r.with_guessed_format())
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))
-    };
-    let (w, h) = open()?
-        .into_dimensions()
-        .map_err(|e| format!("cannot decode {}: {e}", path.display()))?;
-    if u64::from(w) * u64::from(h) > MAX_TEXTURE_PIXELS || w.max(h) > MAX_IMAGE_SIDE {
-        return Err(format!(
-            "{} is {w}×{h}: above the texture limit of {} pixels (8192×8192); scale it down",
-            path.display(),
-            MAX_TEXTURE_PIXELS
-        ));
-    }
-    let mut reader = open()?;
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_IMAGE_SIDE);
-    limits.max_image_height = Some(MAX_IMAGE_SIDE);
-    limits.max_alloc = Some(MAX_TEXTURE_PIXELS * 16);
-    reader.limits(limits);
-    reader
-        .decode()
-        .map_err(|e| format!("cannot decode {}: {e}", path.display()))
+    let bytes = crate::files::read_regular(path, MAX_TEXTURE_FILE_BYTES)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    decode_texture_bytes(&bytes).map_err(|e| match e.contains("above the limit") {
+        true => format!(
+            "{}: {e} (the texture limit is 8192×8192); scale it down",
+            path.display()
+        ),
+        false => format!("cannot decode {}: {e}", path.display()),
+    })
+}
+
+/// Decodes a texture held in memory (format guessed from its first bytes)
+/// within [`MAX_TEXTURE_PIXELS`]. What [`decode_texture`] and the fuzz
+/// target call.
+pub fn decode_texture_bytes(bytes: &[u8]) -> Result<image::DynamicImage, String> {
+    decode_limited(bytes, None, MAX_TEXTURE_PIXELS)
 }
 
 #[cfg(test)]

@@ -97,6 +97,17 @@ pub fn build_with(
     base: &Path,
     load_obj: &dyn Fn(&Path) -> Result<ObjData, String>,
 ) -> Result<(Scene, View, BuildStats), Vec<Problem>> {
+    build_in(desc, base, load_obj, None)
+}
+
+/// As [`build_with`], refusing the textures MTL files name outside `root`
+/// (`--root`; the scene's own files were fenced by validation).
+pub fn build_in(
+    desc: &SceneDesc,
+    base: &Path,
+    load_obj: &dyn Fn(&Path) -> Result<ObjData, String>,
+    root: Option<&Path>,
+) -> Result<(Scene, View, BuildStats), Vec<Problem>> {
     let t0 = Instant::now();
     let super::material::Materials {
         mut materials,
@@ -112,7 +123,7 @@ pub fn build_with(
         load_obj,
         material_index: index,
         emitter,
-        mtl: MtlMaterials::new(materials.len() as u32, textures.len() as u32),
+        mtl: MtlMaterials::new(materials.len() as u32, textures.len() as u32, root),
         lights: Vec::new(),
         environment: None,
         shapes: Vec::new(),

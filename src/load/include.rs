@@ -94,7 +94,20 @@ impl Composition {
 /// included file are collected in [`Composition::diagnostics`] and the rest
 /// of it is merged; a file that cannot be read, an include cycle or a name
 /// defined twice is an `Err`.
-pub fn compose(path: &Path, text: &str, gaps: Gaps, desc: &mut SceneDesc) -> Result<Composition, Report> {
+///
+/// What may be included: `.ron` and `.json` files only, inside the scene's
+/// folder (or inside `root` when `--root` names one). A diagnostic shows the
+/// line it points at, so an include of `/etc/passwd` or `~/.ssh/id_rsa`
+/// would print part of a file that is not a scene; such an include is
+/// refused at the include entry without reading the file, and a file that
+/// is not UTF-8 text is refused without showing any of it.
+pub fn compose(
+    path: &Path,
+    text: &str,
+    gaps: Gaps,
+    desc: &mut SceneDesc,
+    root: Option<&Path>,
+) -> Result<Composition, Report> {
     let c = Composition::single(path, text, gaps);
     if desc.include.is_empty() {
         return Ok(c);
@@ -105,6 +118,13 @@ pub fn compose(path: &Path, text: &str, gaps: Gaps, desc: &mut SceneDesc) -> Res
         defined: HashMap::new(),
         errors: Vec::new(),
         done: HashSet::new(),
+        fence: match root {
+            Some(r) => (r.to_path_buf(), "the --root folder"),
+            None => (
+                path.parent().unwrap_or(Path::new(".")).to_path_buf(),
+                "the scene's folder",
+            ),
+        },
     };
     let stack = vec![canonical(path)];
     for (i, inc) in desc.include.clone().iter().enumerate() {
@@ -181,6 +201,8 @@ struct Composer {
     /// diamond of includes) is read once, so the work stays linear in the
     /// number of distinct files however the includes branch.
     done: HashSet<PathBuf>,
+    /// The folder includes must stay in, and how to call it.
+    fence: (PathBuf, &'static str),
 }
 
 impl Composer {
@@ -207,7 +229,7 @@ impl Composer {
             .to_path_buf();
         let full = top_dir.join(&rel);
         let key = canonical(&full);
-        if self.refused(stack, &key, &full, &at) {
+        if self.not_a_fragment(&full, &at) || self.refused(stack, &key, &full, &at) {
             return;
         }
         let Some((file, text, mut inc_desc)) = self.read(&full, &at) else {
@@ -286,6 +308,31 @@ impl Composer {
         if self.done.len() > MAX_INCLUDES {
             let msg = format!("more than {MAX_INCLUDES} included files");
             self.error_at(at, msg, "merge some of the included files".into());
+            return true;
+        }
+        false
+    }
+
+    /// Whether `full` may not be included whatever it holds: not a `.ron`
+    /// or `.json` file, or outside the fence (symlinks followed). Refused
+    /// before reading, so nothing of it is shown.
+    fn not_a_fragment(&mut self, full: &Path, at: &Site) -> bool {
+        let ext = full
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        if !matches!(ext.as_deref(), Some("ron" | "json")) {
+            let msg = format!("included file {} is not a scene file", full.display());
+            let help = "include only .ron or .json scene fragments; the file is not read".to_string();
+            self.error_at(at, msg, help);
+            return true;
+        }
+        let (fence, name) = self.fence.clone();
+        if let Some(why) = crate::files::outside_root(&fence, full) {
+            let why = why.replace("--root", name);
+            let msg = format!("included file {why}");
+            let help = "keep included files beside the scene or below it, or name a wider folder with --root";
+            self.error_at(at, msg, help.into());
             return true;
         }
         false

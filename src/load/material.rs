@@ -442,7 +442,8 @@ impl Builder<'_> {
 pub fn load_texture(path: &Path) -> Result<Texture, String> {
     let img = crate::imageio::read::decode_texture(path).map_err(|e| format!("texture: {e}"))?;
     let rgb = img.to_rgb8();
-    Ok(Texture::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()))
+    Texture::try_from_srgb8(rgb.width(), rgb.height(), rgb.as_raw())
+        .map_err(|e| format!("texture {}: {e}", path.display()))
 }
 
 #[cfg(test)]

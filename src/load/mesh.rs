@@ -68,7 +68,10 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
             bake(&mut data, world_from_object);
             flatten = data.mesh.triangle_count() <= FLATTEN_MAX;
             data.mesh.prepare();
-            (push_mesh(ctx, data, file), Affine3A::IDENTITY)
+            (
+                push_mesh(ctx, data, file, &format!("{path}.file")),
+                Affine3A::IDENTITY,
+            )
         }
         ObjectDesc::Instance { mesh, .. } => {
             let Some(l) = shared(ctx, mesh) else {
@@ -162,7 +165,7 @@ fn shared(ctx: &mut BuildContext, name: &str) -> Option<LoadedMesh> {
         let entry = ctx.desc.meshes.get(name).and_then(|m| {
             let mut data = load(ctx, &m.file, m.smooth, &format!("meshes.{name}.file"))?;
             data.mesh.prepare();
-            Some(push_mesh(ctx, data, &m.file))
+            Some(push_mesh(ctx, data, &m.file, &format!("meshes.{name}.file")))
         });
         ctx.mesh_state.shared.insert(name.to_string(), entry);
     }
@@ -194,7 +197,7 @@ fn load(ctx: &mut BuildContext, file: &str, smooth: bool, at: &str) -> Option<Ob
     }
 }
 
-fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str) -> LoadedMesh {
+fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> LoadedMesh {
     let obj = ctx.base.join(file);
     let dir = obj.parent().unwrap_or(ctx.base);
     let mtl = data
@@ -202,6 +205,10 @@ fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str) -> LoadedMesh {
         .iter()
         .map(|m| ctx.mtl.add(m, dir, &mut ctx.notes))
         .collect();
+    for why in std::mem::take(&mut ctx.mtl.refused) {
+        let help = "an untrusted scene may read only files inside --root";
+        ctx.problems.push(Problem::new(at, why).help(help));
+    }
     ctx.geometry.meshes.push(data.mesh);
     LoadedMesh {
         mesh: ctx.geometry.meshes.len() as u32 - 1,

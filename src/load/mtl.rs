@@ -31,6 +31,11 @@ pub struct MtlMaterials {
     emission: Vec<Option<Rgb>>,
     pub textures: Vec<Texture>,
     textures_by_path: HashMap<PathBuf, Option<u32>>,
+    /// `--root`: textures outside it are not read.
+    root: Option<PathBuf>,
+    /// Textures refused by `--root` since the last look, one sentence each:
+    /// the mesh build turns them into located problems.
+    pub refused: Vec<String>,
 }
 
 fn rgb(c: Option<[f32; 3]>, default: f32) -> Rgb {
@@ -38,8 +43,10 @@ fn rgb(c: Option<[f32; 3]>, default: f32) -> Rgb {
 }
 
 impl MtlMaterials {
-    pub fn new(first: u32, first_texture: u32) -> Self {
+    pub fn new(first: u32, first_texture: u32, root: Option<&Path>) -> Self {
         Self {
+            root: root.map(Path::to_path_buf),
+            refused: Vec::new(),
             first,
             first_texture,
             materials: Vec::new(),
@@ -140,12 +147,27 @@ impl MtlMaterials {
         if let Some(t) = self.textures_by_path.get(path) {
             return *t;
         }
+        if let Some(why) = self
+            .root
+            .as_deref()
+            .and_then(|r| crate::files::outside_root(r, path))
+        {
+            self.refused.push(format!("MTL texture {why}"));
+            return None;
+        }
         let t = match crate::imageio::read::decode_texture(path) {
             Ok(img) => {
                 let rgb = img.to_rgb8();
-                self.textures
-                    .push(Texture::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()));
-                Some(self.first_texture + self.textures.len() as u32 - 1)
+                match Texture::try_from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()) {
+                    Ok(t) => {
+                        self.textures.push(t);
+                        Some(self.first_texture + self.textures.len() as u32 - 1)
+                    }
+                    Err(e) => {
+                        notes.push(format!("texture {} not used: {e}", path.display()));
+                        None
+                    }
+                }
             }
             Err(e) => {
                 notes.push(format!("texture {} not used: {e}", path.display()));

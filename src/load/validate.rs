@@ -40,9 +40,16 @@ pub const MAX_EXPOSURE: f32 = 64.0;
 /// own file (`view.rs`, `material.rs`, `light.rs`, `object.rs`, `mesh.rs`,
 /// `sdf/`).
 pub fn validate(scene: &SceneDesc, base: &Path) -> Vec<Problem> {
+    validate_in(scene, base, None)
+}
+
+/// As [`validate`], refusing every file the scene names that resolves
+/// outside `root` (`--root`).
+pub fn validate_in(scene: &SceneDesc, base: &Path, root: Option<&Path>) -> Vec<Problem> {
     let mut v = Checker {
         problems: Vec::new(),
         base: base.to_path_buf(),
+        root: root.map(Path::to_path_buf),
     };
     v.camera(&scene.camera);
     v.film(&scene.film);
@@ -87,6 +94,8 @@ pub(super) struct Checker {
     pub(super) problems: Vec<Problem>,
     /// The scene file's folder, which relative file names resolve against.
     pub(super) base: PathBuf,
+    /// `--root`: no file outside it may be read.
+    pub(super) root: Option<PathBuf>,
 }
 
 impl Checker {
@@ -157,6 +166,18 @@ impl Checker {
             return;
         }
         let full = self.base.join(file);
+        if let Some(why) = self
+            .root
+            .as_deref()
+            .and_then(|r| crate::files::outside_root(r, &full))
+        {
+            self.push(
+                path,
+                format!("{what} {why}"),
+                "an untrusted scene may read only files inside --root; copy the file there or widen --root",
+            );
+            return;
+        }
         match std::fs::metadata(&full) {
             Ok(m) if m.is_file() => {}
             Ok(_) => self.push(

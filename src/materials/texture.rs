@@ -68,6 +68,29 @@ pub struct Texture {
 pub use crate::imageio::srgb_decode as srgb_to_linear;
 
 impl Texture {
+    /// As [`Texture::from_srgb8`], but running out of memory for the texels
+    /// (a 8192² texture is 1 GiB of them) is an error, not an abort.
+    pub fn try_from_srgb8(width: u32, height: u32, rgb: &[u8]) -> Result<Self, String> {
+        let mut texels = Vec::new();
+        let n = rgb.len() / 3;
+        texels.try_reserve_exact(n).map_err(|_| {
+            format!(
+                "not enough memory for a {width}×{height} texture ({} MiB)",
+                (n * std::mem::size_of::<Rgb>()) >> 20
+            )
+        })?;
+        let lut: Vec<f32> = (0..=255u8).map(|b| srgb_to_linear(b as f32 / 255.0)).collect();
+        texels.extend(
+            rgb.chunks_exact(3)
+                .map(|p| Rgb::new(lut[p[0] as usize], lut[p[1] as usize], lut[p[2] as usize])),
+        );
+        Ok(Self {
+            width,
+            height,
+            texels,
+        })
+    }
+
     /// Decodes 8-bit sRGB texels (`rgb.len() == 3·width·height`, file order)
     /// to linear RGB.
     pub fn from_srgb8(width: u32, height: u32, rgb: &[u8]) -> Self {

@@ -46,6 +46,8 @@ pub struct WatchArgs {
     pub threads: Option<usize>,
     /// `Some("")` serves on the default address.
     pub serve: Option<String>,
+    /// `--max-memory` in bytes (default: what the machine has available).
+    pub max_memory: Option<u64>,
 }
 
 enum Msg {
@@ -98,6 +100,7 @@ pub fn run(args: WatchArgs) -> ExitCode {
         overrides: args.overrides,
         scene: args.scene,
         output: args.output,
+        max_memory: args.max_memory,
         reporter: reporter.clone(),
         watcher,
         set: WatchSet::default(),
@@ -122,6 +125,7 @@ struct Session {
     scene: PathBuf,
     output: Option<PathBuf>,
     overrides: Overrides,
+    max_memory: Option<u64>,
     reporter: Arc<Reporter>,
     watcher: RecommendedWatcher,
     set: WatchSet,
@@ -215,6 +219,10 @@ impl Session {
                 input.display()
             );
             return self.reporter.problem(generation, &msg);
+        }
+        let film = loaded.view.film;
+        if let Err(e) = crate::memory::check_film(film.width, film.height, true, self.max_memory) {
+            return self.reporter.problem(generation, &format!("error: {e}"));
         }
         self.reporter.warnings(&loaded.warnings);
         let name = self.scene.display().to_string();
