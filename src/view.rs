@@ -3,6 +3,7 @@
 //! from the scene so that integrators, geometry and lights see only what rays
 //! query, and one scene can be rendered through several views.
 
+use crate::aov::AovSet;
 use crate::camera::Camera;
 use crate::integrators::Integrator;
 use crate::sampler::SamplerKind;
@@ -21,6 +22,10 @@ pub struct Film {
     pub seed: u64,
     /// How sample positions are drawn.
     pub sampler: SamplerKind,
+    /// Layers written beside the beauty pass (`film.aovs`); EXR only.
+    pub aovs: AovSet,
+    /// Run the denoiser on the image before writing it (`film.denoise`).
+    pub denoise: bool,
 }
 
 /// Camera, film, integrator and output of one render.

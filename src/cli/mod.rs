@@ -6,6 +6,7 @@ mod bench;
 mod check;
 mod diff;
 mod fmt;
+mod layers;
 mod lsp;
 mod new;
 mod render;
@@ -61,6 +62,9 @@ pub enum Command {
         #[allow(missing_docs)]
         #[command(flatten)]
         piece: PieceArgs,
+        #[allow(missing_docs)]
+        #[command(flatten)]
+        denoise: layers::DenoiseArgs,
         /// Print build and traversal statistics.
         #[arg(long)]
         stats: bool,
@@ -278,8 +282,9 @@ pub fn run(cli: Cli) -> ExitCode {
             output,
             settings,
             piece,
+            denoise,
             stats,
-        } => cmd_render(&scene, output, &settings, &piece, stats),
+        } => cmd_render(&scene, output, &settings, &piece, &denoise, stats),
         Command::Assemble { pieces, output } => cmd_assemble(&pieces, &output),
         Command::Validate {
             scenes,

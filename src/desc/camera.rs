@@ -1,6 +1,6 @@
 //! Camera, film and integrator settings.
 
-use super::V3;
+use super::{AovDesc, V3};
 use serde::{Deserialize, Serialize};
 
 /// A perspective camera looking from `eye` toward `target`.
@@ -60,6 +60,14 @@ pub struct FilmDesc {
     /// How sample positions are drawn.
     #[serde(default)]
     pub sampler: SamplerDesc,
+    /// Extra layers written beside the beauty pass, EXR outputs only:
+    /// `[Albedo, Normal, Depth, Position, MaterialIndex]` in any order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub aovs: Vec<AovDesc>,
+    /// Denoise the image with Intel Open Image Denoise (needs ronray built
+    /// with `--features denoise`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub denoise: bool,
 }
 
 /// Sample generator; all are deterministic per (pixel, sample, seed).
@@ -93,6 +101,8 @@ impl Default for FilmDesc {
             seed: 0,
             output: None,
             sampler: SamplerDesc::default(),
+            aovs: Vec::new(),
+            denoise: false,
         }
     }
 }

@@ -17,6 +17,7 @@
 //! assert_eq!(scene.objects.len(), 1);
 //! ```
 
+mod aov;
 mod camera;
 mod color;
 mod emission;
@@ -26,6 +27,7 @@ mod object;
 mod sdf;
 mod transform;
 
+pub use aov::AovDesc;
 pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, SamplerDesc};
 pub use color::ColorDesc;
 pub use emission::EmissionDesc;
