@@ -58,16 +58,15 @@ fn run(image: &Image, layers: &AovLayers) -> Result<Image, DenoiseError> {
     let albedo = flat(&layers.albedo);
     let normal = flat(&layers.normal);
     let mut out = vec![0.0f32; color.len()];
-    let device = oidn::Device::new();
+    let oidn_err = |e: oidn::Error| DenoiseError::Oidn(e.to_string());
+    let device = oidn::Device::new().map_err(oidn_err)?;
     oidn::RayTracing::new(&device)
         .hdr(true)
         .albedo_normal(&albedo, &normal)
         .image_dimensions(image.width as usize, image.height as usize)
         .filter(&color, &mut out)
-        .map_err(|e| DenoiseError::Oidn(format!("{e:?}")))?;
-    if let Err((_, msg)) = device.get_error() {
-        return Err(DenoiseError::Oidn(msg));
-    }
+        .map_err(oidn_err)?;
+    device.get_error().map_err(oidn_err)?;
     Ok(Image {
         width: image.width,
         height: image.height,
@@ -97,7 +96,9 @@ mod tests {
             position: vec![Default::default(); 4],
             material_id: vec![0; 4],
         };
-        let e = denoise(&img, &layers).expect_err("no denoiser in this build").to_string();
+        let e = denoise(&img, &layers)
+            .expect_err("no denoiser in this build")
+            .to_string();
         assert!(e.contains("--features denoise"), "{e}");
     }
 }

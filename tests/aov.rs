@@ -56,13 +56,28 @@ fn a_lambert_planes_layers_hold_its_albedo_normal_and_distance() {
     assert_eq!(
         names,
         [
-            "B", "G", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "R", "Z", "albedo.B", "albedo.G", "albedo.R",
+            "B",
+            "G",
+            "N.X",
+            "N.Y",
+            "N.Z",
+            "P.X",
+            "P.Y",
+            "P.Z",
+            "R",
+            "Z",
+            "albedo.B",
+            "albedo.G",
+            "albedo.R",
             "materialId"
         ]
     );
     let close = |name: &str, want: f64, tol: f64| {
         for (i, v) in ch[name].iter().enumerate() {
-            assert!((v - want).abs() <= tol, "{name} at pixel {i}: {v}, expected {want}");
+            assert!(
+                (v - want).abs() <= tol,
+                "{name} at pixel {i}: {v}, expected {want}"
+            );
         }
     };
     // Albedo and normal are the same at every sample: exact up to f32.
@@ -81,8 +96,16 @@ fn a_lambert_planes_layers_hold_its_albedo_normal_and_distance() {
     for i in 0..z.len() {
         let (px, py) = (ch["P.X"][i], ch["P.Y"][i]);
         let dist = (px * px + py * py + 4.0).sqrt();
-        assert!((z[i] - dist).abs() < 1e-3, "Z at pixel {i}: {}, eye to P {dist}", z[i]);
-        assert!(z[i] >= 2.0 - 1e-5, "nothing on the plane is nearer than 2: {}", z[i]);
+        assert!(
+            (z[i] - dist).abs() < 1e-3,
+            "Z at pixel {i}: {}, eye to P {dist}",
+            z[i]
+        );
+        assert!(
+            z[i] >= 2.0 - 1e-5,
+            "nothing on the plane is nearer than 2: {}",
+            z[i]
+        );
     }
     // The centre pixels look almost straight down the axis.
     let centre = z[8 * 16 + 8];
@@ -93,8 +116,11 @@ fn a_lambert_planes_layers_hold_its_albedo_normal_and_distance() {
 fn layers_leave_the_beauty_pass_unchanged() {
     let dir = tempfile::tempdir().expect("temp dir");
     for (name, aovs) in [("plain", ""), ("layered", "Albedo, Depth")] {
-        std::fs::write(dir.path().join(format!("{name}.ron")), plane_scene(aovs, &format!("{name}.exr")))
-            .expect("write scene");
+        std::fs::write(
+            dir.path().join(format!("{name}.ron")),
+            plane_scene(aovs, &format!("{name}.exr")),
+        )
+        .expect("write scene");
         let out = ronray_in(dir.path(), &["render", &format!("{name}.ron")]);
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     }
@@ -126,7 +152,10 @@ fn layers_do_not_depend_on_the_thread_count() {
     // one of the scene's (0 = sky, 1 = "a", 2 = "b").
     assert!(one.material_id.iter().all(|&m| m <= 2));
     assert!(one.material_id.contains(&1) && one.material_id.contains(&2) && one.material_id.contains(&0));
-    assert!(one.depth.iter().any(|d| d.is_infinite()), "sky pixels have infinite depth");
+    assert!(
+        one.depth.iter().any(|d| d.is_infinite()),
+        "sky pixels have infinite depth"
+    );
 }
 
 fn problems(text: &str) -> Vec<ronray::diagnostic::Diagnostic> {
@@ -181,5 +210,8 @@ fn denoising_without_the_feature_says_how_to_enable_it() {
     let out = ronray_in(dir.path(), &["render", "p.ron", "--denoise"]);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("fetch-oidn.sh") && err.contains("--features denoise"), "{err}");
+    assert!(
+        err.contains("fetch-oidn.sh") && err.contains("--features denoise"),
+        "{err}"
+    );
 }

@@ -29,7 +29,8 @@ mod with_oidn {
 
     #[test]
     fn denoised_cornell_at_16_spp_beats_the_raw_render_at_256_spp() {
-        let reference = read_image(&root().join("tests/fixtures/refs/cornell_diffuse_64.pfm")).expect("fixture");
+        let reference =
+            read_image(&root().join("tests/fixtures/refs/cornell_diffuse_64.pfm")).expect("fixture");
         let (l, noisy) = cornell(16);
         let layers = render_aovs(&l.scene, &l.view, AovSet::EMPTY, None);
         let t = Instant::now();
@@ -41,8 +42,14 @@ mod with_oidn {
         report(&format!(
             "denoise: Cornell 64² vs Mitsuba, RMSE raw 16 spp {r16:.5}, denoised 16 spp {d16:.5}, raw 256 spp {r256:.5}; OIDN took {secs:.3} s (wall)"
         ));
-        assert!(clean.pixels.iter().all(|p| p.is_finite()), "denoised image is not finite");
-        assert!(d16 < r256, "denoised 16 spp RMSE {d16:.5} is not below raw 256 spp {r256:.5}");
+        assert!(
+            clean.pixels.iter().all(|p| p.is_finite()),
+            "denoised image is not finite"
+        );
+        assert!(
+            d16 < r256,
+            "denoised 16 spp RMSE {d16:.5} is not below raw 256 spp {r256:.5}"
+        );
     }
 }
 

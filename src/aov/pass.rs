@@ -67,8 +67,7 @@ fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
         let id = match scene.intersect(&ray, f32::INFINITY) {
             Some(hit) => {
                 let material = &scene.materials[hit.material as usize];
-                albedo += first_hit_albedo(material, hit.uv, &scene.textures)
-                    .as_dvec3();
+                albedo += first_hit_albedo(material, hit.uv, &scene.textures).as_dvec3();
                 // Facing the camera, so both sides of a sheet read alike.
                 let n = if hit.ns.dot(ray.d) > 0.0 { -hit.ns } else { hit.ns };
                 normal += n.as_dvec3();

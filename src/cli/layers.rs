@@ -78,7 +78,10 @@ mod tests {
 
     #[test]
     fn the_noisy_image_goes_beside_the_output() {
-        assert_eq!(noisy_path(Path::new("out/a.exr")), PathBuf::from("out/a.noisy.exr"));
+        assert_eq!(
+            noisy_path(Path::new("out/a.exr")),
+            PathBuf::from("out/a.noisy.exr")
+        );
         assert_eq!(noisy_path(Path::new("b.png")), PathBuf::from("b.noisy.png"));
     }
 }

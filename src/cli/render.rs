@@ -218,8 +218,14 @@ pub(super) fn cmd_render(
         }
         None => {
             let (image, stats) = render_image(&loaded.scene, &loaded.view, &opts, &cancel, &report);
-            let written =
-                super::layers::write_frame(&loaded, image, &out, opts.threads, denoise, layer_args.keep_noisy);
+            let written = super::layers::write_frame(
+                &loaded,
+                image,
+                &out,
+                opts.threads,
+                denoise,
+                layer_args.keep_noisy,
+            );
             (written.map(|n| extra = n), stats)
         }
     };

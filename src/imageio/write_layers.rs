@@ -42,9 +42,7 @@ pub fn write_exr_layers(img: &Image, layers: &AovLayers, path: &Path) -> Result<
 }
 
 fn encode(img: &Image, layers: &AovLayers, w: &mut std::io::BufWriter<&std::fs::File>) -> Result<(), String> {
-    use exr::prelude::{
-        AnyChannel, AnyChannels, Encoding, FlatSamples, LineOrder, SmallVec, WritableImage,
-    };
+    use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, LineOrder, SmallVec, WritableImage};
     let f32s = |name: &str, v: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(v));
     let rgb = |prefix: &str, names: [&str; 3], v: &[glam::Vec3A]| -> Vec<AnyChannel<FlatSamples>> {
         (0..3)

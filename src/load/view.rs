@@ -2,8 +2,8 @@
 //! (what `render()` needs beside the scene).
 
 use super::validate::{Checker, MAX_DEPTH, MAX_LIGHT_SAMPLES, MAX_RESOLUTION, MAX_RR_DEPTH, MAX_SPP};
-use crate::camera::Camera;
 use crate::aov::Aov;
+use crate::camera::Camera;
 use crate::desc::{AovDesc, CameraDesc, FilmDesc, IntegratorDesc, SamplerDesc, SceneDesc};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
 use crate::sampler::SamplerKind;
@@ -127,7 +127,11 @@ impl Checker {
             );
         }
         if f.denoise && !crate::denoise::AVAILABLE {
-            self.push("film.denoise", crate::denoise::NOT_BUILT, crate::denoise::HOW_TO_ENABLE);
+            self.push(
+                "film.denoise",
+                crate::denoise::NOT_BUILT,
+                crate::denoise::HOW_TO_ENABLE,
+            );
         }
     }
 
