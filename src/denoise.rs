@@ -60,7 +60,8 @@ fn run(image: &Image, layers: &AovLayers) -> Result<Image, DenoiseError> {
     let mut out = vec![0.0f32; color.len()];
     let oidn_err = |e: oidn::Error| DenoiseError::Oidn(e.to_string());
     let device = oidn::Device::new().map_err(oidn_err)?;
-    oidn::RayTracing::new(&device)
+    oidn::RayTracing::try_new(&device)
+        .map_err(oidn_err)?
         .hdr(true)
         .albedo_normal(&albedo, &normal)
         .image_dimensions(image.width as usize, image.height as usize)

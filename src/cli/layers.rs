@@ -1,8 +1,8 @@
 //! `ronray render`'s optional finishing steps for a whole frame: the AOV
 //! layers (`film.aovs`) and the denoiser (`--denoise`, `film.denoise`).
 
-use crate::aov::render_aovs;
-use crate::imageio::{Image, write_exr_layers, write_image};
+use crate::aov::{render_aovs, write_exr_layers};
+use crate::imageio::{Image, write_image};
 use crate::load::Loaded;
 use clap::Args;
 use std::path::{Path, PathBuf};

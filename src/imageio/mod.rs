@@ -8,14 +8,12 @@ pub mod read;
 pub mod rect;
 pub mod sample_sums;
 pub mod write;
-pub mod write_layers;
 
 pub use metrics::{Block, Comparison, blocks, compare};
 pub use read::read_image;
 pub use rect::PixelRect;
 pub use sample_sums::SampleSums;
 pub use write::{write_atomic, write_image};
-pub use write_layers::write_exr_layers;
 
 use crate::math::Rgb;
 

@@ -18,9 +18,8 @@
 //! reader filters it into ids that exist nowhere. One part rather than
 //! OpenEXR 2 multi-part, which not every reader opens.
 
-use super::write::write_atomic;
-use super::{Image, ImageError};
-use crate::aov::{Aov, AovLayers};
+use super::{Aov, AovLayers};
+use crate::imageio::{Image, ImageError, write_atomic};
 use std::path::Path;
 
 /// Writes `img` and the layers `layers.written` lists to the EXR file `path`
