@@ -63,6 +63,7 @@ fn run(image: &Image, layers: &AovLayers) -> Result<Image, DenoiseError> {
     oidn::RayTracing::try_new(&device)
         .map_err(oidn_err)?
         .hdr(true)
+        .clean_aux(layers.aux_noise_free)
         .albedo_normal(&albedo, &normal)
         .image_dimensions(image.width as usize, image.height as usize)
         .filter(&color, &mut out)
@@ -96,6 +97,7 @@ mod tests {
             depth: vec![0.0; 4],
             position: vec![Default::default(); 4],
             material_id: vec![0; 4],
+            aux_noise_free: true,
         };
         let e = denoise(&img, &layers)
             .expect_err("no denoiser in this build")

@@ -30,4 +30,9 @@ pub struct AovLayers {
     /// the smaller id), 0 when most samples hit nothing: averaging ids would
     /// make ids that exist nowhere.
     pub material_id: Vec<u32>,
+    /// Whether albedo and normal vary within a pixel only with where its
+    /// samples land (a pinhole camera: no lens sample moves the first hit),
+    /// so they hold no noise, only anti-aliasing: Open Image Denoise's
+    /// `cleanAux`, which keeps edges sharper.
+    pub aux_noise_free: bool,
 }

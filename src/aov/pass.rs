@@ -46,6 +46,7 @@ pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<
         depth: px.iter().map(|p| p.depth).collect(),
         position: px.iter().map(|p| p.position).collect(),
         material_id: px.iter().map(|p| p.material_id).collect(),
+        aux_noise_free: view.camera.aperture_radius <= 0.0,
     }
 }
 
