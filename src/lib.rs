@@ -8,9 +8,11 @@
 //! render farms run on many machines, and assembles them bit for bit.
 
 pub mod accel;
+pub mod aov;
 pub mod camera;
 pub mod check;
 pub mod cli;
+pub mod denoise;
 pub mod desc;
 pub mod diagnostic;
 pub mod farm;

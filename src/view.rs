@@ -23,6 +23,10 @@ pub struct Film {
     pub seed: u64,
     /// How sample positions are drawn.
     pub sampler: SamplerKind,
+    /// Layers written beside the beauty pass (`film.aovs`); EXR only.
+    pub aovs: AovSet,
+    /// Run the denoiser on the image before writing it (`film.denoise`).
+    pub denoise: bool,
 }
 
 /// Camera, film, integrator and output of one render.
@@ -58,5 +62,71 @@ impl View {
                         .unwrap_or("render")
                 ))
             })
+    }
+}
+
+/// One AOV layer, as `film.aovs` lists them; written beside the beauty
+/// pass by `crate::aov`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Aov {
+    /// Reflectance at the first hit, in [0, 1] (`albedo.R/G/B`).
+    Albedo,
+    /// World-space shading normal facing the camera (`N.X/Y/Z`).
+    Normal,
+    /// Distance along the camera ray to the first hit (`Z`).
+    Depth,
+    /// World-space first-hit position (`P.X/Y/Z`).
+    Position,
+    /// 1 + the first hit's material index, 0 for no surface (`materialId`).
+    MaterialIndex,
+}
+
+impl Aov {
+    /// Every layer, in the order they are listed in the README.
+    pub const ALL: [Aov; 5] = [
+        Aov::Albedo,
+        Aov::Normal,
+        Aov::Depth,
+        Aov::Position,
+        Aov::MaterialIndex,
+    ];
+
+    fn bit(self) -> u8 {
+        1 << self as u8
+    }
+}
+
+/// A set of layers, small and `Copy` so that [`crate::view::Film`] stays so.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AovSet(u8);
+
+impl AovSet {
+    /// No layers: the beauty pass only.
+    pub const EMPTY: AovSet = AovSet(0);
+
+    /// This set with `aov` added.
+    pub fn with(self, aov: Aov) -> Self {
+        AovSet(self.0 | aov.bit())
+    }
+
+    /// Whether `aov` is in the set.
+    pub fn contains(self, aov: Aov) -> bool {
+        self.0 & aov.bit() != 0
+    }
+
+    /// Whether no layer is asked for.
+    pub fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// The layers in the set, in [`Aov::ALL`] order.
+    pub fn iter(self) -> impl Iterator<Item = Aov> {
+        Aov::ALL.into_iter().filter(move |a| self.contains(*a))
+    }
+}
+
+impl FromIterator<Aov> for AovSet {
+    fn from_iter<I: IntoIterator<Item = Aov>>(iter: I) -> Self {
+        iter.into_iter().fold(AovSet::EMPTY, AovSet::with)
     }
 }

@@ -7,6 +7,7 @@ mod bench_scenes;
 mod check;
 mod diff;
 mod fmt;
+mod layers;
 mod lsp;
 mod new;
 mod render;
@@ -74,6 +75,9 @@ pub enum Command {
         #[allow(missing_docs)]
         #[command(flatten)]
         piece: PieceArgs,
+        #[allow(missing_docs)]
+        #[command(flatten)]
+        denoise: layers::DenoiseArgs,
         /// Print build and traversal statistics.
         #[arg(long)]
         stats: bool,
@@ -403,12 +407,14 @@ pub fn run(cli: Cli) -> ExitCode {
             output,
             settings,
             piece,
+            denoise,
             stats,
         } => cmd_render(
             &scene,
             output,
             &settings,
             &piece,
+            &denoise,
             stats,
             root.as_deref(),
             cli.max_memory,

@@ -3,7 +3,7 @@
 use super::{RenderSettings, USAGE, print_load_error, print_warnings};
 use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::{Existing, PieceSpec, Region, TileIndex, existing_piece, piece_meta, write_piece};
-use crate::imageio::{PixelRect, write_image_with};
+use crate::imageio::PixelRect;
 use crate::load::{Loaded, load_with};
 use crate::render::{RenderOptions, RenderStats, TileDone, render_image, render_sums};
 use clap::Args;
@@ -68,10 +68,19 @@ pub(super) fn cmd_render(
     output: Option<PathBuf>,
     settings: &RenderSettings,
     piece: &PieceArgs,
+    layer_args: &super::layers::DenoiseArgs,
     show_stats: bool,
     root: Option<&Path>,
     max_memory: Option<u64>,
 ) -> ExitCode {
+    if layer_args.denoise && !crate::denoise::AVAILABLE {
+        eprintln!(
+            "error: --denoise: {}; {}; nothing was written",
+            crate::denoise::NOT_BUILT,
+            crate::denoise::HOW_TO_ENABLE
+        );
+        return USAGE.into();
+    }
     let json = piece.progress.as_deref() == Some("json");
     let overrides = crate::load::Overrides {
         root: root.map(Path::to_path_buf),
@@ -135,6 +144,20 @@ pub(super) fn cmd_render(
             input.display()
         );
         return ExitCode::FAILURE;
+    }
+    let denoise = layer_args.denoise || f.denoise;
+    if spec.is_some() && (denoise || !f.aovs.is_empty()) {
+        eprintln!(
+            "error: AOV layers and denoising need the whole frame (pieces carry only the beauty pass's sums); render without --crop, --pixels, --tile and --samples; nothing was written"
+        );
+        return USAGE.into();
+    }
+    if !f.aovs.is_empty() && ext != "exr" {
+        eprintln!(
+            "error: `film.aovs` adds layers to EXR files, and {} is not .exr; pass `-o NAME.exr` or remove `aovs`; nothing was written",
+            out.display()
+        );
+        return USAGE.into();
     }
     let spec = spec.unwrap_or(PieceSpec {
         rect: PixelRect::full(f.width, f.height),
@@ -200,6 +223,7 @@ pub(super) fn cmd_render(
         }
     };
     let cancel = AtomicBool::new(false);
+    let mut extra = String::new();
     let (written, stats) = match &meta {
         Some(m) => {
             let (sums, stats) = render_sums(&loaded.scene, &loaded.view, &opts, spec.rect, &cancel, &report);
@@ -207,10 +231,15 @@ pub(super) fn cmd_render(
         }
         None => {
             let (image, stats) = render_image(&loaded.scene, &loaded.view, &opts, &cancel, &report);
-            (
-                write_image_with(&image, &out, &loaded.view.display).map_err(|e| e.to_string()),
-                stats,
-            )
+            let written = super::layers::write_frame(
+                &loaded,
+                image,
+                &out,
+                opts.threads,
+                denoise,
+                layer_args.keep_noisy,
+            );
+            (written.map(|n| extra = n), stats)
         }
     };
     if let Err(e) = written {
@@ -225,7 +254,7 @@ pub(super) fn cmd_render(
     } else {
         format!("{}×{}, {} spp", f.width, f.height, f.spp)
     };
-    eprintln!("wrote {} ({what}) in {}", out.display(), stats.summary());
+    eprintln!("wrote {} ({what}) in {}{extra}", out.display(), stats.summary());
     if json {
         json_line(json!({
             "event": "done",

@@ -1,7 +1,7 @@
 //! Camera, film and integrator settings.
 
-use super::V3;
 use super::display::{FilterDesc, TonemapDesc};
+use super::{AovDesc, V3};
 use serde::{Deserialize, Serialize};
 
 /// A camera looking from `eye` toward `target`: perspective (the default,
@@ -105,6 +105,14 @@ pub struct FilmDesc {
     #[serde(default = "default_png_bits")]
     #[schemars(range(min = 8, max = 16))]
     pub png_bits: u8,
+    /// Extra layers written beside the beauty pass, EXR outputs only:
+    /// `[Albedo, Normal, Depth, Position, MaterialIndex]` in any order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub aovs: Vec<AovDesc>,
+    /// Denoise the image with Intel Open Image Denoise (needs ronray built
+    /// with `--features denoise`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub denoise: bool,
 }
 
 fn default_png_bits() -> u8 {
@@ -146,6 +154,8 @@ impl Default for FilmDesc {
             exposure: 0.0,
             tonemap: TonemapDesc::default(),
             png_bits: default_png_bits(),
+            aovs: Vec::new(),
+            denoise: false,
         }
     }
 }

@@ -21,6 +21,7 @@
 //! assert_eq!(scene.objects.len(), 1);
 //! ```
 
+mod aov;
 mod camera;
 mod color;
 mod display;
@@ -31,6 +32,7 @@ mod object;
 mod sdf;
 mod transform;
 
+pub use aov::AovDesc;
 pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc, SamplerDesc};
 pub use color::ColorDesc;
 pub use display::{FilterDesc, TonemapDesc};

@@ -5,9 +5,10 @@ use super::validate::{
     Checker, MAX_COORD, MAX_DEPTH, MAX_EXPOSURE, MAX_FILTER_RADIUS, MAX_LIGHT_SAMPLES, MAX_RESOLUTION,
     MAX_RR_DEPTH, MAX_SPP, MIN_FILTER_SIGMA,
 };
+use crate::aov::Aov;
 use crate::camera::{Camera, Projection};
 use crate::desc::{
-    CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc, SceneDesc, TonemapDesc,
+    AovDesc, CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc, SceneDesc, TonemapDesc,
 };
 use crate::film::{Filter, FilterKind};
 use crate::imageio::{Display, Tonemap};
@@ -216,6 +217,36 @@ impl Checker {
                 );
             }
         }
+        self.film_layers(f);
+    }
+
+    /// `film.aovs` and `film.denoise`: each layer once, layers only into
+    /// EXR, and the denoiser only when it was built in.
+    fn film_layers(&mut self, f: &FilmDesc) {
+        for (i, a) in f.aovs.iter().enumerate() {
+            if f.aovs[..i].contains(a) {
+                self.push(
+                    &format!("film.aovs[{i}]"),
+                    format!("`{a:?}` is listed twice"),
+                    "list each layer once",
+                );
+            }
+        }
+        let exr = |o: &str| o.to_ascii_lowercase().ends_with(".exr");
+        if let Some(out) = f.output.as_deref().filter(|o| !f.aovs.is_empty() && !exr(o)) {
+            self.push(
+                "film.aovs",
+                format!("AOV layers are written only to EXR, and `film.output` is `{out}`"),
+                "end `film.output` in `.exr` (or pass `-o NAME.exr`), or remove `aovs`",
+            );
+        }
+        if f.denoise && !crate::denoise::AVAILABLE {
+            self.push(
+                "film.denoise",
+                crate::denoise::NOT_BUILT,
+                crate::denoise::HOW_TO_ENABLE,
+            );
+        }
     }
 
     pub(super) fn integrator(&mut self, i: &IntegratorDesc) {
@@ -324,10 +355,23 @@ pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
                 SamplerDesc::Stratified => SamplerKind::Stratified,
                 SamplerDesc::Sobol => SamplerKind::Sobol,
             },
+            aovs: f.aovs.iter().map(|a| aov_of(*a)).collect(),
+            denoise: f.denoise,
         },
         filter,
         display,
         integrator,
         output: f.output.as_ref().map(|o| base.join(o)).unwrap_or_default(),
+    }
+}
+
+/// The runtime layer of a scene-file layer.
+fn aov_of(a: AovDesc) -> Aov {
+    match a {
+        AovDesc::Albedo => Aov::Albedo,
+        AovDesc::Normal => Aov::Normal,
+        AovDesc::Depth => Aov::Depth,
+        AovDesc::Position => Aov::Position,
+        AovDesc::MaterialIndex => Aov::MaterialIndex,
     }
 }

@@ -54,3 +54,18 @@ fn lsp_completes_while_typing_ron() {
     let samplers = labels(src, src.find("sampler: ").expect("key") + 9, false);
     assert!(samplers.iter().any(|(l, _)| l == "Sobol"), "{samplers:?}");
 }
+
+#[test]
+fn lsp_completes_film_aovs_and_denoise() {
+    let src = "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), film: (width: 64, ))";
+    let fields = labels(src, src.find("64, ").expect("film") + 4, false);
+    for f in ["aovs", "denoise"] {
+        assert!(fields.iter().any(|(l, _)| l == f), "{f} missing: {fields:?}");
+    }
+    let src =
+        "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), film: (aovs: [Albedo, ]))";
+    let layers = labels(src, src.find("Albedo, ").expect("aovs") + 8, false);
+    for l in ["Normal", "Depth", "Position", "MaterialIndex"] {
+        assert!(layers.iter().any(|(x, _)| x == l), "{l} missing: {layers:?}");
+    }
+}

@@ -1,0 +1,53 @@
+//! The albedo a first hit shows, as Open Image Denoise's documentation asks
+//! for its `albedo` input ("Albedos" in the RT filter section of
+//! <https://github.com/RenderKit/oidn/blob/master/doc/api.md>): the diffuse
+//! colour of matte surfaces, the reflectance at normal incidence of metals
+//! (or 1 when that is not a colour we hold), the tint of mirrors, 1 times the
+//! absorption tint for dielectrics, the base of layered surfaces (a clear
+//! coat is ignored). Values are clamped to [0, 1].
+
+use crate::materials::{Material, Texture};
+use crate::math::Rgb;
+use glam::Vec2;
+
+/// The albedo of `material` at surface coordinates `uv`, in [0, 1].
+pub fn first_hit_albedo(material: &Material, uv: Vec2, textures: &[Texture]) -> Rgb {
+    let tex = |c: &crate::materials::ColorTex| c.eval(uv, textures);
+    let a = match material {
+        Material::Lambert { albedo } | Material::OrenNayar { albedo, .. } => tex(albedo),
+        // Both lobes reflect: their sum, as the model caps it.
+        Material::Phong { kd, ks, .. } | Material::BlinnPhong { kd, ks, .. } => tex(kd) + tex(ks),
+        // The conductor's colour lives in its Fresnel term; OIDN allows 1.
+        Material::CookTorrance { .. } => Rgb::ONE,
+        // Diffuse colour for plastic, reflectance at normal incidence for metal.
+        Material::MetalPlastic { base_color, .. } => tex(base_color),
+        Material::Mirror { tint } => tex(tint),
+        Material::Glass { tint, .. } | Material::RoughGlass { tint, .. } => tex(tint),
+        Material::RoughPlastic { diffuse, .. } => tex(diffuse),
+        // Light sources reflect nothing.
+        Material::Emitter => Rgb::ZERO,
+    };
+    a.clamp(Rgb::ZERO, Rgb::ONE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::ColorTex;
+
+    #[test]
+    fn matte_albedo_is_its_colour_and_phong_sums_are_clamped() {
+        let c = Rgb::new(0.2, 0.5, 0.7);
+        let m = Material::Lambert {
+            albedo: ColorTex::Const(c),
+        };
+        assert_eq!(first_hit_albedo(&m, Vec2::ZERO, &[]), c);
+        let p = Material::Phong {
+            kd: ColorTex::Const(Rgb::splat(0.7)),
+            ks: ColorTex::Const(Rgb::splat(0.6)),
+            exponent: 10.0,
+        };
+        assert_eq!(first_hit_albedo(&p, Vec2::ZERO, &[]), Rgb::ONE);
+        assert_eq!(first_hit_albedo(&Material::Emitter, Vec2::ZERO, &[]), Rgb::ZERO);
+    }
+}

@@ -1,0 +1,108 @@
+//! The first-hit pass that fills [`AovLayers`].
+
+use super::{AovLayers, AovSet, first_hit_albedo};
+use crate::math::Rgb;
+use crate::sampler::Sampler;
+use crate::scene::Scene;
+use crate::view::View;
+use glam::{DVec3, Vec2, Vec3A};
+use rayon::prelude::*;
+
+/// One pixel's layer values.
+#[derive(Clone, Copy)]
+struct Pixel {
+    albedo: Rgb,
+    normal: Vec3A,
+    depth: f32,
+    position: Vec3A,
+    material_id: u32,
+}
+
+/// Traces the camera rays of every (pixel, sample) of `view`'s film to their
+/// first hit and reduces them per pixel; `written` is recorded as the layers
+/// to write. The camera sample is drawn exactly as [`crate::render`] draws it
+/// (same sampler stream, same two dimensions), so the layers see what the
+/// beauty pass sees. `threads` as in [`crate::render::RenderOptions`]; the
+/// result does not depend on it.
+pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<usize>) -> AovLayers {
+    let film = view.film;
+    let (w, h) = (film.width, film.height);
+    let rows = |y: u32| -> Vec<Pixel> { (0..w).map(|x| pixel(scene, view, x, y)).collect() };
+    let all = || -> Vec<Vec<Pixel>> { (0..h).into_par_iter().map(rows).collect() };
+    let rows = match rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+    {
+        Ok(pool) => pool.install(all),
+        Err(_) => all(),
+    };
+    let px: Vec<Pixel> = rows.into_iter().flatten().collect();
+    AovLayers {
+        width: w,
+        height: h,
+        written,
+        albedo: px.iter().map(|p| p.albedo).collect(),
+        normal: px.iter().map(|p| p.normal).collect(),
+        depth: px.iter().map(|p| p.depth).collect(),
+        position: px.iter().map(|p| p.position).collect(),
+        material_id: px.iter().map(|p| p.material_id).collect(),
+        aux_noise_free: view.camera.aperture_radius <= 0.0,
+    }
+}
+
+/// The layers of pixel (x, y): sums in sample order in `f64` on one thread,
+/// so the same on any thread count.
+fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
+    let film = view.film;
+    let (w, h) = (film.width, film.height);
+    let aspect = w as f32 / h as f32;
+    let (mut albedo, mut normal, mut position) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    let (mut depth, mut hits) = (0.0f64, 0u32);
+    // (id, votes), few entries: a pixel straddles a handful of materials.
+    let mut votes: Vec<(u32, u32)> = Vec::new();
+    for s in 0..film.spp {
+        let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
+        // The filter's sample place, as the beauty pass draws it; the
+        // layers average unweighted (a Mitchell lobe's sign means nothing
+        // for a normal or an id).
+        let (offset, _weight) = view.filter.sample(sampler.next_vec2());
+        let film_pos = Vec2::new((x as f32 + offset.x) / w as f32, (y as f32 + offset.y) / h as f32);
+        let ray = view.camera.ray(film_pos, aspect, sampler.next_vec2());
+        let id = match scene.intersect(&ray, f32::INFINITY) {
+            Some(hit) => {
+                let material = &scene.materials[hit.material as usize];
+                albedo += first_hit_albedo(material, hit.uv, &scene.textures).as_dvec3();
+                // Facing the camera, so both sides of a sheet read alike.
+                let n = if hit.ns.dot(ray.d) > 0.0 { -hit.ns } else { hit.ns };
+                normal += n.as_dvec3();
+                position += hit.p.as_dvec3();
+                depth += f64::from(hit.t) * f64::from(ray.d.length());
+                hits += 1;
+                hit.material + 1
+            }
+            None => 0,
+        };
+        match votes.iter_mut().find(|(v, _)| *v == id) {
+            Some((_, n)) => *n += 1,
+            None => votes.push((id, 1)),
+        }
+    }
+    let n = f64::from(film.spp.max(1));
+    let per_hit = f64::from(hits.max(1));
+    // Most votes; among equals the smaller id.
+    let material_id = votes
+        .iter()
+        .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)))
+        .map_or(0, |v| v.0);
+    Pixel {
+        albedo: (albedo / n).as_vec3a(),
+        normal: (normal / n).as_vec3a(),
+        depth: if hits == 0 {
+            f32::INFINITY
+        } else {
+            (depth / per_hit) as f32
+        },
+        position: (position / per_hit).as_vec3a(),
+        material_id,
+    }
+}
