@@ -8,7 +8,8 @@ use super::validate::{
 use crate::aov::Aov;
 use crate::camera::{Camera, Projection};
 use crate::desc::{
-    AovDesc, CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc, SceneDesc, TonemapDesc,
+    AovDesc, CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc, SceneDesc,
+    TonemapDesc,
 };
 use crate::film::{Filter, FilterKind};
 use crate::imageio::{Display, Tonemap};
