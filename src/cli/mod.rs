@@ -416,8 +416,10 @@ pub fn run(cli: Cli) -> ExitCode {
             &piece,
             &denoise,
             stats,
-            root.as_deref(),
-            cli.max_memory,
+            &render::Limits {
+                root: root.as_deref(),
+                max_memory: cli.max_memory,
+            },
         ),
         Command::Assemble { pieces, output } => cmd_assemble(&pieces, &output),
         Command::Validate {

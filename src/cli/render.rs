@@ -63,6 +63,15 @@ fn json_line(v: serde_json::Value) {
     super::print_out(&format!("{v}\n"));
 }
 
+/// The global flags that fence what a render may read and allocate.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Limits<'a> {
+    /// `--root DIR`: inputs outside it are refused.
+    pub root: Option<&'a Path>,
+    /// `--max-memory GIB`, in bytes; `None` uses what the machine has.
+    pub max_memory: Option<u64>,
+}
+
 pub(super) fn cmd_render(
     path: &Path,
     output: Option<PathBuf>,
@@ -70,9 +79,9 @@ pub(super) fn cmd_render(
     piece: &PieceArgs,
     layer_args: &super::layers::DenoiseArgs,
     show_stats: bool,
-    root: Option<&Path>,
-    max_memory: Option<u64>,
+    limits: &Limits,
 ) -> ExitCode {
+    let Limits { root, max_memory } = *limits;
     if layer_args.denoise && !crate::denoise::AVAILABLE {
         eprintln!(
             "error: --denoise: {}; {}; nothing was written",
