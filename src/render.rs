@@ -17,7 +17,6 @@ use crate::math::{ExactSum, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::view::View;
-use glam::Vec2;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -250,12 +249,10 @@ impl Work<'_> {
         finish: &(impl Fn(ExactSum) -> T + Sync),
     ) -> (Vec<(PixelRect, Vec<T>)>, Counters) {
         let film = self.view.film;
-        let (w, h) = (film.width, film.height);
         let tiles = tiles_of(self.rect);
         let bar = progress_bar(self.opts.progress, tiles.len());
         let finished = AtomicUsize::new(0);
         let (s0, spp) = self.opts.sample_range.unwrap_or((0, film.spp));
-        let aspect = w as f32 / h as f32;
         let rendered: Vec<(PixelRect, Vec<T>, Counters)> = tiles
             .par_iter()
             .map(|&tile| {
@@ -269,12 +266,7 @@ impl Work<'_> {
                         let mut sum = ExactSum::ZERO;
                         for s in s0..s0 + spp {
                             let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
-                            // The sample's place in the pixel, drawn from the
-                            // filter (`Box`: the two numbers themselves).
-                            let (offset, weight) = self.view.filter.sample(sampler.next_vec2());
-                            let film_pos =
-                                Vec2::new((x as f32 + offset.x) / w as f32, (y as f32 + offset.y) / h as f32);
-                            let ray = self.view.camera.ray(film_pos, aspect, sampler.next_vec2());
+                            let (ray, weight) = self.view.camera_ray(x, y, &mut sampler);
                             let li = self
                                 .view
                                 .integrator

@@ -7,7 +7,8 @@ use crate::camera::Camera;
 use crate::film::Filter;
 use crate::imageio::Display;
 use crate::integrators::Integrator;
-use crate::sampler::SamplerKind;
+use crate::math::Ray;
+use crate::sampler::{Sampler, SamplerKind};
 use std::path::{Path, PathBuf};
 
 /// Image size and sampling.
@@ -48,6 +49,18 @@ pub struct View {
 }
 
 impl View {
+    /// The camera ray of one sample of pixel `(x, y)` and the sample's
+    /// filter weight: its place in the pixel drawn from the filter (`Box`:
+    /// the sampler's two numbers themselves), then the lens. The beauty pass
+    /// and the AOV pass both draw here, so the layers see the beauty's rays.
+    #[inline]
+    pub fn camera_ray(&self, x: u32, y: u32, sampler: &mut Sampler) -> (Ray, f32) {
+        let (w, h) = (self.film.width as f32, self.film.height as f32);
+        let (offset, weight) = self.filter.sample(sampler.next_vec2());
+        let film_pos = glam::Vec2::new((x as f32 + offset.x) / w, (y as f32 + offset.y) / h);
+        (self.camera.ray(film_pos, w / h, sampler.next_vec2()), weight)
+    }
+
     /// Where a render of the scene at `scene_path` goes: `cli` (`-o`), else
     /// the scene's `film.output`, else `<scene stem>.png` in the current
     /// folder.

@@ -5,7 +5,7 @@ use crate::math::Rgb;
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::view::View;
-use glam::{DVec3, Vec2, Vec3A};
+use glam::{DVec3, Vec3A};
 use rayon::prelude::*;
 
 /// One pixel's layer values.
@@ -54,20 +54,15 @@ pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<
 /// so the same on any thread count.
 fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
     let film = view.film;
-    let (w, h) = (film.width, film.height);
-    let aspect = w as f32 / h as f32;
     let (mut albedo, mut normal, mut position) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
     let (mut depth, mut hits) = (0.0f64, 0u32);
     // (id, votes), few entries: a pixel straddles a handful of materials.
     let mut votes: Vec<(u32, u32)> = Vec::new();
     for s in 0..film.spp {
         let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
-        // The filter's sample place, as the beauty pass draws it; the
-        // layers average unweighted (a Mitchell lobe's sign means nothing
-        // for a normal or an id).
-        let (offset, _weight) = view.filter.sample(sampler.next_vec2());
-        let film_pos = Vec2::new((x as f32 + offset.x) / w as f32, (y as f32 + offset.y) / h as f32);
-        let ray = view.camera.ray(film_pos, aspect, sampler.next_vec2());
+        // The layers average unweighted (a Mitchell lobe's sign means
+        // nothing for a normal or an id).
+        let (ray, _weight) = view.camera_ray(x, y, &mut sampler);
         let id = match scene.intersect(&ray, f32::INFINITY) {
             Some(hit) => {
                 let material = &scene.materials[hit.material as usize];

@@ -241,9 +241,10 @@ fn bvh_structure_is_consistent() {
     }
 }
 
-#[test]
-fn bvh_build_is_deterministic() {
-    let tris = soup(7, 50_000, 1.0, Vec3A::ZERO, false);
+/// Builds the BVH over `n` random triangles on 1 and on `threads` threads
+/// and checks both trees are the same, node for node.
+fn assert_same_tree_on(threads: usize, seed: u64, n: usize) {
+    let tris = soup(seed, n, 1.0, Vec3A::ZERO, false);
     let bounds: Vec<Aabb> = tris.iter().map(Tri::bounds).collect();
     let on = |threads| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -252,36 +253,26 @@ fn bvh_build_is_deterministic() {
             .unwrap();
         pool.install(|| Bvh::build(&bounds))
     };
-    let (a, b) = (on(1), on(3));
+    let (a, b) = (on(1), on(threads));
     assert!(
         a.nodes == b.nodes && a.indices == b.indices,
-        "1 and 3 threads built different trees: {:?} vs {:?}",
+        "1 and {threads} threads built different trees: {:?} vs {:?}",
         a.stats(),
         b.stats()
     );
+    check_structure(&a, &bounds);
+}
+
+#[test]
+fn bvh_build_is_deterministic() {
+    assert_same_tree_on(3, 7, 50_000);
 }
 
 #[test]
 fn bvh_top_levels_are_identical_on_1_and_2_threads() {
     // Over 2^16 references, so the root's binning and partition run over
     // parallel chunks; the tree must not depend on how they were scheduled.
-    let tris = soup(8, 150_000, 1.0, Vec3A::ZERO, false);
-    let bounds: Vec<Aabb> = tris.iter().map(Tri::bounds).collect();
-    let on = |threads| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| Bvh::build(&bounds))
-    };
-    let (a, b) = (on(1), on(2));
-    assert!(
-        a.nodes == b.nodes && a.indices == b.indices,
-        "1 and 2 threads built different trees: {:?} vs {:?}",
-        a.stats(),
-        b.stats()
-    );
-    check_structure(&a, &bounds);
+    assert_same_tree_on(2, 8, 150_000);
 }
 
 #[test]
