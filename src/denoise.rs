@@ -97,6 +97,7 @@ mod tests {
             depth: vec![0.0; 4],
             position: vec![Default::default(); 4],
             material_id: vec![0; 4],
+            object_id: vec![0; 4],
             aux_noise_free: true,
         };
         let e = denoise(&img, &layers)

@@ -30,6 +30,10 @@ pub struct Scene {
     /// Bounded shapes first (`..bounded`, in the BVH's leaf order), then
     /// unbounded ones (planes), which every ray tests.
     pub shapes: Vec<Shape>,
+    /// The object each of `shapes` belongs to, for the object-index layer:
+    /// 1 + its index in the scene file's `objects`, then the area lights
+    /// (`1 + objects.len() + i` for `lights[i]`).
+    pub objects: Vec<u32>,
     /// Number of bounded shapes at the front of `shapes` (those in the BVH).
     pub bounded: u32,
     /// Meshes (each with its own BVH) and their instances.
@@ -42,7 +46,8 @@ pub struct Scene {
 #[derive(Clone, Copy)]
 enum Nearest {
     Shape(u32),
-    Mesh(u32, MeshHit),
+    /// Shape index, instance index, hit.
+    Mesh(u32, u32, MeshHit),
     Triangle(u32, Vec2),
 }
 
@@ -59,6 +64,21 @@ impl Scene {
 
     /// Closest hit in `(0, t_max)`.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        self.closest(ray, t_max).map(|(hit, _)| hit)
+    }
+
+    /// Closest hit in `(0, t_max)` and the object id ([`Scene::objects`])
+    /// of the shape hit: the object-index layer's query.
+    pub fn intersect_object(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
+        self.closest(ray, t_max)
+            .map(|(hit, shape)| (hit, self.objects.get(shape as usize).copied().unwrap_or(0)))
+    }
+
+    /// Closest hit in `(0, t_max)` and the index in `shapes` of the shape
+    /// hit. Inlined into both callers, so `intersect` pays nothing for the
+    /// index it drops.
+    #[inline(always)]
+    fn closest(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
         let geo = &self.geometry;
         let shapes = &self.shapes;
         // Kept with the nearest hit so the hit record needs no second trace
@@ -73,7 +93,7 @@ impl Scene {
                         let Some(h) = geo.instances[*k as usize].closest(ray, t_best, &geo.meshes) else {
                             continue;
                         };
-                        (h.t, Nearest::Mesh(*k, h))
+                        (h.t, Nearest::Mesh(i, *k, h))
                     }
                     Shape::Triangle(tr) => {
                         let Some((t, bc)) = tr.intersect(&wt, t_best) else {
@@ -116,16 +136,16 @@ impl Scene {
             }
         }
         Some(match nearest? {
-            Nearest::Mesh(k, h) => geo.instances[k as usize].hit(ray, h, &geo.meshes),
+            Nearest::Mesh(i, k, h) => (geo.instances[k as usize].hit(ray, h, &geo.meshes), i),
             Nearest::Triangle(i, bc) => match &shapes[i as usize] {
-                Shape::Triangle(tr) => tr.hit(ray, t_best, bc, geo),
-                s => s.hit(ray, t_best, geo),
+                Shape::Triangle(tr) => (tr.hit(ray, t_best, bc, geo), i),
+                s => (s.hit(ray, t_best, geo), i),
             },
             Nearest::Shape(i) => match &shapes[i as usize] {
                 Shape::Sphere(sp) if !self.materials[sp.material as usize].is_textured() => {
-                    sp.hit_without_uv(ray.at(t_best), t_best)
+                    (sp.hit_without_uv(ray.at(t_best), t_best), i)
                 }
-                s => s.hit(ray, t_best, geo),
+                s => (s.hit(ray, t_best, geo), i),
             },
         })
     }

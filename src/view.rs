@@ -92,16 +92,19 @@ pub enum Aov {
     Position,
     /// 1 + the first hit's material index, 0 for no surface (`materialId`).
     MaterialIndex,
+    /// 1 + the first hit's object index, 0 for no surface (`objectId`).
+    ObjectIndex,
 }
 
 impl Aov {
     /// Every layer, in the order they are listed in the README.
-    pub const ALL: [Aov; 5] = [
+    pub const ALL: [Aov; 6] = [
         Aov::Albedo,
         Aov::Normal,
         Aov::Depth,
         Aov::Position,
         Aov::MaterialIndex,
+        Aov::ObjectIndex,
     ];
 
     fn bit(self) -> u8 {

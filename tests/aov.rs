@@ -46,7 +46,10 @@ fn channels(path: &Path) -> HashMap<String, Vec<f64>> {
 #[test]
 fn a_lambert_planes_layers_hold_its_albedo_normal_and_distance() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let scene = plane_scene("Albedo, Normal, Depth, Position, MaterialIndex", "plane.exr");
+    let scene = plane_scene(
+        "Albedo, Normal, Depth, Position, MaterialIndex, ObjectIndex",
+        "plane.exr",
+    );
     std::fs::write(dir.path().join("plane.ron"), &scene).expect("write scene");
     let out = ronray_in(dir.path(), &["render", "plane.ron"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -69,7 +72,8 @@ fn a_lambert_planes_layers_hold_its_albedo_normal_and_distance() {
             "albedo.B",
             "albedo.G",
             "albedo.R",
-            "materialId"
+            "materialId",
+            "objectId"
         ]
     );
     let close = |name: &str, want: f64, tol: f64| {
@@ -89,6 +93,7 @@ fn a_lambert_planes_layers_hold_its_albedo_normal_and_distance() {
     close("N.Z", 1.0, 1e-6);
     close("P.Z", 0.0, 1e-5);
     close("materialId", 1.0, 0.0);
+    close("objectId", 1.0, 0.0);
     // Depth is the distance along each ray, eye to plane: the mean distance
     // to the pixel's hits is the distance to their mean point up to the
     // spread of 1/cos θ across one pixel (below 1e-3 here).
@@ -152,9 +157,52 @@ fn layers_do_not_depend_on_the_thread_count() {
     // one of the scene's (0 = sky, 1 = "a", 2 = "b").
     assert!(one.material_id.iter().all(|&m| m <= 2));
     assert!(one.material_id.contains(&1) && one.material_id.contains(&2) && one.material_id.contains(&0));
+    // Object ids: 1 = the sphere, 2 = the plane (`objects` order), 0 = sky.
+    assert!(one.object_id.iter().all(|&o| o <= 2));
+    assert!(one.object_id.contains(&1) && one.object_id.contains(&2) && one.object_id.contains(&0));
     assert!(
         one.depth.iter().any(|d| d.is_infinite()),
         "sky pixels have infinite depth"
+    );
+}
+
+/// Object ids tell apart objects that share a material, every triangle of a
+/// mesh carries its object's id, and an area light's surface comes after
+/// the objects. One sample per pixel, so no vote is split.
+#[test]
+fn object_ids_follow_the_objects_list_then_the_lights() {
+    let scene = r#"Scene(
+    camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 60),
+    film: (width: 32, height: 32, spp: 1),
+    materials: { "grey": Lambert(albedo: (0.5, 0.5, 0.5)) },
+    lights: [Rect(center: (0, 1.4, 0), half_u: (0.3, 0, 0), half_v: (0, 0, 0.3), radiance: (1, 1, 1))],
+    objects: [
+        Sphere(center: (-1, 0, 0), radius: 0.5, material: "grey"),
+        Mesh(file: "tall_block.obj", material: "grey", transform: [Scale((0.8, 0.8, 0.8)), Translate((1.3, 0, 0))]),
+    ],
+)"#;
+    let l = load_in(&common::root().join("assets"), scene, &Overrides::default());
+    let layers = render_aovs(&l.scene, &l.view, AovSet::EMPTY, Some(1));
+    let at = |x: u32, y: u32| layers.object_id[(y * 32 + x) as usize];
+    let ids: std::collections::BTreeSet<u32> = layers.object_id.iter().copied().collect();
+    assert_eq!(
+        ids.into_iter().collect::<Vec<_>>(),
+        [0, 1, 2, 3],
+        "sky, sphere, mesh, light"
+    );
+    assert!(
+        layers.material_id.iter().all(|&m| m <= 2),
+        "one material and the emitter"
+    );
+    // Left of centre the sphere, right of it the block, above them the light.
+    assert_eq!(at(8, 16), 1);
+    assert_eq!(at(0, 0), 0);
+    let light_rows: Vec<u32> = (0..32).filter(|&y| at(16, y) == 3).collect();
+    let block_rows: Vec<u32> = (0..32).filter(|&y| (20..32).any(|x| at(x, y) == 2)).collect();
+    assert!(!light_rows.is_empty() && !block_rows.is_empty(), "{layers:?}");
+    assert!(
+        light_rows.iter().max() < block_rows.iter().min(),
+        "the light is above the block"
     );
 }
 

@@ -9,12 +9,13 @@
 //! | `Depth` | `Z` | f32 |
 //! | `Position` | `P.X`, `P.Y`, `P.Z` | f32 |
 //! | `MaterialIndex` | `materialId` | u32 |
+//! | `ObjectIndex` | `objectId` | u32 |
 //!
 //! `Z` is OpenEXR's standard depth channel name; `N` and `P` are the
 //! layer names Nuke uses for normals and positions; `layer.channel` is the
 //! prefix convention Nuke's EXR reader splits into layer and channel
 //! (`ExrChannelNameToNuke` in the Nuke NDK) and Blender's multilayer EXRs
-//! use. `materialId` has no standard name: an integer channel (u32), so no
+//! use. `materialId` and `objectId` have no standard name: an integer channel (u32), so no
 //! reader filters it into ids that exist nowhere. One part rather than
 //! OpenEXR 2 multi-part, which not every reader opens.
 
@@ -58,6 +59,10 @@ fn encode(img: &Image, layers: &AovLayers, w: &mut std::io::BufWriter<&std::fs::
             Aov::MaterialIndex => channels.push(AnyChannel::new(
                 "materialId",
                 FlatSamples::U32(layers.material_id.clone()),
+            )),
+            Aov::ObjectIndex => channels.push(AnyChannel::new(
+                "objectId",
+                FlatSamples::U32(layers.object_id.clone()),
             )),
         }
     }

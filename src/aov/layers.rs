@@ -30,6 +30,10 @@ pub struct AovLayers {
     /// the smaller id), 0 when most samples hit nothing: averaging ids would
     /// make ids that exist nowhere.
     pub material_id: Vec<u32>,
+    /// 1 + the index in `objects` of the object most of the pixel's samples
+    /// hit (area lights after the objects, see [`crate::scene::Scene::objects`]),
+    /// 0 when most samples hit nothing; ties as for `material_id`.
+    pub object_id: Vec<u32>,
     /// Whether albedo and normal vary within a pixel only with where its
     /// samples land (a pinhole camera: no lens sample moves the first hit),
     /// so they hold no noise, only anti-aliasing: Open Image Denoise's

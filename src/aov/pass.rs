@@ -16,6 +16,7 @@ struct Pixel {
     depth: f32,
     position: Vec3A,
     material_id: u32,
+    object_id: u32,
 }
 
 /// Traces the camera rays of every (pixel, sample) of `view`'s film to their
@@ -46,6 +47,7 @@ pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<
         depth: px.iter().map(|p| p.depth).collect(),
         position: px.iter().map(|p| p.position).collect(),
         material_id: px.iter().map(|p| p.material_id).collect(),
+        object_id: px.iter().map(|p| p.object_id).collect(),
         aux_noise_free: view.camera.aperture_radius <= 0.0,
     }
 }
@@ -56,39 +58,33 @@ fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
     let film = view.film;
     let (mut albedo, mut normal, mut position) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
     let (mut depth, mut hits) = (0.0f64, 0u32);
-    // (id, votes), few entries: a pixel straddles a handful of materials.
-    let mut votes: Vec<(u32, u32)> = Vec::new();
+    // (id, votes), few entries: a pixel straddles a handful of materials
+    // and objects.
+    let (mut material_votes, mut object_votes) = (Votes::default(), Votes::default());
     for s in 0..film.spp {
         let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
         // The layers average unweighted (a Mitchell lobe's sign means
         // nothing for a normal or an id).
         let (ray, _weight) = view.camera_ray(x, y, &mut sampler);
-        let id = match scene.intersect(&ray, f32::INFINITY) {
-            Some(hit) => {
-                let material = &scene.materials[hit.material as usize];
-                albedo += first_hit_albedo(material, hit.uv, &scene.textures).as_dvec3();
+        let (material, object) = match scene.intersect_object(&ray, f32::INFINITY) {
+            Some((hit, object)) => {
+                let m = &scene.materials[hit.material as usize];
+                albedo += first_hit_albedo(m, hit.uv, &scene.textures).as_dvec3();
                 // Facing the camera, so both sides of a sheet read alike.
                 let n = if hit.ns.dot(ray.d) > 0.0 { -hit.ns } else { hit.ns };
                 normal += n.as_dvec3();
                 position += hit.p.as_dvec3();
                 depth += f64::from(hit.t) * f64::from(ray.d.length());
                 hits += 1;
-                hit.material + 1
+                (hit.material + 1, object)
             }
-            None => 0,
+            None => (0, 0),
         };
-        match votes.iter_mut().find(|(v, _)| *v == id) {
-            Some((_, n)) => *n += 1,
-            None => votes.push((id, 1)),
-        }
+        material_votes.add(material);
+        object_votes.add(object);
     }
     let n = f64::from(film.spp.max(1));
     let per_hit = f64::from(hits.max(1));
-    // Most votes; among equals the smaller id.
-    let material_id = votes
-        .iter()
-        .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)))
-        .map_or(0, |v| v.0);
     Pixel {
         albedo: (albedo / n).as_vec3a(),
         normal: (normal / n).as_vec3a(),
@@ -98,6 +94,29 @@ fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
             (depth / per_hit) as f32
         },
         position: (position / per_hit).as_vec3a(),
-        material_id,
+        material_id: material_votes.winner(),
+        object_id: object_votes.winner(),
+    }
+}
+
+/// Per-id sample counts of one pixel: an id layer keeps the id most samples
+/// hit, since averaging ids would make ids that exist nowhere.
+#[derive(Default)]
+struct Votes(Vec<(u32, u32)>);
+
+impl Votes {
+    fn add(&mut self, id: u32) {
+        match self.0.iter_mut().find(|(v, _)| *v == id) {
+            Some((_, n)) => *n += 1,
+            None => self.0.push((id, 1)),
+        }
+    }
+
+    /// The id with the most votes; among equals the smaller id; 0 if none.
+    fn winner(&self) -> u32 {
+        self.0
+            .iter()
+            .max_by(|a, b| a.1.cmp(&b.1).then(b.0.cmp(&a.0)))
+            .map_or(0, |v| v.0)
     }
 }

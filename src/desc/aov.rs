@@ -21,4 +21,8 @@ pub enum AovDesc {
     /// Index of the first hit's material, the one most of the pixel's
     /// samples hit (`materialId`).
     MaterialIndex,
+    /// Which scene object the first hit belongs to, the one most of the
+    /// pixel's samples hit (`objectId`): 1 + its index in `objects`, then
+    /// the area lights after them.
+    ObjectIndex,
 }

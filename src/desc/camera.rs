@@ -106,7 +106,7 @@ pub struct FilmDesc {
     #[schemars(range(min = 8, max = 16))]
     pub png_bits: u8,
     /// Extra layers written beside the beauty pass, EXR outputs only:
-    /// `[Albedo, Normal, Depth, Position, MaterialIndex]` in any order.
+    /// `[Albedo, Normal, Depth, Position, MaterialIndex, ObjectIndex]` in any order.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub aovs: Vec<AovDesc>,
     /// Denoise the image with Intel Open Image Denoise (needs ronray built

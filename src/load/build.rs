@@ -72,6 +72,9 @@ pub(super) struct BuildContext<'a> {
     pub shapes: Vec<Shape>,
     /// Unbounded shapes (planes, unbounded SDFs): every ray tests them.
     pub unbounded: Vec<Shape>,
+    /// The object id ([`Scene::objects`]) of each of `shapes`, then of each
+    /// of `unbounded`, filled in once the entry that made them is built.
+    pub object_ids: (Vec<u32>, Vec<u32>),
     pub geometry: Geometry,
     pub mesh_state: MeshState,
     /// Triangles over all placed meshes.
@@ -128,6 +131,7 @@ pub fn build_in(
         environment: None,
         shapes: Vec::new(),
         unbounded: Vec::new(),
+        object_ids: (Vec::new(), Vec::new()),
         geometry: Geometry::default(),
         mesh_state: MeshState::default(),
         triangles: 0,
@@ -136,13 +140,18 @@ pub fn build_in(
         env_times: Default::default(),
         light_files: Vec::new(),
     };
+    // Object ids: 1 + i for `objects[i]`, then the area lights after them
+    // (0 is "no surface" in the object-index layer).
+    let first_light_id = desc.objects.len() as u32 + 1;
     for (i, l) in desc.lights.iter().enumerate() {
         super::light::build_light(&mut ctx, i, l);
+        tag_object(&mut ctx, first_light_id.saturating_add(i as u32));
     }
     for (i, o) in desc.objects.iter().enumerate() {
         let (shapes, unbounded) = (ctx.shapes.len(), ctx.unbounded.len());
         super::object::build_object(&mut ctx, i, o);
         check_extent(&mut ctx, i, shapes, unbounded);
+        tag_object(&mut ctx, i as u32 + 1);
     }
     if !ctx.problems.is_empty() {
         return Err(ctx.problems);
@@ -152,7 +161,11 @@ pub fn build_in(
     let load_time = t0.elapsed();
 
     let t1 = Instant::now();
-    let (shapes, bounded, bvh) = bvh_and_leaf_order(ctx.shapes, ctx.unbounded, &ctx.geometry);
+    let (shapes, objects, bounded, bvh) = bvh_and_leaf_order(
+        (ctx.shapes, ctx.object_ids.0),
+        (ctx.unbounded, ctx.object_ids.1),
+        &ctx.geometry,
+    );
     let bvh_time = t1.elapsed();
     // The environment's power (for light selection) is its flux through the
     // scene's bounding disk.
@@ -188,11 +201,19 @@ pub fn build_in(
         lights: ctx.lights,
         environment: ctx.environment,
         shapes,
+        objects,
         bounded,
         geometry: ctx.geometry,
         bvh,
     };
     Ok((scene, super::view::build_view(desc, base), stats))
+}
+
+/// Gives the shapes built since the last call the object id `id`.
+fn tag_object(ctx: &mut BuildContext, id: u32) {
+    let (bounded, unbounded) = &mut ctx.object_ids;
+    bounded.resize(ctx.shapes.len(), id);
+    unbounded.resize(ctx.unbounded.len(), id);
 }
 
 /// Object `i` (its shapes from `shapes` and `unbounded` on) must lie within
@@ -220,18 +241,21 @@ fn check_extent(ctx: &mut BuildContext, i: usize, shapes: usize, unbounded: usiz
 /// scene keeps them: bounded ones in the BVH's leaf order (a leaf is a
 /// contiguous run; shapes with empty bounds, never hit, drop out), then the
 /// unbounded ones.
+/// Each shape's object id travels with it.
 fn bvh_and_leaf_order(
-    shapes: Vec<Shape>,
-    unbounded: Vec<Shape>,
+    (shapes, ids): (Vec<Shape>, Vec<u32>),
+    (unbounded, unbounded_ids): (Vec<Shape>, Vec<u32>),
     geometry: &Geometry,
-) -> (Vec<Shape>, u32, WideBvh) {
+) -> (Vec<Shape>, Vec<u32>, u32, WideBvh) {
     let bounds: Vec<_> = shapes
         .iter()
         .map(|s| s.bounds(geometry).unwrap_or(Aabb::EMPTY))
         .collect();
     let bvh = WideBvh::build_with(&bounds, Leaves::Single);
     let mut ordered: Vec<Shape> = bvh.order().iter().map(|&i| shapes[i as usize]).collect();
+    let mut objects: Vec<u32> = bvh.order().iter().map(|&i| ids[i as usize]).collect();
     let bounded = ordered.len() as u32;
     ordered.extend(unbounded);
-    (ordered, bounded, bvh)
+    objects.extend(unbounded_ids);
+    (ordered, objects, bounded, bvh)
 }

@@ -374,5 +374,6 @@ fn aov_of(a: AovDesc) -> Aov {
         AovDesc::Depth => Aov::Depth,
         AovDesc::Position => Aov::Position,
         AovDesc::MaterialIndex => Aov::MaterialIndex,
+        AovDesc::ObjectIndex => Aov::ObjectIndex,
     }
 }
