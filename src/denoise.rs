@@ -33,7 +33,10 @@ pub enum DenoiseError {
 
 /// The image denoised, guided by the first-hit albedo and normal of
 /// `layers` (which the caller renders even when `film.aovs` lists neither).
-/// The input is HDR linear radiance; so is the output.
+/// The input is HDR linear radiance; so is the output. The emission camera
+/// rays see directly (`layers.emission`) is taken out before and added back
+/// after: it has no Monte Carlo noise, and Open Image Denoise would shift a
+/// bright light's colour (by 0.7–1.6% on the Cornell light).
 pub fn denoise(image: &Image, layers: &AovLayers) -> Result<Image, DenoiseError> {
     if (layers.width, layers.height) != (image.width, image.height) {
         return Err(DenoiseError::SizeMismatch(
@@ -54,7 +57,15 @@ fn run(_: &Image, _: &AovLayers) -> Result<Image, DenoiseError> {
 #[cfg(feature = "denoise")]
 fn run(image: &Image, layers: &AovLayers) -> Result<Image, DenoiseError> {
     let flat = |v: &[glam::Vec3A]| -> Vec<f32> { v.iter().flat_map(|p| p.to_array()).collect() };
-    let color = flat(&image.pixels);
+    // Directly seen emitters and sky go around the denoiser (see
+    // `AovLayers::emission`).
+    let indirect: Vec<glam::Vec3A> = image
+        .pixels
+        .iter()
+        .zip(&layers.emission)
+        .map(|(c, e)| (*c - *e).max(glam::Vec3A::ZERO))
+        .collect();
+    let color = flat(&indirect);
     let albedo = flat(&layers.albedo);
     let normal = flat(&layers.normal);
     let mut out = vec![0.0f32; color.len()];
@@ -74,7 +85,8 @@ fn run(image: &Image, layers: &AovLayers) -> Result<Image, DenoiseError> {
         height: image.height,
         pixels: out
             .chunks_exact(3)
-            .map(|c| glam::Vec3A::new(c[0], c[1], c[2]))
+            .zip(&layers.emission)
+            .map(|(c, e)| glam::Vec3A::new(c[0], c[1], c[2]) + *e)
             .collect(),
     })
 }
@@ -98,6 +110,7 @@ mod tests {
             position: vec![Default::default(); 4],
             material_id: vec![0; 4],
             object_id: vec![0; 4],
+            emission: vec![Default::default(); 4],
             aux_noise_free: true,
         };
         let e = denoise(&img, &layers)

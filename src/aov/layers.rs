@@ -34,6 +34,12 @@ pub struct AovLayers {
     /// hit (area lights after the objects, see [`crate::scene::Scene::objects`]),
     /// 0 when most samples hit nothing; ties as for `material_id`.
     pub object_id: Vec<u32>,
+    /// Mean first-hit emission, filter weight included, over all the pixel's
+    /// samples: exactly what the beauty pass adds for the emitters and sky
+    /// its camera rays see (every integrator counts those fully). Never
+    /// written; the denoiser leaves it out and adds it back, since it holds no
+    /// Monte Carlo noise and OIDN shifts a bright light's colour by ~1%.
+    pub emission: Vec<Rgb>,
     /// Whether albedo and normal vary within a pixel only with where its
     /// samples land (a pinhole camera: no lens sample moves the first hit),
     /// so they hold no noise, only anti-aliasing: Open Image Denoise's

@@ -1,6 +1,7 @@
 //! The first-hit pass that fills [`AovLayers`].
 
 use super::{AovLayers, AovSet, first_hit_albedo};
+use crate::integrators::{emitted, escaped};
 use crate::math::Rgb;
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -17,6 +18,7 @@ struct Pixel {
     position: Vec3A,
     material_id: u32,
     object_id: u32,
+    emission: Rgb,
 }
 
 /// Traces the camera rays of every (pixel, sample) of `view`'s film to their
@@ -48,6 +50,7 @@ pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<
         position: px.iter().map(|p| p.position).collect(),
         material_id: px.iter().map(|p| p.material_id).collect(),
         object_id: px.iter().map(|p| p.object_id).collect(),
+        emission: px.iter().map(|p| p.emission).collect(),
         aux_noise_free: view.camera.aperture_radius <= 0.0,
     }
 }
@@ -57,6 +60,7 @@ pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<
 fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
     let film = view.film;
     let (mut albedo, mut normal, mut position) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    let mut emission = DVec3::ZERO;
     let (mut depth, mut hits) = (0.0f64, 0u32);
     // (id, votes), few entries: a pixel straddles a handful of materials
     // and objects.
@@ -64,9 +68,18 @@ fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
     for s in 0..film.spp {
         let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
         // The layers average unweighted (a Mitchell lobe's sign means
-        // nothing for a normal or an id).
-        let (ray, _weight) = view.camera_ray(x, y, &mut sampler);
-        let (material, object) = match scene.intersect_object(&ray, f32::INFINITY) {
+        // nothing for a normal or an id); emission is weighted as the beauty
+        // pass weights it.
+        let (ray, weight) = view.camera_ray(x, y, &mut sampler);
+        let hit = scene.intersect_object(&ray, f32::INFINITY);
+        let le = match &hit {
+            Some((hit, _)) => emitted(scene, hit, ray.d),
+            None => escaped(scene, ray.d, true),
+        };
+        if le.is_finite() {
+            emission += (le * weight).as_dvec3();
+        }
+        let (material, object) = match hit {
             Some((hit, object)) => {
                 let m = &scene.materials[hit.material as usize];
                 albedo += first_hit_albedo(m, hit.uv, &scene.textures).as_dvec3();
@@ -94,6 +107,7 @@ fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
             (depth / per_hit) as f32
         },
         position: (position / per_hit).as_vec3a(),
+        emission: (emission / n).as_vec3a(),
         material_id: material_votes.winner(),
         object_id: object_votes.winner(),
     }
