@@ -76,7 +76,11 @@ mod with_oidn {
         let (w, h) = (256usize, 256usize);
         let inside = |i: usize| {
             let (x, y) = (i % w, i / w);
-            x > 0 && y > 0 && x + 1 < w && y + 1 < h && (0..9).all(|k| light[(y + k / 3 - 1) * w + x + k % 3 - 1])
+            x > 0
+                && y > 0
+                && x + 1 < w
+                && y + 1 < h
+                && (0..9).all(|k| light[(y + k / 3 - 1) * w + x + k % 3 - 1])
         };
         let mut checked = 0;
         for i in (0..w * h).filter(|&i| inside(i)) {
