@@ -304,11 +304,32 @@ impl Binner {
     /// Saturating: the maximal centroid lands in the last bin.
     #[inline(always)]
     fn bins(&self, c: Vec3A) -> [usize; 3] {
-        let i = ((c - self.min) * self.scale)
-            .min(Vec3A::splat((BINS - 1) as f32))
-            .as_uvec3();
-        [i.x as usize, i.y as usize, i.z as usize]
+        truncate(((c - self.min) * self.scale).min(Vec3A::splat((BINS - 1) as f32)))
     }
+}
+
+/// Lanes in `[0, BINS - 1]` (centroids never lie below the node's centroid
+/// bounds) truncated to bin indices, all three in one SSE2 conversion: the
+/// per-lane saturating `as` casts took ~15 instructions per reference and
+/// pass. Same results as `as_uvec3` on that range.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn truncate(f: Vec3A) -> [usize; 3] {
+    use std::arch::x86_64::{_mm_castsi128_ps, _mm_cvttps_epi32};
+    // SAFETY: SSE2 is part of every x86-64 target (no runtime check needed).
+    let i = Vec3A::from(unsafe { _mm_castsi128_ps(_mm_cvttps_epi32(f.into())) });
+    [
+        i.x.to_bits() as usize,
+        i.y.to_bits() as usize,
+        i.z.to_bits() as usize,
+    ]
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+fn truncate(f: Vec3A) -> [usize; 3] {
+    let i = f.as_uvec3();
+    [i.x as usize, i.y as usize, i.z as usize]
 }
 
 #[derive(Clone, Copy)]
