@@ -16,6 +16,7 @@
 //! with no index indirection and no per-primitive `enum` dispatch.
 
 mod collapse;
+mod stats;
 mod traverse;
 
 #[cfg(test)]
@@ -61,8 +62,6 @@ pub struct WideBvh {
     /// Caller's primitive index for each leaf slot.
     order: Vec<u32>,
     len: usize,
-    /// Stats of the binary tree it was collapsed from.
-    binary: BvhStats,
 }
 
 #[inline(always)]
@@ -105,20 +104,18 @@ impl WideBvh {
     /// primitives.
     pub fn build_with(bounds: &[Aabb], leaves: Leaves) -> Self {
         assert!(bounds.len() < MAX_PRIMS, "WideBvh holds at most 2^28 primitives");
-        let max_leaf = match leaves {
-            Leaves::Merged => 4,
-            Leaves::Single => 1,
+        // `whole`: the collapse makes any subtree of at most that many
+        // primitives one leaf, so the binary build need not split it.
+        let (max_leaf, whole) = match leaves {
+            Leaves::Merged => (4, MAX_LEAF as usize),
+            Leaves::Single => (1, 1),
         };
-        let (binary, order) = bvh::build_nodes(bounds, max_leaf);
-        let (stats, nodes) = rayon::join(
-            || bvh::stats_of(&binary, order.len()),
-            || collapse::collapse(&binary, leaves),
-        );
+        let (binary, order) = bvh::build_nodes(bounds, max_leaf, whole);
+        let nodes = collapse::collapse(&binary, leaves);
         Self {
             nodes,
             order,
             len: bounds.len(),
-            binary: stats,
         }
     }
 
@@ -150,14 +147,11 @@ impl WideBvh {
             .fold(Aabb::EMPTY, |acc, i| acc.union(root.child_bounds(i)))
     }
 
-    /// Stats: `nodes` counts wide nodes, `bytes` the wide nodes and the
-    /// order array; depth and SAH cost are those of the binary tree.
+    /// Stats of the wide tree: `nodes` counts wide nodes, `leaves` wide
+    /// leaves, `bytes` the wide nodes and the order array; the SAH cost
+    /// charges 1 per wide node visit (see `stats.rs`). Walks the tree.
     pub fn stats(&self) -> BvhStats {
-        BvhStats {
-            nodes: self.nodes.len(),
-            bytes: self.nodes.len() * size_of::<WideNode>() + self.order.len() * 4,
-            ..self.binary
-        }
+        stats::stats(&self.nodes, self.order.len())
     }
 
     /// Every leaf's `(first, count)` slot range, in no particular order.

@@ -69,7 +69,7 @@ pub fn run(path: &Path, threads: Option<usize>, root: Option<&Path>) -> Result<(
     let (mesh, build_n, cpu_n) = build(&pn);
     let s = mesh.blas().map(|b| b.stats()).unwrap_or_default();
     out!(
-        "build: {:.1} ms on 1 thread ({:.0} ms CPU), {:.1} ms on {n} ({:.0} ms CPU); {} {}-wide nodes, binary depth {}, SAH cost {:.2}; {:.1} bytes/triangle (nodes + inline triangles)",
+        "build: {:.1} ms on 1 thread ({:.0} ms CPU), {:.1} ms on {n} ({:.0} ms CPU); {} {}-wide nodes, depth {}, SAH cost {:.2} (8-wide); {:.1} bytes/triangle (nodes + inline triangles)",
         build1 * 1e3,
         cpu1 * 1e3,
         build_n * 1e3,

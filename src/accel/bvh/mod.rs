@@ -91,9 +91,10 @@ impl Bvh {
 }
 
 /// Binary nodes and leaf-order primitive ids, for trees built on this one
-/// (the wide [`crate::accel::wide::WideBvh`]).
-pub(crate) fn build_nodes(bounds: &[Aabb], max_leaf: usize) -> (Vec<Node>, Vec<u32>) {
-    build::build_with_max_leaf(bounds, max_leaf)
+/// (the wide [`crate::accel::wide::WideBvh`]): SAH leaves of at most
+/// `max_leaf`, and every node of at most `whole` primitives left unsplit.
+pub(crate) fn build_nodes(bounds: &[Aabb], max_leaf: usize, whole: usize) -> (Vec<Node>, Vec<u32>) {
+    build::build_for_wide(bounds, max_leaf, whole)
 }
 
 /// Stats of depth-first binary `nodes` over `indices` leaf slots.

@@ -10,8 +10,14 @@
 //! one-primitive leaves instead, for scene-level shapes such as the walls of
 //! a room, whose union box every ray enters.
 
-use super::{Leaves, MAX_LEAF, WIDTH, WideNode, leaf_ref};
+use rayon::prelude::*;
+
+use super::{EMPTY, LEAF, Leaves, MAX_LEAF, WIDTH, WideNode, leaf_ref};
 use crate::accel::bvh::Node;
+
+/// Subtrees over at least this many primitives are collapsed in parallel
+/// (the top three wide levels of the 1M-triangle mesh).
+const PARALLEL_MIN: u32 = 1 << 14;
 
 /// Collapses depth-first binary `nodes` (leaf ranges index the leaf-order
 /// array) into wide nodes, root first.
@@ -75,9 +81,11 @@ impl Collapser<'_> {
         let nodes = self.nodes;
         let me = out.len();
         out.push(WideNode::EMPTY);
-        let mut open: Vec<usize> = kids(nodes, i).to_vec();
-        while open.len() < WIDTH {
-            let best = open
+        let [l, r] = kids(nodes, i);
+        let mut open = [l, r, 0, 0, 0, 0, 0, 0];
+        let mut len = 2;
+        while len < WIDTH {
+            let best = open[..len]
                 .iter()
                 .enumerate()
                 .filter(|(_, c)| !self.is_leaf(**c))
@@ -87,19 +95,55 @@ impl Collapser<'_> {
                 })
                 .map(|(slot, _)| slot);
             let Some(slot) = best else { break };
-            let c = open.swap_remove(slot);
-            open.extend(kids(nodes, c));
+            let [a, b] = kids(nodes, open[slot]);
+            (open[slot], open[len]) = (a, b);
+            len += 1;
         }
         // Keep the binary tree's left-to-right order for determinism.
+        let open = &mut open[..len];
         open.sort_unstable();
         let mut node = WideNode::EMPTY;
-        for (lane, &c) in open.iter().enumerate() {
-            let r = if self.is_leaf(c) {
-                leaf_ref(self.range[c].0, self.range[c].1)
-            } else {
-                self.emit(c, out)
-            };
-            node.set_child(lane, nodes[c].bounds(), r);
+        if self.range[i].1 >= PARALLEL_MIN {
+            // Big subtrees: each interior child into its own vector on its
+            // own task, appended in lane order with its node indices shifted,
+            // which is exactly what the serial recursion writes.
+            let subtrees: Vec<Option<Vec<WideNode>>> = open
+                .par_iter()
+                .map(|&c| {
+                    (!self.is_leaf(c)).then(|| {
+                        let mut sub = Vec::new();
+                        self.emit(c, &mut sub);
+                        sub
+                    })
+                })
+                .collect();
+            for (lane, (&c, sub)) in open.iter().zip(subtrees).enumerate() {
+                let r = match sub {
+                    None => leaf_ref(self.range[c].0, self.range[c].1),
+                    Some(sub) => {
+                        let shift = out.len() as u32;
+                        out.extend(sub.into_iter().map(|mut n| {
+                            for r in &mut n.child {
+                                if *r != EMPTY && *r & LEAF == 0 {
+                                    *r += shift;
+                                }
+                            }
+                            n
+                        }));
+                        shift
+                    }
+                };
+                node.set_child(lane, nodes[c].bounds(), r);
+            }
+        } else {
+            for (lane, &c) in open.iter().enumerate() {
+                let r = if self.is_leaf(c) {
+                    leaf_ref(self.range[c].0, self.range[c].1)
+                } else {
+                    self.emit(c, out)
+                };
+                node.set_child(lane, nodes[c].bounds(), r);
+            }
         }
         out[me] = node;
         me as u32
