@@ -327,7 +327,7 @@ fn print_stats(loaded: &Loaded, stats: &RenderStats) {
     for (i, m) in geo.meshes.iter().enumerate().take(8) {
         if let Some(s) = m.blas().map(|b| b.stats()) {
             eprintln!(
-                "  mesh {i}: {} triangles, {} {}-wide nodes, {} leaves, depth {} (binary), SAH cost {:.2}",
+                "  mesh {i}: {} triangles, {} {}-wide nodes, {} leaves, depth {}, SAH cost {:.2}",
                 m.triangle_count(),
                 s.nodes,
                 crate::accel::wide::WIDTH,
