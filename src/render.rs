@@ -14,7 +14,7 @@ pub use crate::imageio::SampleSums;
 use crate::imageio::{Image, PixelRect};
 use crate::integrators::Counters;
 use crate::math::{ExactSum, Rgb};
-use crate::sampler::Sampler;
+use crate::sampler::PixelSampler;
 use crate::scene::Scene;
 use crate::view::View;
 use rayon::prelude::*;
@@ -258,14 +258,16 @@ impl Work<'_> {
             .map(|&tile| {
                 let mut counters = Counters::default();
                 let mut px = Vec::with_capacity(tile.area() as usize);
+                let mut pixel = PixelSampler::new(film.sampler, film.spp, film.seed);
                 if self.cancel.load(Ordering::Relaxed) {
                     return (tile, px, counters);
                 }
                 for y in tile.y0..tile.y1 {
                     for x in tile.x0..tile.x1 {
                         let mut sum = ExactSum::ZERO;
+                        pixel.set_pixel(x, y, s0..s0 + spp);
                         for s in s0..s0 + spp {
-                            let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
+                            let mut sampler = pixel.sample(s);
                             let (ray, weight) = self.view.camera_ray(x, y, &mut sampler);
                             let li = self
                                 .view

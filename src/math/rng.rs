@@ -31,11 +31,21 @@ impl Pcg32 {
     /// The generator for one camera sample: a pure function of the pixel,
     /// the sample index and the scene seed.
     pub fn for_sample(x: u32, y: u32, sample: u32, seed: u64) -> Self {
+        Self::for_pixel_sample(Self::pixel_seed(x, y, seed), sample)
+    }
+
+    /// The part of [`Pcg32::for_sample`] that depends on the pixel only:
+    /// hashed once per pixel rather than once per sample.
+    #[inline]
+    pub fn pixel_seed(x: u32, y: u32, seed: u64) -> u64 {
         let pixel = ((y as u64) << 32) | x as u64;
-        Self::new(
-            mix64(pixel ^ mix64(seed)),
-            mix64(sample as u64 ^ 0x9e37_79b9_7f4a_7c15),
-        )
+        mix64(pixel ^ mix64(seed))
+    }
+
+    /// [`Pcg32::for_sample`] from the pixel's [`Pcg32::pixel_seed`].
+    #[inline]
+    pub fn for_pixel_sample(pixel_seed: u64, sample: u32) -> Self {
+        Self::new(pixel_seed, mix64(sample as u64 ^ 0x9e37_79b9_7f4a_7c15))
     }
 
     /// The next uniform 32-bit value.
@@ -93,5 +103,7 @@ mod tests {
         let b = Pcg32::for_sample(3, 4, 1, 1).next_u32();
         let c = Pcg32::for_sample(4, 3, 0, 1).next_u32();
         assert!(a != b && a != c);
+        let split = Pcg32::for_pixel_sample(Pcg32::pixel_seed(3, 4, 1), 1).next_u32();
+        assert_eq!(split, b, "the per-pixel split must give the same stream");
     }
 }

@@ -9,25 +9,29 @@
 //!   a per-pixel, per-dimension random order (pbrt's `StratifiedSampler`).
 //! - `Sobol`: the first [`SOBOL_DRAWS`] draws of a camera sample (pixel
 //!   jitter, lens, then the first vertex's light pick, light point, BSDF lobe
-//!   and direction) are stratified: each 2-D draw the first two Sobol
-//!   dimensions ("padded" Sobol), Owen-scrambled per pixel and draw, each 1-D
-//!   draw jittered strata; every draw visits its points in its own random
-//!   order (Burley 2020, <https://jcgt.org/published/0009/04/01/>). Later
-//!   draws are PCG32's, as `Independent`. Best at power-of-two spp.
+//!   and direction) are stratified: each draw is a point of the first two
+//!   Sobol dimensions ("padded" Sobol), Owen-scrambled per pixel and draw (a
+//!   1-D draw takes its x, a scrambled van der Corput point); every draw
+//!   visits its points in its own random order (Burley 2020,
+//!   <https://jcgt.org/published/0009/04/01/>). Later draws are PCG32's, as
+//!   `Independent`. Best at power-of-two spp.
 //!
 //! Why `Sobol` stops after a few draws: the draws that gain from
 //! stratification are the low ones; deeper in the path the integrand has too
-//! many dimensions for a 2-D net to matter, and each scrambled point costs
-//! several times a PCG32 pair. Measured on the Cornell box (callgrind, see
-//! the commit): Sobol on every draw cost 27% more instructions per sample
-//! than `Independent`; this one 6% (64², 8 spp and 128², 16 spp), with
-//! nearly the old one's error at equal spp (within 1–3% off the light). pbrt-v4's `ZSobolSampler` (Morton-ordered indices) was not
-//! taken: its per-dimension index permutation hashes every base-4 digit of
-//! (pixel, sample), about ten hashes per draw at 256² and 64 spp, which is
-//! the cost this sampler removes; its gain is a blue-noise distribution of
-//! the error over the image rather than a lower RMSE.
+//! many dimensions for a 2-D net to matter. Its points are computed per
+//! pixel, a whole net per draw in one vectorised loop ([`PixelSampler`]),
+//! not per sample: one at a time, a scrambled point cost about five PCG32
+//! draws and `Sobol` 6–11% more instructions per sample than `Independent`
+//! (callgrind, see the commits). pbrt-v4's `ZSobolSampler` (Morton-ordered
+//! indices) was not taken: its per-dimension index permutation hashes every
+//! base-4 digit of (pixel, sample), about ten hashes per draw at 256² and
+//! 64 spp, and cannot be batched per pixel; its gain is a blue-noise
+//! distribution of the error over the image rather than a lower RMSE.
 
+mod pixel;
 mod sobol;
+
+pub use pixel::PixelSampler;
 
 use crate::math::Pcg32;
 use crate::math::rng::mix64;
@@ -61,27 +65,21 @@ pub struct Sampler {
     dim: u32,
     /// Draws taken so far (`Sobol` only).
     draws: u32,
-    /// log2 of the power of two ≥ spp: the bits of a Sobol point index.
-    index_bits: u32,
+    /// `Sobol`: the stratified draws of this sample, computed per pixel
+    /// ([`PixelSampler`]); a 1-D draw takes a point's x.
+    points: [Vec2; SOBOL_DRAWS as usize],
     rng: Pcg32,
 }
 
 impl Sampler {
     /// The sampler for sample `index` (of `spp`) of pixel `(x, y)` with the scene's
     /// `seed`: a pure function of those, so any pixel or sample can be rendered alone
-    /// and give the same numbers.
+    /// and give the same numbers. A loop over a pixel's samples should make
+    /// one [`PixelSampler`] and call its `sample`, which hashes the pixel once.
     pub fn new(kind: SamplerKind, x: u32, y: u32, index: u32, spp: u32, seed: u64) -> Self {
-        let pixel_hash = mix64(((y as u64) << 32 | x as u64) ^ mix64(seed.wrapping_add(0x5851_f42d)));
-        Self {
-            kind,
-            pixel_hash,
-            index,
-            spp: spp.max(1),
-            dim: 0,
-            draws: 0,
-            index_bits: spp.max(1).next_power_of_two().trailing_zeros(),
-            rng: Pcg32::for_sample(x, y, index, seed),
-        }
+        let mut pixel = PixelSampler::new(kind, spp, seed);
+        pixel.set_pixel(x, y, index..index);
+        pixel.sample(index)
     }
 
     /// A plain independent sampler (tests, analytic checks).
@@ -93,7 +91,7 @@ impl Sampler {
             spp: 1,
             dim: 0,
             draws: 0,
-            index_bits: 0,
+            points: [Vec2::ZERO; SOBOL_DRAWS as usize],
             rng,
         }
     }
@@ -105,18 +103,12 @@ impl Sampler {
         h
     }
 
-    /// For a stratified `Sobol` draw, a hash of (pixel, seed, draw); `None`
-    /// once [`SOBOL_DRAWS`] are taken. `pixel_hash` is already mixed, so one
-    /// multiply–xorshift round (half of SplitMix64's) separates the draws.
+    /// The next stratified `Sobol` point; `None` once [`SOBOL_DRAWS`] are taken.
     #[inline]
-    fn sobol_draw(&mut self) -> Option<u64> {
-        if self.draws >= SOBOL_DRAWS {
-            return None;
-        }
+    fn sobol_draw(&mut self) -> Option<Vec2> {
+        let p = *self.points.get(self.draws as usize)?;
         self.draws += 1;
-        let h = (self.pixel_hash ^ (self.draws as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15))
-            .wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        Some(h ^ (h >> 31))
+        Some(p)
     }
 
     /// The next dimension, uniform in [0, 1).
@@ -124,15 +116,10 @@ impl Sampler {
     pub fn next_f32(&mut self) -> f32 {
         match self.kind {
             SamplerKind::Independent => self.rng.next_f32(),
+            // A 1-D draw is the x of a 2-D point: Owen-scrambled van der
+            // Corput, as stratified as jittered strata.
             SamplerKind::Sobol => match self.sobol_draw() {
-                // Jittered strata in a random order: in 1-D as good as a
-                // scrambled Sobol point and a third of its cost.
-                Some(h) => {
-                    let m = self.index_bits;
-                    let s = shuffle_pow2(self.index, m, h as u32);
-                    // (s + u) / 2^m in 32-bit fixed point: stays below 1.
-                    to_unit((((s as u64) << 32 | self.rng.next_u32() as u64) >> m) as u32)
-                }
+                Some(p) => p.x,
                 None => self.rng.next_f32(),
             },
             SamplerKind::Stratified => self.next_vec2().x,
@@ -163,18 +150,10 @@ impl Sampler {
                     ((s / nx) as f32 + j.y) / ny as f32,
                 )
             }
-            SamplerKind::Sobol => {
-                let Some(h) = self.sobol_draw() else {
-                    return self.rng.next_vec2();
-                };
-                // Three 32-bit seeds from the draw's hash: the order, and
-                // the x and y scrambles.
-                let i = shuffle_pow2(self.index, self.index_bits, h as u32);
-                let (a, b) = sobol::sample_2d_reversed(i);
-                let (x, y) =
-                    sobol::owen_scramble_reversed_2d(a, b, (h >> 32) as u32, (h >> 16) as u32 ^ 0x5bd1_e995);
-                Vec2::new(to_unit(x), to_unit(y))
-            }
+            SamplerKind::Sobol => match self.sobol_draw() {
+                Some(p) => p,
+                None => self.rng.next_vec2(),
+            },
         }
     }
 }

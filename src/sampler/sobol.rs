@@ -12,7 +12,8 @@ pub fn sample_2d(i: u32) -> (u32, u32) {
 /// [`sample_2d`] with the bits of each coordinate reversed. Owen scrambling
 /// works on reversed bits, and x86 has no bit-reversal instruction (each
 /// `reverse_bits` is a dozen shifts and masks), so the sampler stays in this
-/// form until the end: two reversals per 2-D point instead of six.
+/// form until the end, where [`owen_scramble_net`] reverses only the digits
+/// the net has.
 #[inline]
 pub fn sample_2d_reversed(mut i: u32) -> (u32, u32) {
     // Dimension 0 is the van der Corput sequence: reversed, the index.
@@ -36,7 +37,7 @@ pub fn sample_2d_reversed(mut i: u32) -> (u32, u32) {
 
 /// Dimension 1 of the first 256 points, bit-reversed: the loop of
 /// [`sample_2d_reversed`] run at compile time.
-static DIM1_REVERSED: [u32; 256] = {
+pub(super) static DIM1_REVERSED: [u32; 256] = {
     let mut t = [0u32; 256];
     let mut k = 0;
     while k < 256 {
@@ -78,15 +79,24 @@ fn laine_karras(r: u32, seed: u32) -> u32 {
     v
 }
 
-/// [`owen_scramble_reversed`] of `rx` and `ry` with seeds `sx`, `sy`: each
-/// scrambled as its own 32-bit lane (a carry from one into the other would
-/// break Owen's nesting), both bit-reversed by one 64-bit reversal, which
-/// costs what one 32-bit reversal does.
+/// The Owen-scrambled coordinate, as 32-bit fixed point, of a point of a
+/// `2^m`-point net (`m` < 32) whose `m` digits, bit-reversed, are the low
+/// bits of `r` (the form [`sample_2d_reversed`] gives).
+///
+/// The top `m` digits are [`owen_scramble`]'s: Laine–Karras on the reversed
+/// digits, then those `m` bits reversed back. The digits below them are
+/// where this saves: a full Owen scramble gives each point of the net
+/// independent uniform digits there (no two points share a prefix), so any
+/// hash bits that depend on the point's top digits and the seed keep the
+/// nesting; they are the top `32 − m` bits of the same hash (its best-mixed
+/// ones, the most significant jitter digit from the hash's top bit), shifted
+/// down rather than reversed. Branch-free and table-free, so a loop over a
+/// net vectorises (`sampler/pixel.rs`).
 #[inline]
-pub fn owen_scramble_reversed_2d(rx: u32, ry: u32, sx: u32, sy: u32) -> (u32, u32) {
-    // Reversing (y, x) as one u64 gives (reverse x, reverse y).
-    let both = ((laine_karras(ry, sy) as u64) << 32 | laine_karras(rx, sx) as u64).reverse_bits();
-    ((both >> 32) as u32, both as u32)
+pub fn owen_scramble_net(r: u32, m: u32, seed: u32) -> u32 {
+    let s = laine_karras(r, seed);
+    let digits = s & (1u32 << m).wrapping_sub(1);
+    digits.reverse_bits() | s >> m
 }
 
 #[cfg(test)]
@@ -114,16 +124,23 @@ mod tests {
     }
 
     #[test]
-    fn scramble_2d_is_two_1d_scrambles() {
-        for (rx, ry, sx, sy) in [
-            (0u32, 0u32, 1u32, 2u32),
-            (123, 456, 0xdead_beef, 77),
-            (u32::MAX, 5, 9, u32::MAX),
-        ] {
-            assert_eq!(
-                owen_scramble_reversed_2d(rx, ry, sx, sy),
-                (owen_scramble_reversed(rx, sx), owen_scramble_reversed(ry, sy))
-            );
+    fn net_scramble_has_the_full_scrambles_top_digits_and_stays_stratified() {
+        for m in [0u32, 1, 3, 4, 8, 9, 12] {
+            for seed in [0u32, 77, 0xdead_beef] {
+                let mut strata = vec![0u32; 1 << m];
+                for i in 0..1u32 << m {
+                    let (a, b) = sample_2d_reversed(i);
+                    for (r, s) in [(a, seed), (b, seed ^ 0x5bd1_e995)] {
+                        let x = owen_scramble_net(r, m, s);
+                        let full = owen_scramble_reversed(r, s);
+                        let top = |v: u32| ((v as u64) >> (32 - m)) as u32;
+                        assert!(m < 32);
+                        assert_eq!(top(x), top(full), "m = {m}, seed {seed}, point {i}");
+                    }
+                    strata[((owen_scramble_net(a, m, seed) as u64) >> (32 - m)) as usize] += 1;
+                }
+                assert!(strata.iter().all(|&c| c == 1), "m = {m}: strata {strata:?}");
+            }
         }
     }
 
