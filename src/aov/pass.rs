@@ -3,7 +3,7 @@
 use super::{AovLayers, AovSet, first_hit_albedo};
 use crate::integrators::{emitted, escaped};
 use crate::math::Rgb;
-use crate::sampler::Sampler;
+use crate::sampler::PixelSampler;
 use crate::scene::Scene;
 use crate::view::View;
 use glam::{DVec3, Vec3A};
@@ -30,7 +30,10 @@ struct Pixel {
 pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<usize>) -> AovLayers {
     let film = view.film;
     let (w, h) = (film.width, film.height);
-    let rows = |y: u32| -> Vec<Pixel> { (0..w).map(|x| pixel(scene, view, x, y)).collect() };
+    let rows = |y: u32| -> Vec<Pixel> {
+        let mut samples = PixelSampler::new(film.sampler, film.spp, film.seed);
+        (0..w).map(|x| pixel(scene, view, &mut samples, x, y)).collect()
+    };
     let all = || -> Vec<Vec<Pixel>> { (0..h).into_par_iter().map(rows).collect() };
     let rows = match rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
@@ -57,7 +60,7 @@ pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<
 
 /// The layers of pixel (x, y): sums in sample order in `f64` on one thread,
 /// so the same on any thread count.
-fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
+fn pixel(scene: &Scene, view: &View, samples: &mut PixelSampler, x: u32, y: u32) -> Pixel {
     let film = view.film;
     let (mut albedo, mut normal, mut position) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
     let mut emission = DVec3::ZERO;
@@ -65,8 +68,9 @@ fn pixel(scene: &Scene, view: &View, x: u32, y: u32) -> Pixel {
     // (id, votes), few entries: a pixel straddles a handful of materials
     // and objects.
     let (mut material_votes, mut object_votes) = (Votes::default(), Votes::default());
+    samples.set_pixel(x, y, 0..film.spp);
     for s in 0..film.spp {
-        let mut sampler = Sampler::new(film.sampler, x, y, s, film.spp, film.seed);
+        let mut sampler = samples.sample(s);
         // The layers average unweighted (a Mitchell lobe's sign means
         // nothing for a normal or an id); emission is weighted as the beauty
         // pass weights it.

@@ -24,6 +24,11 @@ use std::ops::Range;
 
 const DRAWS: usize = SOBOL_DRAWS as usize;
 
+/// The largest net built whole per pixel: 2^16 points, 3.9 MB of buffers per
+/// worker. Larger spp (up to 2^20) compute each point alone, at a cost
+/// nobody sees beside that many paths.
+const MAX_BATCHED_NET: usize = 1 << 16;
+
 /// Per-pixel sampler state; one per worker, reused pixel after pixel so its
 /// buffers are allocated once. [`PixelSampler::sample`] gives exactly what
 /// [`Sampler::new`] gives for that pixel and sample.
@@ -87,9 +92,11 @@ impl PixelSampler {
                 .wrapping_mul(0xbf58_476d_1ce4_e5b9);
             h ^ (h >> 31)
         });
-        // Batch when the net is not much larger than the samples taken.
+        // Batch when the net is not much larger than the samples taken, and
+        // small enough that a worker's buffers stay a few MB at any spp.
         let n = samples.len();
-        if n == 0 || (1usize << self.index_bits) > 4 * n {
+        let net = 1usize << self.index_bits;
+        if n == 0 || net > 4 * n || net > MAX_BATCHED_NET {
             self.points.clear();
             return;
         }
