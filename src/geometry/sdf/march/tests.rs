@@ -87,7 +87,7 @@ fn trace_starts_inside_and_scales_with_direction() {
     let t = trace(&sdf, &ray, 0.0, 10.0, &params).hit.unwrap();
     assert!((t - 0.75).abs() < 1e-3, "t = {t}, want 0.75");
     // t_max stops short of the surface; outside the bounds costs no step.
-    assert!(!occluded(&sdf, &ray, 0.0, 0.7, &params));
+    assert!(occluded(&sdf, &ray, 0.0, 0.7, &params).hit.is_none());
     let away = trace(
         &sdf,
         &Ray::new(Vec3A::new(-5.0, 3.0, 0.0), Vec3A::X),
