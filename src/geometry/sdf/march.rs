@@ -8,6 +8,10 @@
 //! [`MarchParams::eps_at`], which grows with the distance travelled like a
 //! pixel's cone, so far surfaces cost no more steps than near ones.
 //!
+//! Shadow rays on distance estimates ([`occluded`]) march the same interval
+//! backward, from its far end toward the ray origin, and stop at the first
+//! point within the threshold.
+//!
 //! Secondary rays: the march keeps the sign the SDF has where it starts, so a
 //! ray that starts inside (refraction) finds the exit. The caller must spawn
 //! rays off the surface by at least `2 · eps_at(t_hit)` along the normal
@@ -189,11 +193,14 @@ pub fn occluded(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchPara
             // Within the threshold, or across the surface since the last step.
             return SdfTrace { hit: Some(t), steps };
         }
-        // The empty ball reaches back past the start: nothing to hit.
-        if t - d * inv_len < t_start {
+        // The trusted ball (`ω d`, not all of the estimate: surfaces crowd
+        // near the origin, which sits on one) reaches back past the start:
+        // nothing to hit.
+        let ball = d * omega;
+        if t - ball * inv_len < t_start {
             return SdfTrace { hit: None, steps };
         }
-        t -= (d * omega).min((t - t_start) / inv_len) * inv_len;
+        t -= ball * inv_len;
     }
     SdfTrace {
         hit: None,
