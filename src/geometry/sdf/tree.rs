@@ -50,6 +50,10 @@ struct Frame {
     offset: Vec3A,
     scale: f32,
     inner: u32,
+    /// `inner`'s parameters when it is a lone Mandelbulb `(power,
+    /// iterations, bailout)`: the march calls the estimate directly, without
+    /// the node dispatch (4% of the instructions of a 512² render).
+    bulb: Option<(f32, u32, f32)>,
 }
 
 impl Frame {
@@ -60,6 +64,7 @@ impl Frame {
             offset: Vec3A::ZERO,
             scale: 1.0,
             inner: root,
+            bulb: None,
         };
         while let SdfNode::Transform {
             child,
@@ -73,6 +78,14 @@ impl Frame {
             f.offset = m * (f.offset - translate);
             f.scale *= scale;
             f.inner = child;
+        }
+        if let SdfNode::Mandelbulb {
+            power,
+            iterations,
+            bailout,
+        } = nodes[f.inner as usize]
+        {
+            f.bulb = Some((power, iterations, bailout));
         }
         f
     }
@@ -144,7 +157,12 @@ impl Sdf {
     /// world units.
     #[inline]
     pub fn local_distance(&self, q: Vec3A) -> f32 {
-        self.eval(self.frame.inner, q) * self.frame.scale
+        let f = &self.frame;
+        let d = match f.bulb {
+            Some((power, iterations, bailout)) => mandelbulb(q, power, iterations, bailout),
+            None => self.eval(f.inner, q),
+        };
+        d * f.scale
     }
 
     /// Conservative world-space bounds; infinite for an unbounded tree (a
