@@ -108,6 +108,7 @@ impl Shape {
     pub fn occludes(&self, ray: &Ray, t_max: f32, geo: &Geometry) -> bool {
         match self {
             Shape::Instance(i) => geo.instances[*i as usize].occluded(ray, t_max, &geo.meshes),
+            Shape::Sdf(i) => geo.sdfs[*i as usize].occluded(ray, t_max),
             s => s.intersect_t(ray, t_max, geo).is_some(),
         }
     }

@@ -7,7 +7,7 @@
 //! `Scene::intersect`, which has no counters to pass, and one relaxed add per
 //! march is noise next to the hundreds of distance evaluations it counts.
 
-use super::sdf::{MarchParams, Sdf, normal, trace};
+use super::sdf::{MarchParams, Sdf, normal, occluded, trace};
 use super::{Hit, NO_LIGHT};
 use crate::accel::Aabb;
 use crate::math::{Ray, ray_epsilon};
@@ -76,6 +76,15 @@ impl SdfObject {
         let r = trace(&self.sdf, ray, 0.0, t_max, &self.params);
         record(r.steps);
         r.hit.filter(|&t| t > 0.0)
+    }
+
+    /// Whether anything blocks `ray` in `(0, t_max)`: a shadow ray, marched
+    /// from its far end (see [`occluded`]).
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        let r = occluded(&self.sdf, ray, 0.0, t_max, &self.params);
+        record(r.steps);
+        r.hit.is_some_and(|t| t > 0.0)
     }
 
     /// Hit record at `t` from [`Self::intersect`]; the normal is the SDF's

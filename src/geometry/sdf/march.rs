@@ -8,6 +8,10 @@
 //! [`MarchParams::eps_at`], which grows with the distance travelled like a
 //! pixel's cone, so far surfaces cost no more steps than near ones.
 //!
+//! Shadow rays on distance estimates ([`occluded`]) march the same interval
+//! backward, from its far end toward the ray origin, and stop at the first
+//! point within the threshold.
+//!
 //! Secondary rays: the march keeps the sign the SDF has where it starts, so a
 //! ray that starts inside (refraction) finds the exit. The caller must spawn
 //! rays off the surface by at least `2 · eps_at(t_hit)` along the normal
@@ -81,18 +85,12 @@ pub struct SdfTrace {
 /// First hit of `ray` with the surface in `[t_min, t_max]`. `ray.d` need not
 /// be unit length; `t` is the ray parameter.
 pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams) -> SdfTrace {
-    let Some((mut t_start, mut t_end)) = clip(&sdf.bounds(), ray, t_min, t_max) else {
+    let Some((t_start, t_end)) = interval(sdf, ray, t_min, t_max) else {
         return SdfTrace { hit: None, steps: 0 };
     };
-    if let Some((c, r)) = sdf.bounding_sphere() {
-        // Rays that miss the ball never march; the others start at it.
-        match clip_to_sphere(c, r, ray.o, ray.d) {
-            Some((t0, t1)) if t0.max(t_start) <= t1.min(t_end) => {
-                (t_start, t_end) = (t0.max(t_start), t1.min(t_end));
-            }
-            _ => return SdfTrace { hit: None, steps: 0 },
-        }
-    }
+    // Points are taken in the root's local space, distances come back in
+    // world units (see `Sdf::local_ray`).
+    let local = sdf.local_ray(ray);
     let exact = sdf.is_exact();
     let omega = if exact {
         params.over_relax
@@ -106,7 +104,7 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
     // Previous distance and step, both along the ray.
     let (mut d_prev, mut step_prev) = (0.0f32, 0.0f32);
     for steps in 1..=params.max_steps {
-        let mut d = sdf.distance(ray.at(t));
+        let mut d = sdf.local_distance(local.at(t));
         if steps == 1 && d < 0.0 {
             // Started inside: march toward the exit.
             side = -1.0;
@@ -134,7 +132,7 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
             while inside - outside > eps * inv_len && steps < params.max_steps {
                 let mid = 0.5 * (outside + inside);
                 steps += 1;
-                if side * sdf.distance(ray.at(mid)) < 0.0 {
+                if side * sdf.local_distance(local.at(mid)) < 0.0 {
                     inside = mid
                 } else {
                     outside = mid
@@ -159,10 +157,55 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
     }
 }
 
-/// Whether anything lies on `ray` within `[t_min, t_max]` (shadow rays).
-/// Sphere tracing finds the first hit anyway, so this is `trace` without `t`.
-pub fn occluded(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams) -> bool {
-    trace(sdf, ray, t_min, t_max, params).hit.is_some()
+/// Whether anything lies on `ray` within `[t_min, t_max]` (shadow rays), and
+/// the distance evaluations spent.
+///
+/// Exact SDFs take [`trace`]. A distance *estimate* is marched backward,
+/// from the far end of the interval toward the origin: a shadow ray starts
+/// on a surface, where forward steps grow only by a factor `1 + ω cos α`
+/// each (from the spawn offset ~2e-4 to 0.1 in ~10 steps head-on), while
+/// steps toward that point shrink by `1 − ω cos α` and stop as soon as the
+/// empty ball reaches it (~3 steps head-on). The hit test is the forward
+/// one, point for point: `|d| < eps_at(t)` with `t` measured from the
+/// origin, so the spawn offset (≥ 4 · `min_eps`) is never a hit; and there
+/// is no refinement: any point within the threshold, or any sign change,
+/// is an occluder.
+pub fn occluded(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams) -> SdfTrace {
+    let Some((t_start, t_end)) = interval(sdf, ray, t_min, t_max) else {
+        return SdfTrace { hit: None, steps: 0 };
+    };
+    if sdf.is_exact() || !t_end.is_finite() {
+        return trace(sdf, ray, t_min, t_max, params);
+    }
+    let local = sdf.local_ray(ray);
+    let inv_len = ray.d.length().recip();
+    let omega = params.estimate_step;
+    let mut t = t_end;
+    let mut side = 1.0;
+    for steps in 1..=params.max_steps {
+        let mut d = sdf.local_distance(local.at(t));
+        if steps == 1 && d < 0.0 {
+            // The far end is inside: look for the surface that bounds it.
+            side = -1.0;
+        }
+        d *= side;
+        if d < params.eps_at(t / inv_len) {
+            // Within the threshold, or across the surface since the last step.
+            return SdfTrace { hit: Some(t), steps };
+        }
+        // The trusted ball (`ω d`, not all of the estimate: surfaces crowd
+        // near the origin, which sits on one) reaches back past the start:
+        // nothing to hit.
+        let ball = d * omega;
+        if t - ball * inv_len < t_start {
+            return SdfTrace { hit: None, steps };
+        }
+        t -= ball * inv_len;
+    }
+    SdfTrace {
+        hit: None,
+        steps: params.max_steps,
+    }
 }
 
 /// Unit surface normal at `p` by central differences on a tetrahedron,
@@ -181,6 +224,18 @@ pub fn normal(sdf: &Sdf, p: Vec3A, h: f32) -> Vec3A {
         .fold(Vec3A::ZERO, |g, &k| g + k * sdf.distance(p + k * h));
     // A flat spot (the centre of a sphere) has no gradient: pick any normal.
     g.normalize_or(Vec3A::Y)
+}
+
+/// `[t_min, t_max]` clipped to the bounds and the bounding sphere: rays
+/// that miss the ball never march, the others start at it.
+fn interval(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32) -> Option<(f32, f32)> {
+    let (t_start, t_end) = clip(&sdf.bounds(), ray, t_min, t_max)?;
+    let Some((c, r)) = sdf.bounding_sphere() else {
+        return Some((t_start, t_end));
+    };
+    let (t0, t1) = clip_to_sphere(c, r, ray.o, ray.d)?;
+    let (t_start, t_end) = (t0.max(t_start), t1.min(t_end));
+    (t_start <= t_end).then_some((t_start, t_end))
 }
 
 /// Slab test: `[t_min, t_max]` clipped to the box, if anything is left.

@@ -15,7 +15,8 @@ use super::fractal::{mandelbulb, menger};
 use super::node::SdfNode;
 use super::primitives::{capsule, cuboid, cylinder, plane, round_box, sphere, torus};
 use crate::accel::Aabb;
-use glam::Vec3A;
+use crate::math::Ray;
+use glam::{Mat3A, Vec3A};
 
 /// An SDF tree ready to march: the node arena, its root, and what the march
 /// needs precomputed (exactness, bounds).
@@ -29,6 +30,65 @@ pub struct Sdf {
     bounds: Aabb,
     /// A ball holding the surface where the tree knows one (centre, radius).
     sphere: Option<(Vec3A, f32)>,
+    /// The root's chain of [`SdfNode::Transform`]s folded into one map, so
+    /// a march moves its ray once instead of every point (see [`Frame`]).
+    frame: Frame,
+}
+
+/// `q = local_from_world · p + offset` into the space of `inner`, the first
+/// node under the root's transforms, whose distances are `scale` times
+/// smaller than world ones.
+///
+/// Why: the loader wraps every placed shape in a transform, and undoing its
+/// quaternion, translation and scale at each step cost a fifth of a
+/// Mandelbulb estimate (measured: 81 M of 439 M instructions in the march,
+/// callgrind, 128² at 1 spp). A ray is affine, so its points map to
+/// `q(t) = q(o) + t · local_from_world · d` with the same `t`.
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    local_from_world: Mat3A,
+    offset: Vec3A,
+    scale: f32,
+    inner: u32,
+    /// `inner`'s parameters when it is a lone Mandelbulb `(power,
+    /// iterations, bailout)`: the march calls the estimate directly, without
+    /// the node dispatch (4% of the instructions of a 512² render).
+    bulb: Option<(f32, u32, f32)>,
+}
+
+impl Frame {
+    /// Folds the transforms from `root` down: each maps `q ↦ R⁻¹(q − T)/s`.
+    fn of(nodes: &[SdfNode], root: u32) -> Self {
+        let mut f = Self {
+            local_from_world: Mat3A::IDENTITY,
+            offset: Vec3A::ZERO,
+            scale: 1.0,
+            inner: root,
+            bulb: None,
+        };
+        while let SdfNode::Transform {
+            child,
+            translate,
+            rotate,
+            scale,
+        } = nodes[f.inner as usize]
+        {
+            let m = Mat3A::from_quat(rotate.inverse()) * scale.recip();
+            f.local_from_world = m * f.local_from_world;
+            f.offset = m * (f.offset - translate);
+            f.scale *= scale;
+            f.inner = child;
+        }
+        if let SdfNode::Mandelbulb {
+            power,
+            iterations,
+            bailout,
+        } = nodes[f.inner as usize]
+        {
+            f.bulb = Some((power, iterations, bailout));
+        }
+        f
+    }
 }
 
 impl Sdf {
@@ -58,12 +118,14 @@ impl Sdf {
         let is_exact = !nodes.iter().any(|n| matches!(n, SdfNode::Mandelbulb { .. }));
         let bounds = bounds_of(&nodes, root).0;
         let sphere = bounding_sphere(&nodes, root);
+        let frame = Frame::of(&nodes, root);
         Self {
             nodes,
             root,
             is_exact,
             bounds,
             sphere,
+            frame,
         }
     }
 
@@ -76,7 +138,31 @@ impl Sdf {
     /// at most the true distance when [`Self::is_exact`].
     #[inline]
     pub fn distance(&self, p: Vec3A) -> f32 {
-        self.eval(self.root, p)
+        let f = &self.frame;
+        self.local_distance(f.local_from_world * p + f.offset)
+    }
+
+    /// `ray` in the local space of [`Self::local_distance`], with the same
+    /// ray parameter `t`.
+    #[inline]
+    pub fn local_ray(&self, ray: &Ray) -> Ray {
+        let f = &self.frame;
+        Ray {
+            o: f.local_from_world * ray.o + f.offset,
+            d: f.local_from_world * ray.d,
+        }
+    }
+
+    /// [`Self::distance`] at a point `q` of [`Self::local_ray`]'s space, in
+    /// world units.
+    #[inline]
+    pub fn local_distance(&self, q: Vec3A) -> f32 {
+        let f = &self.frame;
+        let d = match f.bulb {
+            Some((power, iterations, bailout)) => mandelbulb(q, power, iterations, bailout),
+            None => self.eval(f.inner, q),
+        };
+        d * f.scale
     }
 
     /// Conservative world-space bounds; infinite for an unbounded tree (a

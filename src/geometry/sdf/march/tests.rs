@@ -87,7 +87,7 @@ fn trace_starts_inside_and_scales_with_direction() {
     let t = trace(&sdf, &ray, 0.0, 10.0, &params).hit.unwrap();
     assert!((t - 0.75).abs() < 1e-3, "t = {t}, want 0.75");
     // t_max stops short of the surface; outside the bounds costs no step.
-    assert!(!occluded(&sdf, &ray, 0.0, 0.7, &params));
+    assert!(occluded(&sdf, &ray, 0.0, 0.7, &params).hit.is_none());
     let away = trace(
         &sdf,
         &Ray::new(Vec3A::new(-5.0, 3.0, 0.0), Vec3A::X),
@@ -248,4 +248,81 @@ fn normal_of_sphere_is_radial() {
         assert!((got - n).length() < 1e-3, "normal {got}, want {n}");
     }
     eprintln!("sphere normals: worst error {worst}");
+}
+
+/// Shadow rays on a distance estimate are marched from their far end
+/// ([`occluded`]); they must find every surface the forward march finds.
+/// Rays leave Mandelbulb hits as the integrators spawn them (off along the
+/// normal) toward random points: a forward hit where the ray really enters
+/// the surface (the estimate turns negative just past it) must be an
+/// occluder backward too. The two sample different points, so a ray that
+/// only grazes a lobe within `eps` may be caught by one and not the other:
+/// that must stay rare. The backward march must also be cheaper.
+#[test]
+fn backward_shadow_march_finds_every_surface_the_forward_one_finds() {
+    let params = MarchParams {
+        min_eps: 2.5e-5,
+        eps_per_distance: 7.5e-4,
+        ..MarchParams::default()
+    };
+    let sdf = moved(
+        SdfNode::Mandelbulb {
+            power: 8.0,
+            iterations: 8,
+            bailout: 2.0,
+        },
+        Vec3A::new(0.2, -0.1, 0.3),
+        Quat::from_rotation_x(-0.35),
+        1.0,
+    );
+    let mut rng = Pcg32::new(71, 6);
+    let (mut rays, mut missed, mut grazes, mut blocked) = (0, 0, 0, 0);
+    let (mut forward_steps, mut backward_steps) = (0u64, 0u64);
+    while rays < 3000 {
+        let o = uniform_sphere(rng.next_vec2()) * 3.0;
+        let aim = Vec3A::new(0.2, -0.1, 0.3) + uniform_sphere(rng.next_vec2()) * 0.8 * rng.next_f32();
+        let ray = Ray::new(o, (aim - o).normalize());
+        let Some(t) = trace(&sdf, &ray, 0.0, 10.0, &params).hit else {
+            continue;
+        };
+        let p = ray.at(t);
+        let n = normal(&sdf, p, params.eps_at(t));
+        // Toward a light 1–4 units away in the outer hemisphere.
+        let mut dir = uniform_sphere(rng.next_vec2());
+        if dir.dot(n) < 0.0 {
+            dir = -dir;
+        }
+        let shadow = Ray::new(p + n * 4e-4, dir);
+        let t_max = 1.0 + 3.0 * rng.next_f32();
+        let forward = trace(&sdf, &shadow, 0.0, t_max, &params);
+        let backward = occluded(&sdf, &shadow, 0.0, t_max, &params);
+        forward_steps += forward.steps as u64;
+        backward_steps += backward.steps as u64;
+        rays += 1;
+        blocked += forward.hit.is_some() as u32;
+        match (forward.hit, backward.hit) {
+            (Some(_), Some(_)) | (None, None) => {}
+            (Some(tf), None) => {
+                let eps = params.eps_at(tf);
+                let enters = (1..=200).any(|k| sdf.distance(shadow.at(tf + k as f32 * 0.05 * eps)) < 0.0);
+                if enters {
+                    missed += 1;
+                    eprintln!("ray {rays}: forward hit at {tf}, backward none");
+                } else {
+                    grazes += 1;
+                }
+            }
+            (None, Some(_)) => grazes += 1,
+        }
+    }
+    eprintln!(
+        "shadow rays: {blocked} blocked of {rays}, {missed} missed backward, {grazes} grazes told apart; \
+         steps per ray forward {:.1}, backward {:.1}",
+        forward_steps as f64 / rays as f64,
+        backward_steps as f64 / rays as f64
+    );
+    assert!(blocked > 300, "too few occluded rays to judge: {blocked}");
+    assert_eq!(missed, 0, "occluders the backward march missed");
+    assert!(grazes * 100 <= rays, "{grazes} grazes told apart of {rays}");
+    assert!(backward_steps < forward_steps, "marching backward saves no steps");
 }
