@@ -296,6 +296,27 @@ fn watch_burst_of_saves_ends_in_the_last_content() {
     );
 }
 
+/// An editor that saves twice, or a save of unchanged text, does not start
+/// the render again: the complete image on screen is already that scene's.
+#[test]
+fn watch_does_not_rerender_a_save_that_changed_nothing() {
+    let w = Watch::start();
+    let text = std::fs::read_to_string(w.path("scene.ron")).expect("scene");
+    std::fs::write(w.path("scene.ron"), &text).expect("same text again");
+    std::fs::write(w.path("scene.ron"), &text).expect("and again");
+    let log = w.settle();
+    assert_eq!(
+        changes(&log),
+        1,
+        "an unchanged save re-rendered:\n{}",
+        log.join("\n")
+    );
+    // A real edit still renders.
+    std::fs::write(w.path("scene.ron"), scene("0.2, 0.2, 0.8", 0.4, "tri.obj")).expect("edit");
+    w.wait_finals(2);
+    assert_eq!(changes(&w.settle()), 2);
+}
+
 #[test]
 fn watch_ignores_its_own_output() {
     let w = Watch::start();

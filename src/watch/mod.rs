@@ -108,6 +108,7 @@ pub fn run(args: WatchArgs) -> ExitCode {
         cancel: Arc::new(Cancel::default()),
         generation: 0,
         jobs,
+        rendered: None,
     };
     // Watch before the first load, so an edit during it is not missed.
     session.rearm(WatchSet::new([&session.scene]));
@@ -133,6 +134,48 @@ struct Session {
     cancel: Arc<Cancel>,
     generation: u64,
     jobs: Sender<Job>,
+    /// What the last job was rendered from, to tell a save that changed
+    /// nothing (editors write twice, `touch`, a checkout of the same text).
+    rendered: Option<Inputs>,
+}
+
+/// The scene's text, and of every file the load read: the text of scene
+/// files (the scene, its includes; small), the size and modification time of
+/// the others (meshes and images can be large).
+#[derive(PartialEq)]
+struct Inputs {
+    text: String,
+    files: Vec<(PathBuf, Stamp)>,
+}
+
+#[derive(PartialEq)]
+enum Stamp {
+    Text(String),
+    Modified(u64, std::time::SystemTime),
+    Unreadable,
+}
+
+impl Inputs {
+    fn of(text: String, files: &[PathBuf]) -> Self {
+        let stamp = |p: &PathBuf| {
+            let is_scene = p
+                .extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| e.eq_ignore_ascii_case("ron") || e.eq_ignore_ascii_case("json"));
+            let read = || -> Option<Stamp> {
+                if is_scene {
+                    return std::fs::read_to_string(p).ok().map(Stamp::Text);
+                }
+                let m = std::fs::metadata(p).ok()?;
+                Some(Stamp::Modified(m.len(), m.modified().ok()?))
+            };
+            read().unwrap_or(Stamp::Unreadable)
+        };
+        Inputs {
+            text,
+            files: files.iter().map(|p| (p.clone(), stamp(p))).collect(),
+        }
+    }
 }
 
 impl Session {
@@ -182,6 +225,12 @@ impl Session {
         };
         let cache = &self.cache;
         let loaded = load_str_with_meshes(&self.scene, &text, &self.overrides, &|p| cache.load(p));
+        let inputs = loaded.as_ref().ok().map(|l| Inputs::of(text.clone(), &l.files));
+        if inputs.is_some() && inputs == self.rendered && self.cancel.finished() {
+            // Nothing changed since the complete image on screen.
+            return;
+        }
+        self.rendered = inputs;
         let loaded = match loaded {
             Ok(l) => l,
             Err(e) => {

@@ -21,14 +21,21 @@ use std::thread::JoinHandle;
 use std::time::Instant;
 
 /// Set when a newer edit makes a job pointless; remembers when, to report
-/// how long stopping took.
+/// how long stopping took, and whether the job wrote its last pass before.
 #[derive(Debug, Default)]
 pub struct Cancel {
     flag: AtomicBool,
     at: OnceLock<Instant>,
+    finished: AtomicBool,
 }
 
 impl Cancel {
+    /// Whether the job wrote its complete image (a later cancel does not
+    /// undo that).
+    pub fn finished(&self) -> bool {
+        self.finished.load(Ordering::SeqCst)
+    }
+
     pub fn cancel(&self) {
         let _ = self.at.set(Instant::now());
         self.flag.store(true, Ordering::SeqCst);
@@ -123,6 +130,7 @@ fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
         };
         reporter.pass_written(&info, frame);
     }
+    job.cancel.finished.store(true, Ordering::SeqCst);
 }
 
 /// The web page's copy of a pass: 8-bit sRGB through `display` (exposure
