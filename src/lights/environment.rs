@@ -237,13 +237,16 @@ impl EnvironmentLight {
     /// spherical camera (`camera/spherical.rs`) inverts it.
     #[inline]
     pub fn uv(d: Vec3A) -> Vec2 {
-        let mut u = d.x.atan2(-d.z) / (2.0 * PI);
+        let mut u = crate::math::trig::atan2(d.x, -d.z) / (2.0 * PI);
         if u < 0.0 {
             u += 1.0;
         }
         // θ = atan2(sin θ, cos θ): acos(d.y) loses precision near the poles.
         let sin_t = (d.x * d.x + d.z * d.z).sqrt();
-        Vec2::new(u.min(1.0 - f32::EPSILON), sin_t.atan2(d.y) / PI)
+        Vec2::new(
+            u.min(1.0 - f32::EPSILON),
+            crate::math::trig::atan2(sin_t, d.y) / PI,
+        )
     }
 
     /// Radiance arriving from world direction `d` (unit, pointing away from the

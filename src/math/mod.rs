@@ -8,6 +8,7 @@ pub mod piecewise;
 pub mod ray;
 pub mod rng;
 pub mod sampling;
+pub mod trig;
 
 pub use exact_sum::ExactSum;
 pub use frame::Frame;
