@@ -135,7 +135,8 @@ struct Session {
     generation: u64,
     jobs: Sender<Job>,
     /// What the last job was rendered from, to tell a save that changed
-    /// nothing (editors write twice, `touch`, a checkout of the same text).
+    /// nothing (editors write twice, a checkout of the same text); `None`
+    /// after a reload that sent no job.
     rendered: Option<Inputs>,
 }
 
@@ -230,7 +231,9 @@ impl Session {
             // Nothing changed since the complete image on screen.
             return;
         }
-        self.rendered = inputs;
+        // Set again only once a job is on its way: a scene refused below
+        // (its output, the memory it needs) is checked again on any save.
+        self.rendered = None;
         let loaded = match loaded {
             Ok(l) => l,
             Err(e) => {
@@ -278,6 +281,7 @@ impl Session {
         let watched = self.set.file_count();
         self.reporter
             .loaded(generation, &name, load_time, reused, watched);
+        self.rendered = inputs;
         self.cancel = Arc::new(Cancel::default());
         let job = Job {
             scene: loaded.scene,
