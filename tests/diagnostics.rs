@@ -34,6 +34,21 @@ fn diagnostics_of(name: &str, text: &str) -> Vec<Diagnostic> {
 }
 
 /// The diagnostic at scene path `path`, or a panic listing all of them.
+/// Each diagnostic's (path, line, column), in the order reported.
+fn locations(d: &[Diagnostic]) -> Vec<(String, usize, usize)> {
+    d.iter()
+        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
+        .collect()
+}
+
+/// As [`locations`], in the order of the file, whatever order the checks
+/// ran in.
+fn locations_in_file_order(d: &[Diagnostic]) -> Vec<(String, usize, usize)> {
+    let mut got = locations(d);
+    got.sort_by_key(|&(_, line, column)| (line, column));
+    got
+}
+
 fn at<'a>(d: &'a [Diagnostic], path: &str) -> &'a Diagnostic {
     d.iter()
         .find(|d| d.path.as_deref() == Some(path))
@@ -517,10 +532,7 @@ fn lights_of_zero_power_warn_at_lights() {
 #[test]
 fn mirror_and_glass_under_default_direct_warn_at_each_used_material() {
     let (d, text) = warnings_of("mirror_direct.ron");
-    let at: Vec<_> = d
-        .iter()
-        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
-        .collect();
+    let at = locations(&d);
     assert_eq!(
         at,
         [
@@ -642,11 +654,7 @@ fn validate_passes_warnings_unless_denied() {
 fn rough_material_mistakes_are_located_at_their_fields() {
     let (d, text) = diagnostics("rough_materials.ron");
     // In the order of the file, whatever order the checks run in.
-    let mut got: Vec<_> = d
-        .iter()
-        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
-        .collect();
-    got.sort_by_key(|&(_, line, column)| (line, column));
+    let got = locations_in_file_order(&d);
     let want = [
         ("materials.coat.diffuse", 4, 39),
         ("materials.coat.roughness", 4, 68),
@@ -688,10 +696,7 @@ fn rough_material_mistakes_are_located_at_their_fields() {
 #[test]
 fn environment_and_emission_mistakes_are_located_together() {
     let (d, text) = diagnostics("light_mistakes.ron");
-    let at: Vec<_> = d
-        .iter()
-        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
-        .collect();
+    let at = locations(&d);
     // In the order of the file (two problems share lights[3]'s position).
     let want = [
         ("lights[0].map", 5, 26),
@@ -798,11 +803,7 @@ fn emissive_objects_and_environments_count_as_light() {
 #[test]
 fn lens_and_film_mistakes_are_located_at_their_fields() {
     let (d, text) = diagnostics("lens_mistakes.ron");
-    let mut got: Vec<_> = d
-        .iter()
-        .map(|d| (d.path.clone().unwrap_or_default(), d.line, d.column))
-        .collect();
-    got.sort_by_key(|&(_, line, column)| (line, column));
+    let got = locations_in_file_order(&d);
     let want = [
         ("camera.fov_y_degrees", 2, 64),
         ("camera.projection.view_height", 2, 106),
