@@ -49,6 +49,8 @@ enum Nearest {
     /// Shape index, instance index, hit.
     Mesh(u32, u32, MeshHit),
     Triangle(u32, Vec2),
+    /// Shape index of a quad and the hit's `(s, t)`.
+    Quad(u32, Vec2),
 }
 
 impl Scene {
@@ -104,10 +106,10 @@ impl Scene {
                     // The common analytic shapes inline (the shared match
                     // in `intersect_t` stayed an out-of-line call).
                     Shape::Quad(q) => {
-                        let Some((t, _)) = q.intersect(ray, t_best) else {
+                        let Some((t, uv)) = q.intersect(ray, t_best) else {
                             continue;
                         };
-                        (t, Nearest::Shape(i))
+                        (t, Nearest::Quad(i, uv))
                     }
                     Shape::Sphere(sp) => {
                         let Some(t) = sp.intersect(ray, t_best) else {
@@ -139,6 +141,10 @@ impl Scene {
             Nearest::Mesh(i, k, h) => (geo.instances[k as usize].hit(ray, h, &geo.meshes), i),
             Nearest::Triangle(i, bc) => match &shapes[i as usize] {
                 Shape::Triangle(tr) => (tr.hit(ray, t_best, bc, geo), i),
+                s => (s.hit(ray, t_best, geo), i),
+            },
+            Nearest::Quad(i, uv) => match &shapes[i as usize] {
+                Shape::Quad(q) => (q.hit_at(ray, t_best, uv), i),
                 s => (s.hit(ray, t_best, geo), i),
             },
             Nearest::Shape(i) => match &shapes[i as usize] {

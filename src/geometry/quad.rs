@@ -77,6 +77,14 @@ impl Quad {
         let uv = self
             .intersect(ray, f32::INFINITY)
             .map_or(Vec2::ZERO, |(_, uv)| uv);
+        self.hit_at(ray, t, uv)
+    }
+
+    /// Shading record for a hit at distance `t` whose `(s, t)` coordinates
+    /// `uv` [`Quad::intersect`] already returned: the scene's closest-hit
+    /// query keeps them rather than intersecting the quad a second time.
+    #[inline]
+    pub fn hit_at(&self, ray: &Ray, t: f32, uv: Vec2) -> Hit {
         Hit {
             t,
             p: ray.at(t),
