@@ -86,7 +86,9 @@ impl Scene {
         // Kept with the nearest hit so the hit record needs no second trace
         // (the BVH only asks for hits below the current best).
         let mut nearest = None;
-        let wt = WatertightRay::new(ray);
+        // The watertight triangle setup (an axis choice and three divisions)
+        // is made on the first triangle the ray meets: many rays meet none.
+        let mut wt = None;
         let best = self.bvh.intersect(ray, t_max, |first, count, mut t_best| {
             let mut found = None;
             for i in first..first + count {
@@ -98,7 +100,8 @@ impl Scene {
                         (h.t, Nearest::Mesh(i, *k, h))
                     }
                     Shape::Triangle(tr) => {
-                        let Some((t, bc)) = tr.intersect(&wt, t_best) else {
+                        let wt = wt.get_or_insert_with(|| WatertightRay::new(ray));
+                        let Some((t, bc)) = tr.intersect(wt, t_best) else {
                             continue;
                         };
                         (t, Nearest::Triangle(i, bc))
@@ -163,12 +166,14 @@ impl Scene {
         if (self.bounded..self.shapes.len() as u32).any(|i| shapes[i as usize].occludes(ray, t_max, geo)) {
             return true;
         }
-        let wt = WatertightRay::new(ray);
+        let mut wt = None;
         self.bvh.occluded(ray, t_max, |first, count, t_max| {
             shapes[first as usize..(first + count) as usize]
                 .iter()
                 .any(|s| match s {
-                    Shape::Triangle(tr) => tr.intersect(&wt, t_max).is_some(),
+                    Shape::Triangle(tr) => tr
+                        .intersect(wt.get_or_insert_with(|| WatertightRay::new(ray)), t_max)
+                        .is_some(),
                     Shape::Quad(q) => q.intersect(ray, t_max).is_some(),
                     Shape::Sphere(sp) => sp.intersect(ray, t_max).is_some(),
                     s => s.occludes(ray, t_max, geo),
