@@ -11,6 +11,7 @@
 
 pub use crate::imageio::SampleSums;
 
+use crate::film::{Adaptive, PixelNoise};
 use crate::imageio::{Image, PixelRect};
 use crate::integrators::Counters;
 use crate::math::{ExactSum, Rgb};
@@ -104,7 +105,6 @@ pub fn render_image(
     on_tile: &(dyn Fn(&TileDone) + Sync),
 ) -> (Image, RenderStats) {
     let (w, h) = (view.film.width, view.film.height);
-    let spp = opts.sample_range.map_or(view.film.spp, |(_, n)| n);
     let work = Work {
         scene,
         view,
@@ -112,8 +112,14 @@ pub fn render_image(
         rect: PixelRect::full(w, h),
         cancel,
         on_tile,
+        // A part of the samples is added to other parts' exact sums, which
+        // needs fixed counts: only a render of all of them is adaptive.
+        adaptive: view
+            .film
+            .adaptive
+            .filter(|_| opts.sample_range.is_none_or(|r| r == (0, view.film.spp))),
     };
-    let (pixels, stats) = work.run(Rgb::ZERO, |s| s.mean(spp));
+    let (pixels, stats) = work.run(Rgb::ZERO, |s, n| s.mean(n));
     (
         Image {
             width: w,
@@ -162,8 +168,10 @@ pub fn render_sums(
         rect,
         cancel,
         on_tile,
+        // The sums of pieces and passes must add up: every sample is taken.
+        adaptive: None,
     };
-    let (sums, stats) = work.run(ExactSum::ZERO, |s| s);
+    let (sums, stats) = work.run(ExactSum::ZERO, |s, _| s);
     (SampleSums { rect, sums }, stats)
 }
 
@@ -205,13 +213,20 @@ struct Work<'a> {
     rect: PixelRect,
     cancel: &'a AtomicBool,
     on_tile: &'a (dyn Fn(&TileDone) + Sync),
+    /// Adaptive sampling's stopping rule, if this render uses it.
+    adaptive: Option<Adaptive>,
 }
 
 impl Work<'_> {
     /// Renders every tile on the options' thread pool, turns each pixel's
-    /// exact sum into a `T` as its tile finishes (`empty` for pixels of tiles
-    /// skipped on cancel), and returns them row-major over `rect`.
-    fn run<T: Copy + Send>(&self, empty: T, finish: impl Fn(ExactSum) -> T + Sync) -> (Vec<T>, RenderStats) {
+    /// exact sum and sample count into a `T` as its tile finishes (`empty`
+    /// for pixels of tiles skipped on cancel), and returns them row-major
+    /// over `rect`.
+    fn run<T: Copy + Send>(
+        &self,
+        empty: T,
+        finish: impl Fn(ExactSum, u32) -> T + Sync,
+    ) -> (Vec<T>, RenderStats) {
         let start = Instant::now();
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(self.opts.threads.unwrap_or(0))
@@ -232,10 +247,9 @@ impl Work<'_> {
                 out[rect.index(x, y)] = p;
             }
         }
-        let spp = self.opts.sample_range.map_or(self.view.film.spp, |(_, n)| n);
         let stats = RenderStats {
             elapsed: start.elapsed(),
-            samples: rect.area() * spp as u64,
+            samples: counters.samples,
             rays: counters.rays,
             cancelled: self.cancel.load(Ordering::Relaxed),
         };
@@ -246,7 +260,7 @@ impl Work<'_> {
     fn tiles<T: Send>(
         &self,
         start: Instant,
-        finish: &(impl Fn(ExactSum) -> T + Sync),
+        finish: &(impl Fn(ExactSum, u32) -> T + Sync),
     ) -> (Vec<(PixelRect, Vec<T>)>, Counters) {
         let film = self.view.film;
         let tiles = tiles_of(self.rect);
@@ -265,6 +279,8 @@ impl Work<'_> {
                 for y in tile.y0..tile.y1 {
                     for x in tile.x0..tile.x1 {
                         let mut sum = ExactSum::ZERO;
+                        let mut noise = PixelNoise::default();
+                        let mut taken = spp;
                         pixel.set_pixel(x, y, s0..s0 + spp);
                         for s in s0..s0 + spp {
                             let mut sampler = pixel.sample(s);
@@ -275,11 +291,22 @@ impl Work<'_> {
                                 .li(self.scene, &ray, &mut sampler, &mut counters);
                             // A non-finite sample (a numerical bug, caught by
                             // debug asserts) must not poison the pixel in release.
-                            if li.is_finite() {
-                                sum.add_sample(if weight == 1.0 { li } else { li * weight });
+                            let c = if li.is_finite() {
+                                if weight == 1.0 { li } else { li * weight }
+                            } else {
+                                Rgb::ZERO
+                            };
+                            sum.add_sample(c);
+                            if let Some(a) = &self.adaptive {
+                                noise.add(c);
+                                if a.converged(&noise) {
+                                    taken = s - s0 + 1;
+                                    break;
+                                }
                             }
                         }
-                        px.push(finish(sum));
+                        counters.samples += taken as u64;
+                        px.push(finish(sum, taken));
                     }
                 }
                 bar.inc(1);
@@ -298,6 +325,7 @@ impl Work<'_> {
             .into_iter()
             .map(|(tile, px, c)| {
                 total.rays += c.rays;
+                total.samples += c.samples;
                 (tile, px)
             })
             .collect();

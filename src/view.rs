@@ -4,7 +4,7 @@
 //! query, and one scene can be rendered through several views.
 
 use crate::camera::Camera;
-use crate::film::Filter;
+use crate::film::{Adaptive, Filter};
 use crate::imageio::Display;
 use crate::integrators::Integrator;
 use crate::math::Ray;
@@ -28,6 +28,9 @@ pub struct Film {
     pub aovs: AovSet,
     /// Run the denoiser on the image before writing it (`film.denoise`).
     pub denoise: bool,
+    /// Adaptive sampling (`film.noise_threshold` above 0): when a pixel
+    /// may stop before `spp` samples.
+    pub adaptive: Option<Adaptive>,
 }
 
 /// Camera, film, integrator and output of one render.

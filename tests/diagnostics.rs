@@ -823,6 +823,26 @@ fn lens_and_film_mistakes_are_located_at_their_fields() {
 }
 
 #[test]
+fn adaptive_sampling_mistakes_are_located_at_their_fields() {
+    let text = "Scene(camera: (eye: (0, 0, 5), target: (0, 0, 0), fov_y_degrees: 40),
+    film: (spp: 64,
+        noise_threshold: 1.5,
+        min_spp: 1))";
+    let d = diagnostics_of("adaptive.ron", text);
+    let got = locations_in_file_order(&d);
+    let want =
+        [("film.noise_threshold", 3, 26), ("film.min_spp", 4, 18)].map(|(p, l, c)| (p.to_string(), l, c));
+    assert_eq!(got, want);
+    assert!(at(&d, "film.noise_threshold").message.contains("outside [0, 1]"));
+    assert!(at(&d, "film.min_spp").message.contains("outside 2..="));
+    let nan = diagnostics_of(
+        "adaptive_nan.ron",
+        "Scene(camera: (eye: (0, 0, 5), target: (0, 0, 0), fov_y_degrees: 40), film: (noise_threshold: NaN))",
+    );
+    assert!(at(&nan, "film.noise_threshold").message.contains("NaN"));
+}
+
+#[test]
 fn unknown_tonemap_suggests_the_closest_and_perspective_needs_a_field_of_view() {
     let d = diagnostics_of(
         "tonemap.ron",

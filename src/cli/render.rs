@@ -181,6 +181,11 @@ pub(super) fn cmd_render(
         eprintln!("error: {e}; nothing was written");
         return ExitCode::FAILURE;
     }
+    if is_piece && loaded.view.film.adaptive.is_some() {
+        eprintln!(
+            "note: film.noise_threshold is ignored for pieces: their exact sums add up across machines only when every pixel takes every sample"
+        );
+    }
     let meta = match is_piece.then(|| piece_meta(&loaded, &spec)).transpose() {
         Ok(m) => m,
         Err(e) => {
@@ -259,6 +264,15 @@ pub(super) fn cmd_render(
         format!(
             "piece: pixels {}, samples {}..{} of a {}×{}, {} spp frame",
             spec.rect, spec.samples.0, spec.samples.1, f.width, f.height, f.spp
+        )
+    } else if loaded.view.film.adaptive.is_some() {
+        let pixels = (u64::from(f.width) * u64::from(f.height)).max(1);
+        format!(
+            "{}×{}, adaptive: {:.1} spp on average, at most {}",
+            f.width,
+            f.height,
+            stats.samples as f64 / pixels as f64,
+            f.spp
         )
     } else {
         format!("{}×{}, {} spp", f.width, f.height, f.spp)

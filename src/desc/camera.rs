@@ -113,6 +113,25 @@ pub struct FilmDesc {
     /// with `--features denoise`).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub denoise: bool,
+    /// Adaptive sampling: a pixel stops before `spp` samples once the
+    /// standard error of its mean is at most this fraction of its value (of
+    /// display white, for darker pixels). 0 (the default) takes `spp`
+    /// samples everywhere; 0.01 is typical.
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub noise_threshold: f32,
+    /// With `noise_threshold`: samples every pixel takes before it may stop
+    /// (default 16). Raise it for caustics a few samples can miss.
+    #[serde(default = "default_min_spp")]
+    #[schemars(range(min = 2, max = 1048576))]
+    pub min_spp: u32,
+}
+
+/// `film.min_spp` when the scene leaves it out.
+pub const DEFAULT_MIN_SPP: u32 = 16;
+
+fn default_min_spp() -> u32 {
+    DEFAULT_MIN_SPP
 }
 
 fn default_png_bits() -> u8 {
@@ -156,6 +175,8 @@ impl Default for FilmDesc {
             png_bits: default_png_bits(),
             aovs: Vec::new(),
             denoise: false,
+            noise_threshold: 0.0,
+            min_spp: DEFAULT_MIN_SPP,
         }
     }
 }

@@ -33,6 +33,8 @@ pub enum Integrator {
 pub struct Counters {
     /// Rays traced (camera, bounce and shadow rays), for the rays/s figure.
     pub rays: u64,
+    /// Camera samples taken (adaptive sampling takes fewer than `spp`).
+    pub samples: u64,
 }
 
 impl Integrator {

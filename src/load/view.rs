@@ -11,7 +11,7 @@ use crate::desc::{
     AovDesc, CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc, SceneDesc,
     TonemapDesc,
 };
-use crate::film::{Filter, FilterKind};
+use crate::film::{Adaptive, Filter, FilterKind};
 use crate::imageio::{Display, Tonemap};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
 use crate::sampler::SamplerKind;
@@ -183,6 +183,23 @@ impl Checker {
                     format!("images are at most {MAX_RESOLUTION} pixels on a side"),
                 );
             }
+        }
+        if !(0.0..=1.0).contains(&f.noise_threshold) {
+            self.push(
+                "film.noise_threshold",
+                format!(
+                    "noise threshold {} is outside [0, 1]",
+                    f.noise_threshold
+                ),
+                "it is the relative standard error at which a pixel stops: 0.01 is typical, 0 turns adaptive sampling off",
+            );
+        }
+        if f.min_spp < 2 || f.min_spp > MAX_SPP {
+            self.push(
+                "film.min_spp",
+                format!("{} minimum samples per pixel is outside 2..={MAX_SPP}", f.min_spp),
+                "a pixel needs at least 2 samples to estimate its noise; 16 (the default) or more is safer",
+            );
         }
         if f.spp == 0 || f.spp > MAX_SPP {
             self.push(
@@ -358,6 +375,11 @@ pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
             },
             aovs: f.aovs.iter().map(|a| aov_of(*a)).collect(),
             denoise: f.denoise,
+            adaptive: (f.noise_threshold > 0.0).then(|| Adaptive {
+                threshold: f.noise_threshold,
+                min_spp: f.min_spp,
+                white: (-f.exposure).exp2(),
+            }),
         },
         filter,
         display,
