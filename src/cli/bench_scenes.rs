@@ -108,8 +108,17 @@ pub fn run(b: &SceneBench) -> Result<(), String> {
                 let err = |skip: Option<&[bool]>| compare(&img, &case.reference, skip).map(|c| c.rmse);
                 let whole = err(None)?;
                 let off = case.light.as_deref().map(|m| err(Some(m))).transpose()?;
+                // With adaptive sampling `spp` is the most a pixel takes;
+                // the mean is what the time bought.
+                let spp_cell = match loaded.view.film.adaptive {
+                    Some(_) => format!(
+                        "{spp} (adaptive, mean {:.1})",
+                        stats.samples as f64 / (u64::from(img.width) * u64::from(img.height)).max(1) as f64
+                    ),
+                    None => spp.to_string(),
+                };
                 out!(
-                    "| {} | {} | {spp} | {secs:.2} | {cpu_s:.2} | {:.3} | {:.3} | {whole:.5} | {} |",
+                    "| {} | {} | {spp_cell} | {secs:.2} | {cpu_s:.2} | {:.3} | {:.3} | {whole:.5} | {} |",
                     case.name,
                     sampler.map_or_else(
                         || format!("{:?} (scene)", loaded.view.film.sampler),
