@@ -27,14 +27,16 @@
 //! which the rows of the image, spaced 1/(H − 1) apart, straddle by less than
 //! a pixel: the 3-row blur still covers every band the image lights.) A
 //! point `(u, v)` of density `p(u, v)` is the
-//! direction of density `p(u, v) / (2π² sin θ)`. The tables take 4 bytes per
-//! pixel (CDFs only, see `math/piecewise.rs`), the image 12 (f32 RGB); an
+//! direction of density `p(u, v) / (2π² sin θ)`. The tables take about 5
+//! bytes per pixel (CDFs and their guide tables, see `math/piecewise.rs`),
+//! the image 12 (f32 RGB); an
 //! 8192 × 4096 map's tables build in 0.08 s on 2 cores.
 //! A constant environment is sampled uniformly over the sphere.
 
 use super::LightSample;
 use crate::math::piecewise::PiecewiseConstant2d;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
+use crate::math::trig::sin_cos_turns;
 use crate::math::{Rgb, luminance};
 use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
@@ -52,15 +54,12 @@ pub struct EnvMap {
 }
 
 impl EnvMap {
-    /// Pixel `(i, j)` (column, row).
-    #[inline]
-    fn pixel(&self, i: usize, j: usize) -> Rgb {
-        let k = 3 * (j * self.width as usize + i);
-        Rgb::new(self.rgb[k], self.rgb[k + 1], self.rgb[k + 2])
-    }
-
     /// Bilinear lookup at `(u, v)` ∈ [0, 1]²: columns centred at `(i + ½)/W`
     /// (wrapping), rows at `j/(H − 1)` (see the module docs).
+    ///
+    /// Indices go through `i32` (clamped coordinates fit) and each row is
+    /// sliced once: the saturating `f32 → usize` casts and twelve bounds
+    /// checks were a third of its ~150 instructions (callgrind).
     #[inline]
     pub fn lookup(&self, uv: Vec2) -> Rgb {
         let (w, h) = (self.width as usize, self.height as usize);
@@ -68,20 +67,30 @@ impl EnvMap {
         let x = (uv.x * w as f32 - 0.5).clamp(-1.0, w as f32 - 0.5);
         let x0 = x.floor();
         let fx = x - x0;
-        let (i0, i1) = if x0 < 0.0 {
-            (w - 1, 0)
-        } else {
-            let i0 = (x0 as usize).min(w - 1);
-            (i0, if i0 + 1 == w { 0 } else { i0 + 1 })
-        };
+        // x0 ∈ [−1, W − 1]: −1 is the seam, between the last column and the first.
+        let xi = x0 as i32;
+        let i0 = if xi < 0 { w - 1 } else { xi as usize };
+        let i1 = if xi + 1 >= w as i32 { 0 } else { (xi + 1) as usize };
         // Row 0 at the zenith, row H − 1 at the nadir.
         let y = (uv.y * (h - 1) as f32).clamp(0.0, (h - 1) as f32);
-        let j0 = y as usize;
+        let j0 = (y as i32) as usize;
         let j1 = (j0 + 1).min(h - 1);
         let fy = y - j0 as f32;
-        let top = self.pixel(i0, j0) * (1.0 - fx) + self.pixel(i1, j0) * fx;
-        let bottom = self.pixel(i0, j1) * (1.0 - fx) + self.pixel(i1, j1) * fx;
+        let (row0, row1) = (self.row(j0), self.row(j1));
+        let px = |row: &[f32], i: usize| {
+            let p = &row[3 * i..3 * i + 3];
+            Rgb::new(p[0], p[1], p[2])
+        };
+        let top = px(row0, i0) * (1.0 - fx) + px(row0, i1) * fx;
+        let bottom = px(row1, i0) * (1.0 - fx) + px(row1, i1) * fx;
         top * (1.0 - fy) + bottom * fy
+    }
+
+    /// Row `j`'s `3·width` floats.
+    #[inline]
+    fn row(&self, j: usize) -> &[f32] {
+        let n = 3 * self.width as usize;
+        &self.rgb[j * n..(j + 1) * n]
     }
 
     /// Luminance of the mean bilinear radiance over each cell of row `j`, into
@@ -272,11 +281,12 @@ impl EnvironmentLight {
         let (wi, pdf, li) = match (&self.distribution, self.sampling) {
             (Some(dist), EnvSampling::Importance) => {
                 let (uv, uv_pdf) = dist.sample(u);
-                let (sin_t, cos_t) = (PI * uv.y).sin_cos();
+                // θ = π v is half a turn of v, φ = 2π u a turn of u.
+                let (sin_t, cos_t) = sin_cos_turns(0.5 * uv.y);
                 if sin_t <= 0.0 || uv_pdf <= 0.0 {
                     return None;
                 }
-                let (sin_p, cos_p) = (2.0 * PI * uv.x).sin_cos();
+                let (sin_p, cos_p) = sin_cos_turns(uv.x);
                 let d = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
                 // The image at the sampled point: no atan2/acos round trip.
                 let li = self.scale * self.map.as_ref().map_or(Rgb::ONE, |m| m.lookup(uv));
@@ -312,6 +322,30 @@ impl EnvironmentLight {
             }
             _ => UNIFORM_SPHERE_PDF,
         }
+    }
+
+    /// [`Self::le`] and [`Self::pdf`] of world direction `d` at once, for a
+    /// BSDF sample that escaped: the direction is mapped to the image once
+    /// (two `atan2`, ~95 instructions), not twice. Same values, bit for bit.
+    #[inline]
+    pub fn le_and_pdf(&self, d: Vec3A) -> (Rgb, f32) {
+        let Some(m) = &self.map else {
+            return (self.scale, self.pdf(d));
+        };
+        let e = self.to_env(d);
+        let uv = Self::uv(e);
+        let le = self.scale * m.lookup(uv);
+        let pdf = match (&self.distribution, self.sampling) {
+            (Some(dist), EnvSampling::Importance) => {
+                let sin_t = (e.x * e.x + e.z * e.z).sqrt();
+                if sin_t <= 0.0 {
+                    return (le, 0.0);
+                }
+                dist.pdf(uv) / (2.0 * PI * PI * sin_t)
+            }
+            _ => UNIFORM_SPHERE_PDF,
+        };
+        (le, pdf)
     }
 
     /// Power for light selection: the flux through the scene's bounding disk,

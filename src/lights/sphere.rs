@@ -1,6 +1,7 @@
 //! An emissive sphere, sampled by the cone of directions it subtends.
 
 use super::LightSample;
+use crate::math::trig::sin_cos_turns;
 use crate::math::{Frame, Rgb};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
@@ -55,10 +56,11 @@ impl SphereLight {
         let sin_max = sin2_max.sqrt();
         let cos_a = sin2_t / sin_max + cos_t * (1.0 - sin2_t / sin2_max).max(0.0).sqrt();
         let sin_a = (1.0 - cos_a * cos_a).max(0.0).sqrt();
-        let phi = 2.0 * PI * u.y;
+        // (sin φ, cos φ) of φ = 2π·u.y without libm's sinf and cosf.
+        let (sin_p, cos_p) = sin_cos_turns(u.y);
         let to_p = (p - self.center).normalize();
         let f = Frame::from_normal(to_p);
-        let n = f.to_world(Vec3A::new(sin_a * phi.cos(), sin_a * phi.sin(), cos_a));
+        let n = f.to_world(Vec3A::new(sin_a * cos_p, sin_a * sin_p, cos_a));
         let q = self.center + n * self.radius;
         let d = q - p;
         let dist = d.length();

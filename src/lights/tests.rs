@@ -414,3 +414,28 @@ fn constant_environment_power_and_uniform_mode() {
     map.sampling = EnvSampling::Uniform;
     assert_eq!(map.pdf(Vec3A::Y), UNIFORM_SPHERE_PDF);
 }
+
+#[test]
+fn environment_le_and_pdf_are_le_and_pdf_bit_for_bit() {
+    let mut rng = Pcg32::new(8, 1);
+    for rotation in [0.0, 37.0] {
+        for sampling in [EnvSampling::Importance, EnvSampling::Uniform] {
+            let mut env = EnvironmentLight::from_map(test_map(), 1.5, rotation);
+            env.sampling = sampling;
+            let mut constant = EnvironmentLight::constant(Rgb::new(0.2, 0.3, 0.4));
+            constant.sampling = sampling;
+            for _ in 0..20_000 {
+                let d = uniform_sphere(rng.next_vec2());
+                for e in [&env, &constant] {
+                    let (le, pdf) = e.le_and_pdf(d);
+                    assert_eq!(le, e.le(d), "le along {d}");
+                    assert_eq!(pdf.to_bits(), e.pdf(d).to_bits(), "pdf along {d}");
+                }
+            }
+            // The poles, where sin θ = 0.
+            for d in [Vec3A::Y, -Vec3A::Y] {
+                assert_eq!(env.le_and_pdf(d), (env.le(d), env.pdf(d)));
+            }
+        }
+    }
+}

@@ -19,6 +19,7 @@
 //! `alpha = roughness²` (Burley 2012, the glTF/Disney convention), clamped to
 //! at least [`MIN_ALPHA`]; use `Mirror` for an ideally smooth surface.
 
+use crate::math::trig::sin_cos_turns;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
 
@@ -110,7 +111,8 @@ impl Microfacet {
 
     /// Draws a microfacet normal for `wo` (z > 0).
     pub fn sample_wm(&self, wo: Vec3A, u: Vec2) -> Vec3A {
-        let phi = 2.0 * PI * u.x;
+        // (sin φ, cos φ) of φ = 2π·u.x without libm's sinf and cosf.
+        let (sin_p, cos_p) = sin_cos_turns(u.x);
         match self.distribution {
             Distribution::Ggx => {
                 // Stretch wo to the α = 1 configuration (a hemisphere).
@@ -120,7 +122,7 @@ impl Microfacet {
                 // shifted by wo_std (Dupuy & Benyoub 2023, listing 3).
                 let z = (1.0 - u.y) * (1.0 + wo_std.z) - wo_std.z;
                 let sin = (1.0 - z * z).clamp(0.0, 1.0).sqrt();
-                let h = Vec3A::new(sin * phi.cos(), sin * phi.sin(), z) + wo_std;
+                let h = Vec3A::new(sin * cos_p, sin * sin_p, z) + wo_std;
                 // Unstretch back to roughness α.
                 Vec3A::new(h.x * a, h.y * a, h.z.max(0.0)).normalize_or(Vec3A::Z)
             }
@@ -129,7 +131,7 @@ impl Microfacet {
                 let tan2 = -self.alpha * self.alpha * (1.0 - u.y).ln();
                 let cos = 1.0 / (1.0 + tan2).sqrt();
                 let sin = (1.0 - cos * cos).max(0.0).sqrt();
-                Vec3A::new(sin * phi.cos(), sin * phi.sin(), cos)
+                Vec3A::new(sin * cos_p, sin * sin_p, cos)
             }
         }
     }

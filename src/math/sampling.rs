@@ -14,22 +14,12 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
     // θ = π/4 · a with |a| ≤ 1 in the first wedge, π/2 − π/4 · a in the
     // second, whose cosine and sine are the first wedge's swapped.
     if o.x.abs() > o.y.abs() {
-        let (s, c) = sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.y / o.x));
+        let (s, c) = super::trig::sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.y / o.x));
         o.x * Vec2::new(c, s)
     } else {
-        let (s, c) = sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.x / o.y));
+        let (s, c) = super::trig::sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.x / o.y));
         o.y * Vec2::new(s, c)
     }
-}
-
-/// `(sin a, cos a)` for |a| ≤ π/4 by Taylor polynomials (errors below 3e-7
-/// and 3e-8 there): libm's `sincosf` was 3.6% of a diffuse render.
-#[inline]
-fn sin_cos_quarter(a: f32) -> (f32, f32) {
-    let a2 = a * a;
-    let s = a * (1.0 + a2 * (-1.0 / 6.0 + a2 * (1.0 / 120.0 + a2 * (-1.0 / 5040.0))));
-    let c = 1.0 + a2 * (-0.5 + a2 * (1.0 / 24.0 + a2 * (-1.0 / 720.0 + a2 * (1.0 / 40320.0))));
-    (s, c)
 }
 
 /// Malley's method: project the disk onto the hemisphere (+z).
@@ -118,18 +108,6 @@ mod tests {
         assert_eq!(power_heuristic(f32::INFINITY, f32::INFINITY), 0.5);
         assert!((power_heuristic(1.0, 1.0) - 0.5).abs() < 1e-7);
         assert!((power_heuristic(2.0, 1.0) - 0.8).abs() < 1e-6);
-    }
-
-    #[test]
-    fn quarter_sin_cos_match_libm() {
-        for i in -1000..=1000 {
-            let a = std::f32::consts::FRAC_PI_4 * i as f32 / 1000.0;
-            let (s, c) = sin_cos_quarter(a);
-            assert!(
-                (s - a.sin()).abs() < 4e-7 && (c - a.cos()).abs() < 2e-7,
-                "a = {a}"
-            );
-        }
     }
 
     #[test]
