@@ -58,14 +58,16 @@ impl Path {
             counters.rays += 1;
             let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
                 // The environment, reached by the previous BSDF sample.
-                let le = escaped(scene, ray.d, segments == 0);
+                // After a non-delta vertex (never the camera ray) the radiance
+                // and the MIS density share one mapping of the direction.
+                let (le, w) = match scene.environment() {
+                    Some((i, env)) if !prev_delta => {
+                        let (le, env_pdf) = env.le_and_pdf(ray.d);
+                        (le, power_heuristic(prev_pdf, picker.pmf(i as usize) * env_pdf))
+                    }
+                    _ => (escaped(scene, ray.d, segments == 0), 1.0),
+                };
                 if le != Rgb::ZERO {
-                    let w = match scene.environment() {
-                        Some((i, env)) if !prev_delta => {
-                            power_heuristic(prev_pdf, picker.pmf(i as usize) * env.pdf(ray.d))
-                        }
-                        _ => 1.0,
-                    };
                     l += beta * le * w;
                 }
                 break;
