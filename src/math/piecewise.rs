@@ -234,7 +234,7 @@ mod tests {
         let weights: Vec<f32> = (0..300)
             .map(|i| match i {
                 0..40 | 100..180 => 0.0,
-                150 => 1e6,
+                99 => 1e6,
                 _ => 1.0 + (i % 7) as f32,
             })
             .collect();
