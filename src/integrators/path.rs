@@ -60,15 +60,20 @@ impl Path {
                 // The environment, reached by the previous BSDF sample.
                 // After a non-delta vertex (never the camera ray) the radiance
                 // and the MIS density share one mapping of the direction.
-                let (le, w) = match scene.environment() {
+                match scene.environment() {
                     Some((i, env)) if !prev_delta => {
                         let (le, env_pdf) = env.le_and_pdf(ray.d);
-                        (le, power_heuristic(prev_pdf, picker.pmf(i as usize) * env_pdf))
+                        if le != Rgb::ZERO {
+                            let w = power_heuristic(prev_pdf, picker.pmf(i as usize) * env_pdf);
+                            l += beta * le * w;
+                        }
                     }
-                    _ => (escaped(scene, ray.d, segments == 0), 1.0),
-                };
-                if le != Rgb::ZERO {
-                    l += beta * le * w;
+                    _ => {
+                        let le = escaped(scene, ray.d, segments == 0);
+                        if le != Rgb::ZERO {
+                            l += beta * le;
+                        }
+                    }
                 }
                 break;
             };

@@ -115,8 +115,12 @@ impl PiecewiseConstant2d {
     #[inline]
     pub fn pdf(&self, p: Vec2) -> f32 {
         // Through i32 (cheaper casts than to usize); p ∈ [0, 1)², so ≥ 0.
-        let i = ((p.x * self.width as f32) as i32).clamp(0, self.width as i32 - 1) as usize;
-        let j = ((p.y * self.height as f32) as i32).clamp(0, self.height as i32 - 1) as usize;
+        let i = ((p.x * self.width as f32) as i32)
+            .max(0)
+            .min(self.width as i32 - 1) as usize;
+        let j = ((p.y * self.height as f32) as i32)
+            .max(0)
+            .min(self.height as i32 - 1) as usize;
         let row = j * (self.width + 1);
         let pu = self.conditional[row + i + 1] - self.conditional[row + i];
         let pv = self.marginal[j + 1] - self.marginal[j];
@@ -170,9 +174,10 @@ fn invert(cdf: &[f32], guide: &[u32], u: f32) -> (usize, f32, f32) {
     let n = cdf.len() - 1;
     let steps = guide.len() - 1;
     // Through i32: a saturating f32 → usize cast costs ~15 instructions.
-    let b = ((u * steps as f32) as i32).clamp(0, steps as i32 - 1) as usize;
+    // (`max`/`min`, not `clamp`, which checks its bounds' order at run time.)
+    let b = ((u * steps as f32) as i32).max(0).min(steps as i32 - 1) as usize;
     let (lo, hi) = (guide[b] as usize, guide[b + 1] as usize);
-    let k = (lo + cdf[lo..hi].partition_point(|&c| c <= u)).clamp(1, n) - 1;
+    let k = (lo + cdf[lo..hi].partition_point(|&c| c <= u)).max(1).min(n) - 1;
     let p = cdf[k + 1] - cdf[k];
     let t = if p > 0.0 {
         ((u - cdf[k]) / p).clamp(0.0, 1.0)
