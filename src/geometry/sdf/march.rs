@@ -219,9 +219,9 @@ pub fn normal(sdf: &Sdf, p: Vec3A, h: f32) -> Vec3A {
         Vec3A::new(-1.0, 1.0, -1.0),
         Vec3A::new(1.0, 1.0, 1.0),
     ];
-    let g = K
-        .iter()
-        .fold(Vec3A::ZERO, |g, &k| g + k * sdf.distance(p + k * h));
+    // The four taps in one call: SIMD lanes for the Mandelbulb.
+    let d = sdf.distance_x4(K.map(|k| p + k * h));
+    let g = K.iter().zip(d).fold(Vec3A::ZERO, |g, (&k, d)| g + k * d);
     // A flat spot (the centre of a sphere) has no gradient: pick any normal.
     g.normalize_or(Vec3A::Y)
 }

@@ -22,6 +22,7 @@
 pub mod bounding_sphere;
 pub mod bounds;
 pub mod fractal;
+pub mod mandelbulb_x4;
 pub mod march;
 pub mod node;
 pub mod primitives;
