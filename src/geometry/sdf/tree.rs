@@ -149,7 +149,7 @@ impl Sdf {
     pub fn distance_x4(&self, points: [Vec3A; 4]) -> [f32; 4] {
         let f = &self.frame;
         match f.bulb {
-            Some((power, iterations, bailout)) if power == 8.0 => {
+            Some((8.0, iterations, bailout)) => {
                 let local = points.map(|p| f.local_from_world * p + f.offset);
                 mandelbulb8_x4(local, iterations, bailout).map(|d| d * f.scale)
             }
