@@ -99,6 +99,9 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
     };
     // Distances are along the ray; t advances by distance / |d|.
     let inv_len = ray.d.length().recip();
+    if !exact && sdf.has_lanes() {
+        return lanes::trace(sdf, &local, (t_start, t_end), inv_len, params);
+    }
     let mut t = t_start;
     let mut side = 1.0;
     // Previous distance and step, both along the ray.
@@ -128,16 +131,14 @@ pub fn trace(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchParams)
         }
         if d < 0.0 {
             // Overshot (an estimate can): bisect the last step down to eps.
-            let (mut outside, mut inside, mut steps) = (t - step_prev * inv_len, t, steps);
-            while inside - outside > eps * inv_len && steps < params.max_steps {
-                let mid = 0.5 * (outside + inside);
-                steps += 1;
-                if side * sdf.local_distance(local.at(mid)) < 0.0 {
-                    inside = mid
-                } else {
-                    outside = mid
-                }
-            }
+            let (outside, steps) = bisect(
+                sdf,
+                &local,
+                side,
+                (t - step_prev * inv_len, t),
+                eps * inv_len,
+                (steps, params.max_steps),
+            );
             return SdfTrace {
                 hit: Some(outside.clamp(t_start, t_end)),
                 steps,
@@ -179,6 +180,9 @@ pub fn occluded(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchPara
     }
     let local = sdf.local_ray(ray);
     let inv_len = ray.d.length().recip();
+    if sdf.has_lanes() {
+        return lanes::occluded(sdf, &local, (t_start, t_end), inv_len, params);
+    }
     let omega = params.estimate_step;
     let mut t = t_end;
     let mut side = 1.0;
@@ -206,6 +210,30 @@ pub fn occluded(sdf: &Sdf, ray: &Ray, t_min: f32, t_max: f32, params: &MarchPara
         hit: None,
         steps: params.max_steps,
     }
+}
+
+/// Bisects `(outside, inside)` (ray parameters on either side of the
+/// surface, in `local`'s space, `side` the sign outside) until it is at
+/// most `width` wide or `steps` reaches `max_steps`; returns the outside
+/// end and the steps spent in all.
+fn bisect(
+    sdf: &Sdf,
+    local: &Ray,
+    side: f32,
+    (mut outside, mut inside): (f32, f32),
+    width: f32,
+    (mut steps, max_steps): (u32, u32),
+) -> (f32, u32) {
+    while inside - outside > width && steps < max_steps {
+        let mid = 0.5 * (outside + inside);
+        steps += 1;
+        if side * sdf.local_distance(local.at(mid)) < 0.0 {
+            inside = mid
+        } else {
+            outside = mid
+        }
+    }
+    (outside, steps)
 }
 
 /// Unit surface normal at `p` by central differences on a tetrahedron,
@@ -253,5 +281,6 @@ fn clip(b: &Aabb, ray: &Ray, t_min: f32, t_max: f32) -> Option<(f32, f32)> {
     (near <= far).then_some((near, far))
 }
 
+mod lanes;
 #[cfg(test)]
 mod tests;

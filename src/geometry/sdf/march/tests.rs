@@ -278,7 +278,7 @@ fn backward_shadow_march_finds_every_surface_the_forward_one_finds() {
     let mut rng = Pcg32::new(71, 6);
     let (mut rays, mut missed, mut grazes, mut blocked) = (0, 0, 0, 0);
     let (mut forward_steps, mut backward_steps) = (0u64, 0u64);
-    while rays < 3000 {
+    while rays < 10000 {
         let o = uniform_sphere(rng.next_vec2()) * 3.0;
         let aim = Vec3A::new(0.2, -0.1, 0.3) + uniform_sphere(rng.next_vec2()) * 0.8 * rng.next_f32();
         let ray = Ray::new(o, (aim - o).normalize());
@@ -321,8 +321,66 @@ fn backward_shadow_march_finds_every_surface_the_forward_one_finds() {
         forward_steps as f64 / rays as f64,
         backward_steps as f64 / rays as f64
     );
-    assert!(blocked > 300, "too few occluded rays to judge: {blocked}");
-    assert_eq!(missed, 0, "occluders the backward march missed");
+    assert!(blocked > 3000, "too few occluded rays to judge: {blocked}");
+    // The estimate is not a bound: where it overshoots the true distance a
+    // step can cross a thin part (the forward march, visiting other points,
+    // may land in it). Measured on 20,000 rays: 0.02–0.04% of the blocked
+    // rays for the scalar backward march, 0.01–0.06% with SIMD lanes.
+    assert!(
+        missed * 1000 <= blocked,
+        "{missed} occluders the backward march missed, of {blocked}"
+    );
     assert!(grazes * 100 <= rays, "{grazes} grazes told apart of {rays}");
     assert!(backward_steps < forward_steps, "marching backward saves no steps");
+}
+
+/// The same power-8 bulb twice: a lone one marches in SIMD lanes, a union
+/// of it with itself (the same distances) takes the scalar march.
+fn bulb_with_and_without_lanes() -> (Sdf, Sdf) {
+    let bulb = SdfNode::Mandelbulb {
+        power: 8.0,
+        iterations: 8,
+        bailout: 2.0,
+    };
+    let lanes = Sdf::primitive(bulb);
+    let scalar = Sdf::new(vec![bulb, bulb, SdfNode::Union { children: [0, 1] }], 2);
+    assert!(lanes.has_lanes() && !scalar.has_lanes());
+    (lanes, scalar)
+}
+
+#[test]
+fn lane_march_finds_the_scalar_march_hits() {
+    let params = MarchParams {
+        min_eps: 2.5e-5,
+        eps_per_distance: 7.5e-4,
+        ..MarchParams::default()
+    };
+    let (lanes, scalar) = bulb_with_and_without_lanes();
+    let mut rng = Pcg32::new(91, 2);
+    let (mut both, mut disagree, mut far) = (0u32, 0u32, 0u32);
+    let n = 4000;
+    for _ in 0..n {
+        let o = uniform_sphere(rng.next_vec2()) * 3.0;
+        let aim = uniform_sphere(rng.next_vec2()) * 1.2 * rng.next_f32();
+        let ray = Ray::new(o, (aim - o).normalize());
+        let a = trace(&lanes, &ray, 0.0, 10.0, &params);
+        let b = trace(&scalar, &ray, 0.0, 10.0, &params);
+        assert!(a.steps <= params.max_steps);
+        match (a.hit, b.hit) {
+            (Some(ta), Some(tb)) => {
+                both += 1;
+                // Different points visited: the hits agree within a few
+                // thresholds, or one found a thin part the other stepped over.
+                if (ta - tb).abs() > 4.0 * params.eps_at(tb) {
+                    far += 1;
+                }
+            }
+            (None, None) => {}
+            _ => disagree += 1,
+        }
+    }
+    eprintln!("lanes vs scalar: {both} hits in both, {far} apart, {disagree} hit by one only, of {n}");
+    assert!(both > n / 2, "too few hits to judge: {both}");
+    assert!(disagree * 100 <= n, "{disagree} rays hit by one march only");
+    assert!(far * 100 <= both, "{far} hits apart of {both}");
 }
