@@ -63,7 +63,7 @@ pub fn mandelbulb(p: Vec3A, power: f32, iterations: u32, bailout: f32) -> f32 {
     // 0.5 r ln r / dz = 0.25 ln(r²) r / dz → 0 as r → 0 (interior points
     // whose orbit collapses).
     let estimate = if m > 0.0 {
-        0.25 * m.ln() * m.sqrt() / dz
+        0.25 * super::fast_ln::ln(m) * m.sqrt() / dz
     } else {
         0.0
     };

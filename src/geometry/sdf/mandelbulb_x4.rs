@@ -42,11 +42,12 @@ pub fn mandelbulb8_x4(points: [Vec3A; 4], iterations: u32, bailout: f32) -> [f32
         z = Vec4::select(active, nz, z);
         m = Vec4::select(active, m_next, m);
     }
+    let ln_m = super::fast_ln::ln_x4(m).to_array();
     let (m, dz) = (m.to_array(), dz.to_array());
     let radius = mandelbulb_radius(8.0);
     std::array::from_fn(|k| {
         let estimate = if m[k] > 0.0 {
-            0.25 * m[k].ln() * m[k].sqrt() / dz[k]
+            0.25 * ln_m[k] * m[k].sqrt() / dz[k]
         } else {
             0.0
         };

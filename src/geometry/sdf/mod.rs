@@ -21,6 +21,7 @@
 
 pub mod bounding_sphere;
 pub mod bounds;
+pub mod fast_ln;
 pub mod fractal;
 pub mod mandelbulb_x4;
 pub mod march;
