@@ -47,6 +47,9 @@ pub(super) fn trace(
     params: &MarchParams,
 ) -> SdfTrace {
     let omega = params.estimate_step;
+    // Along-ray distances are `t · len`: a multiplication per point, not a
+    // division.
+    let len = inv_len.recip();
     walk(
         sdf,
         local,
@@ -54,7 +57,7 @@ pub(super) fn trace(
         (inv_len, omega),
         params.max_steps,
         |t, d, side, step_in, steps| {
-            let eps = params.eps_at(t / inv_len);
+            let eps = params.eps_at(t * len);
             if d.abs() < eps {
                 return Visit::Done(SdfTrace {
                     hit: Some(t.clamp(t_start, t_end)),
@@ -79,7 +82,7 @@ pub(super) fn trace(
             if t + d * inv_len > t_end {
                 return Visit::Done(SdfTrace { hit: None, steps });
             }
-            Visit::Step((d * omega).min((t_end - t) / inv_len))
+            Visit::Step((d * omega).min((t_end - t) * len))
         },
     )
 }
@@ -93,6 +96,7 @@ pub(super) fn occluded(
     params: &MarchParams,
 ) -> SdfTrace {
     let omega = params.estimate_step;
+    let len = inv_len.recip();
     walk(
         sdf,
         local,
@@ -100,7 +104,7 @@ pub(super) fn occluded(
         (inv_len, omega),
         params.max_steps,
         |t, d, _, _, steps| {
-            if d < params.eps_at(t / inv_len) {
+            if d < params.eps_at(t * len) {
                 return Visit::Done(SdfTrace { hit: Some(t), steps });
             }
             let ball = d * omega;
@@ -133,6 +137,8 @@ fn walk(
         Visit::Step(s) => s,
     };
     let mut ratio = FIRST_RATIO;
+    // The distance at the point taken before `t`.
+    let mut d_before = d;
     loop {
         // Lane 0 steps as the scalar march would; lanes 1–3 guess.
         let mut ts = [t + dir * step * inv_len; 4];
@@ -156,13 +162,14 @@ fn walk(
             match visit(ts[j], dj, side, steps_in[j], steps) {
                 Visit::Done(r) => return r,
                 Visit::Step(s) => {
-                    ratio = (dj / d).clamp(RATIO_RANGE.0, RATIO_RANGE.1);
-                    (t, d, step) = (ts[j], dj, s);
+                    (d_before, t, d, step) = (d, ts[j], dj, s);
                     if j == 3 || steps_in[j + 1] > s {
                         break;
                     }
                 }
             }
         }
+        // One division a round: only the last two points taken guess on.
+        ratio = (d / d_before).clamp(RATIO_RANGE.0, RATIO_RANGE.1);
     }
 }
