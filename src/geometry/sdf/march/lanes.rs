@@ -29,6 +29,12 @@ use crate::math::Ray;
 const SHORTFALL: f32 = 0.8;
 /// Distance ratio assumed before two distances are known.
 const FIRST_RATIO: f32 = 0.7;
+/// The first round's guessed distance at the start, in hit thresholds, and
+/// its growth from lane to lane (a ray leaving a surface): 8.26 M rounds
+/// and first estimates → 8.06 M on `scenes/mandelbulb.ron` at 512×512,
+/// against a scalar first estimate.
+const FIRST_GUESS: f32 = 16.0;
+const FIRST_GROWTH: f32 = 2.0;
 /// Range of the extrapolated ratio (a ray leaving a surface head-on sees
 /// `1 + ω`; one reaching a flat one, `1 − ω`).
 const RATIO_RANGE: (f32, f32) = (1.0 / 64.0, 2.0);
@@ -58,7 +64,7 @@ pub(super) fn trace(
         local,
         (t_start, 1.0),
         (inv_len, omega),
-        params.max_steps,
+        (params.max_steps, params.eps_at(t_start * len)),
         |t, d, side, step_in, steps| {
             let eps = params.eps_at(t * len);
             if d.abs() < eps {
@@ -105,7 +111,7 @@ pub(super) fn occluded(
         local,
         (t_end, -1.0),
         (inv_len, omega),
-        params.max_steps,
+        (params.max_steps, params.eps_at(t_end * len)),
         |t, d, _, _, steps| {
             if d < params.eps_at(t * len) {
                 return Visit::Done(SdfTrace { hit: Some(t), steps });
@@ -128,20 +134,17 @@ fn walk(
     local: &Ray,
     (t0, dir): (f32, f32),
     (inv_len, omega): (f32, f32),
-    max_steps: u32,
+    (max_steps, eps_at_start): (u32, f32),
     mut visit: impl FnMut(f32, f32, f32, f32, u32) -> Visit,
 ) -> SdfTrace {
-    let first = sdf.local_distance(local.at(t0));
-    // Started inside: march toward the exit.
-    let side = if first < 0.0 { -1.0 } else { 1.0 };
-    let (mut t, mut d, mut steps) = (t0, first * side, 1u32);
-    let mut step = match visit(t, d, side, 0.0, steps) {
-        Visit::Done(r) => return r,
-        Visit::Step(s) => s,
-    };
-    let mut ratio = FIRST_RATIO;
-    // The distance at the point taken before `t`.
+    // No distance yet to extrapolate from: the first round has lane 0 at
+    // `t0` and guesses a start [`FIRST_GUESS`] thresholds from a surface,
+    // moving away from it. A wrong guess costs nothing but its lanes.
+    let (mut t, mut step, mut steps) = (t0, 0.0f32, 0u32);
+    let mut d = FIRST_GUESS * eps_at_start;
+    let mut ratio = FIRST_GROWTH;
     let mut d_before = d;
+    let mut side = 0.0f32;
     loop {
         // Lane 0 steps as the scalar march would; lanes 1–3 guess.
         let mut ts = [t + dir * step * inv_len; 4];
@@ -161,6 +164,10 @@ fn walk(
                 };
             }
             steps += 1;
+            if steps == 1 {
+                // Started inside: march toward the exit.
+                side = if ds[0] < 0.0 { -1.0 } else { 1.0 };
+            }
             let dj = ds[j] * side;
             match visit(ts[j], dj, side, steps_in[j], steps) {
                 Visit::Done(r) => return r,
@@ -172,7 +179,12 @@ fn walk(
                 }
             }
         }
-        // One division a round: only the last two points taken guess on.
-        ratio = (d / d_before).clamp(RATIO_RANGE.0, RATIO_RANGE.1);
+        // One division a round: only the last two points taken guess on
+        // (after the first point alone, a plain guess).
+        ratio = if steps == 1 {
+            FIRST_RATIO
+        } else {
+            (d / d_before).clamp(RATIO_RANGE.0, RATIO_RANGE.1)
+        };
     }
 }
