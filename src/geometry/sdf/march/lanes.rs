@@ -15,7 +15,8 @@
 //! estimate allows. Every point taken goes through the same tests as in
 //! [`super::trace`] and [`super::occluded`] (hit threshold, overshoot,
 //! ball past the end), so hits agree within the threshold; the points
-//! visited differ, so images differ within noise.
+//! visited differ, so hits move within it and the fractal's sub-pixel
+//! detail shades a little differently (measured in the README).
 
 use super::{MarchParams, SdfTrace, bisect};
 use crate::geometry::sdf::tree::Sdf;
@@ -25,7 +26,7 @@ use crate::math::Ray;
 /// little short is taken, one a little long is wasted with the lanes after it.
 /// With [`FIRST_RATIO`], chosen by counting SIMD rounds (the march's latency)
 /// on `scenes/mandelbulb.ron` at 512×512: 8.00 M rounds at (0.85 compounded
-/// per lane, 0.5), 7.53 M here; 0.95 or 1.0 waste lanes (8.7 M, 15 M).
+/// per lane, 0.5), 7.53 M here; 0.95 wastes lanes (8.75 M).
 const SHORTFALL: f32 = 0.8;
 /// Distance ratio assumed before two distances are known.
 const FIRST_RATIO: f32 = 0.7;
