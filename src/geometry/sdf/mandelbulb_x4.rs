@@ -1,14 +1,14 @@
 //! The power-8 Mandelbulb estimate at four points at once, one SIMD lane
-//! each: what a surface normal needs (four tetrahedron taps, see
-//! [`super::normal`]).
+//! each: the four tetrahedron taps of a surface normal (`march::normal`)
+//! and the four points of a lane march (`march/lanes.rs`).
 //!
 //! Why: a lone estimate is one long chain of dependent square roots,
 //! divisions and complex squarings, so the CPU waits on each in turn; four
 //! independent orbits fill those waits and share each instruction. The
 //! arithmetic is [`mandelbulb`](super::fractal::mandelbulb)'s, operation for
 //! operation in the same order, so every lane is bit for bit the scalar
-//! estimate (`x4_matches_the_scalar_estimate_bit_for_bit`) and images do not
-//! change.
+//! estimate (`x4_matches_the_scalar_estimate_bit_for_bit`): a normal is the
+//! same either way.
 
 use super::fractal::mandelbulb_radius;
 use glam::{BVec4A, Vec3A, Vec4};
