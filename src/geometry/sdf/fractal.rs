@@ -60,14 +60,18 @@ pub fn mandelbulb(p: Vec3A, power: f32, iterations: u32, bailout: f32) -> f32 {
             m = w.length_squared();
         }
     }
+    finish_estimate(m, super::fast_ln::ln(m), dz, p, mandelbulb_radius(power))
+}
+
+/// The estimate from an orbit's last `m = |w|²`, `ln m` and `|dz|`, clamped
+/// below by the distance from `p` to the ball of `radius`: shared with the
+/// SIMD lanes (`mandelbulb_x4.rs`) so both end with the same operations.
+#[inline(always)]
+pub(super) fn finish_estimate(m: f32, ln_m: f32, dz: f32, p: Vec3A, radius: f32) -> f32 {
     // 0.5 r ln r / dz = 0.25 ln(r²) r / dz → 0 as r → 0 (interior points
     // whose orbit collapses).
-    let estimate = if m > 0.0 {
-        0.25 * super::fast_ln::ln(m) * m.sqrt() / dz
-    } else {
-        0.0
-    };
-    estimate.max(p.length() - mandelbulb_radius(power))
+    let estimate = if m > 0.0 { 0.25 * ln_m * m.sqrt() / dz } else { 0.0 };
+    estimate.max(p.length() - radius)
 }
 
 /// The triplex power `wⁿ` in spherical coordinates: raise `r = |w|` to `n`

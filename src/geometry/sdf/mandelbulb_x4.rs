@@ -10,7 +10,7 @@
 //! estimate (`x4_matches_the_scalar_estimate_bit_for_bit`): a normal is the
 //! same either way.
 
-use super::fractal::mandelbulb_radius;
+use super::fractal::{finish_estimate, mandelbulb_radius};
 use glam::{BVec4A, Vec3A, Vec4};
 
 /// [`mandelbulb`](super::fractal::mandelbulb)`(p, 8.0, iterations, bailout)`
@@ -45,14 +45,7 @@ pub fn mandelbulb8_x4(points: [Vec3A; 4], iterations: u32, bailout: f32) -> [f32
     let ln_m = super::fast_ln::ln_x4(m).to_array();
     let (m, dz) = (m.to_array(), dz.to_array());
     let radius = mandelbulb_radius(8.0);
-    std::array::from_fn(|k| {
-        let estimate = if m[k] > 0.0 {
-            0.25 * ln_m[k] * m[k].sqrt() / dz[k]
-        } else {
-            0.0
-        };
-        estimate.max(points[k].length() - radius)
-    })
+    std::array::from_fn(|k| finish_estimate(m[k], ln_m[k], dz[k], points[k], radius))
 }
 
 /// [`pow8_step`](super::fractal::pow8_step) lane by lane: `(re + iρ)⁸` for

@@ -148,13 +148,7 @@ impl Sdf {
     #[inline]
     pub fn distance_x4(&self, points: [Vec3A; 4]) -> [f32; 4] {
         let f = &self.frame;
-        match f.bulb {
-            Some((8.0, iterations, bailout)) => {
-                let local = points.map(|p| f.local_from_world * p + f.offset);
-                mandelbulb8_x4(local, iterations, bailout).map(|d| d * f.scale)
-            }
-            _ => points.map(|p| self.distance(p)),
-        }
+        self.local_distance_x4(points.map(|p| f.local_from_world * p + f.offset))
     }
 
     /// `ray` in the local space of [`Self::local_distance`], with the same
