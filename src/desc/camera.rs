@@ -233,6 +233,11 @@ pub enum LightSelectionDesc {
     Power,
     /// Every light equally likely.
     Uniform,
+    /// By a light tree: in proportion to what each light can send to the
+    /// shading point (power over squared distance, bounded by its extent
+    /// and orientation), so scenes of many lights spend their shadow rays
+    /// on the near ones that face the point.
+    Tree,
 }
 
 fn one() -> u32 {

@@ -53,6 +53,8 @@ impl Path {
         let mut prev_delta = true;
         // The vertex the ray left from: light densities for MIS are seen from it.
         let mut prev_p = ray.o;
+        // Its shading normal: a light tree's probabilities depend on both.
+        let mut prev_n = glam::Vec3A::ZERO;
         let mut segments = 0u32;
         loop {
             counters.rays += 1;
@@ -64,7 +66,7 @@ impl Path {
                     Some((i, env)) if !prev_delta => {
                         let (le, env_pdf) = env.le_and_pdf(ray.d);
                         if le != Rgb::ZERO {
-                            let w = power_heuristic(prev_pdf, picker.pmf(i as usize) * env_pdf);
+                            let w = power_heuristic(prev_pdf, picker.pmf(prev_p, prev_n, i as usize) * env_pdf);
                             l += beta * le * w;
                         }
                     }
@@ -87,7 +89,7 @@ impl Path {
                         1.0
                     } else {
                         let light = &scene.lights[hit.light as usize];
-                        let light_pdf = picker.pmf(hit.light as usize) * light.pdf(prev_p, ray.d, &hit);
+                        let light_pdf = picker.pmf(prev_p, prev_n, hit.light as usize) * light.pdf(prev_p, ray.d, &hit);
                         power_heuristic(prev_pdf, light_pdf)
                     };
                     l += beta * le * w;
@@ -103,7 +105,7 @@ impl Path {
 
             // Next-event estimation: one light, picked by power.
             if !bsdf.is_delta()
-                && let Some((li, pmf)) = picker.pick(sampler.next_f32())
+                && let Some((li, pmf)) = picker.pick(hit.p, hit.ns, sampler.next_f32())
             {
                 let light = &scene.lights[li];
                 let u = sampler.next_vec2();
@@ -141,6 +143,7 @@ impl Path {
             prev_pdf = bs.pdf;
             prev_delta = bs.delta;
             prev_p = hit.p;
+            prev_n = hit.ns;
             ray = spawn(&hit, frame.to_world(bs.wi));
 
             if segments >= self.rr_depth {

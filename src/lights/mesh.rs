@@ -107,6 +107,28 @@ impl MeshLight {
         self.tris.len()
     }
 
+    /// World-space bounds of the triangles, and a cone (axis, cos half-angle)
+    /// holding every triangle's emitting normal, for the light tree: around
+    /// the area-weighted mean normal, or all directions when they cancel.
+    pub fn bounds_and_normal_cone(&self) -> (crate::accel::Aabb, Vec3A, f32) {
+        let bounds = self
+            .tris
+            .iter()
+            .fold(crate::accel::Aabb::EMPTY, |acc, t| acc.union(crate::accel::Aabb::from_points(t)));
+        let normals = || self.tris.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a));
+        let w = normals().sum::<Vec3A>().normalize_or_zero();
+        if w == Vec3A::ZERO {
+            return (bounds, Vec3A::Z, -1.0);
+        }
+        let cos_o = normals()
+            .filter_map(|n| n.try_normalize())
+            .map(|n| n.dot(w))
+            .fold(1.0f32, f32::min);
+        // A little wider than the tightest: rounding must not leave a
+        // normal outside (a wider cone is still a bound).
+        (bounds, w, (cos_o - 1e-4).max(-1.0))
+    }
+
     /// Φ = π·A·L, twice that when two-sided.
     pub fn power(&self) -> Rgb {
         let sides = if self.two_sided { 2.0 } else { 1.0 };

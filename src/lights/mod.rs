@@ -25,6 +25,7 @@ pub mod sdf;
 pub mod sphere;
 pub mod spherical_rect;
 pub mod spot;
+pub mod tree;
 
 #[cfg(test)]
 mod tests;
@@ -32,11 +33,12 @@ mod tests;
 pub use environment::{EnvMap, EnvSampling, EnvironmentLight};
 pub use mesh::MeshLight;
 pub use point::PointLight;
-pub use power::LightPicker;
+pub use power::{LightPicker, Selection};
 pub use quad::QuadLight;
 pub use sdf::SdfLight;
 pub use sphere::SphereLight;
 pub use spot::SpotLight;
+pub use tree::LightTree;
 
 use crate::geometry::{Geometry, Hit};
 use crate::math::Rgb;

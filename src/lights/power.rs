@@ -1,8 +1,22 @@
-//! Choosing one light per shading point, in proportion to its power, so a
-//! bright light is not starved of shadow rays by many dim ones.
+//! Choosing one light per shading point: in proportion to its power, so a
+//! bright light is not starved of shadow rays by many dim ones, or by a
+//! light tree ([`LightTree`]), which also weighs distance and orientation
+//! from the shading point.
 
-use super::Light;
+use super::{Light, LightTree};
 use crate::math::luminance;
+use glam::Vec3A;
+
+/// How [`LightPicker`] chooses (the scene's `light_selection`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Selection {
+    /// In proportion to power.
+    Power,
+    /// Every light equally likely (comparisons, tests).
+    Uniform,
+    /// By a light tree, per shading point.
+    Tree,
+}
 
 /// Picks the light each next-event estimate samples, from a precomputed distribution
 /// over the scene's lights (by power or uniform).
@@ -12,12 +26,15 @@ pub struct LightPicker {
     pmf: Vec<f32>,
     /// Running sum of `pmf`; last entry 1.
     cdf: Vec<f32>,
+    /// With [`Selection::Tree`] and at least one bounded light with power.
+    tree: Option<LightTree>,
 }
 
 impl LightPicker {
-    /// By luminance of emitted power; `uniform` ignores power (for
-    /// comparison and tests).
-    pub fn new(lights: &[Light], uniform: bool) -> Self {
+    /// A picker choosing as `selection` says. A tree keeps the environment's
+    /// power share; a scene with no bounded light of any power picks by power.
+    pub fn new(lights: &[Light], selection: Selection) -> Self {
+        let uniform = selection == Selection::Uniform;
         let mut w: Vec<f32> = lights
             .iter()
             .map(|l| {
@@ -45,12 +62,20 @@ impl LightPicker {
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
-        Self { pmf, cdf }
+        let tree = match selection {
+            Selection::Tree => LightTree::new(lights, |i| pmf[i]),
+            _ => None,
+        };
+        Self { pmf, cdf, tree }
     }
 
-    /// A light index and its probability, for `u` ∈ [0, 1).
+    /// A light index and its probability, for `u` ∈ [0, 1), at a shading
+    /// point `p` with normal `n` (zero: none; only a tree looks at them).
     #[inline]
-    pub fn pick(&self, u: f32) -> Option<(usize, f32)> {
+    pub fn pick(&self, p: Vec3A, n: Vec3A, u: f32) -> Option<(usize, f32)> {
+        if let Some(t) = &self.tree {
+            return t.pick(p, n, u);
+        }
         if self.cdf.is_empty() {
             return None;
         }
@@ -59,10 +84,14 @@ impl LightPicker {
         Some((i, self.pmf[i])).filter(|&(_, p)| p > 0.0)
     }
 
-    /// Probability of picking light `i`: what a light-sampled pdf is multiplied by
-    /// when it is weighted against BSDF sampling.
+    /// Probability that [`Self::pick`] at `p`, `n` picks light `i`: what a
+    /// light-sampled pdf is multiplied by when it is weighted against BSDF
+    /// sampling.
     #[inline]
-    pub fn pmf(&self, i: usize) -> f32 {
+    pub fn pmf(&self, p: Vec3A, n: Vec3A, i: usize) -> f32 {
+        if let Some(t) = &self.tree {
+            return t.pmf(p, n, i);
+        }
         self.pmf.get(i).copied().unwrap_or(0.0)
     }
 }
@@ -82,11 +111,11 @@ mod tests {
                 intensity: Rgb::splat(i),
             })
         };
-        let p = LightPicker::new(&[l(1.0), l(3.0), l(0.0)], false);
+        let p = LightPicker::new(&[l(1.0), l(3.0), l(0.0)], Selection::Power);
         let mut counts = [0u32; 3];
         for k in 0..10_000 {
-            let (i, pmf) = p.pick((k as f32 + 0.5) / 10_000.0).expect("a light");
-            assert!((pmf - p.pmf(i)).abs() < 1e-6);
+            let (i, pmf) = p.pick(Vec3A::ZERO, Vec3A::ZERO, (k as f32 + 0.5) / 10_000.0).expect("a light");
+            assert!((pmf - p.pmf(Vec3A::ZERO, Vec3A::ZERO, i)).abs() < 1e-6);
             counts[i] += 1;
         }
         assert_eq!(counts, [2500, 7500, 0]);

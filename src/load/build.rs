@@ -13,7 +13,7 @@ use crate::desc::{IntegratorDesc, LightSelectionDesc, SceneDesc};
 use crate::diagnostic::Problem;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{Geometry, Shape};
-use crate::lights::{Light, LightPicker};
+use crate::lights::{Light, LightPicker, Selection};
 use crate::materials::Material;
 use crate::scene::Scene;
 use crate::view::View;
@@ -187,15 +187,16 @@ pub fn build_in(
         env_read_time: ctx.env_times.0,
         env_table_time: ctx.env_times.1,
     };
-    let uniform = matches!(
-        desc.integrator,
-        IntegratorDesc::Path {
-            light_selection: LightSelectionDesc::Uniform,
-            ..
-        }
-    );
+    let selection = match desc.integrator {
+        IntegratorDesc::Path { light_selection, .. } => match light_selection {
+            LightSelectionDesc::Power => Selection::Power,
+            LightSelectionDesc::Uniform => Selection::Uniform,
+            LightSelectionDesc::Tree => Selection::Tree,
+        },
+        _ => Selection::Power,
+    };
     let scene = Scene {
-        light_picker: LightPicker::new(&ctx.lights, uniform),
+        light_picker: LightPicker::new(&ctx.lights, selection),
         materials,
         textures,
         lights: ctx.lights,

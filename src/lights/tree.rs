@@ -1,0 +1,559 @@
+//! A light tree: next-event estimation picks the light to sample in
+//! proportion to an estimate of what it sends to the shading point, not its
+//! power alone (pbrt-v4's `BVHLightSampler`, after Conty Estevez & Kulla
+//! 2018, "Importance Sampling of Many Lights with Adaptive Tree Splitting",
+//! <https://doi.org/10.1145/3233305>).
+//!
+//! Why: with power alone, a shading point near one of a hundred lamps sends
+//! 99% of its shadow rays to lamps too far or facing away to matter. Each
+//! node of the tree bounds its lights' positions (a box), emitting normals
+//! (a cone around `w` of half-angle θo) and emission spread beyond the
+//! normal (θe: π/2 for a surface); from a point `p` with normal `n` its
+//! *importance* is `Φ · cos θ' / d²`, where `d` is the distance to the box
+//! centre (at least half the box's diagonal) and θ' the smallest angle,
+//! over the box, between the emission cone and the direction to `p`
+//! (zero beyond θo + θe: a one-sided light facing away gets nothing),
+//! times the largest `|cos|` the box can make with `n`. Sampling walks
+//! down from the root choosing each child in proportion to its importance;
+//! the probability of a light is the product along its path, which
+//! [`LightTree::pmf`] recomputes from the light's bit trail for MIS.
+//!
+//! The importance is zero only where no light of the node can reach `p`
+//! (behind every one-sided emitter, outside every spot cone), so no light
+//! that contributes is ever given probability zero: the estimate stays
+//! unbiased whatever the tree's shape. The tree is split at the median
+//! centroid along the longest axis (pbrt uses a surface-area-orientation
+//! cost; this one is simpler and as deep as `log2` of the light count).
+//! The environment is not in the tree: it is picked with its share of the
+//! scene's power, as by [`super::LightPicker`] without a tree.
+
+use super::Light;
+use crate::accel::Aabb;
+use crate::math::luminance;
+use glam::{Quat, Vec3A};
+use std::f32::consts::PI;
+
+/// What bounds a light or a group of lights (pbrt-v4's `LightBounds`).
+#[derive(Clone, Copy, Debug)]
+pub struct LightBounds {
+    /// Where the emitting points are.
+    pub bounds: Aabb,
+    /// Axis of the cone holding every emitting normal.
+    pub w: Vec3A,
+    /// Emitted power (luminance, W).
+    pub phi: f32,
+    /// Cosine of the normal cone's half-angle θo (−1: any direction).
+    pub cos_theta_o: f32,
+    /// Cosine of how far beyond its normal a point emits, θe (0 for a
+    /// surface: a hemisphere).
+    pub cos_theta_e: f32,
+    /// Whether the back of each emitter emits too.
+    pub two_sided: bool,
+}
+
+/// `cos(max(0, a − b))` from sines and cosines.
+#[inline]
+fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
+    if cos_a > cos_b { 1.0 } else { cos_a * cos_b + sin_a * sin_b }
+}
+
+/// `sin(max(0, a − b))` from sines and cosines.
+#[inline]
+fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
+    if cos_a > cos_b { 0.0 } else { sin_a * cos_b - cos_a * sin_b }
+}
+
+#[inline]
+fn safe_sqrt(x: f32) -> f32 {
+    x.max(0.0).sqrt()
+}
+
+impl LightBounds {
+    /// What [`Prepared::importance`] reads, computed once per node.
+    fn prepare(&self) -> Prepared {
+        let diag = (self.bounds.max - self.bounds.min).length();
+        Prepared {
+            pc: self.bounds.centroid(),
+            w: self.w,
+            radius2: 0.25 * diag * diag,
+            d2_floor: (0.5 * diag).max(f32::MIN_POSITIVE),
+            phi: self.phi,
+            cos_o: self.cos_theta_o,
+            sin_o: safe_sqrt(1.0 - self.cos_theta_o * self.cos_theta_o),
+            cos_e: self.cos_theta_e,
+            two_sided: self.two_sided,
+        }
+    }
+
+    /// Bounds of both (pbrt-v4's `Union`).
+    pub fn union(&self, o: &LightBounds) -> LightBounds {
+        if self.phi == 0.0 {
+            return *o;
+        }
+        if o.phi == 0.0 {
+            return *self;
+        }
+        let (w, cos_theta_o) = cone_union((self.w, self.cos_theta_o), (o.w, o.cos_theta_o));
+        LightBounds {
+            bounds: self.bounds.union(o.bounds),
+            w,
+            phi: self.phi + o.phi,
+            cos_theta_o,
+            cos_theta_e: self.cos_theta_e.min(o.cos_theta_e),
+            two_sided: self.two_sided || o.two_sided,
+        }
+    }
+}
+
+/// A node's bounds in the form its importance reads: box centre, squared
+/// radius of the box's bounding sphere, the distance² floor (half the
+/// diagonal, as pbrt), and the cone's sine.
+#[derive(Clone, Copy, Debug)]
+struct Prepared {
+    pc: Vec3A,
+    w: Vec3A,
+    radius2: f32,
+    d2_floor: f32,
+    phi: f32,
+    cos_o: f32,
+    sin_o: f32,
+    cos_e: f32,
+    two_sided: bool,
+}
+
+impl Prepared {
+    /// What the node sends toward `p` (surface normal `n`, or zero for none),
+    /// up to a constant: see the module docs. Zero only where none of its
+    /// lights can reach `p`; finite, never NaN.
+    #[inline]
+    fn importance(&self, p: Vec3A, n: Vec3A) -> f32 {
+        let to_p = p - self.pc;
+        let dc2 = to_p.length_squared();
+        // The box's bounding sphere seen from `p` (all directions from
+        // inside it): θb.
+        let (sin_b, cos_b) = if dc2 < self.radius2 {
+            (0.0, -1.0)
+        } else {
+            let sin2 = self.radius2 / dc2;
+            (safe_sqrt(sin2), safe_sqrt(1.0 - sin2))
+        };
+        let wi = if dc2 > 0.0 { to_p * dc2.sqrt().recip() } else { Vec3A::ZERO };
+        let mut cos_w = if dc2 > 0.0 { self.w.dot(wi) } else { 1.0 };
+        if self.two_sided {
+            cos_w = cos_w.abs();
+        }
+        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+        // θ' = max(0, θw − θo − θb): the emission cone's nearest approach.
+        let cos_x = cos_sub_clamped(sin_w, cos_w, self.sin_o, self.cos_o);
+        let sin_x = sin_sub_clamped(sin_w, cos_w, self.sin_o, self.cos_o);
+        let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        if cos_p <= self.cos_e {
+            return 0.0;
+        }
+        let mut importance = self.phi * cos_p / dc2.max(self.d2_floor);
+        if n != Vec3A::ZERO && dc2 > 0.0 {
+            let cos_i = wi.dot(n).abs().min(1.0);
+            let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
+            importance *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+        }
+        if importance.is_nan() {
+            0.0
+        } else {
+            importance.clamp(0.0, 0.5 * f32::MAX)
+        }
+    }
+}
+
+/// The smallest cone (axis, cos half-angle) holding two cones (pbrt-v4's
+/// `Union(DirectionCone, DirectionCone)`).
+fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
+    const SPHERE: (Vec3A, f32) = (Vec3A::Z, -1.0);
+    let theta_a = a.1.clamp(-1.0, 1.0).acos();
+    let theta_b = b.1.clamp(-1.0, 1.0).acos();
+    let theta_d = a.0.dot(b.0).clamp(-1.0, 1.0).acos();
+    if (theta_d + theta_b).min(PI) <= theta_a {
+        return a;
+    }
+    if (theta_d + theta_a).min(PI) <= theta_b {
+        return b;
+    }
+    let theta_o = 0.5 * (theta_a + theta_d + theta_b);
+    if theta_o >= PI {
+        return SPHERE;
+    }
+    let axis = a.0.cross(b.0);
+    if axis.length_squared() < 1e-12 {
+        return SPHERE;
+    }
+    let w = Quat::from_axis_angle(axis.normalize().into(), theta_o - theta_a) * glam::Vec3::from(a.0);
+    // Rounding in the rotation could leave an edge direction a hair
+    // outside: widen by a little (a wider cone is still a bound).
+    (Vec3A::from(w).normalize(), (theta_o * 1.0001 + 1e-5).min(PI).cos())
+}
+
+/// Bounds of one light; `None` for the environment (infinitely far).
+pub fn light_bounds(light: &Light) -> Option<LightBounds> {
+    let phi = luminance(light.power()).max(0.0);
+    let phi = if phi.is_finite() { phi } else { 0.0 };
+    let surface = |bounds: Aabb, w: Vec3A, cos_theta_o: f32, two_sided: bool| LightBounds {
+        bounds,
+        w,
+        phi,
+        cos_theta_o,
+        cos_theta_e: 0.0,
+        two_sided,
+    };
+    let ball = |c: Vec3A, r: f32| Aabb {
+        min: c - Vec3A::splat(r),
+        max: c + Vec3A::splat(r),
+    };
+    Some(match light {
+        Light::Point(l) => LightBounds {
+            bounds: ball(l.position, 0.0),
+            w: Vec3A::Z,
+            phi,
+            cos_theta_o: -1.0,
+            cos_theta_e: 0.0,
+            two_sided: false,
+        },
+        // The cone where the spot emits at all: θo + θe = its total half-angle.
+        Light::Spot(l) => LightBounds {
+            bounds: ball(l.position, 0.0),
+            w: l.direction.normalize_or(Vec3A::Z),
+            phi,
+            cos_theta_o: 1.0,
+            cos_theta_e: l.cos_total,
+            two_sided: false,
+        },
+        Light::Quad(l) => {
+            let b = Aabb::from_points(&[l.corner, l.corner + l.u, l.corner + l.v, l.corner + l.u + l.v]);
+            surface(b, l.n, 1.0, l.two_sided)
+        }
+        Light::Sphere(l) => surface(ball(l.center, l.radius), Vec3A::Z, -1.0, l.two_sided),
+        Light::Sdf(l) => surface(ball(l.center, l.radius), Vec3A::Z, -1.0, l.two_sided),
+        Light::Mesh(l) => {
+            let (b, w, cos_theta_o) = l.bounds_and_normal_cone();
+            surface(b, w, cos_theta_o, l.two_sided)
+        }
+        Light::Environment(_) => return None,
+    })
+}
+
+/// A node: its bounds, and either a light (leaf) or its second child (the
+/// first is the next node).
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    lb: Prepared,
+    leaf: bool,
+    /// Leaf: the light's index; inner node: the second child's node index.
+    index: u32,
+}
+
+/// See the module docs.
+#[derive(Clone, Debug)]
+pub struct LightTree {
+    nodes: Vec<Node>,
+    /// Per light: its path from the root (bit `k` set: second child at depth
+    /// `k`) and depth, or `None` when it is not in the tree.
+    trail: Vec<Option<(u64, u32)>>,
+    /// Lights outside the tree (the environment), each picked with this
+    /// probability.
+    outside: Vec<(u32, f32)>,
+    /// Probability of walking the tree.
+    p_tree: f32,
+}
+
+impl LightTree {
+    /// The tree over `lights`; `outside_pmf[i]` is the probability the
+    /// environment light `i` keeps (its share of the power). `None` when no
+    /// bounded light has power (the caller falls back to its plain picker).
+    pub fn new(lights: &[Light], outside_pmf: impl Fn(usize) -> f32) -> Option<Self> {
+        let mut items = Vec::new();
+        let mut outside = Vec::new();
+        for (i, l) in lights.iter().enumerate() {
+            match light_bounds(l) {
+                Some(lb) if lb.phi > 0.0 && lb.bounds.min.is_finite() && lb.bounds.max.is_finite() => {
+                    items.push((i as u32, lb))
+                }
+                Some(_) => {}
+                None => outside.push((i as u32, outside_pmf(i))),
+            }
+        }
+        if items.is_empty() {
+            return None;
+        }
+        let p_outside: f32 = outside.iter().map(|o| o.1).sum();
+        let mut tree = Self {
+            nodes: Vec::with_capacity(2 * items.len()),
+            trail: vec![None; lights.len()],
+            outside,
+            p_tree: (1.0 - p_outside).clamp(0.0, 1.0),
+        };
+        tree.build(&mut items, 0, 0);
+        Some(tree)
+    }
+
+    /// Appends the subtree over `items` (depth `depth`, path `bits`); returns
+    /// its bounds.
+    fn build(&mut self, items: &mut [(u32, LightBounds)], bits: u64, depth: u32) -> LightBounds {
+        if let [(light, lb)] = items {
+            self.nodes.push(Node {
+                lb: lb.prepare(),
+                leaf: true,
+                index: *light,
+            });
+            self.trail[*light as usize] = Some((bits, depth));
+            return *lb;
+        }
+        let centroids = items
+            .iter()
+            .fold(Aabb::EMPTY, |acc, (_, lb)| acc.grow_point(lb.bounds.centroid()));
+        let extent = centroids.max - centroids.min;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        let mid = items.len() / 2;
+        items.select_nth_unstable_by(mid, |a, b| {
+            a.1.bounds.centroid()[axis].total_cmp(&b.1.bounds.centroid()[axis])
+        });
+        let at = self.nodes.len();
+        self.nodes.push(Node {
+            lb: items[0].1.prepare(),
+            leaf: false,
+            index: 0,
+        });
+        let (first, second) = items.split_at_mut(mid);
+        let a = self.build(first, bits, depth + 1);
+        self.nodes[at].index = self.nodes.len() as u32;
+        let b = self.build(second, bits | 1 << depth, depth + 1);
+        let lb = a.union(&b);
+        self.nodes[at].lb = lb.prepare();
+        lb
+    }
+
+    /// A light and its probability for a shading point `p` with normal `n`
+    /// (zero: none), from `u` ∈ [0, 1); `None` when no light can reach `p`.
+    pub fn pick(&self, p: Vec3A, n: Vec3A, mut u: f32) -> Option<(usize, f32)> {
+        let mut pmf = 1.0f32;
+        for &(light, q) in &self.outside {
+            if u < q {
+                return Some((light as usize, q));
+            }
+            u -= q;
+        }
+        u = (u / self.p_tree).min(ONE_MINUS_EPSILON);
+        pmf *= self.p_tree;
+        let mut at = 0usize;
+        if self.nodes[0].leaf && self.nodes[0].lb.importance(p, n) <= 0.0 {
+            return None;
+        }
+        loop {
+            let node = &self.nodes[at];
+            if node.leaf {
+                return (pmf > 0.0).then_some((node.index as usize, pmf));
+            }
+            let (a, b) = (at + 1, node.index as usize);
+            let p_first = self.first_share(a, b, p, n)?;
+            if u < p_first {
+                u = (u / p_first).min(ONE_MINUS_EPSILON);
+                pmf *= p_first;
+                at = a;
+            } else {
+                u = ((u - p_first) / (1.0 - p_first)).min(ONE_MINUS_EPSILON);
+                pmf *= 1.0 - p_first;
+                at = b;
+            }
+        }
+    }
+
+    /// The probability that [`Self::pick`] from `p`, `n` returns light `i`.
+    pub fn pmf(&self, p: Vec3A, n: Vec3A, i: usize) -> f32 {
+        if let Some(&(_, q)) = self.outside.iter().find(|o| o.0 as usize == i) {
+            return q;
+        }
+        let Some(Some((bits, depth))) = self.trail.get(i).copied() else {
+            return 0.0;
+        };
+        let mut pmf = self.p_tree;
+        if depth == 0 {
+            return if self.nodes[0].lb.importance(p, n) > 0.0 { pmf } else { 0.0 };
+        }
+        let mut at = 0usize;
+        for k in 0..depth {
+            let (a, b) = (at + 1, self.nodes[at].index as usize);
+            let Some(p_first) = self.first_share(a, b, p, n) else {
+                return 0.0;
+            };
+            if bits >> k & 1 == 0 {
+                pmf *= p_first;
+                at = a;
+            } else {
+                pmf *= 1.0 - p_first;
+                at = b;
+            }
+        }
+        pmf
+    }
+
+    /// Probability of the first child `a` against the second `b`; `None`
+    /// when neither can reach `p`.
+    #[inline]
+    fn first_share(&self, a: usize, b: usize, p: Vec3A, n: Vec3A) -> Option<f32> {
+        let ia = self.nodes[a].lb.importance(p, n);
+        let ib = self.nodes[b].lb.importance(p, n);
+        if ia <= 0.0 && ib <= 0.0 {
+            return None;
+        }
+        // Importances stop at f32::MAX / 2, so the sum cannot overflow.
+        Some(ia / (ia + ib))
+    }
+
+    /// Number of nodes (statistics, tests).
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+}
+
+/// The largest f32 below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lights::{PointLight, QuadLight, SphereLight};
+    use crate::math::{Pcg32, Rgb};
+
+    fn quad(at: Vec3A, facing_down: bool, radiance: f32) -> Light {
+        let (u, v) = if facing_down {
+            (Vec3A::new(0.2, 0.0, 0.0), Vec3A::new(0.0, 0.0, 0.2))
+        } else {
+            (Vec3A::new(0.0, 0.0, 0.2), Vec3A::new(0.2, 0.0, 0.0))
+        };
+        Light::Quad(QuadLight::new(at, u, v, Rgb::splat(radiance)))
+    }
+
+    /// A mix of lights: quads facing down and up, points, spheres.
+    fn lights() -> Vec<Light> {
+        let mut rng = Pcg32::new(3, 7);
+        let mut v = Vec::new();
+        for k in 0..40 {
+            let at = Vec3A::new(rng.next_f32() * 20.0 - 10.0, rng.next_f32() * 4.0, rng.next_f32() * 20.0 - 10.0);
+            v.push(match k % 4 {
+                0 => quad(at, true, 1.0 + rng.next_f32()),
+                1 => quad(at, false, 5.0),
+                2 => Light::Point(PointLight {
+                    position: at,
+                    intensity: Rgb::splat(rng.next_f32()),
+                }),
+                _ => Light::Sphere(SphereLight {
+                    center: at,
+                    radius: 0.3,
+                    radiance: Rgb::splat(2.0),
+                    two_sided: false,
+                }),
+            });
+        }
+        v
+    }
+
+    #[test]
+    fn picks_sum_to_one_and_match_the_pmf() {
+        let lights = lights();
+        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        assert_eq!(tree.node_count(), 2 * lights.len() - 1);
+        let mut rng = Pcg32::new(9, 1);
+        for _ in 0..200 {
+            let p = Vec3A::new(rng.next_f32() * 24.0 - 12.0, rng.next_f32() * 6.0 - 1.0, rng.next_f32() * 24.0 - 12.0);
+            let n = crate::math::sampling::uniform_sphere(rng.next_vec2());
+            let total: f64 = (0..lights.len()).map(|i| tree.pmf(p, n, i) as f64).sum();
+            // At most 1: a subtree none of whose lights reach `p` may still
+            // have been chosen (its parent's looser bounds did), and then
+            // no light is sampled, which loses nothing that contributes.
+            assert!(total <= 1.0 + 1e-4 && total > 0.5, "pmfs sum to {total} at {p}");
+            for _ in 0..20 {
+                if let Some((i, pmf)) = tree.pick(p, n, rng.next_f32()) {
+                    let want = tree.pmf(p, n, i);
+                    assert!(pmf > 0.0);
+                    assert!((pmf - want).abs() <= 1e-6 * want.max(1.0), "pick {pmf}, pmf {want}");
+                }
+            }
+        }
+    }
+
+    /// A light that reaches a point is never given probability zero there:
+    /// the estimate would lose it (bias).
+    #[test]
+    fn a_light_that_reaches_a_point_has_probability() {
+        let lights = lights();
+        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        let mut rng = Pcg32::new(4, 4);
+        for _ in 0..2000 {
+            let p = Vec3A::new(rng.next_f32() * 24.0 - 12.0, rng.next_f32() * 6.0 - 1.0, rng.next_f32() * 24.0 - 12.0);
+            let n = crate::math::sampling::uniform_sphere(rng.next_vec2());
+            for (i, l) in lights.iter().enumerate() {
+                for _ in 0..4 {
+                    let Some(ls) = l.sample(p, rng.next_vec2(), &crate::geometry::Geometry::default()) else {
+                        continue;
+                    };
+                    let reaches = ls.li != Rgb::ZERO && ls.wi.dot(n).abs() > 1e-3 && ls.pdf > 0.0;
+                    if reaches {
+                        assert!(tree.pmf(p, n, i) > 0.0, "light {i} reaches {p} (n {n}) with pmf 0");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_near_light_is_preferred_and_one_facing_away_is_never_picked() {
+        // A point under one down-facing quad, far from another; a third
+        // quad just above faces up (away from the point).
+        let lights = vec![
+            quad(Vec3A::new(-0.1, 1.0, -0.1), true, 1.0),
+            quad(Vec3A::new(50.0, 1.0, 0.0), true, 1.0),
+            quad(Vec3A::new(-0.1, 0.5, -0.1), false, 1.0),
+        ];
+        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        let (p, n) = (Vec3A::ZERO, Vec3A::Y);
+        assert!(tree.pmf(p, n, 0) > 0.99, "near light {}", tree.pmf(p, n, 0));
+        assert_eq!(tree.pmf(p, n, 2), 0.0);
+        for k in 0..1000 {
+            let (i, _) = tree.pick(p, n, (k as f32 + 0.5) / 1000.0).expect("a light");
+            assert_ne!(i, 2);
+        }
+    }
+
+    #[test]
+    fn outside_lights_keep_their_share() {
+        let lights = lights();
+        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        let p = Vec3A::new(1.0, 1.0, 1.0);
+        let tree_share = LightTree {
+            outside: vec![(1000, 0.25)],
+            p_tree: 0.75,
+            ..tree.clone()
+        };
+        assert_eq!(tree_share.pick(p, Vec3A::ZERO, 0.1), Some((1000, 0.25)));
+        let total: f32 = (0..lights.len()).map(|i| tree_share.pmf(p, Vec3A::ZERO, i)).sum();
+        assert!(total <= 0.75 + 1e-4 && total > 0.5, "{total}");
+    }
+
+    #[test]
+    fn cone_union_holds_both_cones() {
+        let mut rng = Pcg32::new(1, 2);
+        for _ in 0..2000 {
+            let a = (crate::math::sampling::uniform_sphere(rng.next_vec2()), rng.next_f32() * 2.0 - 1.0);
+            let b = (crate::math::sampling::uniform_sphere(rng.next_vec2()), rng.next_f32() * 2.0 - 1.0);
+            let (w, cos_o) = cone_union(a, b);
+            for (axis, cos_c) in [a, b] {
+                // The cone's edge directions within the union.
+                let theta = axis.dot(w).clamp(-1.0, 1.0).acos() + cos_c.clamp(-1.0, 1.0).acos();
+                assert!(theta.min(PI) <= cos_o.clamp(-1.0, 1.0).acos() + 1e-3, "{a:?} ∪ {b:?} = {w}, {cos_o}");
+            }
+        }
+    }
+}
