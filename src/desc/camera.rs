@@ -229,14 +229,16 @@ pub enum IntegratorDesc {
 #[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 pub enum LightSelectionDesc {
     /// In proportion to emitted power.
-    #[default]
     Power,
     /// Every light equally likely.
     Uniform,
     /// By a light tree: in proportion to what each light can send to the
     /// shading point (power over squared distance, bounded by its extent
     /// and orientation), so scenes of many lights spend their shadow rays
-    /// on the near ones that face the point.
+    /// on the near ones that face the point. With fewer than two lights
+    /// of finite extent (besides the sky) it is `Power`: there is nothing
+    /// to choose between.
+    #[default]
     Tree,
 }
 

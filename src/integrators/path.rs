@@ -66,7 +66,8 @@ impl Path {
                     Some((i, env)) if !prev_delta => {
                         let (le, env_pdf) = env.le_and_pdf(ray.d);
                         if le != Rgb::ZERO {
-                            let w = power_heuristic(prev_pdf, picker.pmf(prev_p, prev_n, i as usize) * env_pdf);
+                            let w =
+                                power_heuristic(prev_pdf, picker.pmf(prev_p, prev_n, i as usize) * env_pdf);
                             l += beta * le * w;
                         }
                     }
@@ -89,7 +90,8 @@ impl Path {
                         1.0
                     } else {
                         let light = &scene.lights[hit.light as usize];
-                        let light_pdf = picker.pmf(prev_p, prev_n, hit.light as usize) * light.pdf(prev_p, ray.d, &hit);
+                        let light_pdf =
+                            picker.pmf(prev_p, prev_n, hit.light as usize) * light.pdf(prev_p, ray.d, &hit);
                         power_heuristic(prev_pdf, light_pdf)
                     };
                     l += beta * le * w;

@@ -111,10 +111,9 @@ impl MeshLight {
     /// holding every triangle's emitting normal, for the light tree: around
     /// the area-weighted mean normal, or all directions when they cancel.
     pub fn bounds_and_normal_cone(&self) -> (crate::accel::Aabb, Vec3A, f32) {
-        let bounds = self
-            .tris
-            .iter()
-            .fold(crate::accel::Aabb::EMPTY, |acc, t| acc.union(crate::accel::Aabb::from_points(t)));
+        let bounds = self.tris.iter().fold(crate::accel::Aabb::EMPTY, |acc, t| {
+            acc.union(crate::accel::Aabb::from_points(t))
+        });
         let normals = || self.tris.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a));
         let w = normals().sum::<Vec3A>().normalize_or_zero();
         if w == Vec3A::ZERO {

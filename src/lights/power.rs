@@ -114,7 +114,9 @@ mod tests {
         let p = LightPicker::new(&[l(1.0), l(3.0), l(0.0)], Selection::Power);
         let mut counts = [0u32; 3];
         for k in 0..10_000 {
-            let (i, pmf) = p.pick(Vec3A::ZERO, Vec3A::ZERO, (k as f32 + 0.5) / 10_000.0).expect("a light");
+            let (i, pmf) = p
+                .pick(Vec3A::ZERO, Vec3A::ZERO, (k as f32 + 0.5) / 10_000.0)
+                .expect("a light");
             assert!((pmf - p.pmf(Vec3A::ZERO, Vec3A::ZERO, i)).abs() < 1e-6);
             counts[i] += 1;
         }

@@ -54,13 +54,21 @@ pub struct LightBounds {
 /// `cos(max(0, a − b))` from sines and cosines.
 #[inline]
 fn cos_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b { 1.0 } else { cos_a * cos_b + sin_a * sin_b }
+    if cos_a > cos_b {
+        1.0
+    } else {
+        cos_a * cos_b + sin_a * sin_b
+    }
 }
 
 /// `sin(max(0, a − b))` from sines and cosines.
 #[inline]
 fn sin_sub_clamped(sin_a: f32, cos_a: f32, sin_b: f32, cos_b: f32) -> f32 {
-    if cos_a > cos_b { 0.0 } else { sin_a * cos_b - cos_a * sin_b }
+    if cos_a > cos_b {
+        0.0
+    } else {
+        sin_a * cos_b - cos_a * sin_b
+    }
 }
 
 #[inline]
@@ -137,7 +145,11 @@ impl Prepared {
             let sin2 = self.radius2 / dc2;
             (safe_sqrt(sin2), safe_sqrt(1.0 - sin2))
         };
-        let wi = if dc2 > 0.0 { to_p * dc2.sqrt().recip() } else { Vec3A::ZERO };
+        let wi = if dc2 > 0.0 {
+            to_p * dc2.sqrt().recip()
+        } else {
+            Vec3A::ZERO
+        };
         let mut cos_w = if dc2 > 0.0 { self.w.dot(wi) } else { 1.0 };
         if self.two_sided {
             cos_w = cos_w.abs();
@@ -188,7 +200,10 @@ fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
     let w = Quat::from_axis_angle(axis.normalize().into(), theta_o - theta_a) * glam::Vec3::from(a.0);
     // Rounding in the rotation could leave an edge direction a hair
     // outside: widen by a little (a wider cone is still a bound).
-    (Vec3A::from(w).normalize(), (theta_o * 1.0001 + 1e-5).min(PI).cos())
+    (
+        Vec3A::from(w).normalize(),
+        (theta_o * 1.0001 + 1e-5).min(PI).cos(),
+    )
 }
 
 /// Bounds of one light; `None` for the environment (infinitely far).
@@ -265,8 +280,9 @@ pub struct LightTree {
 
 impl LightTree {
     /// The tree over `lights`; `outside_pmf[i]` is the probability the
-    /// environment light `i` keeps (its share of the power). `None` when no
-    /// bounded light has power (the caller falls back to its plain picker).
+    /// environment light `i` keeps (its share of the power). `None` when
+    /// fewer than two bounded lights have power (the caller then picks by
+    /// power).
     pub fn new(lights: &[Light], outside_pmf: impl Fn(usize) -> f32) -> Option<Self> {
         let mut items = Vec::new();
         let mut outside = Vec::new();
@@ -279,7 +295,9 @@ impl LightTree {
                 None => outside.push((i as u32, outside_pmf(i))),
             }
         }
-        if items.is_empty() {
+        // One bounded light: nothing to choose between, and the power
+        // picker's constant probability costs nothing per pick.
+        if items.len() < 2 {
             return None;
         }
         let p_outside: f32 = outside.iter().map(|o| o.1).sum();
@@ -380,7 +398,11 @@ impl LightTree {
         };
         let mut pmf = self.p_tree;
         if depth == 0 {
-            return if self.nodes[0].lb.importance(p, n) > 0.0 { pmf } else { 0.0 };
+            return if self.nodes[0].lb.importance(p, n) > 0.0 {
+                pmf
+            } else {
+                0.0
+            };
         }
         let mut at = 0usize;
         for k in 0..depth {
@@ -441,7 +463,11 @@ mod tests {
         let mut rng = Pcg32::new(3, 7);
         let mut v = Vec::new();
         for k in 0..40 {
-            let at = Vec3A::new(rng.next_f32() * 20.0 - 10.0, rng.next_f32() * 4.0, rng.next_f32() * 20.0 - 10.0);
+            let at = Vec3A::new(
+                rng.next_f32() * 20.0 - 10.0,
+                rng.next_f32() * 4.0,
+                rng.next_f32() * 20.0 - 10.0,
+            );
             v.push(match k % 4 {
                 0 => quad(at, true, 1.0 + rng.next_f32()),
                 1 => quad(at, false, 5.0),
@@ -467,7 +493,11 @@ mod tests {
         assert_eq!(tree.node_count(), 2 * lights.len() - 1);
         let mut rng = Pcg32::new(9, 1);
         for _ in 0..200 {
-            let p = Vec3A::new(rng.next_f32() * 24.0 - 12.0, rng.next_f32() * 6.0 - 1.0, rng.next_f32() * 24.0 - 12.0);
+            let p = Vec3A::new(
+                rng.next_f32() * 24.0 - 12.0,
+                rng.next_f32() * 6.0 - 1.0,
+                rng.next_f32() * 24.0 - 12.0,
+            );
             let n = crate::math::sampling::uniform_sphere(rng.next_vec2());
             let total: f64 = (0..lights.len()).map(|i| tree.pmf(p, n, i) as f64).sum();
             // At most 1: a subtree none of whose lights reach `p` may still
@@ -478,7 +508,10 @@ mod tests {
                 if let Some((i, pmf)) = tree.pick(p, n, rng.next_f32()) {
                     let want = tree.pmf(p, n, i);
                     assert!(pmf > 0.0);
-                    assert!((pmf - want).abs() <= 1e-6 * want.max(1.0), "pick {pmf}, pmf {want}");
+                    assert!(
+                        (pmf - want).abs() <= 1e-6 * want.max(1.0),
+                        "pick {pmf}, pmf {want}"
+                    );
                 }
             }
         }
@@ -492,7 +525,11 @@ mod tests {
         let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
         let mut rng = Pcg32::new(4, 4);
         for _ in 0..2000 {
-            let p = Vec3A::new(rng.next_f32() * 24.0 - 12.0, rng.next_f32() * 6.0 - 1.0, rng.next_f32() * 24.0 - 12.0);
+            let p = Vec3A::new(
+                rng.next_f32() * 24.0 - 12.0,
+                rng.next_f32() * 6.0 - 1.0,
+                rng.next_f32() * 24.0 - 12.0,
+            );
             let n = crate::math::sampling::uniform_sphere(rng.next_vec2());
             for (i, l) in lights.iter().enumerate() {
                 for _ in 0..4 {
@@ -501,7 +538,10 @@ mod tests {
                     };
                     let reaches = ls.li != Rgb::ZERO && ls.wi.dot(n).abs() > 1e-3 && ls.pdf > 0.0;
                     if reaches {
-                        assert!(tree.pmf(p, n, i) > 0.0, "light {i} reaches {p} (n {n}) with pmf 0");
+                        assert!(
+                            tree.pmf(p, n, i) > 0.0,
+                            "light {i} reaches {p} (n {n}) with pmf 0"
+                        );
                     }
                 }
             }
@@ -546,13 +586,22 @@ mod tests {
     fn cone_union_holds_both_cones() {
         let mut rng = Pcg32::new(1, 2);
         for _ in 0..2000 {
-            let a = (crate::math::sampling::uniform_sphere(rng.next_vec2()), rng.next_f32() * 2.0 - 1.0);
-            let b = (crate::math::sampling::uniform_sphere(rng.next_vec2()), rng.next_f32() * 2.0 - 1.0);
+            let a = (
+                crate::math::sampling::uniform_sphere(rng.next_vec2()),
+                rng.next_f32() * 2.0 - 1.0,
+            );
+            let b = (
+                crate::math::sampling::uniform_sphere(rng.next_vec2()),
+                rng.next_f32() * 2.0 - 1.0,
+            );
             let (w, cos_o) = cone_union(a, b);
             for (axis, cos_c) in [a, b] {
                 // The cone's edge directions within the union.
                 let theta = axis.dot(w).clamp(-1.0, 1.0).acos() + cos_c.clamp(-1.0, 1.0).acos();
-                assert!(theta.min(PI) <= cos_o.clamp(-1.0, 1.0).acos() + 1e-3, "{a:?} ∪ {b:?} = {w}, {cos_o}");
+                assert!(
+                    theta.min(PI) <= cos_o.clamp(-1.0, 1.0).acos() + 1e-3,
+                    "{a:?} ∪ {b:?} = {w}, {cos_o}"
+                );
             }
         }
     }
