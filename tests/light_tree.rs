@@ -85,7 +85,7 @@ fn the_tree_converges_to_the_power_image_with_less_noise() {
     ));
     for (k, (p, t)) in rp.iter().zip(&rt).enumerate() {
         // Both are 4096-spp estimates of one image: their regions agree to
-        // the light choice's noise: 1.96% at most here; 0.28% at 65536 spp,
+        // the light choice's noise: 1.53% at most here; 0.27% at 65536 spp,
         // where no region differs beyond noise.
         assert!(
             (p - t).abs() <= 0.04 * p.max(1e-3),
