@@ -105,7 +105,8 @@ impl Path {
             let frame = Frame::from_normal(hit.ns);
             let wo = frame.to_local(-ray.d);
 
-            // Next-event estimation: one light, picked by power.
+            // Next-event estimation: one light, picked as the scene says (by
+            // the light tree unless told otherwise).
             if !bsdf.is_delta()
                 && let Some((li, pmf)) = picker.pick(hit.p, hit.ns, sampler.next_f32())
             {

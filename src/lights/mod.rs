@@ -14,6 +14,10 @@
 //! Every light but points and spots is also reached by BSDF sampling (a
 //! surface in the BVH, or a ray that misses everything); the path tracer
 //! weighs the two strategies by MIS, so each emitter counts once.
+//!
+//! Which light a next-event estimate samples is chosen per shading point by
+//! a light tree (`tree.rs`, the default), or by power or uniformly
+//! (`power.rs`).
 
 pub mod alias;
 pub mod environment;

@@ -18,21 +18,23 @@ pub enum Selection {
     Tree,
 }
 
-/// Picks the light each next-event estimate samples, from a precomputed distribution
-/// over the scene's lights (by power or uniform).
+/// Picks the light each next-event estimate samples: from a precomputed
+/// distribution over the scene's lights (by power or uniform), or by a light
+/// tree at the shading point.
 #[derive(Clone, Debug, Default)]
 pub struct LightPicker {
     /// Probability of each light.
     pmf: Vec<f32>,
     /// Running sum of `pmf`; last entry 1.
     cdf: Vec<f32>,
-    /// With [`Selection::Tree`] and at least one bounded light with power.
+    /// With [`Selection::Tree`] and at least two bounded lights with power.
     tree: Option<LightTree>,
 }
 
 impl LightPicker {
     /// A picker choosing as `selection` says. A tree keeps the environment's
-    /// power share; a scene with no bounded light of any power picks by power.
+    /// power share; a scene with fewer than two bounded lights of any power
+    /// picks by power.
     pub fn new(lights: &[Light], selection: Selection) -> Self {
         let uniform = selection == Selection::Uniform;
         let mut w: Vec<f32> = lights
