@@ -608,6 +608,45 @@ mod tests {
         assert!(total <= 0.75 + 1e-4 && total > 0.5, "{total}");
     }
 
+    /// Lights stacked at one point (no axis to split along), a huge and a
+    /// tiny one, and points at the shading point itself: picks and pmfs
+    /// still agree, stay finite and sum to at most one.
+    #[test]
+    fn degenerate_layouts_stay_consistent() {
+        let at = Vec3A::new(1.0, 2.0, 3.0);
+        let mut lights: Vec<Light> = (0..9)
+            .map(|k| {
+                Light::Point(PointLight {
+                    position: at,
+                    intensity: Rgb::splat(1.0 + k as f32),
+                })
+            })
+            .collect();
+        lights.push(quad(Vec3A::new(-1e6, 5.0, -1e6), true, 1e-3));
+        lights.push(Light::Sphere(SphereLight {
+            center: Vec3A::ZERO,
+            radius: 1e-6,
+            radiance: Rgb::splat(1e6),
+            two_sided: false,
+        }));
+        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        for p in [at, Vec3A::ZERO, Vec3A::new(0.0, -3.0, 0.0), Vec3A::splat(1e7)] {
+            for n in [Vec3A::ZERO, Vec3A::Y, -Vec3A::X] {
+                let total: f32 = (0..lights.len()).map(|i| tree.pmf(p, n, i)).sum();
+                assert!(
+                    total.is_finite() && total <= 1.0 + 1e-4,
+                    "sum {total} at {p}, {n}"
+                );
+                for k in 0..64 {
+                    if let Some((i, pmf)) = tree.pick(p, n, (k as f32 + 0.5) / 64.0) {
+                        assert!(pmf.is_finite() && pmf > 0.0 && pmf <= 1.0);
+                        assert!((pmf - tree.pmf(p, n, i)).abs() <= 1e-6, "light {i} at {p}");
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn cone_union_holds_both_cones() {
         let mut rng = Pcg32::new(1, 2);
