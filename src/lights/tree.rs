@@ -285,6 +285,18 @@ impl Node {
     }
 }
 
+impl Node {
+    /// The children's importances and their sum, the one computation
+    /// [`LightTree::pick`] and [`LightTree::pmf`] share (so their
+    /// probabilities agree bit for bit); `None` when no child reaches `p`.
+    #[inline]
+    fn weights(&self, p: Vec3A, n: Vec3A) -> Option<([f32; WIDTH], f32)> {
+        let imp = self.importance(p, n).to_array();
+        let total: f32 = imp.iter().sum();
+        (total > 0.0).then_some((imp, total))
+    }
+}
+
 /// See the module docs.
 #[derive(Clone, Debug)]
 pub struct LightTree {
@@ -385,11 +397,7 @@ impl LightTree {
         let mut at = 0usize;
         loop {
             let node = &self.nodes[at];
-            let imp = node.importance(p, n).to_array();
-            let total: f32 = imp.iter().sum();
-            if total <= 0.0 {
-                return None;
-            }
+            let (imp, total) = node.weights(p, n)?;
             // The child whose share of `total` holds `u · total`; the last
             // one with any share if rounding runs past the end.
             let target = u * total;
@@ -426,11 +434,9 @@ impl LightTree {
         let mut at = 0usize;
         for level in 0..depth {
             let node = &self.nodes[at];
-            let imp = node.importance(p, n).to_array();
-            let total: f32 = imp.iter().sum();
-            if total <= 0.0 {
+            let Some((imp, total)) = node.weights(p, n) else {
                 return 0.0;
-            }
+            };
             let k = (bits >> (2 * level) & 3) as usize;
             pmf *= imp[k] / total;
             at = node.child[k] as usize;
@@ -512,6 +518,16 @@ mod tests {
         v
     }
 
+    /// A random point around [`lights`]'s and a random normal.
+    fn shading_point(rng: &mut Pcg32) -> (Vec3A, Vec3A) {
+        let p = Vec3A::new(
+            rng.next_f32() * 24.0 - 12.0,
+            rng.next_f32() * 6.0 - 1.0,
+            rng.next_f32() * 24.0 - 12.0,
+        );
+        (p, crate::math::sampling::uniform_sphere(rng.next_vec2()))
+    }
+
     #[test]
     fn picks_sum_to_one_and_match_the_pmf() {
         let lights = lights();
@@ -519,12 +535,7 @@ mod tests {
         assert!(tree.node_count() < lights.len());
         let mut rng = Pcg32::new(9, 1);
         for _ in 0..200 {
-            let p = Vec3A::new(
-                rng.next_f32() * 24.0 - 12.0,
-                rng.next_f32() * 6.0 - 1.0,
-                rng.next_f32() * 24.0 - 12.0,
-            );
-            let n = crate::math::sampling::uniform_sphere(rng.next_vec2());
+            let (p, n) = shading_point(&mut rng);
             let total: f64 = (0..lights.len()).map(|i| tree.pmf(p, n, i) as f64).sum();
             // At most 1: a subtree none of whose lights reach `p` may still
             // have been chosen (its parent's looser bounds did), and then
@@ -551,12 +562,7 @@ mod tests {
         let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
         let mut rng = Pcg32::new(4, 4);
         for _ in 0..2000 {
-            let p = Vec3A::new(
-                rng.next_f32() * 24.0 - 12.0,
-                rng.next_f32() * 6.0 - 1.0,
-                rng.next_f32() * 24.0 - 12.0,
-            );
-            let n = crate::math::sampling::uniform_sphere(rng.next_vec2());
+            let (p, n) = shading_point(&mut rng);
             for (i, l) in lights.iter().enumerate() {
                 for _ in 0..4 {
                     let Some(ls) = l.sample(p, rng.next_vec2(), &crate::geometry::Geometry::default()) else {
