@@ -113,55 +113,81 @@ impl WideBvh {
         let mut t_best = t_max.min(f32::MAX);
         let mut found = false;
         let mut stack = [const { MaybeUninit::<(u32, f32)>::uninit() }; STACK];
-        stack[0].write((0, 0.0));
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            // SAFETY: entries `..sp` have been written (see the pushes).
-            let (r, t_enter) = unsafe { stack[sp].assume_init() };
-            if t_enter > t_best {
-                continue;
-            }
-            if r & LEAF != 0 {
-                let (first, count) = leaf_range(r);
+        let mut sp = 0;
+        // The entry being visited; its entry distance is at most `t_best`.
+        let mut cur = 0u32;
+        loop {
+            if cur & LEAF != 0 {
+                let (first, count) = leaf_range(cur);
                 if let Some(t) = leaf(first, count, t_best)
                     && t < t_best
                 {
                     t_best = t;
                     found = true;
                 }
-                continue;
-            }
-            let node = &self.nodes[r as usize];
-            let (t_near, mut mask) = sr.test(node, t_best);
-            // Push the hit children, then sort the new entries so the
-            // nearest is on top (at most eight: insertion sort).
-            let base = sp;
-            while mask != 0 {
-                let lane = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                // An empty lane has inverted bounds and never passes the slab
-                // test with a finite ray; a ray made of huge or non-finite
-                // numbers can still let one through, so it is skipped here
-                // rather than read as a leaf (it would index past the end).
-                if node.child[lane] == EMPTY {
+            } else {
+                let node = &self.nodes[cur as usize];
+                let (t_near, mut mask) = sr.test(node, t_best);
+                // One child hit (the common case below the top levels): go
+                // straight into it, no stack traffic.
+                if mask != 0 && mask & (mask - 1) == 0 {
+                    let child = node.child[mask.trailing_zeros() as usize];
+                    // See below: never follow an empty lane.
+                    if child != EMPTY {
+                        cur = child;
+                        continue;
+                    }
+                    mask = 0;
+                }
+                // Push the hit children, then sort the new entries so the
+                // nearest is on top (at most eight: insertion sort).
+                let base = sp;
+                while mask != 0 {
+                    let lane = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    // An empty lane has inverted bounds and never passes the slab
+                    // test with a finite ray; a ray made of huge or non-finite
+                    // numbers can still let one through, so it is skipped here
+                    // rather than read as a leaf (it would index past the end).
+                    if node.child[lane] == EMPTY {
+                        continue;
+                    }
+                    let e = (node.child[lane], t_near[lane]);
+                    if e.0 & LEAF == 0 {
+                        prefetch(&self.nodes[e.0 as usize]);
+                    }
+                    let mut j = sp;
+                    // SAFETY: `base..sp` holds this node's entries, all written.
+                    while j > base && unsafe { stack[j - 1].assume_init() }.1 < e.1 {
+                        stack[j] = stack[j - 1];
+                        j -= 1;
+                    }
+                    stack[j].write(e);
+                    sp += 1;
+                }
+                // The nearest child just pushed passed the test below
+                // `t_best`: visit it without the check of a pop.
+                if sp > base {
+                    sp -= 1;
+                    // SAFETY: written just above.
+                    cur = unsafe { stack[sp].assume_init() }.0;
                     continue;
                 }
-                let e = (node.child[lane], t_near[lane]);
-                if e.0 & LEAF == 0 {
-                    prefetch(&self.nodes[e.0 as usize]);
+            }
+            // Next entry not beyond the best hit found since it was pushed.
+            loop {
+                if sp == 0 {
+                    return found.then_some(t_best);
                 }
-                let mut j = sp;
-                // SAFETY: `base..sp` holds this node's entries, all written.
-                while j > base && unsafe { stack[j - 1].assume_init() }.1 < e.1 {
-                    stack[j] = stack[j - 1];
-                    j -= 1;
+                sp -= 1;
+                // SAFETY: entries `..sp` have been written (see the pushes).
+                let (r, t_enter) = unsafe { stack[sp].assume_init() };
+                if t_enter <= t_best {
+                    cur = r;
+                    break;
                 }
-                stack[j].write(e);
-                sp += 1;
             }
         }
-        found.then_some(t_best)
     }
 
     /// Any hit below `t_max`: `leaf(first, count, t_max)` returns whether a
@@ -174,32 +200,42 @@ impl WideBvh {
         let sr = SlabRay::new(ray);
         let t_max = t_max.min(f32::MAX);
         let mut stack = [const { MaybeUninit::<u32>::uninit() }; STACK];
-        stack[0].write(0);
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            // SAFETY: entries `..sp` have been written.
-            let r = unsafe { stack[sp].assume_init() };
-            if r & LEAF != 0 {
-                let (first, count) = leaf_range(r);
+        let mut sp = 0;
+        let mut cur = 0u32;
+        loop {
+            if cur & LEAF != 0 {
+                let (first, count) = leaf_range(cur);
                 if leaf(first, count, t_max) {
                     return true;
                 }
-                continue;
-            }
-            let node = &self.nodes[r as usize];
-            let (_, mut mask) = sr.test(node, t_max);
-            while mask != 0 {
-                let lane = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                // See `intersect`: never follow an empty lane.
-                if node.child[lane] == EMPTY {
+            } else {
+                let node = &self.nodes[cur as usize];
+                let (_, mut mask) = sr.test(node, t_max);
+                // See `intersect`: never follow an empty lane; go straight
+                // into the last child hit, push the others.
+                let mut next = None;
+                while mask != 0 {
+                    let lane = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if node.child[lane] == EMPTY {
+                        continue;
+                    }
+                    if let Some(r) = next.replace(node.child[lane]) {
+                        stack[sp].write(r);
+                        sp += 1;
+                    }
+                }
+                if let Some(r) = next {
+                    cur = r;
                     continue;
                 }
-                stack[sp].write(node.child[lane]);
-                sp += 1;
             }
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            // SAFETY: entries `..sp` have been written.
+            cur = unsafe { stack[sp].assume_init() };
         }
-        false
     }
 }
