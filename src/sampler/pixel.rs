@@ -24,10 +24,10 @@ use std::ops::Range;
 
 const DRAWS: usize = SOBOL_DRAWS as usize;
 
-/// The largest net built whole per pixel: 2^16 points, 3.9 MB of buffers per
-/// worker. Larger spp (up to 2^20) compute each point alone, at a cost
-/// nobody sees beside that many paths.
-const MAX_BATCHED_NET: usize = 1 << 16;
+/// The most samples of a pixel whose points are computed together: 2^16,
+/// 3.6 MB of buffers per worker. More (up to 2^20 spp) compute each point
+/// when its sample asks, at a cost nobody sees beside that many paths.
+const MAX_BATCHED: usize = 1 << 16;
 
 /// Per-pixel sampler state; one per worker, reused pixel after pixel so its
 /// buffers are allocated once. [`PixelSampler::sample`] gives exactly what
@@ -46,10 +46,9 @@ pub struct PixelSampler {
     /// `Sobol`: the points of samples `first..first + points.len()`.
     first: u32,
     points: Vec<[Vec2; DRAWS]>,
-    /// Scratch: one draw's scrambled net, and the net point of each sample.
+    /// Scratch: one draw's coordinates for each sample.
     xs: Vec<f32>,
     ys: Vec<f32>,
-    order: Vec<u32>,
 }
 
 impl PixelSampler {
@@ -70,7 +69,6 @@ impl PixelSampler {
             points: Vec::new(),
             xs: Vec::new(),
             ys: Vec::new(),
-            order: Vec::new(),
         }
     }
 
@@ -92,11 +90,9 @@ impl PixelSampler {
                 .wrapping_mul(0xbf58_476d_1ce4_e5b9);
             h ^ (h >> 31)
         });
-        // Batch when the net is not much larger than the samples taken, and
-        // small enough that a worker's buffers stay a few MB at any spp.
+        // Batch unless a worker's buffers would pass a few MB.
         let n = samples.len();
-        let net = 1usize << self.index_bits;
-        if n == 0 || net > 4 * n || net > MAX_BATCHED_NET {
+        if n == 0 || n > MAX_BATCHED {
             self.points.clear();
             return;
         }
@@ -107,42 +103,23 @@ impl PixelSampler {
         }
     }
 
-    /// Scrambles draw `d`'s whole net, then gives each sample its point.
-    /// The first three loops are plain arithmetic over arrays, which the
-    /// compiler vectorises; only the last one gathers.
+    /// Draw `d`'s point for every sample of `samples`, computed sample by
+    /// sample in a loop of plain integer arithmetic that the compiler turns
+    /// into 8-lane AVX2 code, then stored into each sample's points.
     fn fill_draw(&mut self, d: usize, samples: Range<u32>) {
         let m = self.index_bits;
-        let n = 1usize << m;
-        let (order, sx, sy) = seeds(self.draw_hashes[d]);
+        let seeds = seeds(self.draw_hashes[d]);
+        let n = samples.len();
         // Resized, not cleared and refilled: the lengths repeat from pixel
         // to pixel, and a loop over a fixed slice has no capacity checks.
         self.xs.resize(n, 0.0);
         self.ys.resize(n, 0.0);
-        self.order.resize(self.points.len(), 0);
-        for (k, x) in self.xs.iter_mut().enumerate() {
-            *x = to_unit(sobol::owen_scramble_net(k as u32, m, sx));
+        let first = samples.start;
+        for (k, (x, y)) in self.xs.iter_mut().zip(self.ys.iter_mut()).enumerate() {
+            (*x, *y) = net_point(first.wrapping_add(k as u32), m, seeds);
         }
-        match sobol::DIM1_REVERSED.get(..n) {
-            Some(dim1) => {
-                for (y, &b) in self.ys.iter_mut().zip(dim1) {
-                    *y = to_unit(sobol::owen_scramble_net(b, m, sy));
-                }
-            }
-            None => {
-                for (k, y) in self.ys.iter_mut().enumerate() {
-                    *y = to_unit(sobol::owen_scramble_net(
-                        sobol::sample_2d_reversed(k as u32).1,
-                        m,
-                        sy,
-                    ));
-                }
-            }
-        }
-        for (k, s) in self.order.iter_mut().zip(samples) {
-            *k = net_index(s, m, order);
-        }
-        for (p, &k) in self.points.iter_mut().zip(&self.order) {
-            p[d] = Vec2::new(self.xs[k as usize], self.ys[k as usize]);
+        for (p, (&x, &y)) in self.points.iter_mut().zip(self.xs.iter().zip(&self.ys)) {
+            p[d] = Vec2::new(x, y);
         }
     }
 
@@ -174,14 +151,21 @@ impl PixelSampler {
     /// Draw `d` of sample `index`, one point alone: what [`Self::fill_draw`]
     /// computes for it.
     fn point(&self, d: usize, index: u32) -> Vec2 {
-        let m = self.index_bits;
-        let (order, sx, sy) = seeds(self.draw_hashes[d]);
-        let (a, b) = sobol::sample_2d_reversed(net_index(index, m, order));
-        Vec2::new(
-            to_unit(sobol::owen_scramble_net(a, m, sx)),
-            to_unit(sobol::owen_scramble_net(b, m, sy)),
-        )
+        let (x, y) = net_point(index, self.index_bits, seeds(self.draw_hashes[d]));
+        Vec2::new(x, y)
     }
+}
+
+/// The point sample `s` takes of a draw's Owen-scrambled `2^m`-point net:
+/// net point [`net_index`] of the first two Sobol dimensions, each
+/// coordinate scrambled with its own seed.
+#[inline(always)]
+fn net_point(s: u32, m: u32, (order, sx, sy): (u32, u32, u32)) -> (f32, f32) {
+    let i = net_index(s, m, order);
+    (
+        to_unit(sobol::owen_scramble_net(i, m, sx)),
+        to_unit(sobol::owen_scramble_net(sobol::dim1_reversed(i), m, sy)),
+    )
 }
 
 /// The point of a draw's `2^m`-point net that sample `s` takes: a random

@@ -14,44 +14,34 @@ pub fn sample_2d(i: u32) -> (u32, u32) {
 /// `reverse_bits` is a dozen shifts and masks), so the sampler stays in this
 /// form until the end, where [`owen_scramble_net`] reverses only the digits
 /// the net has.
-#[inline]
-pub fn sample_2d_reversed(mut i: u32) -> (u32, u32) {
+#[cfg(test)]
+pub fn sample_2d_reversed(i: u32) -> (u32, u32) {
     // Dimension 0 is the van der Corput sequence: reversed, the index.
-    let x = i;
-    // Up to 256 spp, dimension 1 from a table (1 KiB, stays in L1).
-    if let Some(&y) = DIM1_REVERSED.get(i as usize) {
-        return (x, y);
-    }
-    // Dimension 1: generator matrix of the polynomial x + 1, whose columns
-    // are built by v ← v ⊕ (v >> 1) from the top bit; reversed, v ← v ⊕
-    // (v << 1) from the bottom one. Branch-free: the index bits are random.
-    let mut y = 0u32;
-    let mut v = 1u32;
-    while i != 0 {
-        y ^= v & (i & 1).wrapping_neg();
-        i >>= 1;
-        v ^= v << 1;
-    }
-    (x, y)
+    (i, dim1_reversed(i))
 }
 
-/// Dimension 1 of the first 256 points, bit-reversed: the loop of
-/// [`sample_2d_reversed`] run at compile time.
-pub(super) static DIM1_REVERSED: [u32; 256] = {
-    let mut t = [0u32; 256];
-    let mut k = 0;
-    while k < 256 {
-        let (mut i, mut y, mut v) = (k as u32, 0u32, 1u32);
-        while i != 0 {
-            y ^= v & (i & 1).wrapping_neg();
-            i >>= 1;
-            v ^= v << 1;
-        }
-        t[k] = y;
-        k += 1;
-    }
-    t
-};
+/// Dimension 1 of point `i`, bit-reversed: what [`sample_2d_reversed`] gives
+/// as its second value, without its loop or a table.
+///
+/// Reversed, generator column `b` is the polynomial `(1 + x)^b` over GF(2)
+/// (bit `k` holding `x^k`), so the value is the index polynomial `I(t)`
+/// taken at `t = 1 + x`: a Taylor shift by one. Splitting a block of `2h`
+/// bits as `lo + x^h·hi`, and since `(1 + x)^h = 1 + x^h` for `h` a power of
+/// two, the shifted block is `lo' + hi' + x^h·hi'` (halves shifted first):
+/// five rounds of `y ^= (y & high halves) >> h`, for `h` = 1, 2, 4, 8, 16.
+/// Fifteen branch-free word operations, which the per-pixel loop of
+/// `sampler/pixel.rs` vectorises; a table lookup there would be a gather,
+/// which the compiler declines to vectorise.
+#[inline(always)]
+pub fn dim1_reversed(i: u32) -> u32 {
+    let mut y = i;
+    y ^= (y & 0xaaaa_aaaa) >> 1;
+    y ^= (y & 0xcccc_cccc) >> 2;
+    y ^= (y & 0xf0f0_f0f0) >> 4;
+    y ^= (y & 0xff00_ff00) >> 8;
+    y ^= (y & 0xffff_0000) >> 16;
+    y
+}
 
 /// Laine–Karras style hash acting as a nested uniform scramble on
 /// bit-reversed values: each bit is flipped depending only on the bits above
@@ -120,6 +110,24 @@ mod tests {
         };
         for i in (0..4096).chain([u32::MAX, 0x8000_0001, 123_456_789]) {
             assert_eq!(sample_2d(i), plain(i), "point {i}");
+        }
+    }
+
+    #[test]
+    fn taylor_shift_gives_the_generator_columns() {
+        // Dimension 1 as the generator loop computes it: column b, reversed,
+        // is v ← v ⊕ (v << 1) applied b times to 1, XORed in for each set bit.
+        let by_columns = |mut i: u32| {
+            let (mut y, mut v) = (0u32, 1u32);
+            while i != 0 {
+                y ^= v & (i & 1).wrapping_neg();
+                i >>= 1;
+                v ^= v << 1;
+            }
+            y
+        };
+        for i in (0..70_000u32).chain([u32::MAX, 0x8000_0001, 123_456_789, 1 << 24, 1 << 31]) {
+            assert_eq!(dim1_reversed(i), by_columns(i), "point {i}");
         }
     }
 
