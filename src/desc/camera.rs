@@ -145,7 +145,7 @@ pub enum SamplerDesc {
     Independent,
     /// Jittered strata (per pair of dimensions).
     Stratified,
-    /// Owen-scrambled Sobol points: lowest error, best at power-of-two spp.
+    /// Owen-scrambled Sobol points: lowest error, stratified at any multiple of 8 spp.
     #[default]
     Sobol,
 }

@@ -12,9 +12,10 @@
 //!   and direction) are stratified: each draw is a point of the first two
 //!   Sobol dimensions ("padded" Sobol), Owen-scrambled per pixel and draw (a
 //!   1-D draw takes its x, a scrambled van der Corput point); every draw
-//!   visits its points in its own random order (Burley 2020,
-//!   <https://jcgt.org/published/0009/04/01/>). Later draws are PCG32's, as
-//!   `Independent`. Best at power-of-two spp.
+//!   visits its points in its own shuffled order (Burley 2020,
+//!   <https://jcgt.org/published/0009/04/01/>), one that keeps every
+//!   multiple of 8 samples a union of nets (`pixel.rs`). Later draws are
+//!   PCG32's, as `Independent`.
 //!
 //! Why `Sobol` stops after a few draws: the draws that gain from
 //! stratification are the low ones; deeper in the path the integrand has too
@@ -45,7 +46,8 @@ pub enum SamplerKind {
     Independent,
     /// Jittered strata per 2-D dimension pair, visited in a random order.
     Stratified,
-    /// Padded, Owen-scrambled Sobol points: lowest error, best at power-of-two spp.
+    /// Padded, Owen-scrambled Sobol points: lowest error, stratified at any
+    /// multiple of 8 spp.
     Sobol,
 }
 
