@@ -20,14 +20,15 @@
 //! Why `Sobol` stops after a few draws: the draws that gain from
 //! stratification are the low ones; deeper in the path the integrand has too
 //! many dimensions for a 2-D net to matter. Its points are computed per
-//! pixel, a whole net per draw in one vectorised loop ([`PixelSampler`]),
+//! pixel, all samples of a draw in one vectorised loop ([`PixelSampler`]),
 //! not per sample: one at a time, a scrambled point cost about five PCG32
-//! draws and `Sobol` 6–11% more instructions per sample than `Independent`
-//! (callgrind, see the commits). pbrt-v4's `ZSobolSampler` (Morton-ordered
-//! indices) was not taken: its per-dimension index permutation hashes every
-//! base-4 digit of (pixel, sample), about ten hashes per draw at 256² and
-//! 64 spp, and cannot be batched per pixel; its gain is a blue-noise
-//! distribution of the error over the image rather than a lower RMSE.
+//! draws and `Sobol` 6–11% more instructions per sample than `Independent`;
+//! batched, about 1% (callgrind, see the commits). pbrt-v4's
+//! `ZSobolSampler` (Morton-ordered indices) was not taken: its per-dimension
+//! index permutation hashes every base-4 digit of (pixel, sample), about ten
+//! hashes per draw at 256² and 64 spp, and cannot be batched per pixel; its
+//! gain is a blue-noise distribution of the error over the image rather than
+//! a lower RMSE.
 
 mod pixel;
 mod sobol;

@@ -3,18 +3,17 @@
 //!
 //! For every sampler: the pixel's hash and its PCG32 seed. For `Sobol`, the
 //! stratified draws themselves: draw `d` of sample `s` is point
-//! `shuffle_d(s)` of the pixel's Owen-scrambled 2-D Sobol net for that draw,
-//! so the whole net (the `2^m` points, `m = ⌈log2 spp⌉`) is scrambled in one
-//! loop over the point index, which the compiler turns into 8-lane AVX2
-//! arithmetic, and each sample then reads its point by the shuffled index.
-//! Done one sample at a time the same points cost about three times the
-//! instructions of the PCG32 draws they replace (a shuffle, two hashes and
-//! bit reversals per draw, none of them shared): `Sobol` cost 6–11% more
-//! per sample than `Independent`; batched, 2–4% at 64 spp (callgrind
-//! figures in the commits). A pixel
-//! that renders only a few of its samples (progressive passes, sample
-//! splits) is served one point at a time by the same formula, so every
-//! sample's numbers are the same whichever way they were made.
+//! [`net_index`]`(s)` of the pixel's Owen-scrambled 2-D Sobol net for that
+//! draw (`2^m` points, `m = ⌈log2 spp⌉`). The points of all the pixel's
+//! samples are computed together, one loop per draw over the samples, which
+//! the compiler turns into 8-lane AVX2 arithmetic (the shuffle, dimension 1
+//! and the scrambles are all branch-free integer code, no table). Done one
+//! sample at a time the same points cost about three times the instructions
+//! of the PCG32 draws they replace: `Sobol` cost 6–11% more per sample than
+//! `Independent`; batched, about 1% (callgrind, Cornell box, 64 and 256
+//! spp). A pixel that renders only a few of its samples (progressive passes,
+//! sample splits) is served one point at a time by the same formula, so
+//! every sample's numbers are the same whichever way they were made.
 
 use super::{SOBOL_DRAWS, Sampler, SamplerKind, shuffle_pow2, sobol, to_unit};
 use crate::math::Pcg32;
@@ -176,19 +175,22 @@ fn net_point(s: u32, m: u32, (order, sx, sy): (u32, u32, u32)) -> (f32, f32) {
 ///   of the result depends only on bits `j` and up of `s`, so samples
 ///   `0..2^k` land on an aligned block of `2^k` net indices, which is itself
 ///   a net. A pixel's first `n` samples, `n` a multiple of 8, are a union of
-///   nets whatever `n` is (and a pixel that stops early, `film.adaptive`,
-///   stops on whole strata). The plain random permutation this replaced
-///   stratified only the full `2^m` points: at 96 or 192 spp its first
-///   samples were a random subset of the net, and the error off the light
-///   was 7–10% higher than here, the whole-image error on the Cornell box
-///   twice as high (light-edge pixels).
+///   nets whatever `n` is (and a pixel that stops early under
+///   `film.noise_threshold`, with `min_spp` a multiple of 8, stops on whole
+///   strata). The plain random permutation this replaced stratified only
+///   the full `2^m` points: at 96 or 192 spp its first samples were a
+///   random subset of the net, and the error off the light was 3–17%
+///   higher than here on the five reference scenes, the whole-image error
+///   on the Cornell box twice as high (light-edge pixels).
 /// - The low bits, which choose among the coarsest strata (a net's leading
 ///   digits come from the low bits of its index), are a random permutation
 ///   of their block keyed by the block and the draw. Nested all the way
-///   down, every draw's leading digit flipped between samples `2k` and
-///   `2k + 1` together, correlating draws (the light pick with the light
-///   point: +2–4% error on `emissive_shapes` at 64–128 spp, against about
-///   +1.5% left here).
+///   down, every draw's leading digit flips between samples `2k` and
+///   `2k + 1` together, correlating the draws (the light pick with the
+///   light point). What is left of that costs `emissive_shapes` 0–3% more
+///   error at 64 and 128 spp than the full random permutation (three
+///   seeds; 1–4% nested all the way down); the other scenes are within
+///   their noise or better (`env_spheres` 5–9%).
 #[inline]
 fn net_index(s: u32, m: u32, order: u32) -> u32 {
     let mut v = s.reverse_bits();
