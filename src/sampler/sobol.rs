@@ -9,11 +9,12 @@ pub fn sample_2d(i: u32) -> (u32, u32) {
     (x.reverse_bits(), y.reverse_bits())
 }
 
-/// [`sample_2d`] with the bits of each coordinate reversed. Owen scrambling
-/// works on reversed bits, and x86 has no bit-reversal instruction (each
-/// `reverse_bits` is a dozen shifts and masks), so the sampler stays in this
-/// form until the end, where [`owen_scramble_net`] reverses only the digits
-/// the net has.
+/// [`sample_2d`] with the bits of each coordinate reversed: the form the
+/// sampler works in (index `i` itself and [`dim1_reversed`]). Owen
+/// scrambling works on reversed bits, and x86 has no bit-reversal
+/// instruction (each `reverse_bits` is a dozen shifts and masks), so the
+/// sampler stays in this form until the end, where [`owen_scramble_net`]
+/// reverses only the digits the net has.
 #[cfg(test)]
 pub fn sample_2d_reversed(i: u32) -> (u32, u32) {
     // Dimension 0 is the van der Corput sequence: reversed, the index.
