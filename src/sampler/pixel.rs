@@ -170,8 +170,7 @@ fn net_point(s: u32, m: u32, (order, sx, sy): (u32, u32, u32)) -> (f32, f32) {
 /// Sample `s`'s point of a draw's `2^m`-point net (`m` < 32): a shuffle that
 /// keeps prefixes stratified and the draws apart.
 ///
-/// - Above the low [`BLOCK_BITS`] bits, a nested uniform shuffle (Burley
-///   2020, §4; pbrt-v4's `FastOwenScrambler` hash, Vegdahl 2021): bit `j`
+/// - Above the low [`BLOCK_BITS`] bits, [`sobol::nested_shuffle`]: bit `j`
 ///   of the result depends only on bits `j` and up of `s`, so samples
 ///   `0..2^k` land on an aligned block of `2^k` net indices, which is itself
 ///   a net. A pixel's first `n` samples, `n` a multiple of 8, are a union of
@@ -193,13 +192,7 @@ fn net_point(s: u32, m: u32, (order, sx, sy): (u32, u32, u32)) -> (f32, f32) {
 ///   their noise or better (`env_spheres` 5–9%).
 #[inline]
 fn net_index(s: u32, m: u32, order: u32) -> u32 {
-    let mut v = s.reverse_bits();
-    v ^= v.wrapping_mul(0x3d20_adea);
-    v = v.wrapping_add(order);
-    v = v.wrapping_mul((order >> 16) | 1);
-    v ^= v.wrapping_mul(0x0552_6c56);
-    v ^= v.wrapping_mul(0x53a2_2864);
-    let nested = v.reverse_bits();
+    let nested = sobol::nested_shuffle(s, order);
     let q = m.min(BLOCK_BITS);
     let low_mask = (1u32 << q) - 1;
     let k = ((s >> BLOCK_BITS).wrapping_mul(0x9e37_79b9) ^ order).wrapping_mul(0x85eb_ca6b);

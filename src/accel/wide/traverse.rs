@@ -5,9 +5,9 @@
 //! beyond the best hit found since are skipped when popped. A node with a
 //! single child hit (most of them below the top levels) is left for that
 //! child without touching the stack (−6% instructions on the bunny
-//! benchmark). Per axis the
-//! near and far planes are picked once per ray from the direction's sign
-//! (so the test needs no min/max between the two planes). The stack is a
+//! benchmark). Per axis the near and far planes are picked once per ray
+//! from the direction's sign (so the test needs no min/max between the two
+//! planes). The stack is a
 //! fixed array: the binary tree is at most `MAX_DEPTH` deep and each wide
 //! level pushes at most `WIDTH - 1` entries beyond the one it pops, so
 //! `(WIDTH - 1) · MAX_DEPTH + 1` never overflows.
