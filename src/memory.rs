@@ -1,6 +1,6 @@
 //! What a render will cost in memory, asked before anything is allocated.
 //!
-//! The largest film the loader accepts (16384²) needs about 8 GiB: on a
+//! The largest film the loader accepts (16384²) needs about 18 GiB: on a
 //! smaller machine the allocation would abort the process (or wake the
 //! kernel's OOM killer) after the scene was loaded. Commands compare
 //! [`film_bytes`] with what the machine has (`MemAvailable` in
@@ -8,9 +8,12 @@
 
 /// Bytes per pixel of a one-shot render: the film of linear RGB
 /// (`Rgb` = `Vec3A`, 16 bytes), the finished tiles' pixels on their way
-/// into it (up to a film's worth while tiles are gathered), and the
-/// encoder's copy (8-bit or float RGB, at most 12 bytes).
-const RENDER_BYTES_PER_PIXEL: u64 = 16 + 16 + 12;
+/// into it (up to a film's worth while tiles are gathered), the encoder's
+/// copy (8-bit or float RGB, at most 12 bytes), and what a render spread
+/// by noise keeps between its passes (`film/allocation.rs`: the first
+/// pass's mean and variance, 16 bytes, then the variances, weights and
+/// counts, 12).
+const RENDER_BYTES_PER_PIXEL: u64 = 16 + 16 + 12 + 16 + 12;
 /// Extra bytes per pixel of progressive rendering (watch mode): exact sums
 /// of every pixel (3 × i128) kept between passes, and one pass's sums.
 const PROGRESSIVE_BYTES_PER_PIXEL: u64 = 2 * 48;

@@ -11,13 +11,13 @@
 
 pub use crate::imageio::SampleSums;
 
-use crate::film::{Adaptive, PixelNoise};
+use crate::film::{Adaptive, PixelNoise, Plan};
 use crate::imageio::{Image, PixelRect};
 use crate::integrators::Counters;
 use crate::math::{ExactSum, Rgb};
-use crate::sampler::PixelSampler;
+use crate::sampler::{PixelSampler, SamplerKind};
 use crate::scene::Scene;
-use crate::view::View;
+use crate::view::{Allocation, View};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -105,21 +105,33 @@ pub fn render_image(
     on_tile: &(dyn Fn(&TileDone) + Sync),
 ) -> (Image, RenderStats) {
     let (w, h) = (view.film.width, view.film.height);
-    let work = Work {
+    // A part of the samples is added to other parts' exact sums, which
+    // needs fixed counts: only a render of all of them is adaptive or
+    // spread by noise.
+    let whole = opts.sample_range.is_none_or(|r| r == (0, view.film.spp));
+    let adaptive = view.film.adaptive.filter(|_| whole);
+    let work = Work::new(
         scene,
         view,
         opts,
-        rect: PixelRect::full(w, h),
+        PixelRect::full(w, h),
         cancel,
         on_tile,
-        // A part of the samples is added to other parts' exact sums, which
-        // needs fixed counts: only a render of all of them is adaptive.
-        adaptive: view
-            .film
-            .adaptive
-            .filter(|_| opts.sample_range.is_none_or(|r| r == (0, view.film.spp))),
+        adaptive,
+    );
+    // A stratified pixel's strata are laid out for exactly `spp` samples.
+    let plan = match view.film.allocation {
+        Allocation::ByNoise
+            if whole && adaptive.is_none() && view.film.sampler != SamplerKind::Stratified =>
+        {
+            Plan::new(view.film.spp)
+        }
+        _ => None,
     };
-    let (pixels, stats) = work.run(Rgb::ZERO, |s, n| s.mean(n));
+    let (pixels, stats) = match plan {
+        Some(plan) => work.spread(plan),
+        None => work.run(Rgb::ZERO, |p| p.sum.mean(p.taken)),
+    };
     (
         Image {
             width: w,
@@ -161,17 +173,9 @@ pub fn render_sums(
     on_tile: &(dyn Fn(&TileDone) + Sync),
 ) -> (SampleSums, RenderStats) {
     debug_assert!(PixelRect::full(view.film.width, view.film.height).contains(&rect));
-    let work = Work {
-        scene,
-        view,
-        opts,
-        rect,
-        cancel,
-        on_tile,
-        // The sums of pieces and passes must add up: every sample is taken.
-        adaptive: None,
-    };
-    let (sums, stats) = work.run(ExactSum::ZERO, |s, _| s);
+    // The sums of pieces and passes must add up: every sample is taken.
+    let work = Work::new(scene, view, opts, rect, cancel, on_tile, None);
+    let (sums, stats) = work.run(ExactSum::ZERO, |p| p.sum);
     (SampleSums { rect, sums }, stats)
 }
 
@@ -192,11 +196,12 @@ fn tiles_of(rect: PixelRect) -> Vec<PixelRect> {
         .collect()
 }
 
-fn progress_bar(show: bool, tiles: usize) -> indicatif::ProgressBar {
+fn progress_bar(show: bool, tiles: usize, done: usize) -> indicatif::ProgressBar {
     if !show {
         return indicatif::ProgressBar::hidden();
     }
     let bar = indicatif::ProgressBar::new(tiles as u64);
+    bar.set_position(done as u64);
     if let Ok(style) =
         indicatif::ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}% eta {eta}")
     {
@@ -215,9 +220,133 @@ struct Work<'a> {
     on_tile: &'a (dyn Fn(&TileDone) + Sync),
     /// Adaptive sampling's stopping rule, if this render uses it.
     adaptive: Option<Adaptive>,
+    /// Which samples each pixel takes.
+    samples: Samples<'a>,
+    /// The sample count the pixel samplers are made for (the Sobol index's
+    /// bits): the most any pixel takes.
+    sampler_spp: u32,
+    /// Whether to sum each pixel's squared samples (a spread render's first pass).
+    squares: bool,
+    /// This is pass `.0` of `.1`, for progress reports.
+    pass: (usize, usize),
 }
 
-impl Work<'_> {
+/// Which samples each pixel of a [`Work`] takes.
+#[derive(Clone, Copy, Debug)]
+enum Samples<'a> {
+    /// Samples `first..first + count` of every pixel.
+    Every { first: u32, count: u32 },
+    /// Pixel `i` (row-major over the rect) takes samples `from..upto[i]`.
+    UpTo { from: u32, upto: &'a [u32] },
+}
+
+/// One pixel's samples, summed, for [`Work::run`]'s `finish`.
+struct PixelSums {
+    x: u32,
+    y: u32,
+    sum: ExactSum,
+    taken: u32,
+    /// Per channel, the sum of the squared samples (when `Work::squares`).
+    squares: [f64; 3],
+}
+
+impl PixelSums {
+    /// The variance of one sample, summed over the channels (0 below two samples).
+    fn variance(&self) -> f32 {
+        if self.taken < 2 {
+            return 0.0;
+        }
+        let n = self.taken as f64;
+        let mean = self.sum.mean(self.taken).to_array();
+        let v: f64 = (0..3)
+            .map(|c| (self.squares[c] - n * mean[c] as f64 * mean[c] as f64).max(0.0))
+            .sum();
+        (v / (n - 1.0)) as f32
+    }
+}
+
+impl<'a> Work<'a> {
+    /// A render of the samples `opts.sample_range` (all by default) of the pixels in `rect`.
+    fn new(
+        scene: &'a Scene,
+        view: &'a View,
+        opts: &'a RenderOptions,
+        rect: PixelRect,
+        cancel: &'a AtomicBool,
+        on_tile: &'a (dyn Fn(&TileDone) + Sync),
+        adaptive: Option<Adaptive>,
+    ) -> Self {
+        let (first, count) = opts.sample_range.unwrap_or((0, view.film.spp));
+        Work {
+            scene,
+            view,
+            opts,
+            rect,
+            cancel,
+            on_tile,
+            adaptive,
+            samples: Samples::Every { first, count },
+            sampler_spp: view.film.spp,
+            squares: false,
+            pass: (0, 1),
+        }
+    }
+
+    /// A render spread by noise (`crate::film::allocation`): `plan.first`
+    /// samples everywhere, then each pixel up to its count; the pixels' means.
+    fn spread(mut self, plan: Plan) -> (Vec<Rgb>, RenderStats) {
+        self.sampler_spp = plan.cap;
+        self.samples = Samples::Every {
+            first: 0,
+            count: plan.first,
+        };
+        self.squares = true;
+        self.pass = (0, 2);
+        let (first, s1) = self.run(([0.0f32; 3], 0.0f32), |p| {
+            (p.sum.mean(p.taken).to_array(), p.variance())
+        });
+        if s1.cancelled {
+            return (first.iter().map(|f| Rgb::from_array(f.0)).collect(), s1);
+        }
+        let variance: Vec<f32> = first.iter().map(|f| f.1).collect();
+        let (w, h) = (self.rect.width() as usize, self.rect.height() as usize);
+        let upto = plan.counts(w, h, &variance);
+        drop(variance);
+        let second = Work {
+            samples: Samples::UpTo {
+                from: plan.first,
+                upto: &upto,
+            },
+            squares: false,
+            pass: (1, 2),
+            ..self
+        };
+        let rect = second.rect;
+        let n1 = plan.first as f32;
+        // A weighted mean of the two passes' means; skipped tiles (on
+        // cancel) keep the first pass's.
+        let (pixels, s2) = second.run(Rgb::NAN, |p| {
+            let m1 = Rgb::from_array(first[rect.index(p.x, p.y)].0);
+            if p.taken == 0 {
+                return m1;
+            }
+            let n2 = p.taken as f32;
+            (m1 * n1 + p.sum.mean(p.taken) * n2) / (n1 + n2)
+        });
+        let pixels = pixels
+            .into_iter()
+            .zip(&first)
+            .map(|(p, f)| if p.is_nan() { Rgb::from_array(f.0) } else { p })
+            .collect();
+        let stats = RenderStats {
+            elapsed: s1.elapsed + s2.elapsed,
+            samples: s1.samples + s2.samples,
+            rays: s1.rays + s2.rays,
+            cancelled: s2.cancelled,
+        };
+        (pixels, stats)
+    }
+
     /// Renders every tile on the options' thread pool, turns each pixel's
     /// exact sum and sample count into a `T` as its tile finishes (`empty`
     /// for pixels of tiles skipped on cancel), and returns them row-major
@@ -225,7 +354,7 @@ impl Work<'_> {
     fn run<T: Copy + Send>(
         &self,
         empty: T,
-        finish: impl Fn(ExactSum, u32) -> T + Sync,
+        finish: impl Fn(&PixelSums) -> T + Sync,
     ) -> (Vec<T>, RenderStats) {
         let start = Instant::now();
         let pool = rayon::ThreadPoolBuilder::new()
@@ -260,25 +389,32 @@ impl Work<'_> {
     fn tiles<T: Send>(
         &self,
         start: Instant,
-        finish: &(impl Fn(ExactSum, u32) -> T + Sync),
+        finish: &(impl Fn(&PixelSums) -> T + Sync),
     ) -> (Vec<(PixelRect, Vec<T>)>, Counters) {
         let film = self.view.film;
         let tiles = tiles_of(self.rect);
-        let bar = progress_bar(self.opts.progress, tiles.len());
-        let finished = AtomicUsize::new(0);
-        let (s0, spp) = self.opts.sample_range.unwrap_or((0, film.spp));
+        let (pass, passes) = self.pass;
+        let bar = progress_bar(self.opts.progress, passes * tiles.len(), pass * tiles.len());
+        let finished = AtomicUsize::new(pass * tiles.len());
         let rendered: Vec<(PixelRect, Vec<T>, Counters)> = tiles
             .par_iter()
             .map(|&tile| {
                 let mut counters = Counters::default();
                 let mut px = Vec::with_capacity(tile.area() as usize);
-                let mut pixel = PixelSampler::new(film.sampler, film.spp, film.seed);
+                let mut pixel = PixelSampler::new(film.sampler, self.sampler_spp, film.seed);
                 if self.cancel.load(Ordering::Relaxed) {
                     return (tile, px, counters);
                 }
                 for y in tile.y0..tile.y1 {
                     for x in tile.x0..tile.x1 {
+                        let (s0, spp) = match self.samples {
+                            Samples::Every { first, count } => (first, count),
+                            Samples::UpTo { from, upto } => {
+                                (from, upto[self.rect.index(x, y)].saturating_sub(from))
+                            }
+                        };
                         let mut sum = ExactSum::ZERO;
+                        let mut squares = [0.0f64; 3];
                         let mut noise = PixelNoise::default();
                         let mut taken = spp;
                         pixel.set_pixel(x, y, s0..s0 + spp);
@@ -297,6 +433,11 @@ impl Work<'_> {
                                 Rgb::ZERO
                             };
                             sum.add_sample(c);
+                            if self.squares {
+                                for (q, v) in squares.iter_mut().zip(c.to_array()) {
+                                    *q += v as f64 * v as f64;
+                                }
+                            }
                             if let Some(a) = &self.adaptive {
                                 noise.add(c);
                                 if a.converged(&noise) {
@@ -306,14 +447,20 @@ impl Work<'_> {
                             }
                         }
                         counters.samples += taken as u64;
-                        px.push(finish(sum, taken));
+                        px.push(finish(&PixelSums {
+                            x,
+                            y,
+                            sum,
+                            taken,
+                            squares,
+                        }));
                     }
                 }
                 bar.inc(1);
                 (self.on_tile)(&TileDone {
                     rect: tile,
                     done: finished.fetch_add(1, Ordering::Relaxed) + 1,
-                    total: tiles.len(),
+                    total: passes * tiles.len(),
                     elapsed: start.elapsed(),
                 });
                 (tile, px, counters)

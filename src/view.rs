@@ -31,6 +31,21 @@ pub struct Film {
     /// Adaptive sampling (`film.noise_threshold` above 0): when a pixel
     /// may stop before `spp` samples.
     pub adaptive: Option<Adaptive>,
+    /// How the samples are spread over the pixels (`film.allocation`).
+    pub allocation: Allocation,
+}
+
+/// How a render's `spp × pixels` samples are spread over its pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Allocation {
+    /// `spp` in every pixel.
+    Even,
+    /// Half everywhere, the rest by the noise the first half saw around
+    /// each pixel (`crate::film::allocation`); renders
+    /// of fewer than 32 spp, adaptive or `Stratified` ones and pieces
+    /// spread evenly.
+    #[default]
+    ByNoise,
 }
 
 /// Camera, film, integrator and output of one render.

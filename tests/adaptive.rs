@@ -81,7 +81,7 @@ fn noisy_pixels_take_more_samples_than_smooth_ones_within_spp() {
     // Same image on average as the full render: the stopping rule changes
     // which samples are taken, not what they estimate.
     let full = load_text(&box_scene(&format!(
-        "width: {w}, height: {h}, spp: {spp}, sampler: Independent"
+        "width: {w}, height: {h}, spp: {spp}, sampler: Independent, allocation: Even"
     )));
     let (reference, sf) = render(&full.scene, &full.view, &opts(2));
     assert_eq!(sf.samples, w * h * spp);
@@ -97,7 +97,7 @@ fn a_threshold_nothing_meets_gives_the_plain_render_exactly() {
     // noisy (a pixel of constant value, such as the light or the black
     // outside, rightly stops at any threshold).
     let camera = "eye: (-0.5, 0.2, 0.5), target: (-0.5, -1, 0.3), fov_y_degrees: 30";
-    let base = "width: 16, height: 16, spp: 40, sampler: Sobol";
+    let base = "width: 16, height: 16, spp: 40, sampler: Sobol, allocation: Even";
     let plain = load_text(&box_scene_from(camera, base));
     let strict = load_text(&box_scene_from(
         camera,

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Issue 18's table in one run: Mitsuba 3 (`llvm_ad_rgb`, 256 spp) and ronray
-# (independent sampler, 256 spp) on each reference scene, alternating, then
+# (independent sampler, every pixel 256 spp: `allocation: Even`) on each
+# reference scene, alternating, then
 # `ronray bench --scenes` for ronray's error per sample count, then the
 # summary: per-sample time ratio, Mitsuba's own 256-spp error off the light
 # pixels (its renders of this run against the reference, `ronray diff
-# --mask`), the spp at which ronray's default sampler (Sobol) reaches it
+# --mask`), the spp at which ronray's defaults (Sobol, samples spread by
+# noise) reach it
 # (log-log interpolation between the bench's sample counts) and that
 # render's time over Mitsuba's. Only ratios within one run mean anything on
 # a shared machine.
@@ -50,7 +52,7 @@ for round in $(seq "$rounds"); do
         name="${s%%:*}" twin="${s#*:}"
         mi=$("$py" "$run" "$refs/$name.json" --variant llvm_ad_rgb --spp 256 --out "$out/mi.exr" 2>/dev/null | grep render_s || echo "failed")
         rr=$("$ronray" render "$twin" --size 256x256 --spp 256 --threads "$threads" \
-            --set film.sampler=Independent --progress none -o "$out/rr.exr" 2>&1 | grep -o 'in [0-9.]* s' || echo "failed")
+            --set film.sampler=Independent --set film.allocation=Even --progress none -o "$out/rr.exr" 2>&1 | grep -o 'in [0-9.]* s' || echo "failed")
         echo "$name | mitsuba llvm 256 spp $mi | ronray independent 256 spp $rr"
         mask=()
         [ -f "$refs/${name}_emitter_mask.png" ] && mask=(--mask "$refs/${name}_emitter_mask.png")

@@ -125,6 +125,23 @@ pub struct FilmDesc {
     #[serde(default = "default_min_spp")]
     #[schemars(range(min = 2, max = 1048576))]
     pub min_spp: u32,
+    /// How the `spp × pixels` samples are spread: `ByNoise` (default) takes
+    /// half of them in every pixel, then the rest where that first pass
+    /// saw noise (same time, lower error); `Even` takes `spp` in every pixel.
+    /// Renders below 32 spp, adaptive or `Stratified` ones and farm pieces
+    /// spread evenly.
+    #[serde(default)]
+    pub allocation: AllocationDesc,
+}
+
+/// `film.allocation`: how samples are spread over the pixels.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq, Eq)]
+pub enum AllocationDesc {
+    /// `spp` samples in every pixel.
+    Even,
+    /// Half everywhere, the rest by the noise around each pixel.
+    #[default]
+    ByNoise,
 }
 
 /// `film.min_spp` when the scene leaves it out.
@@ -177,6 +194,7 @@ impl Default for FilmDesc {
             denoise: false,
             noise_threshold: 0.0,
             min_spp: DEFAULT_MIN_SPP,
+            allocation: AllocationDesc::default(),
         }
     }
 }

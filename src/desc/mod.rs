@@ -33,7 +33,9 @@ mod sdf;
 mod transform;
 
 pub use aov::AovDesc;
-pub use camera::{CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc, SamplerDesc};
+pub use camera::{
+    AllocationDesc, CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc, SamplerDesc,
+};
 pub use color::ColorDesc;
 pub use display::{FilterDesc, TonemapDesc};
 pub use emission::EmissionDesc;

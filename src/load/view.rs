@@ -8,14 +8,14 @@ use super::validate::{
 use crate::aov::Aov;
 use crate::camera::{Camera, Projection};
 use crate::desc::{
-    AovDesc, CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc, SceneDesc,
-    TonemapDesc,
+    AllocationDesc, AovDesc, CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc,
+    SceneDesc, TonemapDesc,
 };
 use crate::film::{Adaptive, Filter, FilterKind};
 use crate::imageio::{Display, Tonemap};
 use crate::integrators::{Direct, Integrator, Path as PathTracer, Whitted};
 use crate::sampler::SamplerKind;
-use crate::view::{Film, View};
+use crate::view::{Allocation, Film, View};
 use glam::Vec3;
 use std::path::Path;
 
@@ -380,6 +380,10 @@ pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
                 min_spp: f.min_spp,
                 white: (-f.exposure).exp2(),
             }),
+            allocation: match f.allocation {
+                AllocationDesc::Even => Allocation::Even,
+                AllocationDesc::ByNoise => Allocation::ByNoise,
+            },
         },
         filter,
         display,
