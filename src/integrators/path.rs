@@ -105,14 +105,25 @@ impl Path {
             let frame = Frame::from_normal(hit.ns);
             let wo = frame.to_local(-ray.d);
 
+            // The numbers are drawn in a fixed order (light pick, light
+            // point, BSDF lobe and direction), but the BSDF is sampled
+            // before the shadow ray is traced: its direction does not depend
+            // on the light, so its latency-bound chain (a division, a sine
+            // polynomial, a square root) runs while the shadow ray
+            // traverses instead of after it. Same numbers, same image.
+            let delta = bsdf.is_delta();
+            let (u_pick, u_light) = if delta {
+                (0.0, glam::Vec2::ZERO)
+            } else {
+                (sampler.next_f32(), sampler.next_vec2())
+            };
+            let bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2());
+
             // Next-event estimation: one light, picked as the scene says (by
             // the light tree unless told otherwise).
-            if !bsdf.is_delta()
-                && let Some((li, pmf)) = picker.pick(hit.p, hit.ns, sampler.next_f32())
-            {
+            if !delta && let Some((li, pmf)) = picker.pick(hit.p, hit.ns, u_pick) {
                 let light = &scene.lights[li];
-                let u = sampler.next_vec2();
-                if let Some(ls) = light.sample(hit.p, u, &scene.geometry) {
+                if let Some(ls) = light.sample(hit.p, u_light, &scene.geometry) {
                     let wi = frame.to_local(ls.wi);
                     let f = bsdf.eval(wo, wi) * wi.z.abs();
                     if f != Rgb::ZERO {
@@ -129,13 +140,10 @@ impl Path {
                         }
                     }
                 }
-            } else if !bsdf.is_delta() {
-                // No lights: keep the sample stream aligned anyway.
-                let _ = sampler.next_vec2();
             }
 
-            // Continue the path by sampling the BSDF.
-            let Some(bs) = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2()) else {
+            // Continue the path along the BSDF sample.
+            let Some(bs) = bs else {
                 break;
             };
             beta *= bs.weight;
