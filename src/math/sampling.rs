@@ -6,20 +6,24 @@ use glam::{Vec2, Vec3A};
 use std::f32::consts::{FRAC_1_PI, PI};
 
 /// Shirley–Chiu concentric map: preserves stratification better than polar.
+///
+/// Written without branches on the point: which wedge a uniform point falls
+/// in is a coin toss, so a branch there mispredicts half the time, on the
+/// chain from one hit to the next ray (~1.5% of a diffuse render's time,
+/// within the machine's noise; the points are bit for bit the same).
+#[inline]
 pub fn concentric_disk(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
-    if o.x == 0.0 && o.y == 0.0 {
-        return Vec2::ZERO;
-    }
-    // θ = π/4 · a with |a| ≤ 1 in the first wedge, π/2 − π/4 · a in the
-    // second, whose cosine and sine are the first wedge's swapped.
-    if o.x.abs() > o.y.abs() {
-        let (s, c) = super::trig::sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.y / o.x));
-        o.x * Vec2::new(c, s)
-    } else {
-        let (s, c) = super::trig::sin_cos_quarter(std::f32::consts::FRAC_PI_4 * (o.x / o.y));
-        o.y * Vec2::new(s, c)
-    }
+    // θ = π/4 · a with |a| ≤ 1 in the first wedge (|x| > |y|; a = y/x,
+    // radius x), π/2 − π/4 · a in the second (a = x/y, radius y), whose
+    // cosine and sine are the first wedge's swapped.
+    let first = o.x.abs() > o.y.abs();
+    let (num, r) = if first { (o.y, o.x) } else { (o.x, o.y) };
+    // r = 0 only at the centre (o = 0), which maps to itself.
+    let a = if r == 0.0 { 0.0 } else { num / r };
+    let (s, c) = super::trig::sin_cos_quarter(std::f32::consts::FRAC_PI_4 * a);
+    let (x, y) = if first { (c, s) } else { (s, c) };
+    r * Vec2::new(x, y)
 }
 
 /// Malley's method: project the disk onto the hemisphere (+z).
