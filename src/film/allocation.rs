@@ -138,9 +138,11 @@ fn neighbour_variance(width: usize, height: usize, variance: &[f32]) -> Vec<f32>
         let a = variance[y * width + x];
         if a.is_finite() && a > 0.0 { a } else { 0.0 }
     };
-    let mut out = Vec::with_capacity(width * height);
-    for y in 0..height {
-        for x in 0..width {
+    let mut out = vec![0.0f32; width * height];
+    // Rows in parallel: each value reads only the input, so the result does
+    // not depend on the split.
+    out.par_chunks_mut(width.max(1)).enumerate().for_each(|(y, row)| {
+        for (x, o) in row.iter_mut().enumerate() {
             let (mut sum, mut k) = (0.0f32, 0u32);
             for yy in y.saturating_sub(RADIUS)..(y + RADIUS + 1).min(height) {
                 for xx in x.saturating_sub(RADIUS)..(x + RADIUS + 1).min(width) {
@@ -150,9 +152,9 @@ fn neighbour_variance(width: usize, height: usize, variance: &[f32]) -> Vec<f32>
                     }
                 }
             }
-            out.push(if k > 0 { sum / k as f32 } else { v(x, y) });
+            *o = if k > 0 { sum / k as f32 } else { v(x, y) };
         }
-    }
+    });
     out
 }
 
