@@ -6,8 +6,10 @@
 //! matter). The image is therefore bit-identical whatever the thread count or
 //! tile scheduling, and any rectangle of pixels ([`render_sums`]) or range of
 //! samples rendered on its own holds exactly what the whole render holds
-//! there: pieces rendered on many machines reassemble bit for bit
-//! (`crate::farm`).
+//! there when every pixel takes every sample (`allocation: Even`): pieces
+//! rendered on many machines reassemble bit for bit (`crate::farm`). A
+//! whole-frame render spread by noise (`crate::film::allocation`) renders
+//! in two passes, the second's counts decided from the first's frame.
 
 pub use crate::imageio::SampleSums;
 
@@ -295,6 +297,7 @@ impl<'a> Work<'a> {
     /// A render spread by noise (`crate::film::allocation`): `plan.first`
     /// samples everywhere, then each pixel up to its count; the pixels' means.
     fn spread(mut self, plan: Plan) -> (Vec<Rgb>, RenderStats) {
+        let start = Instant::now();
         self.sampler_spp = plan.cap;
         self.samples = Samples::Every {
             first: 0,
@@ -339,7 +342,8 @@ impl<'a> Work<'a> {
             .map(|(p, f)| if p.is_nan() { Rgb::from_array(f.0) } else { p })
             .collect();
         let stats = RenderStats {
-            elapsed: s1.elapsed + s2.elapsed,
+            // Both passes and the allocation between them.
+            elapsed: start.elapsed(),
             samples: s1.samples + s2.samples,
             rays: s1.rays + s2.rays,
             cancelled: s2.cancelled,
