@@ -18,17 +18,18 @@
 //! pass and 5 × 5 neighbours it was better everywhere, and σᵢ^½ better
 //! still on the mirror-and-glass box (3%) and the emissive shapes (5%).
 //! σᵢ^½ with a half first pass, a 5 × 5 neighbourhood and a cap of
-//! 8 × `spp`, against even spreading: 5.7% lower error on the diffuse box, 5.8% on the
-//! mirror-and-glass box, 6.3% through the thin lens, 7.6% on the emissive
-//! shapes and 43% on the spheres under the sky (where the samples go to the
-//! glass sphere's longer paths: the render takes ~25% longer).
+//! 8 × `spp`, against even spreading: 5.7% lower error on the diffuse box,
+//! 5.8% on the mirror-and-glass box, 6.3% through the thin lens, 7.6% on
+//! the emissive shapes and 43% on the spheres under the sky (where the
+//! samples go to the glass sphere's longer paths: the render takes ~25%
+//! longer).
 //!
 //! A pixel's own samples never decide its count: σᵢ is the root mean
 //! variance of its (up to) 24 neighbours in a 5 × 5 window, which share its
 //! noise (caustics, penumbrae and glossy highlights span several pixels)
-//! but not its random numbers. The count is therefore independent of the samples it
-//! averages, and every pixel stays an unbiased estimate — unlike a stopping
-//! rule on its own samples (`noise_threshold`). The counts depend only on
+//! but not its random numbers. The count is therefore independent of the
+//! samples it averages, and every pixel stays an unbiased estimate — unlike
+//! a stopping rule on its own samples (`noise_threshold`). The counts depend only on
 //! the first pass's per-pixel sums, taken in a fixed order, so the image is
 //! the same on any number of threads.
 
@@ -77,18 +78,18 @@ impl Plan {
     pub fn counts(&self, width: usize, height: usize, variance: &[f32]) -> Vec<u32> {
         debug_assert_eq!(variance.len(), width * height);
         // The weight of each pixel: σ^½ of its neighbourhood.
-        let sigma: Vec<f32> = neighbour_variance(width, height, variance)
+        let weight: Vec<f32> = neighbour_variance(width, height, variance)
             .into_iter()
             .map(|v| v.sqrt().sqrt())
             .collect();
-        let n = sigma.len();
+        let n = weight.len();
         let budget = self.spp as f64 * n as f64;
         let (first, cap) = (self.first as f64, self.cap as f64);
         let round = |t: f64| {
             let k = ((t.clamp(first, cap) - first) / STEP as f64).round() as u32;
             self.first.saturating_add(k.saturating_mul(STEP)).min(self.cap)
         };
-        let noisy = sigma.iter().filter(|&&s| s > 0.0).count();
+        let noisy = weight.iter().filter(|&&s| s > 0.0).count();
         if noisy == 0 {
             // Nothing to go by (a black or noiseless image): spread evenly.
             return vec![self.spp; n];
@@ -97,26 +98,26 @@ impl Plan {
             // The noisy pixels cannot take it all: they get `cap`, the
             // quiet ones share what is left evenly.
             let rest = round((budget - noisy as f64 * cap) / (n - noisy).max(1) as f64);
-            return sigma
+            return weight
                 .iter()
                 .map(|&s| if s > 0.0 { self.cap } else { rest })
                 .collect();
         }
-        // Σ clamp(c·σ, first, cap) rises with c from n·first (c·σmax ≤ first)
-        // to above the budget (c·σmin ≥ cap): bisect log c between the two.
+        // Σ clamp(c·w, first, cap) rises with c from n·first (c·w_max ≤ first)
+        // to above the budget (c·w_min ≥ cap): bisect log c between the two.
         // The sum runs over fixed chunks in a fixed order, so c — and every
         // count — is the same on any number of threads.
         let total = |c: f64| -> f64 {
-            let parts: Vec<f64> = sigma
+            let parts: Vec<f64> = weight
                 .par_chunks(1 << 16)
                 .map(|ch| ch.iter().map(|&s| (c * s as f64).clamp(first, cap)).sum::<f64>())
                 .collect();
             parts.iter().sum()
         };
-        let positive = sigma.iter().copied().filter(|&s| s > 0.0);
-        let max_sigma = positive.clone().fold(0.0f32, f32::max) as f64;
-        let min_sigma = positive.fold(f32::INFINITY, f32::min) as f64;
-        let (mut lo, mut hi) = ((first / max_sigma).ln(), (cap / min_sigma).ln());
+        let positive = weight.iter().copied().filter(|&s| s > 0.0);
+        let w_max = positive.clone().fold(0.0f32, f32::max) as f64;
+        let w_min = positive.fold(f32::INFINITY, f32::min) as f64;
+        let (mut lo, mut hi) = ((first / w_max).ln(), (cap / w_min).ln());
         for _ in 0..48 {
             let mid = 0.5 * (lo + hi);
             if total(mid.exp()) > budget {
@@ -126,24 +127,25 @@ impl Plan {
             }
         }
         let c = (0.5 * (lo + hi)).exp();
-        sigma.iter().map(|&s| round(c * s as f64)).collect()
+        weight.iter().map(|&s| round(c * s as f64)).collect()
     }
 }
 
 /// Per pixel, the mean of its neighbours' variances (the 5 × 5 window
-/// without the centre; fewer at the border). Non-finite or negative
-/// variances count as 0.
+/// without the centre; fewer at the border), finite: non-finite or negative
+/// variances count as 0, and the mean (summed in f64) stops at `f32::MAX`,
+/// so the bisection's bounds stay finite whatever radiance a scene holds.
 fn neighbour_variance(width: usize, height: usize, variance: &[f32]) -> Vec<f32> {
     let v = |x: usize, y: usize| {
         let a = variance[y * width + x];
-        if a.is_finite() && a > 0.0 { a } else { 0.0 }
+        if a.is_finite() && a > 0.0 { a as f64 } else { 0.0 }
     };
     let mut out = vec![0.0f32; width * height];
     // Rows in parallel: each value reads only the input, so the result does
     // not depend on the split.
     out.par_chunks_mut(width.max(1)).enumerate().for_each(|(y, row)| {
         for (x, o) in row.iter_mut().enumerate() {
-            let (mut sum, mut k) = (0.0f32, 0u32);
+            let (mut sum, mut k) = (0.0f64, 0u32);
             for yy in y.saturating_sub(RADIUS)..(y + RADIUS + 1).min(height) {
                 for xx in x.saturating_sub(RADIUS)..(x + RADIUS + 1).min(width) {
                     if (xx, yy) != (x, y) {
@@ -152,7 +154,8 @@ fn neighbour_variance(width: usize, height: usize, variance: &[f32]) -> Vec<f32>
                     }
                 }
             }
-            *o = if k > 0 { sum / k as f32 } else { v(x, y) };
+            let mean = if k > 0 { sum / k as f64 } else { v(x, y) };
+            *o = mean.min(f32::MAX as f64) as f32;
         }
     });
     out
@@ -211,6 +214,25 @@ mod tests {
         assert!(after[5 * w + 5] <= before[5 * w + 5]);
         assert!(after[5 * w + 6] > before[5 * w + 6]);
         assert!(after[5 * w + 7] > before[5 * w + 7]);
+    }
+
+    #[test]
+    fn huge_and_broken_variances_keep_the_counts_in_range() {
+        let (w, h) = (16, 16);
+        let var: Vec<f32> = (0..w * h)
+            .map(|i| match i % 5 {
+                0 => f32::MAX,
+                1 => f32::INFINITY,
+                2 => f32::NAN,
+                3 => -1.0,
+                _ => 1e-30,
+            })
+            .collect();
+        let p = Plan::new(64).unwrap();
+        let n = p.counts(w, h, &var);
+        assert!(n.iter().all(|&k| (p.first..=p.cap).contains(&k)));
+        let mean = n.iter().map(|&k| k as f64).sum::<f64>() / n.len() as f64;
+        assert!((mean - 64.0).abs() < 4.0, "mean {mean}");
     }
 
     #[test]
