@@ -121,16 +121,7 @@ pub fn render_image(
         on_tile,
         adaptive,
     );
-    // A stratified pixel's strata are laid out for exactly `spp` samples.
-    let plan = match view.film.allocation {
-        Allocation::ByNoise
-            if whole && adaptive.is_none() && view.film.sampler != SamplerKind::Stratified =>
-        {
-            Plan::new(view.film.spp)
-        }
-        _ => None,
-    };
-    let (pixels, stats) = match plan {
+    let (pixels, stats) = match spread_plan(view, opts) {
         Some(plan) => work.spread(plan),
         None => work.run(Rgb::ZERO, |p| p.sum.mean(p.taken)),
     };
@@ -142,6 +133,23 @@ pub fn render_image(
         },
         stats,
     )
+}
+
+/// The plan of [`render_image`]'s two passes when it spreads the samples by
+/// noise (`film.allocation: ByNoise`), `None` when every pixel takes `spp`:
+/// below 32 spp, with adaptive sampling, with the `Stratified` sampler
+/// (whose strata are laid out for exactly `spp`), or for part of the
+/// samples.
+pub fn spread_plan(view: &View, opts: &RenderOptions) -> Option<Plan> {
+    let whole = opts.sample_range.is_none_or(|r| r == (0, view.film.spp));
+    match view.film.allocation {
+        Allocation::ByNoise
+            if whole && view.film.adaptive.is_none() && view.film.sampler != SamplerKind::Stratified =>
+        {
+            Plan::new(view.film.spp)
+        }
+        _ => None,
+    }
 }
 
 /// Progressive refinement without rounding drift: `sums` holds per-pixel

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{load_text, report};
+use common::{load_text, report, ronray, root};
 use ronray::math::Rgb;
 use ronray::render::{RenderOptions, render, render_sums};
 use std::sync::atomic::AtomicBool;
@@ -130,4 +130,34 @@ fn pieces_small_and_stratified_renders_spread_evenly() {
     let strata = load_text(&scene("width: 8, height: 8, spp: 64, sampler: Stratified"));
     let (_, stats) = render(&strata.scene, &strata.view, &threads(2));
     assert_eq!(stats.samples, 8 * 8 * 64);
+}
+
+#[test]
+fn the_summary_line_says_how_the_samples_were_spread() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let scene = root().join("scenes/cornell.ron");
+    let run = |spp: &str| {
+        let out = dir.path().join(format!("c{spp}.png"));
+        let o = ronray(&[
+            "render",
+            scene.to_str().expect("utf-8 path"),
+            "--size",
+            "16x16",
+            "--spp",
+            spp,
+            "--progress",
+            "none",
+            "-o",
+            out.to_str().expect("utf-8 path"),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let spread = run("32");
+    assert!(
+        spread.contains("32 spp spread by noise:") && spread.contains("on average"),
+        "{spread}"
+    );
+    let even = run("16");
+    assert!(even.contains("(16×16, 16 spp)"), "{even}");
 }

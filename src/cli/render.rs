@@ -274,6 +274,15 @@ pub(super) fn cmd_render(
             stats.samples as f64 / pixels as f64,
             f.spp
         )
+    } else if crate::render::spread_plan(&loaded.view, &opts).is_some() {
+        let pixels = (u64::from(f.width) * u64::from(f.height)).max(1);
+        format!(
+            "{}×{}, {} spp spread by noise: {:.1} on average",
+            f.width,
+            f.height,
+            f.spp,
+            stats.samples as f64 / pixels as f64
+        )
     } else {
         format!("{}×{}, {} spp", f.width, f.height, f.spp)
     };
