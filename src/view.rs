@@ -41,9 +41,8 @@ pub enum Allocation {
     /// `spp` in every pixel.
     Even,
     /// Half everywhere, the rest by the noise the first half saw around
-    /// each pixel (`crate::film::allocation`); renders
-    /// of fewer than 32 spp, adaptive or `Stratified` ones and pieces
-    /// spread evenly.
+    /// each pixel (`crate::film::allocation`); renders of fewer than 32
+    /// spp, adaptive or `Stratified` ones and pieces spread evenly.
     #[default]
     ByNoise,
 }

@@ -72,9 +72,9 @@ impl Plan {
 
     /// Each pixel's sample count (row-major, `width × height`), from the
     /// variance of one sample of each pixel in the first pass (`variance`,
-    /// summed over the colour channels). Counts are in `first..=cap`,
-    /// multiples of 8 unless equal to `cap`, and add up to about `spp` per
-    /// pixel; a noiseless first pass gives every pixel `spp`.
+    /// summed over the colour channels). Counts are multiples of 8 in
+    /// `first..=cap` and add up to about `spp` per pixel; a noiseless first
+    /// pass gives every pixel `spp`.
     pub fn counts(&self, width: usize, height: usize, variance: &[f32]) -> Vec<u32> {
         debug_assert_eq!(variance.len(), width * height);
         // The weight of each pixel: σ^½ of its neighbourhood.
