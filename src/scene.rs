@@ -8,7 +8,7 @@ use crate::accel::WideBvh;
 use crate::geometry::MeshHit;
 use crate::geometry::triangle::WatertightRay;
 use crate::geometry::{Geometry, Hit, Shape};
-use crate::lights::{EnvironmentLight, Light, LightPicker};
+use crate::lights::{CausticEmitters, EnvironmentLight, Light, LightPicker};
 use crate::materials::{Material, Texture};
 use crate::math::Ray;
 use glam::Vec2;
@@ -40,6 +40,9 @@ pub struct Scene {
     pub geometry: Geometry,
     /// The top-level BVH over the bounded shapes.
     pub bvh: WideBvh,
+    /// The lights caustic connections emit from, when the scene has
+    /// perfect-specular surfaces for them to matter.
+    pub caustics: Option<CausticEmitters>,
 }
 
 /// What the nearest hit so far needs for its hit record beyond `t`.

@@ -239,7 +239,29 @@ pub enum IntegratorDesc {
         /// How the light for next-event estimation is chosen.
         #[serde(default)]
         light_selection: LightSelectionDesc,
+        /// How caustics seen directly (light focused onto a surface by perfect
+        /// mirrors and smooth glass) are found (default `LightTracing`).
+        #[serde(default)]
+        caustics: CausticsDesc,
     },
+}
+
+/// How the path tracer finds caustics seen directly: light reaching a
+/// diffuse or glossy surface the camera sees through perfect mirrors and
+/// smooth glass.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq, Eq)]
+pub enum CausticsDesc {
+    /// Also from the light's side: a render of the whole frame traces paths
+    /// from its rectangle and sphere lights toward its mirrors and glass and
+    /// joins the surfaces they reach to the camera, for the caustics the
+    /// camera sees directly. Far less noise there, the same image in
+    /// expectation. Scenes without a perfect mirror or smooth glass surface,
+    /// pinhole-less cameras, filters other than `Box`, farm pieces and watch
+    /// passes render exactly as with `PathOnly`.
+    #[default]
+    LightTracing,
+    /// Only by BSDF sampling from the camera's side (Mitsuba's `path`).
+    PathOnly,
 }
 
 /// How next-event estimation picks the one light it samples at each path

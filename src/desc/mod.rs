@@ -34,7 +34,8 @@ mod transform;
 
 pub use aov::AovDesc;
 pub use camera::{
-    AllocationDesc, CameraDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc, SamplerDesc,
+    AllocationDesc, CameraDesc, CausticsDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc,
+    SamplerDesc,
 };
 pub use color::ColorDesc;
 pub use display::{FilterDesc, TonemapDesc};

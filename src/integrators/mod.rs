@@ -1,6 +1,7 @@
 //! Light-transport estimators. Each returns the radiance (W/(m²·sr)) arriving
 //! at the camera along one ray.
 
+pub mod caustic;
 pub mod direct;
 pub mod path;
 pub mod whitted;
@@ -84,7 +85,7 @@ pub fn spawn(hit: &Hit, w: Vec3A) -> Ray {
 /// `w` points into. The offset is along the normal, so the moved point is off
 /// the surface's plane by the full margin whatever the angle of `w`.
 #[inline]
-fn offset_origin(p: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
+pub(crate) fn offset_origin(p: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
     let off = n * ray_epsilon(p);
     if n.dot(w) >= 0.0 { p + off } else { p - off }
 }

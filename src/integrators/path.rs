@@ -19,6 +19,7 @@
 //! escapes sees the environment, or its background when it is not
 //! `visible`.
 
+use super::caustic::max_chain;
 use super::{Counters, emitted, escaped, shadow_ray, spawn};
 use crate::geometry::NO_LIGHT;
 use crate::lights::LightPicker;
@@ -36,6 +37,12 @@ pub struct Path {
     pub max_depth: u32,
     /// Segments a path has before Russian roulette may end it.
     pub rr_depth: u32,
+    /// Whether caustics seen directly are light-traced ([`super::caustic`])
+    /// when the render can: the scene's wish.
+    pub light_trace_caustics: bool,
+    /// Set by the renderer for a render whose light-tracing pass runs: the
+    /// paths that pass counts are dropped here (see [`super::caustic`]).
+    pub split_caustics: bool,
 }
 
 impl Path {
@@ -56,6 +63,14 @@ impl Path {
         // Its shading normal: a light tree's probabilities depend on both.
         let mut prev_n = glam::Vec3A::ZERO;
         let mut segments = 0u32;
+        // The split with the caustic light tracer (`super::caustic`): whether
+        // the path since its last non-delta vertex is one the tracer counts
+        // (that vertex seen straight from the camera and left by a
+        // non-delta sample), and the perfect-specular vertices since.
+        let split = self.split_caustics && scene.caustics.is_some();
+        let max_chain = max_chain(self.max_depth);
+        let mut traced = false;
+        let mut chain = 0u32;
         loop {
             counters.rays += 1;
             let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
@@ -87,7 +102,10 @@ impl Path {
                 let le = emitted(scene, &hit, ray.d);
                 if le != Rgb::ZERO {
                     let w = if prev_delta {
-                        1.0
+                        let theirs = traced
+                            && (1..=max_chain).contains(&chain)
+                            && scene.caustics.as_ref().is_some_and(|c| c.covers(hit.light));
+                        if theirs { 0.0 } else { 1.0 }
                     } else {
                         let light = &scene.lights[hit.light as usize];
                         let light_pdf =
@@ -139,6 +157,15 @@ impl Path {
                             l += beta * f * ls.li * (w / light_pdf);
                         }
                     }
+                }
+            }
+
+            if split {
+                if delta {
+                    chain += 1;
+                } else {
+                    chain = 0;
+                    traced = segments == 1 && bs.is_some_and(|b| !b.delta);
                 }
             }
 

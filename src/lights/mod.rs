@@ -20,6 +20,7 @@
 //! (`power.rs`).
 
 pub mod alias;
+pub mod caustic;
 pub mod environment;
 pub mod mesh;
 pub mod point;
@@ -34,6 +35,7 @@ pub mod tree;
 #[cfg(test)]
 mod tests;
 
+pub use caustic::CausticEmitters;
 pub use environment::{EnvMap, EnvSampling, EnvironmentLight};
 pub use mesh::MeshLight;
 pub use point::PointLight;

@@ -13,7 +13,9 @@ use crate::desc::{IntegratorDesc, LightSelectionDesc, SceneDesc};
 use crate::diagnostic::Problem;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{Geometry, Shape};
+use crate::lights::caustic::{self, CausticEmitters};
 use crate::lights::{Light, LightPicker, Selection};
+use crate::materials::Bxdf as _;
 use crate::materials::Material;
 use crate::scene::Scene;
 use crate::view::View;
@@ -195,7 +197,36 @@ pub fn build_in(
         },
         _ => Selection::Power,
     };
+    // Caustic connections matter where a perfect mirror or smooth glass can
+    // focus a light (a material's delta-ness does not depend on its textures).
+    let delta: Vec<bool> = materials
+        .iter()
+        .map(|m| m.bsdf(glam::Vec2::ZERO, &textures).is_delta())
+        .collect();
+    let is_delta = |m: u32| delta.get(m as usize).copied().unwrap_or(false);
+    let targets = caustic::specular_targets(&shapes, &objects, &ctx.geometry, |s| match s {
+        Shape::Sphere(x) => is_delta(x.material),
+        Shape::Quad(x) => is_delta(x.material),
+        Shape::Plane(x) => is_delta(x.material),
+        Shape::Sdf(i) => ctx
+            .geometry
+            .sdfs
+            .get(*i as usize)
+            .is_some_and(|x| is_delta(x.material)),
+        Shape::Instance(i) => ctx
+            .geometry
+            .instances
+            .get(*i as usize)
+            .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
+        Shape::Triangle(t) => ctx
+            .geometry
+            .instances
+            .get(t.instance as usize)
+            .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
+    });
+    let caustics = CausticEmitters::new(&ctx.lights, targets);
     let scene = Scene {
+        caustics,
         light_picker: LightPicker::new(&ctx.lights, selection),
         materials,
         textures,

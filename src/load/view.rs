@@ -8,8 +8,8 @@ use super::validate::{
 use crate::aov::Aov;
 use crate::camera::{Camera, Projection};
 use crate::desc::{
-    AllocationDesc, AovDesc, CameraDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc, SamplerDesc,
-    SceneDesc, TonemapDesc,
+    AllocationDesc, AovDesc, CameraDesc, CausticsDesc, FilmDesc, FilterDesc, IntegratorDesc, ProjectionDesc,
+    SamplerDesc, SceneDesc, TonemapDesc,
 };
 use crate::film::{Adaptive, Filter, FilterKind};
 use crate::imageio::{Display, Tonemap};
@@ -340,10 +340,15 @@ pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
             light_samples,
         }),
         IntegratorDesc::Path {
-            max_depth, rr_depth, ..
+            max_depth,
+            rr_depth,
+            caustics,
+            ..
         } => Integrator::Path(PathTracer {
             max_depth: u32::try_from(max_depth).unwrap_or(u32::MAX),
             rr_depth,
+            light_trace_caustics: caustics == CausticsDesc::LightTracing,
+            split_caustics: false,
         }),
     };
     let filter = Filter::new(match f.filter {
