@@ -12,7 +12,8 @@
 /// copy (8-bit or float RGB, at most 12 bytes), and what a render spread
 /// by noise keeps between its passes (`film/allocation.rs`: the first
 /// pass's mean and variance, 16 bytes, then the variances, weights and
-/// counts, 12).
+/// counts, 12). The caustic light tracer's exact sums (48 bytes, beside the
+/// film's 16, after the tiles are gathered) stay below that.
 const RENDER_BYTES_PER_PIXEL: u64 = 16 + 16 + 12 + 16 + 12;
 /// Extra bytes per pixel of progressive rendering (watch mode): exact sums
 /// of every pixel (3 × i128) kept between passes, and one pass's sums.

@@ -142,7 +142,16 @@ pub fn render_image(
         let Integrator::Path(p) = view.integrator else {
             unreachable!("light_trace_plan checks the integrator")
         };
-        let trace = || light_trace(scene, view, paths, caustic::max_chain(p.max_depth), cancel);
+        let mut trace = || {
+            light_trace(
+                scene,
+                view,
+                paths,
+                caustic::max_chain(p.max_depth),
+                cancel,
+                &mut pixels,
+            )
+        };
         let traced = match rayon::ThreadPoolBuilder::new()
             .num_threads(opts.threads.unwrap_or(0))
             .build()
@@ -151,12 +160,7 @@ pub fn render_image(
             Err(_) => trace(),
         };
         match traced {
-            Some((image, counters)) => {
-                for (p, c) in pixels.iter_mut().zip(image) {
-                    *p += c;
-                }
-                stats.rays += counters.rays;
-            }
+            Some(counters) => stats.rays += counters.rays,
             None => stats.cancelled = true,
         }
         stats.elapsed += start.elapsed();
@@ -213,17 +217,21 @@ const CHUNK: u64 = 4096;
 /// once (at most `CHUNK` each).
 const BATCH: u64 = 64;
 
-/// The caustic light tracer's image ([`caustic`]): `paths` light paths of a pinhole
-/// `view`'s scene, each pixel the sum of its splats over `paths`, or `None`
-/// when cancelled. Splats are summed exactly ([`ExactSum`]), so the image
-/// is the same whatever the thread count.
+/// The caustic light tracer ([`caustic`]): traces `paths` light paths of a
+/// pinhole `view`'s scene and adds to each of `pixels` (row-major, the whole
+/// film) the sum of its splats over `paths`; `None`, with `pixels`
+/// untouched, when cancelled. Splats are summed exactly ([`ExactSum`]), so
+/// the image is the same whatever the thread count. Memory: 48 bytes a
+/// pixel for the sums beside the film's 16, below a render's peak
+/// (`crate::memory`), and at most `BATCH · CHUNK` splats.
 pub fn light_trace(
     scene: &Scene,
     view: &View,
     paths: u64,
     max_chain: u32,
     cancel: &AtomicBool,
-) -> Option<(Vec<Rgb>, Counters)> {
+    pixels: &mut [Rgb],
+) -> Option<Counters> {
     let em = scene.caustics.as_ref()?;
     let (w, h) = (view.film.width, view.film.height);
     let mut sums = vec![ExactSum::ZERO; w as usize * h as usize];
@@ -260,7 +268,10 @@ pub fn light_trace(
         k0 = k1;
     }
     let n = u32::try_from(paths).ok()?;
-    Some((sums.iter().map(|s| s.mean(n)).collect(), counters))
+    for (p, s) in pixels.iter_mut().zip(&sums) {
+        *p += s.mean(n);
+    }
+    Some(counters)
 }
 
 /// The plan of [`render_image`]'s two passes when it spreads the samples by

@@ -8,6 +8,7 @@ use crate::geometry::{Geometry, Shape};
 use crate::math::trig::sin_cos_turns;
 use crate::math::{Frame, luminance};
 use glam::{Vec2, Vec3A};
+use std::collections::HashMap;
 use std::f32::consts::PI;
 
 /// The lights the caustic light tracer emits from, chosen by power, and
@@ -117,6 +118,8 @@ pub fn specular_targets(
     // Per object: its box, and its sphere while it is a single sphere (a
     // sphere's box's bounding sphere would hold three times its cone).
     let mut boxes: Vec<(u32, Aabb, Option<Target>)> = Vec::new();
+    // Object id → its entry in `boxes` (a scene may hold many objects).
+    let mut index: HashMap<u32, usize> = HashMap::new();
     for (i, s) in shapes.iter().enumerate() {
         if !is_delta(s) {
             continue;
@@ -127,12 +130,16 @@ pub fn specular_targets(
             _ => None,
         };
         let id = objects.get(i).copied().unwrap_or(u32::MAX);
-        match boxes.iter_mut().find(|(o, ..)| *o == id) {
-            Some((_, ob, ex)) => {
+        match index.get(&id) {
+            Some(&k) => {
+                let (_, ob, ex) = &mut boxes[k];
                 *ob = ob.union(b);
                 *ex = None;
             }
-            None => boxes.push((id, b, exact)),
+            None => {
+                index.insert(id, boxes.len());
+                boxes.push((id, b, exact));
+            }
         }
     }
     if boxes.len() > MAX_CONES {
@@ -233,5 +240,45 @@ mod tests {
         );
         // From inside a target there is no cone: emission is cosine-weighted.
         assert!(aim(&targets, Vec3A::new(0.0, 0.0, -3.0), 0.5, Vec2::splat(0.5)).is_none());
+    }
+
+    #[test]
+    fn targets_are_one_sphere_per_object_and_one_around_many() {
+        use crate::geometry::{NO_LIGHT, Sphere};
+        let sphere = |x: f32| {
+            Shape::Sphere(Sphere {
+                center: Vec3A::new(x, 0.0, 0.0),
+                radius: 0.5,
+                material: 0,
+                light: NO_LIGHT,
+            })
+        };
+        let geo = Geometry::default();
+        // Two objects: each its own sphere, exactly.
+        let shapes = [sphere(0.0), sphere(3.0)];
+        let t = specular_targets(&shapes, &[1, 2], &geo, |_| true).expect("bounded");
+        assert_eq!(t, vec![(Vec3A::ZERO, 0.5), (Vec3A::new(3.0, 0.0, 0.0), 0.5)]);
+        // Nothing specular: no targets (and no emitters).
+        assert_eq!(
+            specular_targets(&shapes, &[1, 2], &geo, |_| false),
+            Some(Vec::new())
+        );
+        // A mirror plane cannot be aimed at.
+        let plane = Shape::Plane(crate::geometry::Plane {
+            point: Vec3A::ZERO,
+            normal: Vec3A::Y,
+            material: 0,
+        });
+        assert_eq!(
+            specular_targets(&[sphere(0.0), plane], &[1, 2], &geo, |_| true),
+            None
+        );
+        // A hundred thousand specular objects: one sphere around them all,
+        // found in linear time.
+        let many: Vec<Shape> = (0..100_000).map(|i| sphere(i as f32)).collect();
+        let ids: Vec<u32> = (0..100_000).collect();
+        let t = specular_targets(&many, &ids, &geo, |_| true).expect("bounded");
+        assert_eq!(t.len(), 1);
+        assert!((t[0].0.x - 49_999.5).abs() < 1.0 && t[0].1 >= 50_000.0, "{t:?}");
     }
 }
