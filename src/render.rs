@@ -179,7 +179,8 @@ pub fn render_image(
 /// ([`light_trace`]). Its own noise is small: on `cornell_specular`
 /// (256², 128 spp, two seeds) the noise off the light is 0.0387 without it
 /// and 0.0309, 0.0307, 0.0306, 0.0306 with 1/32, 1/16, 1/8, 1/4 light paths
-/// a sample; 1/16 costs about 2% of the render.
+/// a sample; 1/16 costs 4% more instructions (callgrind, 64², 64 spp: 1.393
+/// against 1.336 G), 3% more rays.
 pub const LIGHT_PATHS_PER_SAMPLE: f64 = 0.0625;
 
 /// How many light paths [`render_image`] traces for caustics seen directly
