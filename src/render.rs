@@ -135,23 +135,11 @@ pub fn render_image(
         Some(plan) => work.spread(plan),
         None => work.run(Rgb::ZERO, |p| p.sum.mean(p.taken)),
     };
-    if let Some(paths) = caustic_paths
+    if let Some((paths, max_chain)) = caustic_paths
         && !stats.cancelled
     {
         let start = Instant::now();
-        let Integrator::Path(p) = view.integrator else {
-            unreachable!("light_trace_plan checks the integrator")
-        };
-        let mut trace = || {
-            light_trace(
-                scene,
-                view,
-                paths,
-                caustic::max_chain(p.max_depth),
-                cancel,
-                &mut pixels,
-            )
-        };
+        let mut trace = || light_trace(scene, view, paths, max_chain, cancel, &mut pixels);
         let traced = match rayon::ThreadPoolBuilder::new()
             .num_threads(opts.threads.unwrap_or(0))
             .build()
@@ -184,12 +172,13 @@ pub fn render_image(
 pub const LIGHT_PATHS_PER_SAMPLE: f64 = 0.0625;
 
 /// How many light paths [`render_image`] traces for caustics seen directly
-/// (`integrator: Path(caustics: LightTracing)`, the default), `None` when it
-/// traces none: the scene has no perfect mirror or smooth glass lit by a
-/// rectangle or sphere light, the camera is not a pinhole, the filter is not
-/// `Box`, or the render is part of the samples (the splats land anywhere in
-/// the frame, so pieces and passes could not add up).
-pub fn light_trace_plan(scene: &Scene, view: &View, opts: &RenderOptions) -> Option<u64> {
+/// (`integrator: Path(caustics: LightTracing)`, the default), and the
+/// longest specular chain they follow; `None` when it traces none: the scene
+/// has no perfect mirror or smooth glass lit by a rectangle or sphere light,
+/// the camera is not a pinhole, the filter is not `Box`, the render is part
+/// of the samples (the splats land anywhere in the frame, so pieces and
+/// passes could not add up), or it would take 2³² light paths or more.
+pub fn light_trace_plan(scene: &Scene, view: &View, opts: &RenderOptions) -> Option<(u64, u32)> {
     let whole = opts.sample_range.is_none_or(|r| r == (0, view.film.spp));
     let Integrator::Path(p) = view.integrator else {
         return None;
@@ -206,7 +195,7 @@ pub fn light_trace_plan(scene: &Scene, view: &View, opts: &RenderOptions) -> Opt
     let samples = view.film.width as f64 * view.film.height as f64 * view.film.spp as f64;
     let paths = (samples * LIGHT_PATHS_PER_SAMPLE).ceil();
     // `ExactSum::mean` divides by a u32.
-    (paths >= 1.0 && paths <= u32::MAX as f64).then_some(paths as u64)
+    (paths >= 1.0 && paths <= u32::MAX as f64).then_some((paths as u64, caustic::max_chain(p.max_depth)))
 }
 
 /// Light paths a chunk of [`light_trace`] traces: its unit of parallel work

@@ -197,8 +197,9 @@ pub fn build_in(
         },
         _ => Selection::Power,
     };
-    // Caustic connections matter where a perfect mirror or smooth glass can
-    // focus a light (a material's delta-ness does not depend on its textures).
+    // The caustic light tracer matters where a perfect mirror or smooth glass
+    // can focus a light (a material's delta-ness does not depend on its
+    // textures).
     let delta: Vec<bool> = materials
         .iter()
         .map(|m| m.bsdf(glam::Vec2::ZERO, &textures).is_delta())
