@@ -6,7 +6,7 @@
 
 use crate::accel::WideBvh;
 use crate::geometry::MeshHit;
-use crate::geometry::triangle::WatertightRay;
+use crate::geometry::triangle::WatertightRay4;
 use crate::geometry::{Geometry, Hit, Shape};
 use crate::lights::{CausticEmitters, EnvironmentLight, Light, LightPicker};
 use crate::materials::{Material, Texture};
@@ -103,7 +103,7 @@ impl Scene {
                         (h.t, Nearest::Mesh(i, *k, h))
                     }
                     Shape::Triangle(tr) => {
-                        let wt = wt.get_or_insert_with(|| WatertightRay::new(ray));
+                        let wt = wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray));
                         let Some((t, bc)) = tr.intersect(wt, t_best) else {
                             continue;
                         };
@@ -175,7 +175,10 @@ impl Scene {
                 .iter()
                 .any(|s| match s {
                     Shape::Triangle(tr) => tr
-                        .intersect(wt.get_or_insert_with(|| WatertightRay::new(ray)), t_max)
+                        .intersect(
+                            wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray)),
+                            t_max,
+                        )
                         .is_some(),
                     Shape::Quad(q) => q.intersect(ray, t_max).is_some(),
                     Shape::Sphere(sp) => sp.intersect(ray, t_max).is_some(),

@@ -9,11 +9,11 @@
 //! Handing the top level whole four-triangle leaves instead was measured
 //! slower: their boxes are much looser than single triangles'.
 
-use super::triangle::WatertightRay;
+use super::triangle::{WatertightRay4, corners_of_rows, rows_of_corners};
 use super::{Geometry, Hit, MeshHit};
 use crate::accel::Aabb;
 use crate::math::Ray;
-use glam::{Vec2, Vec3, Vec3A};
+use glam::{Vec2, Vec3A, Vec4};
 
 /// Meshes up to this many triangles are flattened into the scene BVH.
 pub const FLATTEN_MAX: usize = 64;
@@ -21,8 +21,10 @@ pub const FLATTEN_MAX: usize = 64;
 /// A triangle of a small baked mesh, as its own entry in the scene BVH.
 #[derive(Clone, Copy, Debug)]
 pub struct MeshTriangle {
-    /// World-space corners (the mesh is baked, so they are its own).
-    pub p: [Vec3; 3],
+    /// World-space corners (the mesh is baked, so they are its own), one
+    /// row per axis ([`rows_of_corners`]): the layout of
+    /// [`WatertightRay4::single`].
+    rows: [Vec4; 3],
     /// The instance that shades it, and the triangle's index in its mesh.
     pub instance: u32,
     /// Index of the triangle in that instance's mesh.
@@ -30,12 +32,25 @@ pub struct MeshTriangle {
 }
 
 impl MeshTriangle {
+    /// Triangle `tri` of `instance`'s mesh, with world-space corners `p`.
+    pub fn new(p: [Vec3A; 3], instance: u32, tri: u32) -> Self {
+        Self {
+            rows: rows_of_corners(p),
+            instance,
+            tri,
+        }
+    }
+
+    /// World-space corners.
+    pub fn corners(&self) -> [Vec3A; 3] {
+        corners_of_rows(&self.rows)
+    }
+
     /// Watertight intersection with `wt` in `(0, t_max)`: the distance and the
     /// barycentrics of the second and third corners.
     #[inline(always)]
-    pub fn intersect(&self, wt: &WatertightRay, t_max: f32) -> Option<(f32, Vec2)> {
-        let [a, b, c] = self.p;
-        wt.intersect(a.into(), b.into(), c.into(), t_max)
+    pub fn intersect(&self, wt: &WatertightRay4, t_max: f32) -> Option<(f32, Vec2)> {
+        wt.single(&self.rows, t_max)
     }
 
     /// Shading record for a hit found by [`MeshTriangle::intersect`].
@@ -46,6 +61,6 @@ impl MeshTriangle {
 
     /// World-space bounds of the three corners.
     pub fn bounds(&self) -> Aabb {
-        Aabb::from_points(&self.p.map(Vec3A::from))
+        Aabb::from_points(&self.corners())
     }
 }

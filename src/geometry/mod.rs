@@ -31,7 +31,7 @@ pub use sphere::Sphere;
 use crate::accel::Aabb;
 use crate::math::Ray;
 use glam::{Vec2, Vec3A};
-use triangle::WatertightRay;
+use triangle::WatertightRay4;
 
 /// Marks "no area light" in [`Shape`] emitter fields.
 pub const NO_LIGHT: u32 = u32::MAX;
@@ -99,7 +99,7 @@ impl Shape {
                 .closest(ray, t_max, &geo.meshes)
                 .map(|h| h.t),
             Shape::Plane(p) => p.intersect(ray, t_max),
-            Shape::Triangle(tr) => tr.intersect(&WatertightRay::new(ray), t_max).map(|(t, _)| t),
+            Shape::Triangle(tr) => tr.intersect(&WatertightRay4::new(ray), t_max).map(|(t, _)| t),
         }
     }
 
@@ -134,7 +134,7 @@ impl Shape {
             }
             Shape::Plane(pl) => pl.hit(p, t),
             Shape::Triangle(tr) => {
-                let wt = WatertightRay::new(ray);
+                let wt = WatertightRay4::new(ray);
                 let bc = tr
                     .intersect(&wt, t * (1.0 + 1e-5) + f32::MIN_POSITIVE)
                     .map_or(Vec2::ZERO, |(_, bc)| bc);
