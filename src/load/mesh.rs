@@ -103,7 +103,7 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     if flatten {
         ctx.shapes.extend((0..mesh.triangle_count() as u32).map(|tri| {
             let (a, b, c) = mesh.corners(tri);
-            Shape::Triangle(MeshTriangle::new([a.into(), b.into(), c.into()], id, tri))
+            Shape::Triangle(MeshTriangle::new([a, b, c], id, tri))
         }));
     } else {
         ctx.shapes.push(Shape::Instance(id));
