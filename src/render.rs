@@ -19,7 +19,7 @@ use crate::film::{Adaptive, PixelNoise, Plan};
 use crate::imageio::{Image, PixelRect};
 use crate::integrators::{Counters, Integrator, caustic};
 use crate::math::rng::mix64;
-use crate::math::{ExactSum, Pcg32, Rgb};
+use crate::math::{ExactSum, Rgb, SampleRng};
 use crate::sampler::{PixelSampler, Sampler, SamplerKind};
 use crate::scene::Scene;
 use crate::view::{Allocation, View};
@@ -237,7 +237,7 @@ pub fn light_trace(
         let batch: Vec<(Vec<(u32, Rgb)>, Counters)> = (k0..k1)
             .into_par_iter()
             .map(|k| {
-                let mut sampler = Sampler::independent(Pcg32::new(seed, k));
+                let mut sampler = Sampler::independent(SampleRng::new(seed, k));
                 let mut c = Counters::default();
                 let n = CHUNK.min(paths - k * CHUNK);
                 let splats = (0..n)

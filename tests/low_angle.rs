@@ -7,7 +7,7 @@
 use glam::{DVec3, Vec3A};
 use ronray::integrators::Counters;
 use ronray::load::{Loaded, Overrides, load_str};
-use ronray::math::{Pcg32, Ray};
+use ronray::math::{Pcg32, Ray, SampleRng};
 use ronray::sampler::Sampler;
 use std::path::Path;
 
@@ -113,7 +113,7 @@ fn mean_li(s: &Loaded, x: DVec3, n: u32) -> f64 {
     let mut c = Counters::default();
     let mut sum = 0.0f64;
     for i in 0..n {
-        let mut sampler = Sampler::independent(Pcg32::for_sample(3, 7, i, 19));
+        let mut sampler = Sampler::independent(SampleRng::for_sample(3, 7, i, 19));
         sum += s.view.integrator.li(&s.scene, &ray, &mut sampler, &mut c).x as f64;
     }
     sum / n as f64

@@ -13,7 +13,7 @@ pub mod trig;
 pub use exact_sum::ExactSum;
 pub use frame::Frame;
 pub use ray::Ray;
-pub use rng::Pcg32;
+pub use rng::{Pcg32, SampleRng};
 
 use glam::Vec3A;
 

@@ -4,7 +4,8 @@
 //! seed), so images do not depend on scheduling, and a single pixel can be
 //! re-rendered alone.
 //!
-//! - `Independent`: uniform random numbers (PCG32).
+//! - `Independent`: uniform random numbers (each sample's own
+//!   [`SampleRng`] stream, SplitMix64).
 //! - `Stratified`: jittered strata per 2-D dimension pair, strata visited in
 //!   a per-pixel, per-dimension random order (pbrt's `StratifiedSampler`).
 //! - `Sobol`: the first [`SOBOL_DRAWS`] draws of a camera sample (pixel
@@ -15,7 +16,7 @@
 //!   visits its points in its own shuffled order (Burley 2020,
 //!   <https://jcgt.org/published/0009/04/01/>), one that keeps every
 //!   multiple of 8 samples a union of nets (`pixel.rs`). Later draws are
-//!   PCG32's, as `Independent`.
+//!   the sample's random stream's, as `Independent`.
 //!
 //! Why `Sobol` stops after a few draws: the draws that gain from
 //! stratification are the low ones; deeper in the path the integrand has too
@@ -35,7 +36,7 @@ mod sobol;
 
 pub use pixel::PixelSampler;
 
-use crate::math::Pcg32;
+use crate::math::SampleRng;
 use crate::math::rng::mix64;
 use glam::Vec2;
 
@@ -71,7 +72,7 @@ pub struct Sampler {
     /// `Sobol`: the stratified draws of this sample, computed per pixel
     /// ([`PixelSampler`]); a 1-D draw takes a point's x.
     points: [Vec2; SOBOL_DRAWS as usize],
-    rng: Pcg32,
+    rng: SampleRng,
 }
 
 impl Sampler {
@@ -86,7 +87,7 @@ impl Sampler {
     }
 
     /// A plain independent sampler (tests, analytic checks).
-    pub fn independent(rng: Pcg32) -> Self {
+    pub fn independent(rng: SampleRng) -> Self {
         Self {
             kind: SamplerKind::Independent,
             pixel_hash: 0,

@@ -16,8 +16,8 @@
 //! every sample's numbers are the same whichever way they were made.
 
 use super::{SOBOL_DRAWS, Sampler, SamplerKind, shuffle_pow2, sobol, to_unit};
-use crate::math::Pcg32;
 use crate::math::rng::mix64;
+use crate::math::{Pcg32, SampleRng};
 use glam::Vec2;
 use std::ops::Range;
 
@@ -143,7 +143,7 @@ impl PixelSampler {
             dim: 0,
             draws: 0,
             points,
-            rng: Pcg32::for_pixel_sample(self.pcg_seed, index),
+            rng: SampleRng::for_pixel_sample(self.pcg_seed, index),
         }
     }
 
@@ -275,7 +275,7 @@ mod tests {
         let mut pixel = PixelSampler::new(SamplerKind::Independent, 8, 5);
         pixel.set_pixel(7, 2, 0..8);
         let mut a = pixel.sample(3);
-        let mut b = Sampler::independent(Pcg32::for_sample(7, 2, 3, 5));
+        let mut b = Sampler::independent(SampleRng::for_sample(7, 2, 3, 5));
         assert_eq!(a.next_vec2(), b.next_vec2());
     }
 }

@@ -7,7 +7,7 @@ use glam::Vec3A;
 use ronray::imageio::Image;
 use ronray::integrators::Counters;
 use ronray::load::{LoadError, Loaded, Overrides, load_str};
-use ronray::math::{Pcg32, Ray};
+use ronray::math::{Ray, SampleRng};
 use ronray::render::{RenderOptions, render};
 use ronray::sampler::Sampler;
 use std::path::{Path, PathBuf};
@@ -65,7 +65,7 @@ pub fn mean_li(l: &Loaded, ray: Ray, n: u32) -> Vec3A {
     let mut sum = Vec3A::ZERO;
     let mut c = Counters::default();
     for i in 0..n {
-        let mut sampler = Sampler::independent(Pcg32::for_sample(0, 0, i, 99));
+        let mut sampler = Sampler::independent(SampleRng::for_sample(0, 0, i, 99));
         sum += l.view.integrator.li(&l.scene, &ray, &mut sampler, &mut c);
     }
     sum / n as f32
