@@ -1,6 +1,6 @@
 //! Renders a runtime scene to a linear image, in parallel over tiles.
 //!
-//! Every camera sample draws from its own PCG32 stream seeded by (pixel,
+//! Every camera sample draws from its own random stream (`SampleRng`) seeded by (pixel,
 //! sample index, scene seed), and each pixel sums its samples exactly
 //! ([`ExactSum`]: fixed point, so the grouping of the additions does not
 //! matter). The image is therefore bit-identical whatever the thread count or
@@ -199,7 +199,7 @@ pub fn light_trace_plan(scene: &Scene, view: &View, opts: &RenderOptions) -> Opt
 }
 
 /// Light paths a chunk of [`light_trace`] traces: its unit of parallel work
-/// and of random streams (chunk `k` draws from PCG32 stream `k`), so the
+/// and of random streams (chunk `k` draws from stream `k` of `SampleRng`), so the
 /// image does not depend on the thread count.
 const CHUNK: u64 = 4096;
 

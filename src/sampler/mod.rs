@@ -24,7 +24,8 @@
 //! pixel, all samples of a draw in one vectorised loop ([`PixelSampler`]),
 //! not per sample: one at a time, a scrambled point cost about five PCG32
 //! draws and `Sobol` 6–11% more instructions per sample than `Independent`;
-//! batched, about 1% (callgrind, see the commits). pbrt-v4's
+//! batched, about 1% (callgrind, see the commits); 1.8% since the random
+//! stream became SplitMix64, which made `Independent` itself cheaper. pbrt-v4's
 //! `ZSobolSampler` (Morton-ordered indices) was not taken: its per-dimension
 //! index permutation hashes every base-4 digit of (pixel, sample), about ten
 //! hashes per draw at 256² and 64 spp, and cannot be batched per pixel; its
@@ -43,7 +44,7 @@ use glam::Vec2;
 /// Which sample generator a render uses (the scene's `film.sampler`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum SamplerKind {
-    /// Uniform random numbers from each sample's own PCG32 stream.
+    /// Uniform random numbers from each sample's own random stream ([`SampleRng`]).
     #[default]
     Independent,
     /// Jittered strata per 2-D dimension pair, visited in a random order.
@@ -55,7 +56,7 @@ pub enum SamplerKind {
 
 /// How many draws (1-D or 2-D) of a camera sample `Sobol` stratifies: pixel
 /// jitter and lens, then the first vertex's light pick, light point, BSDF
-/// lobe and direction; later ones come from PCG32. See the module docs.
+/// lobe and direction; later ones come from the sample's random stream. See the module docs.
 pub const SOBOL_DRAWS: u32 = 6;
 
 /// The random numbers for one camera sample.
@@ -259,7 +260,7 @@ mod tests {
     fn sobol_first_draws_are_stratified_and_later_ones_uniform() {
         // Over the 16 samples of a pixel, the first 2-D draw puts one point in
         // each 1/4 × 1/4 cell and the first-vertex 1-D draw one value in each
-        // 1/16 stratum; a draw past SOBOL_DRAWS is PCG32's, so only in range.
+        // 1/16 stratum; a draw past SOBOL_DRAWS is the random stream's, so only in range.
         let spp = 16;
         let (mut cells, mut strata) = ([0u32; 16], [0u32; 16]);
         for s in 0..spp {

@@ -1,7 +1,7 @@
 //! What the samplers of one pixel share, computed once per pixel instead of
 //! once per sample.
 //!
-//! For every sampler: the pixel's hash and its PCG32 seed. For `Sobol`, the
+//! For every sampler: the pixel's hash and its random-stream seed. For `Sobol`, the
 //! stratified draws themselves: draw `d` of sample `s` is point
 //! [`net_index`]`(s)` of the pixel's Owen-scrambled 2-D Sobol net for that
 //! draw (`2^m` points, `m = ⌈log2 spp⌉`). The points of all the pixel's
@@ -11,7 +11,7 @@
 //! sample at a time the same points cost about three times the instructions
 //! of the PCG32 draws they replace: `Sobol` cost 6–11% more per sample than
 //! `Independent`; batched, about 1% (callgrind, Cornell box, 64 and 256
-//! spp). A pixel that renders only a few of its samples (progressive passes,
+//! spp; 1.8% against the cheaper SplitMix64 stream that replaced PCG32). A pixel that renders only a few of its samples (progressive passes,
 //! sample splits) is served one point at a time by the same formula, so
 //! every sample's numbers are the same whichever way they were made.
 
