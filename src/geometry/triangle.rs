@@ -144,12 +144,11 @@ impl WatertightRay4 {
     pub fn new(ray: &Ray) -> Self {
         let one = WatertightRay::new(ray);
         let ([kx, ky, kz], [sx, sy, sz]) = (one.k, one.s);
+        // Through an array: indexing a `Vec3A` by a variable is a chain of
+        // compares and branches.
+        let o = one.o.to_array();
         Self {
-            o: [
-                Vec4::splat(one.o[kx]),
-                Vec4::splat(one.o[ky]),
-                Vec4::splat(one.o[kz]),
-            ],
+            o: [Vec4::splat(o[kx]), Vec4::splat(o[ky]), Vec4::splat(o[kz])],
             s: [Vec4::splat(sx), Vec4::splat(sy), Vec4::splat(sz)],
             one,
         }
