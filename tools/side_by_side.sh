@@ -1,15 +1,23 @@
 #!/usr/bin/env bash
-# Issue 18's table in one run: Mitsuba 3 (`llvm_ad_rgb`, 256 spp) and ronray
-# (independent sampler, every pixel 256 spp: `allocation: Even`) on each
-# reference scene, alternating, then
-# `ronray bench --scenes` for ronray's error per sample count, then the
-# summary: per-sample time ratio, Mitsuba's own 256-spp error off the light
-# pixels (its renders of this run against the reference, `ronray diff
-# --mask`), the spp at which ronray's defaults (Sobol, samples spread by
-# noise) reach it
-# (log-log interpolation between the bench's sample counts) and that
-# render's time over Mitsuba's. Only ratios within one run mean anything on
-# a shared machine.
+# Issue 18's table in one run, on each reference scene with a ronray twin:
+#
+# 1. Warm-up: Mitsuba 3's JIT caches, and one Mitsuba `llvm_ad_rgb`
+#    256-spp render per scene, whose error off the light pixels (against
+#    the reference, `ronray diff --mask`) is the target.
+# 2. `ronray bench --scenes`: ronray's error per sample count with its
+#    defaults (Sobol, samples spread by noise); the sample count that reaches
+#    the target is interpolated (log-log) and rounded up. Only the errors
+#    are used: the bench's timings are single runs.
+# 3. Rounds, alternating per scene: Mitsuba 256 spp; ronray `Independent`,
+#    256 spp in every pixel (`allocation: Even`), for the per-sample ratio;
+#    ronray's defaults at the sample count of step 2, timed and measured
+#    against the reference (so the table shows that the timed render does
+#    reach Mitsuba's error).
+# 4. The summary: medians over the rounds. Only ratios within one run mean
+#    anything on a shared machine; alternating renders minutes apart is
+#    what keeps the time-to-error ratio from swinging with the machine's
+#    load (the bench-timing version of this script moved it by ±0.1
+#    between runs).
 #
 # Needs: a release build (`cargo build --release`), the reference folder
 # (`../shared/refs` beside the checkout, or REFS=...), Mitsuba's runner
@@ -42,60 +50,83 @@ for json in "$refs"/*.json; do
     [ "$name" = cornell_diffuse ] && twin="$here/scenes/cornell.ron"
     [ -f "$twin" ] && scenes+=("$name:$twin")
 done
-echo "== warm-up (Mitsuba's JIT caches)"
+mask_of() { [ -f "$refs/${1}_emitter_mask.png" ] && echo "--mask $refs/${1}_emitter_mask.png"; }
+mi_render() { # NAME OUT -> "render_s" or "failed"
+    "$py" "$run" "$refs/$1.json" --variant llvm_ad_rgb --spp 256 --out "$2" 2>/dev/null \
+        | sed -n 's/.*"render_s": \([0-9.]*\).*/\1/p' | grep . || echo failed
+}
+rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed"
+    local twin="$1" spp="$2" o="$3"; shift 3
+    "$ronray" render "$twin" --size 256x256 --spp "$spp" --threads "$threads" "$@" \
+        --progress none -o "$o" 2>&1 | sed -n 's/.* in \([0-9.]*\) s.*/\1/p' | grep . || echo failed
+}
+err_of() { "$ronray" diff "$1" "$refs/${2}_ref.exr" $(mask_of "$2") | awk '$1 == "rmse" {print $2}'; }
+
+echo "== warm-up (Mitsuba's JIT caches) and Mitsuba's 256-spp error per scene"
 for s in "${scenes[@]}"; do
-    "$py" "$run" "$refs/${s%%:*}.json" --variant llvm_ad_rgb --spp 16 --out "$out/warm.exr" > /dev/null 2>&1 || true
+    name="${s%%:*}"
+    "$py" "$run" "$refs/$name.json" --variant llvm_ad_rgb --spp 16 --out "$out/warm.exr" > /dev/null 2>&1 || true
+    [ "$(mi_render "$name" "$out/mi.exr")" != failed ] && echo "err0 $name $(err_of "$out/mi.exr" "$name")" >> "$log"
 done
+echo "== ronray error per sample count $(date -u +%T) (its timings are single runs: not used)"
+"$ronray" bench --scenes "$refs" --ronray-scenes "$here/scenes" --spp "$spps" \
+    --sampler Independent,Sobol --threads "$threads" | tee "$out/bench"
+# The sample count at which ronray's defaults reach Mitsuba's error: log-log
+# interpolation between the bench's counts, rounded up.
+awk -F'|' '
+    FILENAME == ARGV[1] { split($0, w, " "); if (w[1] == "err0") e[w[2]] = w[3]; next }
+    $3 ~ /Sobol/ && $4 + 0 > 0 { n = $2; gsub(/ /, "", n); k = ++rows[n]; spp[n, k] = $4 + 0; off[n, k] = $10 + 0 }
+    END {
+        for (n in e) {
+            s = 0
+            for (k = 1; k <= rows[n]; k++) if (off[n, k] <= e[n]) {
+                if (k == 1) { s = spp[n, 1]; break }
+                f = log(off[n, k - 1] / e[n]) / log(off[n, k - 1] / off[n, k])
+                s = spp[n, k - 1] * exp(f * log(spp[n, k] / spp[n, k - 1])); break
+            }
+            if (s > 0) printf "need %s %d\n", n, (s == int(s) ? s : int(s) + 1)
+        }
+    }' "$log" "$out/bench" >> "$log"
 for round in $(seq "$rounds"); do
     echo "== round $round $(date -u +%T), load $(cut -d' ' -f1-3 /proc/loadavg)"
     for s in "${scenes[@]}"; do
         name="${s%%:*}" twin="${s#*:}"
-        mi=$("$py" "$run" "$refs/$name.json" --variant llvm_ad_rgb --spp 256 --out "$out/mi.exr" 2>/dev/null | grep render_s || echo "failed")
-        rr=$("$ronray" render "$twin" --size 256x256 --spp 256 --threads "$threads" \
-            --set film.sampler=Independent --set film.allocation=Even --progress none -o "$out/rr.exr" 2>&1 | grep -o 'in [0-9.]* s' || echo "failed")
-        echo "$name | mitsuba llvm 256 spp $mi | ronray independent 256 spp $rr"
-        mask=()
-        [ -f "$refs/${name}_emitter_mask.png" ] && mask=(--mask "$refs/${name}_emitter_mask.png")
+        need=$(awk -v n="$name" '$1 == "need" && $2 == n {print $3}' "$log")
+        mi=$(mi_render "$name" "$out/mi.exr")
+        rr=$(rr_render "$twin" 256 "$out/rr.exr" --set film.sampler=Independent --set film.allocation=Even)
+        line="$name | mitsuba llvm 256 spp $mi s | ronray Independent 256 spp $rr s"
         if [ "$mi" != failed ]; then
-            echo "mi $name $(sed 's/.*"render_s": \([0-9.]*\).*/\1/' <<< "$mi")" >> "$log"
-            err=$("$ronray" diff "$out/mi.exr" "$refs/${name}_ref.exr" "${mask[@]}" | awk '$1 == "rmse" {print $2}')
-            [ -n "$err" ] && echo "err $name $err" >> "$log"
+            echo "mi $name $mi" >> "$log"
+            echo "err $name $(err_of "$out/mi.exr" "$name")" >> "$log"
         fi
-        [ "$rr" != failed ] && echo "rr $name $(awk '{print $2}' <<< "$rr")" >> "$log"
+        [ "$rr" != failed ] && echo "rr $name $rr" >> "$log"
+        if [ -n "$need" ]; then
+            dt=$(rr_render "$twin" "$need" "$out/def.exr" --set film.sampler=Sobol)
+            if [ "$dt" != failed ]; then
+                echo "def $name $dt" >> "$log"
+                echo "deferr $name $(err_of "$out/def.exr" "$name")" >> "$log"
+            fi
+            line="$line | ronray defaults $need spp $dt s"
+        fi
+        echo "$line"
     done
 done
-echo "== ronray error per sample count $(date -u +%T)"
-"$ronray" bench --scenes "$refs" --ronray-scenes "$here/scenes" --spp "$spps" \
-    --sampler Independent,Sobol --threads "$threads" | tee "$out/bench"
-echo "== summary (medians over the rounds; Mitsuba's error is its own, measured here)"
-awk -F'|' '
-    FILENAME == ARGV[1] { split($0, w, " "); v[w[1], w[2]] = v[w[1], w[2]] " " w[3]; names[w[2]] = 1; next }
-    $3 ~ /Sobol/ && $4 + 0 > 0 {
-        n = $2; gsub(/ /, "", n); k = ++rows[n]
-        spp[n, k] = $4 + 0; sec[n, k] = $5 + 0; off[n, k] = $10 + 0
-    }
+echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "== summary (medians over the rounds, every time from renders alternated in them)"
+awk '
+    { v[$1, $2] = v[$1, $2] " " $3; names[$2] = 1; if ($1 == "need") need[$2] = $3 }
     function median(s,   a, m, i, j, t) {
         m = split(s, a, " "); if (m == 0) return 0
-        for (i = 1; i <= m; i++) for (j = i + 1; j <= m; j++) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+        for (i = 1; i <= m; i++) for (j = i + 1; j <= m; j++) if (a[j] + 0 < a[i] + 0) { t = a[i]; a[i] = a[j]; a[j] = t }
         return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2
     }
     END {
-        print "| scene | Mitsuba 256 spp s | ronray Independent 256 spp s | per sample | Mitsuba RMSE off light | ronray Sobol spp to it | its s | its time / Mitsuba s |"
-        print "|---|---|---|---|---|---|---|---|"
+        print "| scene | Mitsuba 256 spp s | ronray Independent 256 spp s | per sample | Mitsuba RMSE off light | ronray defaults: spp to it | their RMSE off light | their s | their time / Mitsuba |"
+        print "|---|---|---|---|---|---|---|---|---|"
         for (n in names) {
             mi = median(v["mi", n]); rr = median(v["rr", n]); e = median(v["err", n])
-            at = "> " spp[n, rows[n]]; t = "—"; ratio = "—"
-            for (k = 1; k <= rows[n]; k++) {
-                if (off[n, k] <= e) {
-                    if (k == 1) { at = "≤ " spp[n, 1]; t = sec[n, 1]; break }
-                    f = log(off[n, k - 1] / e) / log(off[n, k - 1] / off[n, k])
-                    s = spp[n, k - 1] * exp(f * log(spp[n, k] / spp[n, k - 1]))
-                    t = sec[n, k - 1] + (s - spp[n, k - 1]) / (spp[n, k] - spp[n, k - 1]) * (sec[n, k] - sec[n, k - 1])
-                    at = sprintf("%.0f", s); break
-                }
-            }
-            if (t != "—" && mi > 0) ratio = sprintf("%.2f×", t / mi)
-            if (t != "—") t = sprintf("%.2f", t)
-            printf "| %s | %.2f | %.2f | %.2f× | %.5f | %s | %s | %s |\n", n, mi, rr, (mi > 0 ? rr / mi : 0), e, at, t, ratio
+            d = median(v["def", n]); de = median(v["deferr", n])
+            at = (n in need) ? need[n] : "> bench range"
+            printf "| %s | %.2f | %.2f | %.2f× | %.5f | %s | %.5f | %.2f | %s |\n", n, mi, rr, (mi > 0 ? rr / mi : 0), e, at, de, d, (mi > 0 && d > 0 ? sprintf("%.2f×", d / mi) : "—")
         }
-    }' "$log" "$out/bench"
+    }' "$log"
