@@ -14,6 +14,7 @@ pub struct Lambert {
 }
 
 impl Bxdf for Lambert {
+    #[inline]
     fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         if wo.z * wi.z <= 0.0 {
             return Rgb::ZERO;
@@ -21,6 +22,7 @@ impl Bxdf for Lambert {
         self.albedo * FRAC_1_PI
     }
 
+    #[inline]
     fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if wo.z * wi.z <= 0.0 {
             return 0.0;
@@ -28,6 +30,7 @@ impl Bxdf for Lambert {
         sampling::cosine_hemisphere_pdf(wi.z.abs())
     }
 
+    #[inline]
     fn sample(&self, wo: Vec3A, _u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let mut wi = sampling::cosine_hemisphere(u);
         if wo.z < 0.0 {

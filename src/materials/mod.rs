@@ -202,22 +202,50 @@ macro_rules! forward {
     };
 }
 
+/// The diffuse variant is dispatched inline and every other through an
+/// out-of-line call: a Lambert lobe's methods are a few instructions, less
+/// than the call and the enum copy they were behind (three calls per path
+/// vertex), and inlining every variant would bloat the integrators.
 impl Bxdf for Bsdf<'_> {
-    #[inline]
+    #[inline(always)]
     fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
-        forward!(self, b => b.eval(wo, wi))
+        match self {
+            Bsdf::Lambert(b) => b.eval(wo, wi),
+            _ => self.eval_other(wo, wi),
+        }
     }
-    #[inline]
+    #[inline(always)]
     fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        forward!(self, b => b.pdf(wo, wi))
+        match self {
+            Bsdf::Lambert(b) => b.pdf(wo, wi),
+            _ => self.pdf_other(wo, wi),
+        }
     }
-    #[inline]
+    #[inline(always)]
     fn sample(&self, wo: Vec3A, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        forward!(self, b => b.sample(wo, u_lobe, u))
+        match self {
+            Bsdf::Lambert(b) => b.sample(wo, u_lobe, u),
+            _ => self.sample_other(wo, u_lobe, u),
+        }
     }
     #[inline]
     fn is_delta(&self) -> bool {
         forward!(self, b => b.is_delta())
+    }
+}
+
+impl Bsdf<'_> {
+    #[inline(never)]
+    fn eval_other(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
+        forward!(self, b => b.eval(wo, wi))
+    }
+    #[inline(never)]
+    fn pdf_other(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        forward!(self, b => b.pdf(wo, wi))
+    }
+    #[inline(never)]
+    fn sample_other(&self, wo: Vec3A, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        forward!(self, b => b.sample(wo, u_lobe, u))
     }
 }
 
@@ -335,8 +363,20 @@ impl Material {
         }
     }
 
-    /// Resolves textures at surface coordinates `uv`.
+    /// Resolves textures at surface coordinates `uv`. Inline for the
+    /// diffuse material (see [`Bsdf`]'s dispatch), a call for the others.
+    #[inline(always)]
     pub fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        match self {
+            Material::Lambert { albedo } => Bsdf::Lambert(Lambert {
+                albedo: albedo.eval(uv, textures),
+            }),
+            _ => self.bsdf_other(uv, textures),
+        }
+    }
+
+    #[inline(never)]
+    fn bsdf_other(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
         let tex = |c: &ColorTex| c.eval(uv, textures);
         match self {
             Material::Lambert { albedo } => Bsdf::Lambert(Lambert { albedo: tex(albedo) }),

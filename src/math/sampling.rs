@@ -27,6 +27,7 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
 }
 
 /// Malley's method: project the disk onto the hemisphere (+z).
+#[inline]
 pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
     let d = concentric_disk(u);
     let z = (1.0 - d.length_squared()).max(0.0).sqrt();
