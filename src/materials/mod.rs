@@ -234,6 +234,8 @@ impl Bxdf for Bsdf<'_> {
     }
 }
 
+/// The out-of-line half of the dispatch above: every variant but the
+/// inline one (which these also handle, for the exhaustive match).
 impl Bsdf<'_> {
     #[inline(never)]
     fn eval_other(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
@@ -375,6 +377,7 @@ impl Material {
         }
     }
 
+    /// [`Material::bsdf`] for every material but the inline one.
     #[inline(never)]
     fn bsdf_other(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
         let tex = |c: &ColorTex| c.eval(uv, textures);
