@@ -236,9 +236,9 @@ impl WatertightRay4 {
     /// [`WatertightRay::intersect`] returns for it, bit for bit (the same
     /// operations in the same order). The axis permutation picks rows
     /// instead of moving scalars through memory, and the three edge
-    /// functions are one vector product: about half the instructions of the
-    /// scalar test, which the Cornell box's flattened blocks ran 0.8 times
-    /// per camera-path ray.
+    /// functions are one vector product. The Cornell box's flattened blocks
+    /// run this 0.8 times per camera-path ray; the closest-hit traversal took
+    /// 3% fewer instructions with it than with the scalar test (callgrind).
     #[inline(always)]
     pub fn single(&self, rows: &[Vec4; 3], t_max: f32) -> Option<(f32, Vec2)> {
         let [kx, ky, kz] = self.one.k;
