@@ -269,6 +269,14 @@ fn watch_serve_page_follows_edits_in_a_real_browser() {
     let second = page.wait("the edit, without a reload", |s| {
         s["pass"] == "4/4" && blue(s) && s["version"].as_u64() > first["version"].as_u64()
     });
+    // The labels describe the image on screen: the edit's fourth pass is the
+    // fourth image written after the first render's last. (The page once
+    // changed the label when a pass was announced, before its image loaded,
+    // and this test then caught the second pass under a "4/4" label.)
+    assert!(
+        second["version"].as_u64() >= first["version"].as_u64().map(|v| v + 4),
+        "the pass label is ahead of the image: {first} then {second}"
+    );
 
     write(scene("bal", "0.1, 0.1, 0.9"));
     let broken = page.wait("the diagnostics", |s| {
