@@ -83,37 +83,85 @@ impl ExactSum {
 }
 
 /// `x` in units of 2⁻⁶⁴, truncated toward zero; exact for |x| ≥ 2⁻⁴⁰.
+///
+/// In two `f64` halves rather than by taking the float's bits apart: x·2³²
+/// is exact in `f64` (x has 24 significant bits), its integer part `hi`
+/// (below 2⁶²) and the remainder `r` (|r| < 1, exact too) both truncate
+/// toward zero and share x's sign, so `hi`·2³² + trunc(r·2³²) is
+/// trunc(x·2⁶⁴). Branch-free, and fewer instructions than the bit-by-bit
+/// conversion it replaced (kept in the tests, which compare the two).
 #[inline]
 fn to_fixed(x: f32) -> i128 {
     if !x.is_finite() {
         return 0;
     }
-    let bits = x.clamp(-LIMIT, LIMIT).to_bits();
-    let biased = ((bits >> 23) & 0xff) as i32;
-    let fraction = (bits & 0x7f_ffff) as i128;
-    // x = m · 2^e with an integer mantissa m < 2²⁴ (subnormals have no
-    // implicit bit and the smallest exponent).
-    let (m, e) = if biased == 0 {
-        (fraction, -149)
-    } else {
-        (fraction | 0x80_0000, biased - 150)
-    };
-    // In fixed-point units x = m · 2^(e + 64); e + 64 ≤ 30 − 23 + 64 = 71.
-    let shift = e + FRACTION_BITS;
-    let magnitude = if shift >= 0 {
-        m << shift
-    } else if shift > -32 {
-        m >> -shift
-    } else {
-        0
-    };
-    if bits >> 31 == 1 { -magnitude } else { magnitude }
+    let scaled = x.clamp(-LIMIT, LIMIT) as f64 * 4_294_967_296.0;
+    let hi = scaled.trunc();
+    let lo = ((scaled - hi) * 4_294_967_296.0) as i64;
+    ((hi as i64 as i128) << 32) + lo as i128
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::math::Pcg32;
+
+    /// The first conversion, by the float's exponent and mantissa: the
+    /// reference [`to_fixed`] must agree with bit for bit.
+    pub(super) fn to_fixed_by_bits(x: f32) -> i128 {
+        if !x.is_finite() {
+            return 0;
+        }
+        let bits = x.clamp(-LIMIT, LIMIT).to_bits();
+        let biased = ((bits >> 23) & 0xff) as i32;
+        let fraction = (bits & 0x7f_ffff) as i128;
+        // x = m · 2^e with an integer mantissa m < 2²⁴ (subnormals have no
+        // implicit bit and the smallest exponent).
+        let (m, e) = if biased == 0 {
+            (fraction, -149)
+        } else {
+            (fraction | 0x80_0000, biased - 150)
+        };
+        // In fixed-point units x = m · 2^(e + 64); e + 64 ≤ 30 − 23 + 64 = 71.
+        let shift = e + FRACTION_BITS;
+        let magnitude = if shift >= 0 {
+            m << shift
+        } else if shift > -32 {
+            m >> -shift
+        } else {
+            0
+        };
+        if bits >> 31 == 1 { -magnitude } else { magnitude }
+    }
+
+    #[test]
+    fn to_fixed_matches_the_bit_by_bit_conversion() {
+        let mut rng = Pcg32::new(11, 3);
+        let special = [
+            0.0f32,
+            -0.0,
+            f32::MIN_POSITIVE,
+            -f32::MIN_POSITIVE,
+            1e-45,
+            2.0f32.powi(-40),
+            2.0f32.powi(-41),
+            -(2.0f32.powi(-64)),
+            2.0f32.powi(-63) * 1.5,
+            0.999_999_94,
+            1.0,
+            LIMIT,
+            -LIMIT,
+            LIMIT * 4.0,
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        let random = (0..200_000).map(|_| f32::from_bits(rng.next_u32()));
+        for x in special.into_iter().chain(random) {
+            assert_eq!(to_fixed(x), to_fixed_by_bits(x), "{x:e} ({:#010x})", x.to_bits());
+        }
+    }
 
     fn samples(n: usize, seed: u64) -> Vec<Rgb> {
         let mut rng = Pcg32::new(seed, 7);
