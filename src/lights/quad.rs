@@ -91,6 +91,12 @@ impl QuadLight {
     /// Uniform in solid angle (pdf = 1/Ω) for rectangles, else uniform by area
     /// converted to solid angle (pdf = d² / (cos θl · A)).
     pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+        // Behind a one-sided light (the ceiling above a Cornell box's lamp)
+        // every point of it is seen from the back: the test below would
+        // reject any sample, after building the spherical rectangle.
+        if !self.two_sided && (p - self.corner).dot(self.n) <= 0.0 {
+            return None;
+        }
         let sph = self.spherical(p);
         let q = match &sph {
             Some(s) => s.sample(u),
