@@ -90,6 +90,7 @@ impl QuadLight {
 
     /// Uniform in solid angle (pdf = 1/Ω) for rectangles, else uniform by area
     /// converted to solid angle (pdf = d² / (cos θl · A)).
+    #[inline]
     pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
         // Behind a one-sided light (the ceiling above a Cornell box's lamp)
         // every point of it is seen from the back: the test below would
