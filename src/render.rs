@@ -349,6 +349,21 @@ fn progress_bar(show: bool, tiles: usize, done: usize) -> indicatif::ProgressBar
     bar
 }
 
+/// `tiles` of `rect` ordered by the samples their pixels take (pixel `i`,
+/// row-major over `rect`, takes samples `from..upto[i]`), most first; tiles
+/// with equal counts keep their order.
+fn heaviest_first(mut tiles: Vec<PixelRect>, rect: PixelRect, from: u32, upto: &[u32]) -> Vec<PixelRect> {
+    let samples = |t: &PixelRect| -> u64 {
+        (t.y0..t.y1)
+            .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
+            .map(|(x, y)| u64::from(upto[rect.index(x, y)].saturating_sub(from)))
+            .sum()
+    };
+    // `sort_by_cached_key` is stable.
+    tiles.sort_by_cached_key(|t| std::cmp::Reverse(samples(t)));
+    tiles
+}
+
 /// One render of the pixels in `rect`.
 struct Work<'a> {
     scene: &'a Scene,
@@ -534,18 +549,11 @@ impl<'a> Work<'a> {
     /// ends on small tiles rather than with one thread on a heavy one
     /// (longest-processing-time-first scheduling). The image does not
     /// depend on the order: every pixel's samples are its own.
-    fn schedule(&self, mut tiles: Vec<PixelRect>) -> Vec<PixelRect> {
-        if let Samples::UpTo { from, upto } = self.samples {
-            let samples = |t: &PixelRect| -> u64 {
-                (t.y0..t.y1)
-                    .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
-                    .map(|(x, y)| u64::from(upto[self.rect.index(x, y)].saturating_sub(from)))
-                    .sum()
-            };
-            // Stable: equal tiles stay in reading order.
-            tiles.sort_by_cached_key(|t| std::cmp::Reverse(samples(t)));
+    fn schedule(&self, tiles: Vec<PixelRect>) -> Vec<PixelRect> {
+        match self.samples {
+            Samples::UpTo { from, upto } => heaviest_first(tiles, self.rect, from, upto),
+            Samples::Every { .. } => tiles,
         }
-        tiles
     }
 
     /// Each tile's pixels, finished; a tile skipped on cancel has none.
@@ -643,5 +651,50 @@ impl<'a> Work<'a> {
             })
             .collect();
         (tiles, total)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spread_tiles_go_out_heaviest_first_and_every_tile_once() {
+        // 40 × 24 pixels: 3 × 2 tiles, the right and bottom ones partial.
+        let rect = PixelRect {
+            x0: 0,
+            y0: 0,
+            x1: 40,
+            y1: 24,
+        };
+        let tiles = tiles_of(rect);
+        assert_eq!(tiles.len(), 6);
+        // Samples 8.. of each pixel: more toward the right, and a hot spot in
+        // the bottom-left tile.
+        let upto: Vec<u32> = (0..rect.area())
+            .map(|i| {
+                let (x, y) = ((i % 40) as u32, (i / 40) as u32);
+                if x < 4 && y > 20 { 200 } else { 8 + x }
+            })
+            .collect();
+        let order = heaviest_first(tiles.clone(), rect, 8, &upto);
+        let upto = &upto;
+        let load = |t: &PixelRect| -> u64 {
+            (t.y0..t.y1)
+                .flat_map(|y| (t.x0..t.x1).map(move |x| upto[rect.index(x, y)] as u64 - 8))
+                .sum()
+        };
+        let loads: Vec<u64> = order.iter().map(load).collect();
+        assert!(
+            loads.windows(2).all(|w| w[0] >= w[1]),
+            "not heaviest first: {loads:?}"
+        );
+        let mut seen = order.clone();
+        seen.sort_by_key(|t| (t.y0, t.x0));
+        assert_eq!(seen, tiles, "every tile exactly once");
+        // Loads in proportion to the tiles' areas (256, 256, 128, 128, 128,
+        // 64 pixels), which already decrease: ties keep reading order.
+        let flat = vec![8 + 4; rect.area() as usize];
+        assert_eq!(heaviest_first(tiles.clone(), rect, 8, &flat), tiles);
     }
 }
