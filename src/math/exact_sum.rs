@@ -108,7 +108,7 @@ mod tests {
 
     /// The first conversion, by the float's exponent and mantissa: the
     /// reference [`to_fixed`] must agree with bit for bit.
-    pub(super) fn to_fixed_by_bits(x: f32) -> i128 {
+    fn to_fixed_by_bits(x: f32) -> i128 {
         if !x.is_finite() {
             return 0;
         }
