@@ -578,7 +578,12 @@ impl<'a> Work<'a> {
             .map(|&tile| {
                 let mut counters = Counters::default();
                 let mut px = Vec::with_capacity(tile.area() as usize);
-                let mut pixel = PixelSampler::new(film.sampler, self.sampler_spp, film.seed);
+                let mut pixel = PixelSampler::with_splits(
+                    film.sampler,
+                    self.sampler_spp,
+                    self.integrator.splits(),
+                    film.seed,
+                );
                 if self.cancel.load(Ordering::Relaxed) {
                     return (tile, px, counters);
                 }

@@ -9,7 +9,8 @@
 #    the target is interpolated (log-log) and rounded up. Only the errors
 #    are used: the bench's timings are single runs.
 # 3. Rounds, alternating per scene: Mitsuba 256 spp; ronray `Independent`,
-#    256 spp in every pixel (`allocation: Even`), for the per-sample ratio;
+#    256 spp in every pixel (`allocation: Even`), one path per camera sample
+#    (`splits: 1`), for the per-sample ratio;
 #    ronray's defaults at the sample count of step 2, timed and measured
 #    against the reference (so the table shows that the timed render does
 #    reach Mitsuba's error).
@@ -93,7 +94,8 @@ for round in $(seq "$rounds"); do
         name="${s%%:*}" twin="${s#*:}"
         need=$(awk -v n="$name" '$1 == "need" && $2 == n {print $3}' "$log")
         mi=$(mi_render "$name" "$out/mi.exr")
-        rr=$(rr_render "$twin" 256 "$out/rr.exr" --set film.sampler=Independent --set film.allocation=Even)
+        rr=$(rr_render "$twin" 256 "$out/rr.exr" --set film.sampler=Independent --set film.allocation=Even \
+            --set integrator.splits=1)
         line="$name | mitsuba llvm 256 spp $mi s | ronray Independent 256 spp $rr s"
         if [ "$mi" != failed ]; then
             echo "mi $name $mi" >> "$log"

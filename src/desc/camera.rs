@@ -243,6 +243,14 @@ pub enum IntegratorDesc {
         /// mirrors and smooth glass) are found (default `LightTracing`).
         #[serde(default)]
         caustics: CausticsDesc,
+        /// Paths per camera sample, 1 to 16 (default 2): at its first diffuse or
+        /// glossy surface a camera sample's path takes its one light sample, then
+        /// goes on along this many BSDF samples, each weighted 1/splits (path
+        /// splitting). The camera ray, first hit and light sample are shared, so
+        /// the indirect light costs less per path; `spp` still counts camera
+        /// samples. 1 traces one path per camera sample, as Mitsuba does.
+        #[serde(default = "path_splits")]
+        splits: u32,
     },
 }
 
@@ -293,6 +301,9 @@ fn path_depth() -> i32 {
 }
 fn rr_depth() -> u32 {
     5
+}
+fn path_splits() -> u32 {
+    2
 }
 
 impl Default for IntegratorDesc {

@@ -39,6 +39,15 @@ pub struct Counters {
 }
 
 impl Integrator {
+    /// Continuations per camera sample (path splitting): what the pixel
+    /// samplers make room for.
+    pub fn splits(&self) -> u32 {
+        match self {
+            Integrator::Path(p) => p.splits.max(1),
+            _ => 1,
+        }
+    }
+
     /// Radiance in W/(m²·sr) arriving at the camera along `ray` (a camera ray in
     /// world space), one sample of the chosen estimator; `sampler` must be set to
     /// this pixel and sample.

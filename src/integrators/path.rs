@@ -21,13 +21,15 @@
 
 use super::caustic::max_chain;
 use super::{Counters, emitted, escaped, shadow_ray, spawn};
+use crate::geometry::Hit;
 use crate::geometry::NO_LIGHT;
 use crate::lights::LightPicker;
-use crate::materials::Bxdf;
+use crate::materials::{BsdfSample, Bxdf};
 use crate::math::sampling::power_heuristic;
 use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
+use glam::Vec3A;
 
 /// Path-tracing estimator with next-event estimation and MIS; the module docs pin
 /// down its depth convention.
@@ -43,85 +45,133 @@ pub struct Path {
     /// Set by the renderer for a render whose light-tracing pass runs: the
     /// paths that pass counts are dropped here (see [`super::caustic`]).
     pub split_caustics: bool,
+    /// Continuations of each camera sample at its first non-delta vertex
+    /// (path splitting); 1 traces one path per camera sample, as Mitsuba.
+    pub splits: u32,
+}
+
+/// Where a path stands between two vertices: what the loop of
+/// [`Path::trace`] carries from one vertex to the next, so that the
+/// continuations of a split path can each start from a copy.
+#[derive(Clone, Copy, Debug)]
+struct State {
+    /// The ray leaving the last vertex (the camera ray at first).
+    ray: Ray,
+    /// Path throughput up to `ray`'s origin.
+    beta: Rgb,
+    /// Product of η² over the refractions so far: roulette acts on flux.
+    eta_scale: f32,
+    /// Density of the last BSDF sample, and whether it was a delta lobe
+    /// (the camera ray counts as one: emitters it sees count fully).
+    prev_pdf: f32,
+    prev_delta: bool,
+    /// The vertex the ray left from: light densities for MIS are seen from it.
+    prev_p: Vec3A,
+    /// Its shading normal: a light tree's probabilities depend on both.
+    prev_n: Vec3A,
+    /// Segments traced so far.
+    segments: u32,
+    /// The split with the caustic light tracer (`super::caustic`): whether
+    /// the path since its last non-delta vertex is one the tracer counts
+    /// (that vertex seen straight from the camera and left by a non-delta
+    /// sample), and the perfect-specular vertices since.
+    traced: bool,
+    chain: u32,
 }
 
 impl Path {
-    /// Radiance in W/(m²·sr) arriving along camera `ray`, one path's estimate;
+    /// Radiance in W/(m²·sr) arriving along camera `ray`: one camera
+    /// sample's estimate (the mean of its continuations when paths split);
     /// unbiased for unlimited depth.
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
+        let start = State {
+            ray: *ray,
+            beta: Rgb::ONE,
+            eta_scale: 1.0,
+            prev_pdf: 0.0,
+            prev_delta: true,
+            prev_p: ray.o,
+            prev_n: Vec3A::ZERO,
+            segments: 0,
+            traced: false,
+            chain: 0,
+        };
+        let l = self.trace(scene, start, self.splits, sampler, counters);
+        debug_assert!(l.is_finite(), "non-finite radiance {l}");
+        l
+    }
+
+    /// Radiance the path in `st` gathers from its next vertex on. With
+    /// `splits > 1` the path splits at its first non-delta vertex: after
+    /// the one light sample there, it goes on `splits` times, each
+    /// continuation along its own BSDF sample (its numbers from
+    /// [`Sampler::split`]) with weight 1/`splits`; continuations do not
+    /// split again.
+    fn trace(
+        &self,
+        scene: &Scene,
+        mut st: State,
+        splits: u32,
+        sampler: &mut Sampler,
+        counters: &mut Counters,
+    ) -> Rgb {
         let picker: &LightPicker = &scene.light_picker;
         let mut l = Rgb::ZERO;
-        let mut beta = Rgb::ONE;
-        let mut eta_scale = 1.0f32;
-        let mut ray = *ray;
-        // Density of the last BSDF sample, and whether it was a delta lobe
-        // (the camera ray counts as one: emitters it sees count fully).
-        let mut prev_pdf = 0.0f32;
-        let mut prev_delta = true;
-        // The vertex the ray left from: light densities for MIS are seen from it.
-        let mut prev_p = ray.o;
-        // Its shading normal: a light tree's probabilities depend on both.
-        let mut prev_n = glam::Vec3A::ZERO;
-        let mut segments = 0u32;
-        // The split with the caustic light tracer (`super::caustic`): whether
-        // the path since its last non-delta vertex is one the tracer counts
-        // (that vertex seen straight from the camera and left by a
-        // non-delta sample), and the perfect-specular vertices since.
         let split = self.split_caustics && scene.caustics.is_some();
         let max_chain = max_chain(self.max_depth);
-        let mut traced = false;
-        let mut chain = 0u32;
         loop {
             counters.rays += 1;
-            let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
+            let Some(hit) = scene.intersect(&st.ray, f32::INFINITY) else {
                 // The environment, reached by the previous BSDF sample.
                 // After a non-delta vertex (never the camera ray) the radiance
                 // and the MIS density share one mapping of the direction.
                 match scene.environment() {
-                    Some((i, env)) if !prev_delta => {
-                        let (le, env_pdf) = env.le_and_pdf(ray.d);
+                    Some((i, env)) if !st.prev_delta => {
+                        let (le, env_pdf) = env.le_and_pdf(st.ray.d);
                         if le != Rgb::ZERO {
-                            let w =
-                                power_heuristic(prev_pdf, picker.pmf(prev_p, prev_n, i as usize) * env_pdf);
-                            l += beta * le * w;
+                            let w = power_heuristic(
+                                st.prev_pdf,
+                                picker.pmf(st.prev_p, st.prev_n, i as usize) * env_pdf,
+                            );
+                            l += st.beta * le * w;
                         }
                     }
                     _ => {
-                        let le = escaped(scene, ray.d, segments == 0);
+                        let le = escaped(scene, st.ray.d, st.segments == 0);
                         if le != Rgb::ZERO {
-                            l += beta * le;
+                            l += st.beta * le;
                         }
                     }
                 }
                 break;
             };
-            segments += 1;
+            st.segments += 1;
 
             // Emission reached by the previous BSDF sample.
             if hit.light != NO_LIGHT {
-                let le = emitted(scene, &hit, ray.d);
+                let le = emitted(scene, &hit, st.ray.d);
                 if le != Rgb::ZERO {
-                    let w = if prev_delta {
-                        let theirs = traced
-                            && (1..=max_chain).contains(&chain)
+                    let w = if st.prev_delta {
+                        let theirs = st.traced
+                            && (1..=max_chain).contains(&st.chain)
                             && scene.caustics.as_ref().is_some_and(|c| c.covers(hit.light));
                         if theirs { 0.0 } else { 1.0 }
                     } else {
                         let light = &scene.lights[hit.light as usize];
-                        let light_pdf =
-                            picker.pmf(prev_p, prev_n, hit.light as usize) * light.pdf(prev_p, ray.d, &hit);
-                        power_heuristic(prev_pdf, light_pdf)
+                        let light_pdf = picker.pmf(st.prev_p, st.prev_n, hit.light as usize)
+                            * light.pdf(st.prev_p, st.ray.d, &hit);
+                        power_heuristic(st.prev_pdf, light_pdf)
                     };
-                    l += beta * le * w;
+                    l += st.beta * le * w;
                 }
             }
-            if segments >= self.max_depth {
+            if st.segments >= self.max_depth {
                 break;
             }
 
             let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
             let frame = Frame::from_normal(hit.ns);
-            let wo = frame.to_local(-ray.d);
+            let wo = frame.to_local(-st.ray.d);
 
             // The numbers are drawn in a fixed order (light pick, light
             // point, BSDF lobe and direction), but the BSDF is sampled
@@ -135,6 +185,7 @@ impl Path {
             } else {
                 (sampler.next_f32(), sampler.next_vec2())
             };
+            let mark = sampler.draws();
             let bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2());
 
             // Next-event estimation: one light, picked as the scene says (by
@@ -154,45 +205,84 @@ impl Path {
                             } else {
                                 power_heuristic(light_pdf, bsdf.pdf(wo, wi))
                             };
-                            l += beta * f * ls.li * (w / light_pdf);
+                            l += st.beta * f * ls.li * (w / light_pdf);
                         }
                     }
                 }
             }
 
-            if split {
-                if delta {
-                    chain += 1;
-                } else {
-                    chain = 0;
-                    traced = segments == 1 && bs.is_some_and(|b| !b.delta);
+            if splits > 1 && !delta {
+                // Path splitting: the first continuation along the sample
+                // drawn above, the others along their own.
+                let mut sum = Rgb::ZERO;
+                let mut bs = bs;
+                for k in 0..splits {
+                    if k > 0 {
+                        sampler.split(k, mark);
+                        bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2());
+                    }
+                    let mut next = st;
+                    if let Some(bs) = bs
+                        && self.advance(&mut next, &bs, &hit, &frame, delta, split, sampler)
+                    {
+                        sum += self.trace(scene, next, 1, sampler, counters);
+                    }
                 }
+                return l + sum * (1.0 / splits as f32);
             }
 
             // Continue the path along the BSDF sample.
             let Some(bs) = bs else {
                 break;
             };
-            beta *= bs.weight;
-            if beta == Rgb::ZERO {
+            if !self.advance(&mut st, &bs, &hit, &frame, delta, split, sampler) {
                 break;
             }
-            eta_scale *= bs.eta * bs.eta;
-            prev_pdf = bs.pdf;
-            prev_delta = bs.delta;
-            prev_p = hit.p;
-            prev_n = hit.ns;
-            ray = spawn(&hit, frame.to_world(bs.wi));
+        }
+        l
+    }
 
-            if segments >= self.rr_depth {
-                let q = (beta.max_element() * eta_scale).min(0.95);
-                if sampler.next_f32() >= q {
-                    break;
-                }
-                beta /= q;
+    /// Moves `st` across the vertex at `hit` along `bs` (throughput, MIS
+    /// memory, the next ray), then plays Russian roulette once the path has
+    /// `rr_depth` segments. False when the path ends there.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn advance(
+        &self,
+        st: &mut State,
+        bs: &BsdfSample,
+        hit: &Hit,
+        frame: &Frame,
+        delta: bool,
+        split: bool,
+        sampler: &mut Sampler,
+    ) -> bool {
+        if split {
+            if delta {
+                st.chain += 1;
+            } else {
+                st.chain = 0;
+                st.traced = st.segments == 1 && !bs.delta;
             }
         }
-        debug_assert!(l.is_finite(), "non-finite radiance {l}");
-        l
+        st.beta *= bs.weight;
+        if st.beta == Rgb::ZERO {
+            return false;
+        }
+        st.eta_scale *= bs.eta * bs.eta;
+        st.prev_pdf = bs.pdf;
+        st.prev_delta = bs.delta;
+        st.prev_p = hit.p;
+        st.prev_n = hit.ns;
+        st.ray = spawn(hit, frame.to_world(bs.wi));
+
+        if st.segments >= self.rr_depth {
+            let q = (st.beta.max_element() * st.eta_scale).min(0.95);
+            if sampler.next_f32() >= q {
+                return false;
+            }
+            st.beta /= q;
+        }
+        true
     }
 }

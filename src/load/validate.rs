@@ -23,6 +23,10 @@ pub const MAX_COORD: f32 = 1e15;
 /// roulette a path in a closed white room never ends (u32::MAX took
 /// minutes per sample).
 pub const MAX_RR_DEPTH: u32 = 1024;
+/// Largest accepted number of paths a camera sample splits into: each
+/// continuation costs about a path, and the gain is in the indirect light
+/// alone (2 is best on the reference scenes; see `integrators/path.rs`).
+pub const MAX_SPLITS: u32 = 16;
 /// Largest accepted Whitted recursion depth.
 pub const MAX_DEPTH: u32 = 64;
 /// Largest pixel-filter radius, in pixels: wider filters only blur, and

@@ -3,7 +3,7 @@
 
 use super::validate::{
     Checker, MAX_COORD, MAX_DEPTH, MAX_EXPOSURE, MAX_FILTER_RADIUS, MAX_LIGHT_SAMPLES, MAX_RESOLUTION,
-    MAX_RR_DEPTH, MAX_SPP, MIN_FILTER_SIGMA,
+    MAX_RR_DEPTH, MAX_SPLITS, MAX_SPP, MIN_FILTER_SIGMA,
 };
 use crate::aov::Aov;
 use crate::camera::{Camera, Projection};
@@ -293,8 +293,18 @@ impl Checker {
                 }
             }
             IntegratorDesc::Path {
-                max_depth, rr_depth, ..
+                max_depth,
+                rr_depth,
+                splits,
+                ..
             } => {
+                if *splits == 0 || *splits > MAX_SPLITS {
+                    self.push(
+                        "integrator.splits",
+                        format!("{splits} paths per camera sample is outside 1..={MAX_SPLITS}"),
+                        "2 is the default; 1 traces one path per camera sample",
+                    );
+                }
                 if *max_depth == 0 || *max_depth < -1 {
                     self.push(
                         "integrator.max_depth",
@@ -343,12 +353,14 @@ pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
             max_depth,
             rr_depth,
             caustics,
+            splits,
             ..
         } => Integrator::Path(PathTracer {
             max_depth: u32::try_from(max_depth).unwrap_or(u32::MAX),
             rr_depth,
             light_trace_caustics: caustics == CausticsDesc::LightTracing,
             split_caustics: false,
+            splits: splits.clamp(1, MAX_SPLITS),
         }),
     };
     let filter = Filter::new(match f.filter {

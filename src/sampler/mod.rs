@@ -67,6 +67,10 @@ pub struct Sampler {
     pixel_hash: u64,
     index: u32,
     spp: u32,
+    /// `Sobol`: the bits of a sample index, and of a net index (a split
+    /// continuation's number above the sample's; see [`Sampler::split`]).
+    spp_bits: u32,
+    index_bits: u32,
     dim: u32,
     /// Draws taken so far (`Sobol` only).
     draws: u32,
@@ -94,6 +98,8 @@ impl Sampler {
             pixel_hash: 0,
             index: 0,
             spp: 1,
+            spp_bits: 0,
+            index_bits: 0,
             dim: 0,
             draws: 0,
             points: [Vec2::ZERO; SOBOL_DRAWS as usize],
@@ -106,6 +112,30 @@ impl Sampler {
         let h = mix64(self.pixel_hash ^ (self.dim as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
         self.dim += 1;
         h
+    }
+
+    /// How many draws this sample has taken: where a split continuation
+    /// ([`Sampler::split`]) starts drawing again.
+    #[inline(always)]
+    pub fn draws(&self) -> u32 {
+        self.draws
+    }
+
+    /// Starts split continuation `k` (1, 2, …) of this camera sample, which
+    /// draws again from draw `from` on: with `Sobol`, its stratified draws
+    /// from `from` on are points of its own block of each draw's net (net
+    /// index `k · 2^spp_bits + sample`), so each continuation's points are
+    /// stratified across the pixel's samples as the first one's are, and
+    /// apart from them. Other samplers go on with their stream.
+    pub fn split(&mut self, k: u32, from: u32) {
+        if self.kind != SamplerKind::Sobol || from >= SOBOL_DRAWS {
+            return;
+        }
+        let index = (k << self.spp_bits) | self.index;
+        for d in from as usize..SOBOL_DRAWS as usize {
+            self.points[d] = pixel::point_at(self.pixel_hash, d, index, self.index_bits);
+        }
+        self.draws = from;
     }
 
     /// The next stratified `Sobol` point; `None` once [`SOBOL_DRAWS`] are taken.

@@ -36,7 +36,10 @@ pub struct PixelSampler {
     kind: SamplerKind,
     seed: u64,
     spp: u32,
-    /// log2 of the power of two ≥ spp: the bits of a Sobol point index.
+    /// log2 of the power of two ≥ spp: the bits of a sample index.
+    spp_bits: u32,
+    /// The bits of a Sobol point index: `spp_bits` and, above them, the
+    /// bits of a split continuation's number (see [`Sampler::split`]).
     index_bits: u32,
     pixel_hash: u64,
     pcg_seed: u64,
@@ -54,13 +57,23 @@ impl PixelSampler {
     /// A sampler for a render of `spp` samples per pixel with the scene's
     /// `seed`; [`Self::set_pixel`] before the first [`Self::sample`].
     pub fn new(kind: SamplerKind, spp: u32, seed: u64) -> Self {
+        Self::with_splits(kind, spp, 1, seed)
+    }
+
+    /// [`Self::new`] for paths that split into `splits` continuations
+    /// ([`Sampler::split`]): each continuation takes its `Sobol` points from
+    /// its own block of the nets.
+    pub fn with_splits(kind: SamplerKind, spp: u32, splits: u32, seed: u64) -> Self {
         let spp = spp.max(1);
+        // At most 31 in all: `1 << m` must fit in a u32.
+        let spp_bits = spp.next_power_of_two().trailing_zeros().min(31);
+        let split_bits = splits.max(1).next_power_of_two().trailing_zeros();
         Self {
             kind,
             seed,
             spp,
-            // At most 31: `1 << m` must fit in a u32.
-            index_bits: spp.next_power_of_two().trailing_zeros().min(31),
+            spp_bits,
+            index_bits: (spp_bits + split_bits).min(31),
             pixel_hash: 0,
             pcg_seed: 0,
             draw_hashes: [0; DRAWS],
@@ -84,11 +97,7 @@ impl PixelSampler {
         // One multiply–xorshift round (half of SplitMix64's) separates the
         // draws: `pixel_hash` is already mixed.
         let pixel_hash = self.pixel_hash;
-        self.draw_hashes = std::array::from_fn(|d| {
-            let h = (pixel_hash ^ (d as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15))
-                .wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            h ^ (h >> 31)
-        });
+        self.draw_hashes = std::array::from_fn(|d| draw_hash(pixel_hash, d));
         // Batch unless a worker's buffers would pass a few MB.
         let n = samples.len();
         if n == 0 || n > MAX_BATCHED {
@@ -140,6 +149,8 @@ impl PixelSampler {
             pixel_hash: self.pixel_hash,
             index,
             spp: self.spp,
+            spp_bits: self.spp_bits,
+            index_bits: self.index_bits,
             dim: 0,
             draws: 0,
             points,
@@ -153,6 +164,24 @@ impl PixelSampler {
         let (x, y) = net_point(index, self.index_bits, seeds(self.draw_hashes[d]));
         Vec2::new(x, y)
     }
+}
+
+/// The hash of draw `d` of the pixel with hash `pixel_hash`, which seeds
+/// its net's order and scrambles. One multiply–xorshift round (half of
+/// SplitMix64's) separates the draws: `pixel_hash` is already mixed.
+#[inline]
+fn draw_hash(pixel_hash: u64, d: usize) -> u64 {
+    let h =
+        (pixel_hash ^ (d as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    h ^ (h >> 31)
+}
+
+/// Draw `d`'s point of net index source `index` (a sample, or a split
+/// continuation's block above the samples) for the pixel with hash
+/// `pixel_hash`: what [`PixelSampler::sample`] stores, one point alone.
+pub(super) fn point_at(pixel_hash: u64, d: usize, index: u32, index_bits: u32) -> Vec2 {
+    let (x, y) = net_point(index, index_bits, seeds(draw_hash(pixel_hash, d)));
+    Vec2::new(x, y)
 }
 
 /// The point sample `s` takes of a draw's Owen-scrambled `2^m`-point net:
@@ -226,6 +255,54 @@ mod tests {
                 for _ in 0..SOBOL_DRAWS + 2 {
                     assert_eq!(a.next_vec2(), b.next_vec2(), "spp {spp}, sample {s}");
                     assert_eq!(a.next_f32(), b.next_f32(), "spp {spp}, sample {s}");
+                }
+            }
+        }
+    }
+
+    /// Exactly one of the `n` points in each 1/n-wide column and each 1/n-high row.
+    fn is_net(pts: &[Vec2]) -> bool {
+        let n = pts.len();
+        let (mut cols, mut rows) = (vec![0; n], vec![0; n]);
+        for p in pts {
+            cols[(p.x * n as f32) as usize] += 1;
+            rows[(p.y * n as f32) as usize] += 1;
+        }
+        cols.iter().chain(&rows).all(|&c| c == 1)
+    }
+
+    #[test]
+    fn split_continuations_are_stratified_and_apart() {
+        // 40 spp, three continuations per camera sample, redrawing from draw
+        // 4 (a first vertex's BSDF lobe and direction): over a pixel's first
+        // 8, 16 and 32 samples each continuation's points are a net of their
+        // own, continuation 0's are the batched ones, and the others differ.
+        let spp = 40;
+        let mut pixel = PixelSampler::with_splits(SamplerKind::Sobol, spp, 3, 5);
+        pixel.set_pixel(3, 9, 0..spp);
+        let from = 4;
+        let point = |s: u32, k: u32, d: usize| {
+            let mut sample = pixel.sample(s);
+            sample.split(k, from);
+            sample.points[d]
+        };
+        for n in [8u32, 16, 32] {
+            for d in from as usize..DRAWS {
+                for k in 0..3 {
+                    let pts: Vec<Vec2> = (0..n).map(|s| point(s, k, d)).collect();
+                    assert!(is_net(&pts), "n {n}, draw {d}, continuation {k}");
+                }
+            }
+        }
+        for s in 0..spp {
+            for d in 0..DRAWS {
+                assert_eq!(point(s, 0, d), pixel.sample(s).points[d]);
+                if d >= from as usize {
+                    assert_ne!(point(s, 1, d), point(s, 0, d));
+                    assert_ne!(point(s, 2, d), point(s, 1, d));
+                } else {
+                    // Draws before the split are the camera sample's own.
+                    assert_eq!(point(s, 1, d), point(s, 0, d));
                 }
             }
         }
