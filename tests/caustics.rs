@@ -105,10 +105,10 @@ fn light_traced_caustics_lower_the_noise() {
     // The reference scene `cornell_specular` (a mirror and a glass sphere):
     // seed-to-seed difference of two renders, whose RMSE is √2 times each
     // render's noise. At 256², 128 spp the noise off the light is 0.0387
-    // without light tracing and 0.0307 with it. One path per camera sample:
-    // with the default two (path splitting) the path tracer finds these
-    // caustics twice as often and the gain here is smaller (0.0378 against
-    // 0.0412).
+    // without light tracing and 0.0307 with it. One path per camera sample
+    // (the default, written out): with two (`splits: 2`) the path tracer
+    // finds these caustics twice as often and the gain here is smaller
+    // (0.0378 against 0.0412).
     let text = std::fs::read_to_string(common::root().join("scenes/cornell_specular.ron")).expect("scene");
     let film = "film: (width: 256, height: 256, spp: 64, sampler: Independent)";
     let integrator = "integrator: Path(max_depth: 16, rr_depth: 5)";

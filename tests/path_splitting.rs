@@ -1,4 +1,4 @@
-//! Path splitting (`integrator: Path(splits: n)`, default 2): the same
+//! Path splitting (`integrator: Path(splits: n)`, default 1): the same
 //! expected image as one path per camera sample, region by region, less
 //! noise per camera sample, the same image on any number of threads, and
 //! out-of-range counts refused with a located diagnostic.
@@ -106,14 +106,14 @@ fn splitting_keeps_the_image_region_by_region() {
 
 #[test]
 fn splitting_lowers_the_noise_per_camera_sample() {
-    // At equal camera samples, two paths each (the default) against one,
+    // At equal camera samples, two paths each against one,
     // both measured against a 4096-spp render: the indirect light is most
     // of this box's noise, so the error falls by about 1/√2 (0.72 measured
     // on the Cornell box reference); the test asks for 0.9.
     let w = 16;
     let truth = render_with(&scene(&film(w, 4096, 7), "splits: 1"), 2);
     let one = render_with(&scene(&film(w, 64, 8), "splits: 1"), 2);
-    let two = render_with(&scene(&film(w, 64, 8), ""), 2);
+    let two = render_with(&scene(&film(w, 64, 8), "splits: 2"), 2);
     let (e1, e2) = (rmse(&one, &truth), rmse(&two, &truth));
     assert!(e2 < 0.9 * e1, "split {e2} against one path {e1}");
 }

@@ -243,12 +243,12 @@ pub enum IntegratorDesc {
         /// mirrors and smooth glass) are found (default `LightTracing`).
         #[serde(default)]
         caustics: CausticsDesc,
-        /// Paths per camera sample, 1 to 16 (default 2): at its first diffuse or
-        /// glossy surface a camera sample's path takes its one light sample, then
-        /// goes on along this many BSDF samples, each weighted 1/splits (path
-        /// splitting). The camera ray, first hit and light sample are shared, so
-        /// the indirect light costs less per path; `spp` still counts camera
-        /// samples. 1 traces one path per camera sample, as Mitsuba does.
+        /// Paths per camera sample, 1 to 16 (default 1, one path per camera
+        /// sample, as Mitsuba traces): at its first diffuse or glossy surface a
+        /// camera sample's path takes its one light sample, then goes on along
+        /// this many BSDF samples, each weighted 1/splits (path splitting). The
+        /// camera ray, first hit and light sample are shared, so the indirect
+        /// light costs less per path; `spp` still counts camera samples.
         #[serde(default = "path_splits")]
         splits: u32,
     },
@@ -303,7 +303,7 @@ fn rr_depth() -> u32 {
     5
 }
 fn path_splits() -> u32 {
-    2
+    1
 }
 
 impl Default for IntegratorDesc {

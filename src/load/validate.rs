@@ -24,8 +24,8 @@ pub const MAX_COORD: f32 = 1e15;
 /// minutes per sample).
 pub const MAX_RR_DEPTH: u32 = 1024;
 /// Largest accepted number of paths a camera sample splits into: each
-/// continuation costs about a path, and the gain is in the indirect light
-/// alone (2 is best on the reference scenes; see `integrators/path.rs`).
+/// continuation costs most of a path, and the gain is in the indirect light
+/// alone (see the README's *Integrator* section).
 pub const MAX_SPLITS: u32 = 16;
 /// Largest accepted Whitted recursion depth.
 pub const MAX_DEPTH: u32 = 64;

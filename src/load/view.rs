@@ -302,7 +302,7 @@ impl Checker {
                     self.push(
                         "integrator.splits",
                         format!("{splits} paths per camera sample is outside 1..={MAX_SPLITS}"),
-                        "2 is the default; 1 traces one path per camera sample",
+                        "1 (the default) traces one path per camera sample; 2 suits rooms lit mostly indirectly",
                     );
                 }
                 if *max_depth == 0 || *max_depth < -1 {
