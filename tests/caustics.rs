@@ -66,6 +66,19 @@ fn blocks(px: &[Rgb], w: usize, q: usize) -> Vec<f64> {
 
 #[test]
 fn light_traced_caustics_keep_the_image_region_by_region() {
+    keeps_the_image("");
+}
+
+#[test]
+fn light_traced_caustics_keep_the_image_with_split_paths() {
+    // Each continuation of a split path drops the paths the light tracer
+    // counts on its own (`integrator: Path(splits: 2)`).
+    keeps_the_image("splits: 2");
+}
+
+/// The path tracer alone against the light-traced split with `extra` in
+/// the integrator.
+fn keeps_the_image(extra: &str) {
     // The path tracer alone at many samples against the split at fewer:
     // whole image within 1%, each quadrant (12 × 12 pixels) within 3%.
     // Dropping the path tracer's share without adding the light tracer's
@@ -77,12 +90,12 @@ fn light_traced_caustics_keep_the_image_region_by_region() {
     let alone = load_text(&glass_scene(&film(2048, 3), "caustics: PathOnly"));
     assert!(light_trace_plan(&alone.scene, &alone.view, &threads(2)).is_none());
     let (truth, _) = render(&alone.scene, &alone.view, &threads(2));
-    let split = load_text(&glass_scene(&film(1024, 4), ""));
+    let split = load_text(&glass_scene(&film(1024, 4), extra));
     assert!(light_trace_plan(&split.scene, &split.view, &threads(2)).is_some());
     let (img, _) = render(&split.scene, &split.view, &threads(2));
     let (a, b) = (blocks(&truth.pixels, w, w), blocks(&img.pixels, w, w));
     report(&format!(
-        "caustic box 24x24: mean path tracer alone {:.5}, split {:.5}",
+        "caustic box 24x24 ({extra}): mean path tracer alone {:.5}, split {:.5}",
         a[0], b[0]
     ));
     assert!(
