@@ -5,8 +5,7 @@
 
 mod common;
 
-use common::{load_text, report};
-use ronray::math::Rgb;
+use common::{blocks, load_text, report};
 use ronray::render::{RenderOptions, light_trace_plan, render};
 
 /// A box lit by a small rectangle, with a mirror sphere and a glass sphere
@@ -47,21 +46,6 @@ fn threads(n: usize) -> RenderOptions {
         threads: Some(n),
         ..Default::default()
     }
-}
-
-fn sum(p: &Rgb) -> f64 {
-    f64::from(p.x + p.y + p.z)
-}
-
-/// Mean of each `q` × `q` block of a `w`-wide image, row-major.
-fn blocks(px: &[Rgb], w: usize, q: usize) -> Vec<f64> {
-    let h = px.len() / w;
-    let mut out = vec![0.0; (w / q) * (h / q)];
-    for (i, p) in px.iter().enumerate() {
-        let (x, y) = (i % w, i / w);
-        out[(y / q) * (w / q) + x / q] += sum(p) / (q * q) as f64;
-    }
-    out
 }
 
 #[test]

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::load_text;
+use common::{blocks, load_text};
 use ronray::load::{LoadError, Overrides, load_str};
 use ronray::math::Rgb;
 use ronray::render::{RenderOptions, render};
@@ -47,21 +47,6 @@ fn render_with(text: &str, threads: usize) -> Vec<Rgb> {
     let img = render(&l.scene, &l.view, &opts).0;
     assert!(img.pixels.iter().all(|p| p.is_finite()));
     img.pixels
-}
-
-fn sum(p: &Rgb) -> f64 {
-    f64::from(p.x + p.y + p.z)
-}
-
-/// Mean of each `q` × `q` block of a `w`-wide image, row-major.
-fn blocks(px: &[Rgb], w: usize, q: usize) -> Vec<f64> {
-    let h = px.len() / w;
-    let mut out = vec![0.0; (w / q) * (h / q)];
-    for (i, p) in px.iter().enumerate() {
-        let (x, y) = (i % w, i / w);
-        out[(y / q) * (w / q) + x / q] += sum(p) / (q * q) as f64;
-    }
-    out
 }
 
 fn rmse(a: &[Rgb], b: &[Rgb]) -> f64 {

@@ -94,8 +94,6 @@ impl PixelSampler {
             self.points.clear();
             return;
         }
-        // One multiply–xorshift round (half of SplitMix64's) separates the
-        // draws: `pixel_hash` is already mixed.
         let pixel_hash = self.pixel_hash;
         self.draw_hashes = std::array::from_fn(|d| draw_hash(pixel_hash, d));
         // Batch unless a worker's buffers would pass a few MB.
@@ -320,15 +318,7 @@ mod tests {
             for n in [8usize, 16, 32] {
                 for d in 0..DRAWS {
                     let pts: Vec<Vec2> = (0..n as u32).map(|s| pixel.sample(s).points[d]).collect();
-                    let (mut cols, mut rows) = (vec![0; n], vec![0; n]);
-                    for p in &pts {
-                        cols[(p.x * n as f32) as usize] += 1;
-                        rows[(p.y * n as f32) as usize] += 1;
-                    }
-                    assert!(
-                        cols.iter().chain(&rows).all(|&c| c == 1),
-                        "n {n}, draw {d}: {cols:?} {rows:?}"
-                    );
+                    assert!(is_net(&pts), "n {n}, draw {d}: {pts:?}");
                 }
             }
         }

@@ -108,3 +108,20 @@ pub fn report(line: &str) {
     use std::io::Write;
     let _ = writeln!(std::io::stderr(), "{line}");
 }
+
+/// Sum of a pixel's channels, in f64.
+pub fn sum(p: &ronray::math::Rgb) -> f64 {
+    f64::from(p.x + p.y + p.z)
+}
+
+/// Mean channel sum of each `q` × `q` block of a `w`-wide image, row-major:
+/// for region-by-region comparisons.
+pub fn blocks(px: &[ronray::math::Rgb], w: usize, q: usize) -> Vec<f64> {
+    let h = px.len() / w;
+    let mut out = vec![0.0; (w / q) * (h / q)];
+    for (i, p) in px.iter().enumerate() {
+        let (x, y) = (i % w, i / w);
+        out[(y / q) * (w / q) + x / q] += sum(p) / (q * q) as f64;
+    }
+    out
+}
