@@ -20,6 +20,7 @@ pub mod files;
 pub mod film;
 pub mod fuzzing;
 pub mod geometry;
+pub mod huge_pages;
 pub mod imageio;
 pub mod integrators;
 pub mod lights;

@@ -84,6 +84,9 @@ impl Mesh {
         let mut starts: Vec<(u32, u32)> = blas.leaves().flat_map(|(f, c)| blocks(f, c)).collect();
         starts.par_sort_unstable();
         let mut tris = vec![0.0; FLOATS * self.indices.len() + 3];
+        // Zeroed lazily (fresh pages), so advised before any is written:
+        // every ray reads these at random (see `huge_pages`).
+        crate::huge_pages::advise(&tris);
         let mut rest = tris.as_mut_slice();
         let mut jobs = Vec::with_capacity(starts.len());
         let mut next = 0;

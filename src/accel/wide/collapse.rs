@@ -23,6 +23,8 @@ const PARALLEL_MIN: u32 = 1 << 14;
 /// array) into wide nodes, root first.
 pub(super) fn collapse(nodes: &[Node], leaves: Leaves) -> Vec<WideNode> {
     let mut out = Vec::with_capacity(nodes.len() / 3 + 1);
+    // Read at random by every ray: huge pages (see `huge_pages`).
+    crate::huge_pages::advise(&out);
     if nodes.is_empty() {
         return out;
     }

@@ -1,17 +1,24 @@
-"""Embree 4's BVH build time on a triangle OBJ, on 1 and 2 threads, for
-issue 18's build line measured side by side (the performance anchors' Embree
-figures are from another day; on this shared machine only same-run ratios
-mean anything).
+"""Embree 4's BVH build time on a triangle OBJ, on 1 and 2 threads, and its
+closest-hit throughput on `ronray bench`'s incoherent rays, for issue 18's
+build and traversal lines measured side by side (the performance anchors'
+Embree figures are from another day; on this shared machine only same-run
+ratios mean anything).
 
 Calls Embree's C API through ctypes, from the libembree4 bundled in the
 `embreex` wheel (Embree 4.4, TBB; its verbose mode reports the AVX-512 ISA and
 `avx::BVH8BuilderSAH` building `BVH8<triangle4>`: the anchors' binned-SAH
 8-wide build), at the default medium build quality. Each thread count gets
 one warm-up build (thread pool, allocator), then ROUNDS timed ones of
-`rtcCommitScene`, printed sorted. Not part of ronray: a measuring tool.
+`rtcCommitScene`, printed sorted. The rays are `ronray bench`'s incoherent
+set in distribution (2^20, origins uniform in the mesh's bounding box,
+directions uniform on the sphere; numpy's generator, not ronray's), traced
+one at a time on one thread by embreex's `EmbreeScene.run`, a Cython loop
+over `rtcIntersect1`: its per-call overhead, printed as the rate of rays
+that miss the box, is counted against Embree. Not part of ronray: a
+measuring tool.
 
 Needs: pip install embreex numpy
-Usage: python3 tools/embree_build.py MESH.obj [ROUNDS]   (ROUNDS default 3)
+Usage: python3 tools/embree_bench.py MESH.obj [ROUNDS]   (ROUNDS default 3)
 Compare with `ronray bench MESH.obj --threads 2` run alternately with it."""
 import ctypes, glob, os, sys, time
 import numpy as np
@@ -67,3 +74,27 @@ for threads in (1, 2):
     times = sorted(build(dev, v, f) for _ in range(rounds))
     print(f'embree {len(f)} triangles, {threads} thread(s): ' + ' '.join(f'{1000 * t:.1f}' for t in times) + ' ms')
     lib.rtcReleaseDevice(dev)
+
+# Incoherent closest hits, one thread, as `ronray bench` defines them.
+from embreex import rtcore_scene
+from embreex.mesh_construction import TriangleMesh
+scene = rtcore_scene.EmbreeScene()
+TriangleMesh(scene, v[f.astype(np.int64)])
+lo, hi = v.min(0), v.max(0)
+rng = np.random.default_rng(1)
+n = 1 << 20
+o = (lo + rng.random((n, 3)) * (hi - lo)).astype(np.float32)
+d = rng.normal(size=(n, 3))
+d = (d / np.linalg.norm(d, axis=1)[:, None]).astype(np.float32)
+scene.run(o[:1024], d[:1024])  # builds the BVH
+rates = []
+for _ in range(rounds):
+    t = time.perf_counter()
+    ids = scene.run(o, d)
+    rates.append(n / (time.perf_counter() - t) / 1e6)
+print(f'embree incoherent, 1 thread: ' + ' '.join(f'{r:.2f}' for r in sorted(rates))
+      + f' Mrays/s, hit {100 * np.mean(ids >= 0):.1f}%')
+t = time.perf_counter()
+away = np.broadcast_to((hi - lo) / np.linalg.norm(hi - lo), d.shape).astype(np.float32)
+scene.run((o + 4 * (hi - lo).max() + 1).astype(np.float32), away)
+print(f'embree call overhead: {n / (time.perf_counter() - t) / 1e6:.1f} Mrays/s on rays that miss the box')
