@@ -117,7 +117,9 @@ impl Mesh {
         let blas = self.blas.as_ref()?;
         let wt = WatertightRay4::new(ray);
         let mut best = None;
-        blas.intersect(ray, t_max, |first, count, t_best| {
+        let tris = self.tris.as_ptr();
+        let leaf_data = |first: u32| tris.wrapping_add(FLOATS * first as usize).cast::<u8>();
+        blas.intersect_prefetching(ray, t_max, leaf_data, |first, count, t_best| {
             let h = self.leaf_closest(&wt, first, count, t_best)?;
             best = Some(h);
             Some(h.t)

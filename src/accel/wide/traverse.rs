@@ -83,14 +83,15 @@ impl SlabRay {
     }
 }
 
-/// Asks for `node`'s cache lines ahead of its visit, so the misses of a
-/// node's children overlap instead of following one another.
+/// Asks for a node's cache lines (or as many of a leaf's data) ahead of its
+/// visit, so the misses of a node's children overlap instead of following
+/// one another. `p` need not be a valid address: a prefetch never faults.
 #[inline(always)]
-fn prefetch(node: &WideNode) {
+fn prefetch_at(p: *const u8) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let p = (node as *const WideNode).cast::<i8>();
+        let p = p.cast::<i8>();
         // SAFETY: SSE is part of x86-64; a prefetch never faults.
         unsafe {
             for line in 0..size_of::<WideNode>() / 64 {
@@ -98,6 +99,8 @@ fn prefetch(node: &WideNode) {
             }
         }
     }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = p;
 }
 
 impl WideBvh {
@@ -110,6 +113,23 @@ impl WideBvh {
         &self,
         ray: &Ray,
         t_max: f32,
+        leaf: impl FnMut(u32, u32, f32) -> Option<f32>,
+    ) -> Option<f32> {
+        let root = self.nodes.as_ptr().cast::<u8>();
+        self.intersect_prefetching(ray, t_max, |_| root, leaf)
+    }
+
+    /// [`WideBvh::intersect`], prefetching a leaf's primitives when the leaf
+    /// is pushed: `leaf_data(first)` is where the data of leaf slot `first`
+    /// starts (it may be computed with `wrapping_add` and is never
+    /// dereferenced). A mesh much larger than the caches waits on each
+    /// leaf's triangles as on each node.
+    #[inline]
+    pub fn intersect_prefetching(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        leaf_data: impl Fn(u32) -> *const u8,
         mut leaf: impl FnMut(u32, u32, f32) -> Option<f32>,
     ) -> Option<f32> {
         if self.nodes.is_empty() {
@@ -160,11 +180,13 @@ impl WideBvh {
                         continue;
                     }
                     let e = (node.child[lane], t_near[lane]);
-                    // A leaf prefetches the root instead (in cache anyway):
-                    // a select, where a branch on the entry's kind was
-                    // mispredicted on one push in three (callgrind's model).
-                    let ahead = if e.0 & LEAF == 0 { e.0 } else { 0 };
-                    prefetch(&self.nodes[ahead as usize]);
+                    // A node or a leaf's data, by a select: a branch on the
+                    // entry's kind was mispredicted on one push in three
+                    // (callgrind's model). Both addresses are computed
+                    // wrapping, and a prefetch never faults.
+                    let node_at = self.nodes.as_ptr().wrapping_add(e.0 as usize).cast::<u8>();
+                    let leaf_at = leaf_data(leaf_range(e.0).0);
+                    prefetch_at(if e.0 & LEAF == 0 { node_at } else { leaf_at });
                     let mut j = sp;
                     // SAFETY: `base..sp` holds this node's entries, all written.
                     while j > base && unsafe { stack[j - 1].assume_init() }.1 < e.1 {
