@@ -14,7 +14,22 @@ use wide::f32x4;
 /// within the machine's noise; the points are bit for bit the same).
 #[inline]
 pub fn concentric_disk(u: Vec2) -> Vec2 {
-    let o = 2.0 * u - Vec2::ONE;
+    let [x, y, _, _] = concentric_lanes(u).to_array();
+    Vec2::new(x, y)
+}
+
+/// [`concentric_disk`]'s point as lanes `(x, y, 0, 0)`. Every vector here
+/// is built from defined lanes: written on `Vec2`, LLVM packed the point
+/// into a 4-lane register whose upper lanes were left over from earlier
+/// work and ran the arithmetic on all four. Leftover integer bits read as
+/// denormal floats, and each operation on one took a microcode assist: on
+/// 40% of the diffuse bounces of the Cornell box (MXCSR's denormal and
+/// underflow flags, probed around each step of the path loop), 7–8% of the
+/// render's time.
+#[inline(always)]
+fn concentric_lanes(u: Vec2) -> f32x4 {
+    let o = f32x4::new([u.x, u.y, 0.0, 0.0]) * f32x4::splat(2.0) - f32x4::new([1.0, 1.0, 0.0, 0.0]);
+    let [ox, oy, _, _] = o.to_array();
     // θ = π/4 · a with |a| ≤ 1 in the first wedge (|x| > |y|; a = y/x,
     // radius x), π/2 − π/4 · a in the second (a = x/y, radius y), whose
     // cosine and sine are the first wedge's swapped.
@@ -26,25 +41,27 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
     // glam's `Vec2::select` all became a branch (x86 lowers a float select
     // on a scalar flag to one; 58% of the path loop's mispredicts,
     // 2026-12-03), while a select on a vector mask is a `blendvps`.
-    let first = f32x4::splat(o.x.abs()).simd_gt(f32x4::splat(o.y.abs()));
+    let first = f32x4::splat(ox.abs()).simd_gt(f32x4::splat(oy.abs()));
     let [num, r, _, _] = first
-        .bitselect(f32x4::new([o.y, o.x, 0.0, 0.0]), f32x4::new([o.x, o.y, 0.0, 0.0]))
+        .bitselect(f32x4::new([oy, ox, 0.0, 0.0]), f32x4::new([ox, oy, 0.0, 0.0]))
         .to_array();
     // r = 0 only at the centre (o = 0), which maps to itself.
     let a = if r == 0.0 { 0.0 } else { num / r };
     let (s, c) = super::trig::sin_cos_quarter(std::f32::consts::FRAC_PI_4 * a);
-    let [x, y, _, _] = first
-        .bitselect(f32x4::new([c, s, 0.0, 0.0]), f32x4::new([s, c, 0.0, 0.0]))
-        .to_array();
-    r * Vec2::new(x, y)
+    let xy = first.bitselect(f32x4::new([c, s, 0.0, 0.0]), f32x4::new([s, c, 0.0, 0.0]));
+    f32x4::splat(r) * xy
 }
 
 /// Malley's method: project the disk onto the hemisphere (+z).
 #[inline]
 pub fn cosine_hemisphere(u: Vec2) -> Vec3A {
-    let d = concentric_disk(u);
-    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
-    Vec3A::new(d.x, d.y, z)
+    let d = concentric_lanes(u);
+    // |d|² as `Vec2::length_squared` sums it, from defined lanes (see
+    // `concentric_lanes`).
+    let [x, y, _, _] = d.to_array();
+    let [xx, yy, _, _] = (d * d).to_array();
+    let z = (1.0 - (xx + yy)).max(0.0).sqrt();
+    Vec3A::new(x, y, z)
 }
 
 /// Density (1/sr) of [`cosine_hemisphere`] at a direction of angle cosine `cos_theta`
