@@ -3,8 +3,8 @@
 //! or more; LLVM had packed the concentric map's point into a register
 //! whose upper lanes were left over from earlier work and ran the arithmetic
 //! on all four lanes, and leftover integer bits read as denormals: 40% of
-//! the Cornell box's diffuse bounces took assists, 5–8% of its render time
-//! (`src/math/sampling.rs`). MXCSR's sticky flags record any such operation
+//! the Cornell box's diffuse bounces took assists, 4–5% of its wall time in
+//! alternated pairs (`src/math/sampling.rs`). MXCSR's sticky flags record any such operation
 //! on the thread, so the test runs camera samples of the shipped reference
 //! twins on its own thread and reads them.
 
