@@ -20,7 +20,8 @@
 #    load (the bench-timing version of this script moved it by ±0.1
 #    between runs).
 #
-# Needs: a release build (`cargo build --release`), the reference folder
+# Needs: a release build (`cargo build --release`, or RONRAY=path of another
+# binary, e.g. target/pgo/release/ronray from tools/pgo-build.sh), the reference folder
 # (`../shared/refs` beside the checkout, or REFS=...), Mitsuba's runner
 # (`../shared/tools/mitsuba_run.py`, or MITSUBA_RUN=...) and a Python with
 # the `mitsuba` package (MITSUBA_PYTHON=..., default `python3`; Mitsuba's
@@ -35,7 +36,7 @@ spps="${2:-48,64,96,128,192,256}"
 refs="${REFS:-$here/../shared/refs}"
 run="${MITSUBA_RUN:-$here/../shared/tools/mitsuba_run.py}"
 py="${MITSUBA_PYTHON:-python3}"
-ronray="$here/target/release/ronray"
+ronray="${RONRAY:-$here/target/release/ronray}"
 threads="${THREADS:-2}"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
@@ -63,6 +64,7 @@ rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed"
 }
 err_of() { "$ronray" diff "$1" "$refs/${2}_ref.exr" $(mask_of "$2") | awk '$1 == "rmse" {print $2}'; }
 
+echo "== $("$ronray" --version) at $ronray"
 echo "== warm-up (Mitsuba's JIT caches) and Mitsuba's 256-spp error per scene"
 for s in "${scenes[@]}"; do
     name="${s%%:*}"

@@ -32,11 +32,19 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use validate::cmd_validate;
 
+/// `--version`: the crate's version, or what a build script says of the
+/// build (`tools/pgo-build.sh` sets `RONRAY_BUILD` to the version and
+/// "profile-guided"), so a benchmark's figures name the binary they timed.
+const VERSION: &str = match option_env!("RONRAY_BUILD") {
+    Some(v) => v,
+    None => env!("CARGO_PKG_VERSION"),
+};
+
 /// The command line (clap); `main` parses it and hands it to [`run`].
 #[derive(Parser, Debug)]
 #[command(
     name = "ronray",
-    version,
+    version = VERSION,
     about = "A physically based renderer for hand-written RON scenes",
     long_about = None
 )]
