@@ -46,11 +46,12 @@ pub fn run(path: &Path, threads: Option<usize>, root: Option<&Path>) -> Result<(
     let t0 = Instant::now();
     let raw = load_obj_data_in(path, root)?.mesh;
     out!(
-        "{}: {} triangles, parsed in {:.0} ms; load {}",
+        "{}: {} triangles, parsed in {:.0} ms; load {}; ronray {}",
         path.display(),
         raw.triangle_count(),
         t0.elapsed().as_secs_f64() * 1e3,
-        load_average()
+        load_average(),
+        super::VERSION
     );
     // Build: best of 3 on each pool (the first run also warms the allocator).
     let build = |p: &rayon::ThreadPool| {

@@ -71,7 +71,12 @@ pub fn run(b: &SceneBench) -> Result<(), String> {
     } else {
         b.samplers.iter().map(|s| Some(s.as_str())).collect()
     };
-    out!("load before: {}", super::bench::load_average());
+    // The binary timed, so a table names its build (`tools/pgo-build.sh`).
+    out!(
+        "ronray {}; load before: {}",
+        super::VERSION,
+        super::bench::load_average()
+    );
     out!("| scene | sampler | spp | s | CPU s | Msamples/s | Mrays/s | RMSE | RMSE off light |");
     out!("|---|---|---|---|---|---|---|---|---|");
     for case in &cases {

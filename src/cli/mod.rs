@@ -35,7 +35,7 @@ use validate::cmd_validate;
 /// `--version`: the crate's version, or what a build script says of the
 /// build (`tools/pgo-build.sh` sets `RONRAY_BUILD` to the version and
 /// "profile-guided"), so a benchmark's figures name the binary they timed.
-const VERSION: &str = match option_env!("RONRAY_BUILD") {
+pub(crate) const VERSION: &str = match option_env!("RONRAY_BUILD") {
     Some(v) => v,
     None => env!("CARGO_PKG_VERSION"),
 };
