@@ -4,8 +4,9 @@
 # bunny benchmark, then compiled again with the measured branch and call
 # counts, so LLVM lays out and inlines the hot paths (traversal, the path
 # loop) as they run. Same source, same floating-point operations: images
-# are byte-identical to `cargo build --release`'s (checked below); only
-# time changes. README, "Geometry and performance": the measured gain.
+# are byte-identical to `cargo build --release`'s (below, one render is
+# compared with the instrumented build's); only time changes. README,
+# "Benchmark": the measured gain.
 #
 # Needs llvm-profdata of the compiler's own LLVM version:
 #     rustup component add llvm-tools
