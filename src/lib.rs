@@ -12,6 +12,7 @@ pub mod aov;
 pub mod camera;
 pub mod check;
 pub mod cli;
+pub mod cpu;
 pub mod denoise;
 pub mod desc;
 pub mod diagnostic;
