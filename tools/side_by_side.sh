@@ -18,7 +18,9 @@
 #    anything on a shared machine; alternating renders minutes apart is
 #    what keeps the time-to-error ratio from swinging with the machine's
 #    load (the bench-timing version of this script moved it by ±0.1
-#    between runs).
+#    between runs). The last column scales ronray's time to Mitsuba's
+#    error exactly (time × (its RMSE / Mitsuba's)², error ∝ 1/√time): the
+#    timed render lands a little either side of it.
 #
 # Needs: a release build (`cargo build --release`, or RONRAY=path of another
 # binary, e.g. target/pgo/release/ronray from tools/pgo-build.sh), the reference folder
@@ -125,12 +127,15 @@ awk '
         return m % 2 ? a[(m + 1) / 2] : (a[m / 2] + a[m / 2 + 1]) / 2
     }
     END {
-        print "| scene | Mitsuba 256 spp s | ronray Independent 256 spp s | per sample | Mitsuba RMSE off light | ronray defaults: spp to it | their RMSE off light | their s | their time / Mitsuba |"
-        print "|---|---|---|---|---|---|---|---|---|"
+        print "| scene | Mitsuba 256 spp s | ronray Independent 256 spp s | per sample | Mitsuba RMSE off light | ronray defaults: spp to it | their RMSE off light | their s | their time / Mitsuba | scaled to Mitsuba error |"
+        print "|---|---|---|---|---|---|---|---|---|---|"
         for (n in names) {
             mi = median(v["mi", n]); rr = median(v["rr", n]); e = median(v["err", n])
             d = median(v["def", n]); de = median(v["deferr", n])
             at = (n in need) ? need[n] : "> bench range"
-            printf "| %s | %.2f | %.2f | %.2f× | %.5f | %s | %.5f | %.2f | %s |\n", n, mi, rr, (mi > 0 ? rr / mi : 0), e, at, de, d, (mi > 0 && d > 0 ? sprintf("%.2f×", d / mi) : "—")
+            # The last column scales the time to the Mitsuba error exactly
+            # (error ∝ 1/√time): the sample count comes from the bench run,
+            # with its own seed, so the timed render lands a little either side.
+            printf "| %s | %.2f | %.2f | %.2f× | %.5f | %s | %.5f | %.2f | %s | %s |\n", n, mi, rr, (mi > 0 ? rr / mi : 0), e, at, de, d, (mi > 0 && d > 0 ? sprintf("%.2f×", d / mi) : "—"), (mi > 0 && d > 0 && e > 0 ? sprintf("%.2f×", d / mi * (de / e) ^ 2) : "—")
         }
     }' "$log"
