@@ -10,8 +10,10 @@
 /// running CPU lacks; empty when it can run here. Only x86-64 levels are
 /// checked (other architectures: always empty).
 ///
-/// Kept out of line and free of anything but detection calls, so the check
-/// itself runs on any x86-64 CPU.
+/// Kept out of line and free of anything but detection calls and a
+/// small `Vec`, so it runs before any AVX-512 code: an AVX-512 build on an
+/// AVX2 machine reports here. It is still compiled at the build's level,
+/// so an x86-64-v3 build on a CPU without AVX at all may fault in it.
 #[inline(never)]
 pub fn missing_features() -> Vec<&'static str> {
     #[allow(unused_mut)]

@@ -133,9 +133,6 @@ awk '
             mi = median(v["mi", n]); rr = median(v["rr", n]); e = median(v["err", n])
             d = median(v["def", n]); de = median(v["deferr", n])
             at = (n in need) ? need[n] : "> bench range"
-            # The last column scales the time to the Mitsuba error exactly
-            # (error ∝ 1/√time): the sample count comes from the bench run,
-            # with its own seed, so the timed render lands a little either side.
             printf "| %s | %.2f | %.2f | %.2f× | %.5f | %s | %.5f | %.2f | %s | %s |\n", n, mi, rr, (mi > 0 ? rr / mi : 0), e, at, de, d, (mi > 0 && d > 0 ? sprintf("%.2f×", d / mi) : "—"), (mi > 0 && d > 0 && e > 0 ? sprintf("%.2f×", d / mi * (de / e) ^ 2) : "—")
         }
     }' "$log"
