@@ -283,9 +283,11 @@ pub enum LightSelectionDesc {
     /// By a light tree: in proportion to what each light can send to the
     /// shading point (power over squared distance, bounded by its extent
     /// and orientation), so scenes of many lights spend their shadow rays
-    /// on the near ones that face the point. With fewer than two lights
-    /// of finite extent (besides the sky) it is `Power`: there is nothing
-    /// to choose between.
+    /// on the near ones that face the point. The sky is weighed by what it
+    /// sends to the point (its irradiance there), not by its power through
+    /// the scene, and a fifth of the picks stay uniform over all lights, so
+    /// no light is starved where the estimate is wrong. With one light of
+    /// finite extent and no sky it is `Power`: there is nothing to choose.
     #[default]
     Tree,
 }

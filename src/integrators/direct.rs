@@ -1,9 +1,15 @@
 //! Direct lighting: emission seen by the camera plus one bounce of light from
-//! every light, estimated by light sampling with shadow rays.
+//! every light. Each light is sampled with shadow rays, and as many BSDF
+//! samples look for the same lights; the two are weighed by the power
+//! heuristic (Veach's MIS, as pbrt-v4's and Mitsuba 3's `direct`), so a
+//! glossy lobe facing a large light or a bright sky is found by the BSDF
+//! and a small light by light sampling. Point and spot lights (deltas) are
+//! found by light sampling alone.
 
-use super::{Counters, emitted, escaped, shadow_ray};
-use crate::geometry::Hit;
+use super::{Counters, emitted, escaped, shadow_ray, spawn};
+use crate::geometry::{Hit, NO_LIGHT};
 use crate::materials::{Bsdf, Bxdf};
+use crate::math::sampling::power_heuristic;
 use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -45,8 +51,9 @@ impl Direct {
 }
 
 /// Reflected radiance from every light (N shadow rays per area light and for
-/// the environment, one per point or spot light), the shading step shared by
-/// `Direct` and `Whitted`.
+/// the environment, one per point or spot light, and N BSDF samples that
+/// count where they reach an area light or the sky, weighed by MIS), the
+/// shading step shared by `Direct` and `Whitted`.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn all_lights(
     scene: &Scene,
@@ -62,11 +69,15 @@ pub(crate) fn all_lights(
     if bsdf.is_delta() {
         return l;
     }
+    let side = bsdf.light_side(hit.ns, wo.z);
+    let mut any_area = false;
     for light in &scene.lights {
-        let n = if light.is_delta() { 1 } else { light_samples };
+        let delta = light.is_delta();
+        any_area |= !delta;
+        let n = if delta { 1 } else { light_samples };
         let mut sum = Rgb::ZERO;
         for _ in 0..n {
-            let Some(ls) = light.sample(hit.p, sampler.next_vec2(), &scene.geometry) else {
+            let Some(ls) = light.sample(hit.p, side, sampler.next_vec2(), &scene.geometry) else {
                 continue;
             };
             let wi = frame.to_local(ls.wi);
@@ -77,10 +88,43 @@ pub(crate) fn all_lights(
             let (shadow, extent) = shadow_ray(hit, &ls);
             counters.rays += 1;
             if !scene.occluded(&shadow, extent) {
-                sum += f * ls.li * wi.z.abs() / ls.pdf;
+                let w = if ls.delta {
+                    1.0
+                } else {
+                    power_heuristic(ls.pdf, bsdf.pdf(wo, wi))
+                };
+                sum += f * ls.li * (wi.z.abs() * w / ls.pdf);
             }
         }
         l += sum / n as f32;
+    }
+    if any_area && light_samples > 0 {
+        let mut sum = Rgb::ZERO;
+        for _ in 0..light_samples {
+            let Some(bs) = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2()) else {
+                continue;
+            };
+            if bs.delta {
+                continue;
+            }
+            let ray = spawn(hit, frame.to_world(bs.wi));
+            counters.rays += 1;
+            let (le, light_pdf) = match scene.intersect(&ray, f32::INFINITY) {
+                Some(h) if h.light != NO_LIGHT => {
+                    let light = &scene.lights[h.light as usize];
+                    (emitted(scene, &h, ray.d), light.pdf(hit.p, ray.d, &h))
+                }
+                Some(_) => continue,
+                None => match scene.environment() {
+                    Some((_, env)) => env.le_and_pdf(ray.d, side),
+                    None => continue,
+                },
+            };
+            if le != Rgb::ZERO {
+                sum += bs.weight * le * power_heuristic(bs.pdf, light_pdf);
+            }
+        }
+        l += sum / light_samples as f32;
     }
     l
 }

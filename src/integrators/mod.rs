@@ -4,6 +4,7 @@
 pub mod caustic;
 pub mod direct;
 pub mod path;
+pub mod sky_visibility;
 pub mod whitted;
 
 pub use direct::Direct;

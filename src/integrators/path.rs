@@ -75,6 +75,9 @@ struct State {
     prev_p: Vec3A,
     /// Its shading normal: a light tree's probabilities depend on both.
     prev_n: Vec3A,
+    /// The side of it light samples came from (`Bsdf::light_side`): the
+    /// environment's density depends on it.
+    prev_side: Vec3A,
     /// Segments traced so far.
     segments: u32,
     /// The split with the caustic light tracer (`super::caustic`): whether
@@ -98,6 +101,7 @@ impl Path {
             prev_delta: true,
             prev_p: ray.o,
             prev_n: Vec3A::ZERO,
+            prev_side: Vec3A::ZERO,
             segments: 0,
             traced: false,
             chain: 0,
@@ -133,7 +137,7 @@ impl Path {
                 // and the MIS density share one mapping of the direction.
                 match scene.environment() {
                     Some((i, env)) if !st.prev_delta => {
-                        let (le, env_pdf) = env.le_and_pdf(st.ray.d);
+                        let (le, env_pdf) = env.le_and_pdf(st.ray.d, st.prev_side);
                         if le != Rgb::ZERO {
                             let w = power_heuristic(
                                 st.prev_pdf,
@@ -186,6 +190,7 @@ impl Path {
             // polynomial, a square root) runs while the shadow ray
             // traverses instead of after it. Same numbers, same image.
             let delta = bsdf.is_delta();
+            let side = bsdf.light_side(hit.ns, wo.z);
             let (u_pick, u_light) = if delta {
                 (0.0, glam::Vec2::ZERO)
             } else {
@@ -198,7 +203,7 @@ impl Path {
             // the light tree unless told otherwise).
             if !delta && let Some((li, pmf)) = picker.pick(hit.p, hit.ns, u_pick) {
                 let light = &scene.lights[li];
-                if let Some(ls) = light.sample(hit.p, u_light, &scene.geometry) {
+                if let Some(ls) = light.sample(hit.p, side, u_light, &scene.geometry) {
                     let wi = frame.to_local(ls.wi);
                     let f = bsdf.eval(wo, wi) * wi.z.abs();
                     if f != Rgb::ZERO {
@@ -229,7 +234,7 @@ impl Path {
                     }
                     let mut next = st;
                     if let Some(bs) = bs
-                        && self.advance(&mut next, &bs, &hit, &frame, delta, split, sampler)
+                        && self.advance(&mut next, &bs, &hit, &frame, (delta, side), split, sampler)
                     {
                         sum += self.trace(scene, next, 1, sampler, counters);
                     }
@@ -241,7 +246,7 @@ impl Path {
             let Some(bs) = bs else {
                 break;
             };
-            if !self.advance(&mut st, &bs, &hit, &frame, delta, split, sampler) {
+            if !self.advance(&mut st, &bs, &hit, &frame, (delta, side), split, sampler) {
                 break;
             }
         }
@@ -250,7 +255,9 @@ impl Path {
 
     /// Moves `st` across the vertex at `hit` along `bs` (throughput, MIS
     /// memory, the next ray), then plays Russian roulette once the path has
-    /// `rr_depth` segments. False when the path ends there.
+    /// `rr_depth` segments. `delta_side`: whether the vertex's BSDF is a
+    /// delta, and the side its light samples came from. False when the path
+    /// ends there.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn advance(
@@ -259,7 +266,7 @@ impl Path {
         bs: &BsdfSample,
         hit: &Hit,
         frame: &Frame,
-        delta: bool,
+        (delta, side): (bool, Vec3A),
         split: bool,
         sampler: &mut Sampler,
     ) -> bool {
@@ -280,6 +287,7 @@ impl Path {
         st.prev_delta = bs.delta;
         st.prev_p = hit.p;
         st.prev_n = hit.ns;
+        st.prev_side = side;
         st.ray = spawn(hit, frame.to_world(bs.wi));
 
         if st.segments >= self.rr_depth {

@@ -31,11 +31,18 @@
 //! bytes per pixel (CDFs and their guide tables, see `math/piecewise.rs`),
 //! the image 12 (f32 RGB); an
 //! 8192 × 4096 map's tables build in 0.08 s on 2 cores.
-//! A constant environment is sampled uniformly over the sphere.
+//! A constant environment is sampled by the cosine about the shading
+//! normal when the integrator gives one (the hemisphere a reflecting
+//! surface sees: for an unoccluded Lambert surface every sample then
+//! carries the same weight), uniformly over the sphere otherwise
+//! (transmitting surfaces, media). Mitsuba 3's `constant` samples the
+//! sphere uniformly: half its shadow rays from a floor go into the floor.
 
 use super::LightSample;
+use super::irradiance::{ShSum, SkyIrradiance};
+use crate::math::Frame;
 use crate::math::piecewise::PiecewiseConstant2d;
-use crate::math::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
+use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
 use crate::math::trig::sin_cos_turns;
 use crate::math::{Rgb, luminance};
 use glam::{Vec2, Vec3A};
@@ -150,6 +157,8 @@ pub struct EnvironmentLight {
     pub scene_radius: f32,
     /// Power, ∫ L dω over the sphere, W/(m²) per channel (cached).
     radiant_exitance: Rgb,
+    /// Irradiance by surface normal, world frame (light selection).
+    irradiance: SkyIrradiance,
 }
 
 impl EnvironmentLight {
@@ -166,6 +175,7 @@ impl EnvironmentLight {
             background: Rgb::ZERO,
             scene_radius: 1.0,
             radiant_exitance: 4.0 * PI * radiance,
+            irradiance: SkyIrradiance::constant(radiance),
         }
     }
 
@@ -181,22 +191,7 @@ impl EnvironmentLight {
         });
         // ∫ L dω of the bilinear image, exactly: (2π/W) Σ_j ω_j Σ_i L(i, j),
         // with ω_j = ∫ sin θ of row j's hat function in θ (θj = πj/(H − 1)).
-        let row_weight = |j: usize| -> f64 {
-            if h == 1 {
-                return 2.0;
-            }
-            let step = std::f64::consts::PI / (h - 1) as f64;
-            // Over [a, a + step], ∫ t sin θ dθ with t rising 0 → 1, and the rest.
-            let rising = |a: f64| {
-                let b = a + step;
-                (b.sin() - a.sin()) / step - b.cos()
-            };
-            let falling = |a: f64| (a.cos() - (a + step).cos()) - rising(a);
-            let theta = j as f64 * step;
-            let below = if j + 1 < h { falling(theta) } else { 0.0 };
-            let above = if j > 0 { rising(theta - step) } else { 0.0 };
-            below + above
-        };
+        let row_weight = |j: usize| row_weight(j, h);
         let sum: [f64; 3] = map
             .rgb
             .par_chunks(3 * w)
@@ -215,6 +210,7 @@ impl EnvironmentLight {
         let cell = 2.0 * std::f64::consts::PI / w as f64;
         let integral = Rgb::new(sum[0] as f32, sum[1] as f32, sum[2] as f32) * (cell as f32);
         let (s, c) = rotation_degrees.to_radians().sin_cos();
+        let irradiance = map_irradiance(&map, strength, (c, s));
         Self {
             scale: Rgb::splat(strength),
             map: Some(map),
@@ -225,6 +221,7 @@ impl EnvironmentLight {
             background: Rgb::ZERO,
             scene_radius: 1.0,
             radiant_exitance: strength * integral,
+            irradiance,
         }
     }
 
@@ -275,9 +272,11 @@ impl EnvironmentLight {
         if self.visible { self.le(d) } else { self.background }
     }
 
-    /// A direction toward the environment for `u` ∈ [0, 1)²; the sample's
-    /// distance is infinite (shadow rays are unbounded).
-    pub fn sample(&self, p: Vec3A, u: Vec2) -> Option<LightSample> {
+    /// A direction toward the environment for `u` ∈ [0, 1)², seen from a
+    /// surface of unit normal `n` on the side light is wanted from (zero:
+    /// every direction, for transmitting surfaces); the sample's distance is
+    /// infinite (shadow rays are unbounded).
+    pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2) -> Option<LightSample> {
         let (wi, pdf, li) = match (&self.distribution, self.sampling) {
             (Some(dist), EnvSampling::Importance) => {
                 let (uv, uv_pdf) = dist.sample(u);
@@ -291,6 +290,14 @@ impl EnvironmentLight {
                 // The image at the sampled point: no atan2/acos round trip.
                 let li = self.scale * self.map.as_ref().map_or(Rgb::ONE, |m| m.lookup(uv));
                 (self.to_world(d), uv_pdf / (2.0 * PI * PI * sin_t), li)
+            }
+            (None, EnvSampling::Importance) if n != Vec3A::ZERO => {
+                let local = cosine_hemisphere(u);
+                if local.z <= 0.0 {
+                    return None;
+                }
+                let d = Frame::from_normal(n).to_world(local);
+                (d, local.z * std::f32::consts::FRAC_1_PI, self.scale)
             }
             _ => {
                 let d = uniform_sphere(u);
@@ -308,9 +315,10 @@ impl EnvironmentLight {
         })
     }
 
-    /// Solid-angle density with which [`Self::sample`] draws world direction `d`.
+    /// Solid-angle density with which [`Self::sample`] from a surface of
+    /// normal `n` draws world direction `d`.
     #[inline]
-    pub fn pdf(&self, d: Vec3A) -> f32 {
+    pub fn pdf(&self, d: Vec3A, n: Vec3A) -> f32 {
         match (&self.distribution, self.sampling) {
             (Some(dist), EnvSampling::Importance) => {
                 let e = self.to_env(d);
@@ -319,6 +327,9 @@ impl EnvironmentLight {
                     return 0.0;
                 }
                 dist.pdf(Self::uv(e)) / (2.0 * PI * PI * sin_t)
+            }
+            (None, EnvSampling::Importance) if n != Vec3A::ZERO => {
+                n.dot(d).max(0.0) * std::f32::consts::FRAC_1_PI
             }
             _ => UNIFORM_SPHERE_PDF,
         }
@@ -330,9 +341,9 @@ impl EnvironmentLight {
     /// Not inlined: inside `Path::li` it changed the loop's code enough to
     /// cost scenes without an environment 0.2% (callgrind, `cornell`).
     #[inline(never)]
-    pub fn le_and_pdf(&self, d: Vec3A) -> (Rgb, f32) {
+    pub fn le_and_pdf(&self, d: Vec3A, n: Vec3A) -> (Rgb, f32) {
         let Some(m) = &self.map else {
-            return (self.scale, self.pdf(d));
+            return (self.scale, self.pdf(d, n));
         };
         let e = self.to_env(d);
         let uv = Self::uv(e);
@@ -356,6 +367,19 @@ impl EnvironmentLight {
         PI * self.scene_radius * self.scene_radius * self.radiant_exitance
     }
 
+    /// What the environment sends toward a shading point of normal `n`
+    /// (zero: no surface), in the light tree's units: π × its unoccluded
+    /// irradiance (see `irradiance.rs`), the larger side's.
+    #[inline]
+    pub fn importance(&self, n: Vec3A) -> f32 {
+        PI * self.irradiance.either_side(n)
+    }
+
+    /// The irradiance by normal the environment's importance reads.
+    pub fn irradiance(&self) -> &SkyIrradiance {
+        &self.irradiance
+    }
+
     /// The image, if the environment has one (not a constant).
     pub fn map(&self) -> Option<&EnvMap> {
         self.map.as_ref()
@@ -365,4 +389,57 @@ impl EnvironmentLight {
     pub fn table_bytes(&self) -> usize {
         self.distribution.as_ref().map_or(0, PiecewiseConstant2d::bytes)
     }
+}
+
+/// Solid angle per unit of `φ` (2π in all) of row `j` of `h`: the integral
+/// of `sin θ` under the row's hat function in θ (rows at θj = πj/(h − 1)),
+/// exactly, so the rows' weights sum to 2 as `∫ sin θ dθ` does.
+fn row_weight(j: usize, h: usize) -> f64 {
+    if h == 1 {
+        return 2.0;
+    }
+    let step = std::f64::consts::PI / (h - 1) as f64;
+    // Over [a, a + step], ∫ t sin θ dθ with t rising 0 → 1, and the rest.
+    let rising = |a: f64| {
+        let b = a + step;
+        (b.sin() - a.sin()) / step - b.cos()
+    };
+    let falling = |a: f64| (a.cos() - (a + step).cos()) - rising(a);
+    let theta = j as f64 * step;
+    let below = if j + 1 < h { falling(theta) } else { 0.0 };
+    let above = if j > 0 { rising(theta - step) } else { 0.0 };
+    below + above
+}
+
+/// The irradiance by world normal of `map` × `strength` turned by
+/// `cos_sin` about +y: every texel's luminance × solid angle projected on
+/// the first nine spherical harmonics, rows in parallel.
+fn map_irradiance(map: &EnvMap, strength: f32, (c, s): (f32, f32)) -> SkyIrradiance {
+    let (w, h) = (map.width as usize, map.height as usize);
+    let dphi = 2.0 * PI / w as f32;
+    let sum = map
+        .rgb
+        .par_chunks(3 * w)
+        .enumerate()
+        .map(|(j, row)| {
+            let d_omega = row_weight(j, h) as f32 * dphi;
+            let theta = if h > 1 {
+                PI * j as f32 / (h - 1) as f32
+            } else {
+                0.5 * PI
+            };
+            let (sin_t, cos_t) = theta.sin_cos();
+            let mut acc = ShSum::default();
+            for (i, px) in row.chunks_exact(3).enumerate() {
+                let l = strength * luminance(Rgb::new(px[0], px[1], px[2]));
+                let (sin_p, cos_p) = (2.0 * PI * (i as f32 + 0.5) / w as f32).sin_cos();
+                // The image's direction (as `sample` maps it), turned into the world.
+                let d = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
+                let d = Vec3A::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+                acc.add(d, l * d_omega);
+            }
+            acc
+        })
+        .reduce(ShSum::default, ShSum::merge);
+    sum.irradiance()
 }

@@ -22,6 +22,7 @@
 pub mod alias;
 pub mod caustic;
 pub mod environment;
+pub mod irradiance;
 pub mod mesh;
 pub mod point;
 pub mod power;
@@ -99,9 +100,11 @@ impl Light {
     /// Samples light arriving at world-space point `p`, `u` ∈ [0, 1)² choosing the
     /// point on an area light or the direction toward the environment; `None` if
     /// no light reaches `p` (behind an area light, outside a spot's cone, or at
-    /// the light's own position). `geo` is for SDF emitters, which are marched.
+    /// the light's own position). `n` is the unit normal at `p` on the side
+    /// light is wanted from, or zero for every side (a transmitting surface):
+    /// only the environment reads it. `geo` is for SDF emitters, which are marched.
     #[inline]
-    pub fn sample(&self, p: Vec3A, u: Vec2, geo: &Geometry) -> Option<LightSample> {
+    pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2, geo: &Geometry) -> Option<LightSample> {
         match self {
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
@@ -109,7 +112,7 @@ impl Light {
             Light::Sphere(l) => l.sample(p, u),
             Light::Mesh(l) => l.sample(p, u),
             Light::Sdf(l) => l.sample(p, u, geo),
-            Light::Environment(l) => l.sample(p, u),
+            Light::Environment(l) => l.sample(p, n, u),
         }
     }
 

@@ -32,9 +32,9 @@ pub struct LightPicker {
 }
 
 impl LightPicker {
-    /// A picker choosing as `selection` says. A tree keeps the environment's
-    /// power share; a scene with fewer than two bounded lights of any power
-    /// picks by power.
+    /// A picker choosing as `selection` says. With a tree, the environment
+    /// is weighed per point too; a scene with nothing to choose per point
+    /// (one light with power, or only the environment) picks by power.
     pub fn new(lights: &[Light], selection: Selection) -> Self {
         let uniform = selection == Selection::Uniform;
         let mut w: Vec<f32> = lights
@@ -65,10 +65,18 @@ impl LightPicker {
             *last = 1.0;
         }
         let tree = match selection {
-            Selection::Tree => LightTree::new(lights, |i| pmf[i]),
+            Selection::Tree => LightTree::new(lights),
             _ => None,
         };
         Self { pmf, cdf, tree }
+    }
+
+    /// Tells a tree the share of the sky's irradiance the scene's surfaces
+    /// see (see [`LightTree::set_sky_visibility`]); nothing to do otherwise.
+    pub fn set_sky_visibility(&mut self, v: f32) {
+        if let Some(t) = &mut self.tree {
+            t.set_sky_visibility(v);
+        }
     }
 
     /// A light index and its probability, for `u` ∈ [0, 1), at a shading

@@ -29,7 +29,7 @@ fn irradiance(light: &Light, p: Vec3A, n: Vec3A, n_samples: u32) -> f64 {
     let mut rng = Pcg32::new(11, 3);
     let mut sum = 0.0f64;
     for _ in 0..n_samples {
-        let Some(ls) = light.sample(p, rng.next_vec2(), &geo) else {
+        let Some(ls) = light.sample(p, Vec3A::ZERO, rng.next_vec2(), &geo) else {
             continue;
         };
         assert!(ls.pdf > 0.0 && ls.pdf.is_finite(), "pdf {}", ls.pdf);
@@ -99,7 +99,7 @@ fn two_sided_sphere_lights_its_inside() {
     });
     assert!(
         one_sided
-            .sample(Vec3A::ZERO, Vec2::splat(0.5), &Geometry::default())
+            .sample(Vec3A::ZERO, Vec3A::ZERO, Vec2::splat(0.5), &Geometry::default())
             .is_none()
     );
 }
@@ -366,10 +366,10 @@ fn environment_sampling_integrates_the_map() {
         for _ in 0..n {
             uniform += (env.le(uniform_sphere(rng.next_vec2())).x / UNIFORM_SPHERE_PDF) as f64;
             let ls = light
-                .sample(Vec3A::ZERO, rng.next_vec2(), &geo)
+                .sample(Vec3A::ZERO, Vec3A::ZERO, rng.next_vec2(), &geo)
                 .expect("a direction");
             assert!(ls.dist.is_infinite() && ls.pdf > 0.0);
-            let again = env.pdf(ls.wi);
+            let again = env.pdf(ls.wi, Vec3A::ZERO);
             assert!((again - ls.pdf).abs() <= 2e-3 * ls.pdf, "{} vs {again}", ls.pdf);
             assert!((ls.li - env.le(ls.wi)).length() <= 1e-3 * ls.li.length() + 1e-6);
             sampled += (ls.li.x / ls.pdf) as f64;
@@ -393,7 +393,7 @@ fn environment_pdf_integrates_to_one() {
     let mut rng = Pcg32::new(4, 4);
     let n = 400_000;
     let sum: f64 = (0..n)
-        .map(|_| (env.pdf(uniform_sphere(rng.next_vec2())) / UNIFORM_SPHERE_PDF) as f64)
+        .map(|_| (env.pdf(uniform_sphere(rng.next_vec2()), Vec3A::ZERO) / UNIFORM_SPHERE_PDF) as f64)
         .sum();
     assert!(
         (sum / n as f64 - 1.0).abs() < 0.01,
@@ -412,7 +412,39 @@ fn constant_environment_power_and_uniform_mode() {
     );
     let mut map = EnvironmentLight::from_map(test_map(), 1.0, 0.0);
     map.sampling = EnvSampling::Uniform;
-    assert_eq!(map.pdf(Vec3A::Y), UNIFORM_SPHERE_PDF);
+    assert_eq!(map.pdf(Vec3A::Y, Vec3A::ZERO), UNIFORM_SPHERE_PDF);
+}
+
+/// A constant sky seen from a surface is sampled by the cosine about its
+/// normal: the density integrates to one over the sphere, matches what
+/// `sample` returns, is zero below the surface, and an unoccluded Lambert
+/// surface's irradiance estimate `L cos / pdf` is exactly `π L` per sample.
+#[test]
+fn constant_environment_from_a_surface_samples_the_cosine() {
+    let env = EnvironmentLight::constant(Rgb::splat(0.5));
+    let geo = Geometry::default();
+    let light = Light::Environment(Box::new(env.clone()));
+    let mut rng = Pcg32::new(6, 2);
+    for _ in 0..50 {
+        let n = uniform_sphere(rng.next_vec2());
+        let m = 20_000;
+        let integral: f64 = (0..m)
+            .map(|_| (env.pdf(uniform_sphere(rng.next_vec2()), n) / UNIFORM_SPHERE_PDF) as f64)
+            .sum::<f64>()
+            / m as f64;
+        assert!((integral - 1.0).abs() < 0.03, "∫ pdf dω = {integral} for n {n}");
+        for _ in 0..100 {
+            let Some(ls) = light.sample(Vec3A::ZERO, n, rng.next_vec2(), &geo) else {
+                continue;
+            };
+            let cos = ls.wi.dot(n);
+            assert!(cos > 0.0, "a direction below the surface");
+            assert!((env.pdf(ls.wi, n) - ls.pdf).abs() <= 1e-4 * ls.pdf.max(1.0));
+            assert!((ls.li.x * cos / ls.pdf - PI * 0.5).abs() < 1e-3);
+            assert_eq!(env.le_and_pdf(ls.wi, n), (env.le(ls.wi), env.pdf(ls.wi, n)));
+        }
+        assert_eq!(env.pdf(-n, n), 0.0);
+    }
 }
 
 #[test]
@@ -427,14 +459,19 @@ fn environment_le_and_pdf_are_le_and_pdf_bit_for_bit() {
             for _ in 0..20_000 {
                 let d = uniform_sphere(rng.next_vec2());
                 for e in [&env, &constant] {
-                    let (le, pdf) = e.le_and_pdf(d);
-                    assert_eq!(le, e.le(d), "le along {d}");
-                    assert_eq!(pdf.to_bits(), e.pdf(d).to_bits(), "pdf along {d}");
+                    for n in [Vec3A::ZERO, Vec3A::Y] {
+                        let (le, pdf) = e.le_and_pdf(d, n);
+                        assert_eq!(le, e.le(d), "le along {d}");
+                        assert_eq!(pdf.to_bits(), e.pdf(d, n).to_bits(), "pdf along {d}");
+                    }
                 }
             }
             // The poles, where sin θ = 0.
             for d in [Vec3A::Y, -Vec3A::Y] {
-                assert_eq!(env.le_and_pdf(d), (env.le(d), env.pdf(d)));
+                assert_eq!(
+                    env.le_and_pdf(d, Vec3A::ZERO),
+                    (env.le(d), env.pdf(d, Vec3A::ZERO))
+                );
             }
         }
     }

@@ -29,10 +29,27 @@
 //! from two median splits of the node's lights, each along the longest axis
 //! of the centroids (pbrt uses a surface-area-orientation cost; this one is
 //! simpler, and `log4` of the light count deep).
-//! The environment is not in the tree: it is picked with its share of the
-//! scene's power, as by [`super::LightPicker`] without a tree.
+//!
+//! The environment is not in the tree (it has no position): at each point
+//! it is weighed against the tree's root by its own importance in the same
+//! units, π × its unoccluded irradiance on the point's surface
+//! (`irradiance.rs`). Its power through the scene's bounding disk, as
+//! pbrt-v4 weighs it, grows with the scene's size: a 40 × 40 floor under a
+//! dim sky sent ~90% of the shadow rays to the sky while one area light did
+//! nearly all the lighting, and the image was up to 2.2× noisier than
+//! Mitsuba 3's (issue 37).
+//!
+//! Every estimate here ignores occlusion and can be wrong (a sky over a
+//! closed room, a lamp behind a wall), so the pick is a defensive mixture:
+//! with probability [`UNIFORM_SHARE`] a light is chosen uniformly among
+//! all lights with power, else by the estimate. Every light then keeps at
+//! least `UNIFORM_SHARE / N` wherever it is, and no scene can do much worse
+//! than uniform selection (at most `1 / UNIFORM_SHARE` times its variance,
+//! where the estimate is wholly wrong); where the estimate is right the
+//! mixture costs little (see `docs/benchmarks.md`, open scenes).
 
 use super::Light;
+use super::irradiance::SkyIrradiance;
 use crate::accel::Aabb;
 use crate::math::luminance;
 use glam::{BVec4A, Quat, Vec3A, Vec4};
@@ -297,6 +314,10 @@ impl Node {
     }
 }
 
+/// The share of picks made uniformly over all lights with power, whatever
+/// the estimate says (the defensive part of the mixture; module docs).
+pub const UNIFORM_SHARE: f32 = 0.2;
+
 /// See the module docs.
 #[derive(Clone, Debug)]
 pub struct LightTree {
@@ -304,41 +325,51 @@ pub struct LightTree {
     /// Per light: its path from the root (two bits per level, the child slot
     /// taken) and depth, or `None` when it is not in the tree.
     trail: Vec<Option<(u64, u32)>>,
-    /// Lights outside the tree (the environment), each picked with this
-    /// probability.
-    outside: Vec<(u32, f32)>,
-    /// Probability of walking the tree.
-    p_tree: f32,
+    /// The environment, if it has power: its light index and its irradiance
+    /// by normal.
+    env: Option<(u32, SkyIrradiance)>,
+    /// The share of the sky's irradiance the scene's surfaces see
+    /// (`integrators/sky_visibility.rs`); 1 until measured.
+    sky_visibility: f32,
+    /// Every light with power (the tree's and the environment), for the
+    /// uniform part of the mixture.
+    candidates: Vec<u32>,
+    /// Whether each light is among `candidates`.
+    candidate: Vec<bool>,
 }
 
 impl LightTree {
-    /// The tree over `lights`; `outside_pmf[i]` is the probability the
-    /// environment light `i` keeps (its share of the power). `None` when
-    /// fewer than two bounded lights have power (the caller then picks by
-    /// power).
-    pub fn new(lights: &[Light], outside_pmf: impl Fn(usize) -> f32) -> Option<Self> {
+    /// The tree over `lights`. `None` when there is nothing to choose per
+    /// point (the caller then picks by power): no bounded light with power,
+    /// or one and no environment with power.
+    pub fn new(lights: &[Light]) -> Option<Self> {
         let mut items = Vec::new();
-        let mut outside = Vec::new();
+        let mut env = None;
         for (i, l) in lights.iter().enumerate() {
-            match light_bounds(l) {
-                Some(lb) if lb.phi > 0.0 && lb.bounds.min.is_finite() && lb.bounds.max.is_finite() => {
+            match (l, light_bounds(l)) {
+                (_, Some(lb)) if lb.phi > 0.0 && lb.bounds.min.is_finite() && lb.bounds.max.is_finite() => {
                     items.push((i as u32, lb))
                 }
-                Some(_) => {}
-                None => outside.push((i as u32, outside_pmf(i))),
+                (Light::Environment(e), None) if luminance(e.power()) > 0.0 && env.is_none() => {
+                    env = Some((i as u32, *e.irradiance()))
+                }
+                _ => {}
             }
         }
-        // One bounded light: nothing to choose between, and the power
-        // picker's constant probability costs nothing per pick.
-        if items.len() < 2 {
+        if items.is_empty() || (items.len() == 1 && env.is_none()) {
             return None;
         }
-        let p_outside: f32 = outside.iter().map(|o| o.1).sum();
+        let mut candidates: Vec<u32> = items.iter().map(|it| it.0).chain(env.map(|e| e.0)).collect();
+        candidates.sort_unstable();
+        let mut candidate = vec![false; lights.len()];
+        candidates.iter().for_each(|&i| candidate[i as usize] = true);
         let mut tree = Self {
             nodes: Vec::with_capacity(items.len()),
             trail: vec![None; lights.len()],
-            outside,
-            p_tree: (1.0 - p_outside).clamp(0.0, 1.0),
+            env,
+            sky_visibility: 1.0,
+            candidates,
+            candidate,
         };
         tree.build(&mut items, 0, 0);
         Some(tree)
@@ -347,9 +378,10 @@ impl LightTree {
     /// Appends the node over `items` (at least two; depth `depth`, path
     /// `bits`) and its subtrees; returns their bounds. Each node splits its
     /// lights in four by two median splits, each along the longest axis of
-    /// its part's centroids; a part of one light is a leaf.
+    /// its part's centroids; a part of one light is a leaf (a root over one
+    /// light has one child).
     fn build(&mut self, items: &mut [(u32, LightBounds)], bits: u64, depth: u32) -> LightBounds {
-        debug_assert!(items.len() >= 2 && depth < 32);
+        debug_assert!(!items.is_empty() && depth < 32);
         let at = self.nodes.len();
         self.nodes.push(Node::empty());
         let n = items.len();
@@ -383,21 +415,65 @@ impl LightTree {
         union.unwrap_or(items[0].1)
     }
 
-    /// A light and its probability for a shading point `p` with normal `n`
-    /// (zero: none), from `u` ∈ [0, 1); `None` when no light can reach `p`.
-    pub fn pick(&self, p: Vec3A, n: Vec3A, mut u: f32) -> Option<(usize, f32)> {
-        for &(light, q) in &self.outside {
-            if u < q {
-                return Some((light as usize, q));
-            }
-            u -= q;
+    /// Scales the environment's importance by `v` ∈ (0, 1], the measured
+    /// share of its irradiance that surfaces see (ignored otherwise).
+    pub fn set_sky_visibility(&mut self, v: f32) {
+        if v > 0.0 && v <= 1.0 {
+            self.sky_visibility = v;
         }
-        u = (u / self.p_tree).min(ONE_MINUS_EPSILON);
-        let mut pmf = self.p_tree;
+    }
+
+    /// The estimate's first choice at `p`, `n`: the environment's importance
+    /// and the root's children's (with their sum), the one computation
+    /// [`Self::pick`] and [`Self::pmf`] share, so their probabilities agree
+    /// bit for bit.
+    #[inline]
+    fn top(&self, p: Vec3A, n: Vec3A) -> (f32, Option<([f32; WIDTH], f32)>) {
+        let env = self
+            .env
+            .as_ref()
+            .map_or(0.0, |e| self.sky_visibility * PI * e.1.either_side(n));
+        let env = if env.is_finite() {
+            env.min(f32::MAX / 8.0)
+        } else {
+            0.0
+        };
+        (env, self.nodes[0].weights(p, n))
+    }
+
+    /// The uniform part of every candidate's probability.
+    #[inline]
+    fn uniform_pmf(&self) -> f32 {
+        UNIFORM_SHARE / self.candidates.len() as f32
+    }
+
+    /// A light and its probability for a shading point `p` with normal `n`
+    /// (zero: none), from `u` ∈ [0, 1); `None` when the estimate's walk
+    /// ends where no light can reach `p`.
+    pub fn pick(&self, p: Vec3A, n: Vec3A, u: f32) -> Option<(usize, f32)> {
+        if u < UNIFORM_SHARE {
+            let k = ((u / UNIFORM_SHARE) * self.candidates.len() as f32) as usize;
+            let i = self.candidates[k.min(self.candidates.len() - 1)] as usize;
+            let pmf = self.pmf(p, n, i);
+            return (pmf > 0.0).then_some((i, pmf));
+        }
+        let mut u = ((u - UNIFORM_SHARE) / (1.0 - UNIFORM_SHARE)).clamp(0.0, ONE_MINUS_EPSILON);
+        let (env, root) = self.top(p, n);
+        let root_total = root.map_or(0.0, |r| r.1);
+        let sum = env + root_total;
+        if !(sum > 0.0) {
+            return None;
+        }
+        if let Some((i, _)) = self.env
+            && u * sum < env
+        {
+            return Some((i as usize, self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * env / sum));
+        }
+        let (mut imp, mut total) = root?;
+        u = ((u * sum - env) / root_total).clamp(0.0, ONE_MINUS_EPSILON);
+        let mut pmf = root_total / sum;
         let mut at = 0usize;
         loop {
-            let node = &self.nodes[at];
-            let (imp, total) = node.weights(p, n)?;
             // The child whose share of `total` holds `u · total`; the last
             // one with any share if rounding runs past the end.
             let target = u * total;
@@ -414,32 +490,52 @@ impl LightTree {
             let below: f32 = imp[..k].iter().sum();
             pmf *= imp[k] / total;
             u = ((target - below) / imp[k]).clamp(0.0, ONE_MINUS_EPSILON);
-            let r = node.child[k];
+            let r = self.nodes[at].child[k];
             if r & LEAF != 0 {
-                return (pmf > 0.0).then_some(((r & !LEAF) as usize, pmf));
+                let i = (r & !LEAF) as usize;
+                return Some((i, self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * pmf));
             }
             at = r as usize;
+            (imp, total) = self.nodes[at].weights(p, n)?;
         }
     }
 
     /// The probability that [`Self::pick`] from `p`, `n` returns light `i`.
     pub fn pmf(&self, p: Vec3A, n: Vec3A, i: usize) -> f32 {
-        if let Some(&(_, q)) = self.outside.iter().find(|o| o.0 as usize == i) {
-            return q;
+        if !self.candidate.get(i).copied().unwrap_or(false) {
+            return 0.0;
         }
-        let Some(Some((bits, depth))) = self.trail.get(i).copied() else {
+        self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * self.estimate_pmf(p, n, i)
+    }
+
+    /// The estimate's probability of light `i` at `p`, `n` (the mixture's
+    /// other part).
+    fn estimate_pmf(&self, p: Vec3A, n: Vec3A, i: usize) -> f32 {
+        let (env, root) = self.top(p, n);
+        let root_total = root.map_or(0.0, |r| r.1);
+        let sum = env + root_total;
+        if !(sum > 0.0) {
+            return 0.0;
+        }
+        if self.env.is_some_and(|e| e.0 as usize == i) {
+            return env / sum;
+        }
+        let (Some(Some((bits, depth))), Some((mut imp, mut total))) = (self.trail.get(i).copied(), root)
+        else {
             return 0.0;
         };
-        let mut pmf = self.p_tree;
+        let mut pmf = root_total / sum;
         let mut at = 0usize;
         for level in 0..depth {
-            let node = &self.nodes[at];
-            let Some((imp, total)) = node.weights(p, n) else {
-                return 0.0;
-            };
+            if level > 0 {
+                let Some(w) = self.nodes[at].weights(p, n) else {
+                    return 0.0;
+                };
+                (imp, total) = w;
+            }
             let k = (bits >> (2 * level) & 3) as usize;
             pmf *= imp[k] / total;
-            at = node.child[k] as usize;
+            at = self.nodes[at].child[k] as usize;
         }
         pmf
     }
@@ -531,7 +627,7 @@ mod tests {
     #[test]
     fn picks_sum_to_one_and_match_the_pmf() {
         let lights = lights();
-        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        let tree = LightTree::new(&lights).expect("a tree");
         assert!(tree.node_count() < lights.len());
         let mut rng = Pcg32::new(9, 1);
         for _ in 0..200 {
@@ -559,13 +655,14 @@ mod tests {
     #[test]
     fn a_light_that_reaches_a_point_has_probability() {
         let lights = lights();
-        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        let tree = LightTree::new(&lights).expect("a tree");
         let mut rng = Pcg32::new(4, 4);
         for _ in 0..2000 {
             let (p, n) = shading_point(&mut rng);
             for (i, l) in lights.iter().enumerate() {
                 for _ in 0..4 {
-                    let Some(ls) = l.sample(p, rng.next_vec2(), &crate::geometry::Geometry::default()) else {
+                    let Some(ls) = l.sample(p, n, rng.next_vec2(), &crate::geometry::Geometry::default())
+                    else {
                         continue;
                     };
                     let reaches = ls.li != Rgb::ZERO && ls.wi.dot(n).abs() > 1e-3 && ls.pdf > 0.0;
@@ -581,7 +678,7 @@ mod tests {
     }
 
     #[test]
-    fn the_near_light_is_preferred_and_one_facing_away_is_never_picked() {
+    fn the_near_light_is_preferred_and_one_facing_away_keeps_only_the_floor() {
         // A point under one down-facing quad, far from another; a third
         // quad just above faces up (away from the point).
         let lights = vec![
@@ -589,29 +686,52 @@ mod tests {
             quad(Vec3A::new(50.0, 1.0, 0.0), true, 1.0),
             quad(Vec3A::new(-0.1, 0.5, -0.1), false, 1.0),
         ];
-        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        let tree = LightTree::new(&lights).expect("a tree");
         let (p, n) = (Vec3A::ZERO, Vec3A::Y);
-        assert!(tree.pmf(p, n, 0) > 0.99, "near light {}", tree.pmf(p, n, 0));
-        assert_eq!(tree.pmf(p, n, 2), 0.0);
-        for k in 0..1000 {
-            let (i, _) = tree.pick(p, n, (k as f32 + 0.5) / 1000.0).expect("a light");
-            assert_ne!(i, 2);
-        }
+        let floor = UNIFORM_SHARE / 3.0;
+        assert!(
+            tree.pmf(p, n, 0) > floor + (1.0 - UNIFORM_SHARE) * 0.99,
+            "near light {}",
+            tree.pmf(p, n, 0)
+        );
+        assert_eq!(tree.pmf(p, n, 2), floor);
+        let away = (0..1000)
+            .filter(|k| tree.pick(p, n, (*k as f32 + 0.5) / 1000.0).expect("a light").0 == 2)
+            .count();
+        assert!((60..=74).contains(&away), "picked {away} times in 1000");
     }
 
+    /// Area lights beside an environment: what the sky gets follows what it
+    /// sends to the point, not the scene's size; near a bright lamp the sky
+    /// gets little beyond the uniform floor, far from every lamp nearly all.
     #[test]
-    fn outside_lights_keep_their_share() {
-        let lights = lights();
-        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
-        let p = Vec3A::new(1.0, 1.0, 1.0);
-        let tree_share = LightTree {
-            outside: vec![(1000, 0.25)],
-            p_tree: 0.75,
-            ..tree.clone()
-        };
-        assert_eq!(tree_share.pick(p, Vec3A::ZERO, 0.1), Some((1000, 0.25)));
-        let total: f32 = (0..lights.len()).map(|i| tree_share.pmf(p, Vec3A::ZERO, i)).sum();
-        assert!(total <= 0.75 + 1e-4 && total > 0.5, "{total}");
+    fn the_environment_is_weighed_by_what_it_sends_to_the_point() {
+        use crate::lights::EnvironmentLight;
+        for sky in [0.01f32, 0.2, 1.0] {
+            let mut env = EnvironmentLight::constant(Rgb::splat(sky));
+            // A 400-unit scene: by power the sky would take nearly every pick.
+            env.scene_radius = 400.0;
+            let lights = vec![
+                quad(Vec3A::new(-0.1, 1.0, -0.1), true, 50.0),
+                Light::Environment(Box::new(env)),
+            ];
+            let tree = LightTree::new(&lights).expect("a tree");
+            let floor = UNIFORM_SHARE / 2.0;
+            let near = tree.pmf(Vec3A::ZERO, Vec3A::Y, 1);
+            let far = tree.pmf(Vec3A::new(300.0, 0.0, 0.0), Vec3A::Y, 1);
+            // Under the lamp its irradiance is 50 · 0.04 / 1 = 2 against the sky's π·sky.
+            let share = PI * sky / (PI * sky + 2.0);
+            assert!(
+                (near - (floor + (1.0 - UNIFORM_SHARE) * share)).abs() < 0.05,
+                "sky {sky}: {near} near the lamp"
+            );
+            assert!(
+                far > floor + (1.0 - UNIFORM_SHARE) * 0.99,
+                "sky {sky}: {far} far from the lamp"
+            );
+            let total = tree.pmf(Vec3A::ZERO, Vec3A::Y, 0) + near;
+            assert!((total - 1.0).abs() < 1e-5, "{total}");
+        }
     }
 
     /// Lights stacked at one point (no axis to split along), a huge and a
@@ -635,7 +755,7 @@ mod tests {
             radiance: Rgb::splat(1e6),
             two_sided: false,
         }));
-        let tree = LightTree::new(&lights, |_| 0.0).expect("a tree");
+        let tree = LightTree::new(&lights).expect("a tree");
         for p in [at, Vec3A::ZERO, Vec3A::new(0.0, -3.0, 0.0), Vec3A::splat(1e7)] {
             for n in [Vec3A::ZERO, Vec3A::Y, -Vec3A::X] {
                 let total: f32 = (0..lights.len()).map(|i| tree.pmf(p, n, i)).sum();

@@ -226,7 +226,7 @@ pub fn build_in(
             .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
     });
     let caustics = CausticEmitters::new(&ctx.lights, targets);
-    let scene = Scene {
+    let mut scene = Scene {
         caustics,
         light_picker: LightPicker::new(&ctx.lights, selection),
         materials,
@@ -239,7 +239,13 @@ pub fn build_in(
         geometry: ctx.geometry,
         bvh,
     };
-    Ok((scene, super::view::build_view(desc, base), stats))
+    let view = super::view::build_view(desc, base);
+    // What share of the sky the surfaces the camera sees are lit by
+    // (light selection's weight for the sky; a few thousand rays).
+    let aspect = view.film.width as f32 / view.film.height.max(1) as f32;
+    let v = crate::integrators::sky_visibility::sky_visibility(&scene, &view.camera, aspect);
+    scene.light_picker.set_sky_visibility(v);
+    Ok((scene, view, stats))
 }
 
 /// Gives the shapes built since the last call the object id `id`.

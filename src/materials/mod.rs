@@ -234,6 +234,40 @@ impl Bxdf for Bsdf<'_> {
     }
 }
 
+impl Bsdf<'_> {
+    /// Whether light can pass through the surface (some `wi` below it has a
+    /// non-zero value): light sampling then looks at both sides of it.
+    #[inline]
+    pub fn transmits(&self) -> bool {
+        match self {
+            Bsdf::Glass(_) | Bsdf::RoughGlass(_) => true,
+            Bsdf::Lambert(_)
+            | Bsdf::OrenNayar(_)
+            | Bsdf::Phong(_)
+            | Bsdf::BlinnPhong(_)
+            | Bsdf::CookTorrance(_)
+            | Bsdf::MetalPlastic(_)
+            | Bsdf::Mirror(_)
+            | Bsdf::RoughPlastic(_) => false,
+        }
+    }
+
+    /// The unit normal on the side a light sample from this surface is
+    /// wanted (toward `wo`, local `wo.z` along `n`), or zero for both sides
+    /// when the surface transmits: what [`crate::lights::Light::sample`]
+    /// and the environment's density take.
+    #[inline]
+    pub fn light_side(&self, n: Vec3A, wo_z: f32) -> Vec3A {
+        if self.transmits() {
+            Vec3A::ZERO
+        } else if wo_z >= 0.0 {
+            n
+        } else {
+            -n
+        }
+    }
+}
+
 /// The out-of-line half of the dispatch above: every variant but the
 /// inline one (which these also handle, for the exhaustive match).
 impl Bsdf<'_> {
