@@ -1,0 +1,80 @@
+#!/usr/bin/env python3
+"""Issue 37's table: noise of ronray (default light selection and uniform) and of
+Mitsuba 3 at equal spp on the generated open and closed scenes of tests/open_scenes.rs.
+
+Noise needs no reference: the RMS difference of two renders with different seeds,
+over pixels and channels, divided by sqrt(2).
+
+    cargo build --release
+    DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so \\
+        python3 tools/open_scenes.py [--size 256] [--spp 64] [--only NAME_SUBSTRING]
+
+Needs the `mitsuba` and `numpy` packages and ../shared/tools/mitsuba_run.py (or
+MITSUBA_RUN=...). Dumps the scenes with `cargo test --test open_scenes dump`
+(RONRAY_DUMP_OPEN_SCENES), renders each with ronray (Independent, as written) and with
+Mitsuba `llvm_ad_rgb` (independent sampler), two seeds each, and prints a Markdown table.
+Timing is not measured here (see tools/side_by_side.sh)."""
+import argparse, json, os, subprocess, sys, tempfile
+
+here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def load(path):
+    import mitsuba as mi
+    import numpy as np
+    return np.array(mi.Bitmap(path), dtype=np.float64)[..., :3]
+
+
+def noise(a, b):
+    import numpy as np
+    return float(np.sqrt(np.mean((a - b) ** 2) / 2.0))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--size", type=int, default=256)
+    ap.add_argument("--spp", type=int, default=64)
+    ap.add_argument("--only", default="")
+    ap.add_argument("--no-mitsuba", action="store_true")
+    a = ap.parse_args()
+    import mitsuba as mi
+    mi.set_variant("llvm_ad_rgb")
+    run = os.environ.get("MITSUBA_RUN", os.path.join(here, "..", "shared", "tools", "mitsuba_run.py"))
+    ronray = os.environ.get("RONRAY", os.path.join(here, "target", "release", "ronray"))
+    out = tempfile.mkdtemp(prefix="open_scenes.")
+    env = dict(os.environ, RONRAY_DUMP_OPEN_SCENES=out, RONRAY_DUMP_SIZE=str(a.size))
+    subprocess.run(["cargo", "test", "-q", "--test", "open_scenes", "dump"], cwd=here, env=env,
+                   check=True, stdout=subprocess.DEVNULL)
+    names = sorted(f[:-5] for f in os.listdir(out) if f.endswith(".json") and a.only in f)
+    print(f"| scene | Mitsuba llvm | ronray uniform | ronray default | default / Mitsuba | default / uniform |")
+    print("|---|---|---|---|---|---|")
+    worse = 0
+    for name in names:
+        res = {}
+        for kind, scene in [("default", f"{name}.ron"), ("uniform", f"{name}.uniform.ron")]:
+            imgs = []
+            for seed in (1, 2):
+                o = os.path.join(out, f"{name}.{kind}.{seed}.exr")
+                subprocess.run([ronray, "render", scene, "--spp", str(a.spp), "--seed", str(seed), "-o", o,
+                                "--progress", "none"], cwd=out, check=True, stdout=subprocess.DEVNULL)
+                imgs.append(load(o))
+            res[kind] = noise(*imgs)
+        if not a.no_mitsuba:
+            imgs = []
+            for seed in (1, 2):
+                o = os.path.join(out, f"{name}.mi.{seed}.exr")
+                subprocess.run([sys.executable, run, os.path.join(out, f"{name}.json"), "--variant", "llvm_ad_rgb",
+                                "--spp", str(a.spp), "--seed", str(seed), "--out", o], check=True,
+                               stdout=subprocess.DEVNULL)
+                imgs.append(load(o))
+            res["mi"] = noise(*imgs)
+        m = res.get("mi", float("nan"))
+        r = res["default"] / m if m == m else float("nan")
+        worse += r > 1.0
+        print(f"| {name} | {m:.5f} | {res['uniform']:.5f} | {res['default']:.5f} | {r:.2f}x | "
+              f"{res['default'] / res['uniform']:.2f}x |", flush=True)
+    print(f"\n{worse} of {len(names)} scenes noisier than Mitsuba at equal spp ({a.size}^2, {a.spp} spp).")
+
+
+if __name__ == "__main__":
+    main()
