@@ -16,8 +16,12 @@ pub fn ray(c: &Camera, film: Vec2, aspect: f32, u_lens: Vec2) -> Ray {
         return Ray::new(c.eye, d.normalize());
     }
     // Thin lens: aim at the point of the focal plane the pinhole ray reaches.
-    let focus = c.eye + c.focus_distance * d / d.dot(c.forward);
+    // The direction is taken from the lens point to the focus relative to
+    // the eye, not from their world positions, which far from the origin
+    // are rounded to the ulp of the eye's coordinates (1e-3 at 10,000) and
+    // would tilt the ray by that over the focus distance.
+    let to_focus = c.focus_distance * d / d.dot(c.forward);
     let lens = sampling::concentric_disk(u_lens) * c.aperture_radius;
-    let o = c.eye + lens.x * c.right + lens.y * c.up;
-    Ray::new(o, (focus - o).normalize())
+    let on_lens = lens.x * c.right + lens.y * c.up;
+    Ray::new(c.eye + on_lens, (to_focus - on_lens).normalize())
 }
