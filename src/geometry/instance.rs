@@ -82,11 +82,12 @@ impl Instance {
     /// the world normal.
     pub fn hit(&self, ray: &Ray, h: MeshHit, meshes: &[Mesh]) -> Hit {
         let mesh = &meshes[self.mesh as usize];
-        let (mut hit, p_err) = mesh.hit_and_error(h.tri, h.t, h.bc);
+        let mut hit = mesh.hit(h.tri, h.t, h.bc);
         let slot = mesh.slot(h.tri) as usize;
         hit.material = self.materials.get(slot).copied().unwrap_or(0);
         hit.light = self.lights.get(slot).copied().unwrap_or(NO_LIGHT);
         if !self.identity {
+            let p_err = mesh.point_error(h.tri, h.bc);
             let p_err = transform_point_error(&self.world_from_object, hit.p, p_err);
             hit.p = self.world_from_object.transform_point3a(hit.p);
             hit.ng = (self.normal_from_object * hit.ng).normalize_or(hit.ng);

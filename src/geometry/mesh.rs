@@ -13,7 +13,7 @@ use super::triangle::{self, FLOATS, Tri4, WatertightRay4};
 use super::{Hit, NO_LIGHT};
 use crate::accel::{Aabb, WideBvh};
 use crate::math::Ray;
-use crate::math::float_error::{error_along, gamma};
+use crate::math::float_error::{error_along, gamma_offset};
 use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
 
@@ -182,21 +182,17 @@ impl Mesh {
 
     /// Shading record in the mesh's space for a hit of triangle `tri` at
     /// `p` with barycentrics `bc`; `material` is left 0 for the caller.
-    pub fn hit(&self, tri: u32, t: f32, bc: Vec2) -> Hit {
-        self.hit_and_error(tri, t, bc).0
-    }
-
-    /// [`Mesh::hit`] and the per-axis error bound of its point, for an
-    /// instance to carry through its transform. The point is the
-    /// barycentric sum of the corners, so its error is pbrt-v4's
-    /// γ(7)·Σ|bᵢ·pᵢ| (the barycentrics' own rounding included), not that
-    /// of `o + t·d`.
+    ///
+    /// The point is the barycentric sum of the corners, so its error is
+    /// pbrt-v4's γ(7)·Σ|bᵢ·pᵢ| (the barycentrics' own rounding included),
+    /// not that of `o + t·d` ([`Mesh::point_error`]); `p_error` is that
+    /// bound along `ng`, in the mesh's space.
     #[inline]
-    pub fn hit_and_error(&self, tri: u32, t: f32, bc: Vec2) -> (Hit, Vec3A) {
+    pub fn hit(&self, tri: u32, t: f32, bc: Vec2) -> Hit {
         let (a, b, c) = self.corners(tri);
         let w = Vec3A::new(1.0 - bc.x - bc.y, bc.x, bc.y);
         let (pa, pb, pc) = (a * w.x, b * w.y, c * w.z);
-        let p_err = gamma(7) * (pa.abs() + pb.abs() + pc.abs());
+        let p_err = gamma_offset(7) * (pa.abs() + pb.abs() + pc.abs());
         // Counter-clockwise winding faces outward.
         let ng = (b - a).cross(c - a).normalize_or(Vec3A::Z);
         let [ia, ib, ic] = self.indices[tri as usize].map(|i| i as usize);
@@ -216,7 +212,7 @@ impl Mesh {
         } else {
             self.uvs[ia] * w.x + self.uvs[ib] * w.y + self.uvs[ic] * w.z
         };
-        let hit = Hit {
+        Hit {
             t,
             p: pa + pb + pc,
             p_error: error_along(ng, p_err),
@@ -225,8 +221,15 @@ impl Mesh {
             uv,
             material: 0,
             light: NO_LIGHT,
-        };
-        (hit, p_err)
+        }
+    }
+
+    /// Per-axis error bound of the point [`Mesh::hit`] reports, for an
+    /// instance to carry through its transform.
+    pub fn point_error(&self, tri: u32, bc: Vec2) -> Vec3A {
+        let (a, b, c) = self.corners(tri);
+        let w = Vec3A::new(1.0 - bc.x - bc.y, bc.x, bc.y);
+        gamma_offset(7) * ((a * w.x).abs() + (b * w.y).abs() + (c * w.z).abs())
     }
 
     /// Material slot of triangle `tri`.

@@ -1,7 +1,7 @@
 //! Infinite plane. Unbounded, so it is tested outside the BVH.
 
 use super::{Hit, NO_LIGHT};
-use crate::math::float_error::{error_along, gamma};
+use crate::math::float_error::{error_along, gamma_offset};
 use crate::math::{Frame, Ray};
 use glam::{Vec2, Vec3A};
 
@@ -47,7 +47,10 @@ impl Plane {
         Hit {
             t,
             p,
-            p_error: error_along(self.normal, gamma(7) * (self.point.abs() + a.abs() + b.abs())),
+            p_error: error_along(
+                self.normal,
+                gamma_offset(7) * (self.point.abs() + a.abs() + b.abs()),
+            ),
             ng: self.normal,
             ns: self.normal,
             uv,

@@ -4,7 +4,7 @@
 use super::Hit;
 use crate::accel::Aabb;
 use crate::math::Ray;
-use crate::math::float_error::{error_along, gamma};
+use crate::math::float_error::{error_along, gamma_offset};
 use glam::{Vec2, Vec3A};
 
 /// A parallelogram in world space, hit from both sides; an area light's emitting
@@ -97,7 +97,10 @@ impl Quad {
         Hit {
             t,
             p,
-            p_error: error_along(self.n, gamma(5) * (self.corner.abs() + su.abs() + tv.abs())),
+            p_error: error_along(
+                self.n,
+                gamma_offset(5) * (self.corner.abs() + su.abs() + tv.abs()),
+            ),
             ng: self.n,
             ns: self.n,
             uv,

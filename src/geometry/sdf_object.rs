@@ -10,7 +10,7 @@
 use super::sdf::{MarchParams, Sdf, normal, occluded, trace};
 use super::{Hit, NO_LIGHT};
 use crate::accel::Aabb;
-use crate::math::float_error::{error_along, gamma};
+use crate::math::float_error::{error_along, gamma_offset};
 use crate::math::{Ray, ray_epsilon};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
@@ -124,7 +124,7 @@ impl SdfObject {
         // threshold a march starting there uses (see MIN_EPS), plus the
         // rounding of `p` and of the distance evaluations around it, a few
         // ulps of |p| through the object's transform and the primitive.
-        let p_err = Vec3A::splat(4.0 * self.params.min_eps) + gamma(16) * p.abs();
+        let p_err = Vec3A::splat(4.0 * self.params.min_eps) + gamma_offset(16) * p.abs();
         Hit {
             t,
             p,

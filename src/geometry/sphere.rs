@@ -3,7 +3,7 @@
 use super::Hit;
 use crate::accel::Aabb;
 use crate::math::Ray;
-use crate::math::float_error::{error_along, gamma};
+use crate::math::float_error::{error_along, gamma_offset};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
 
@@ -79,7 +79,7 @@ impl Sphere {
         Hit {
             t,
             p,
-            p_error: error_along(n, gamma(5) * (radial.abs() + p.abs())),
+            p_error: error_along(n, gamma_offset(5) * (radial.abs() + p.abs())),
             ng: n,
             ns: n,
             uv: Vec2::ZERO,

@@ -14,7 +14,7 @@ pub use whitted::Whitted;
 
 use crate::geometry::{Hit, NO_LIGHT};
 use crate::lights::LightSample;
-use crate::math::float_error::{error_along, gamma, offset_along_normal};
+use crate::math::float_error::{error_along, gamma_offset, offset_along_normal};
 use crate::math::{Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -116,7 +116,7 @@ pub(crate) fn offset_origin(p: Vec3A, n: Vec3A, d: f32, w: Vec3A) -> Vec3A {
 /// SDF emitter's sample lies on the level set its march stopped at.
 #[inline]
 pub(crate) fn light_point_error(p: Vec3A, n: Vec3A) -> f32 {
-    error_along(n, Vec3A::splat(1e-4) + gamma(7) * p.abs())
+    error_along(n, Vec3A::splat(1e-4) + gamma_offset(7) * p.abs())
 }
 
 /// The shadow ray from `hit` to the point `ls` sampled on a light, and its
