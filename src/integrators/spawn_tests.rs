@@ -23,17 +23,15 @@ fn base(dist: f32) -> Vec3A {
 
 /// A flat two-triangle square of side 1.6 about the origin, tilted.
 fn square_mesh() -> Mesh {
-    let mut m = Mesh {
-        positions: vec![
-            Vec3A::new(-0.8, 0.1, -0.8),
-            Vec3A::new(0.8, -0.1, -0.8),
-            Vec3A::new(0.8, 0.2, 0.8),
-            Vec3A::new(-0.8, 0.4, 0.8),
-        ],
-        indices: vec![[0, 2, 1], [0, 3, 2]],
-        slot_count: 1,
-        ..Mesh::default()
-    };
+    let mut m = Mesh::default();
+    m.positions = vec![
+        Vec3A::new(-0.8, 0.1, -0.8),
+        Vec3A::new(0.8, -0.1, -0.8),
+        Vec3A::new(0.8, 0.2, 0.8),
+        Vec3A::new(-0.8, 0.4, 0.8),
+    ];
+    m.indices = vec![[0, 2, 1], [0, 3, 2]];
+    m.slot_count = 1;
     m.prepare();
     m
 }
