@@ -48,7 +48,15 @@ mod tests {
         let mut worst = 0.0f32;
         for _ in 0..1000 {
             let film = rng.next_vec2();
-            let pinhole = ray(&Camera { aperture_radius: 0.0, ..c }, film, 1.5, Vec2::ZERO);
+            let pinhole = ray(
+                &Camera {
+                    aperture_radius: 0.0,
+                    ..c
+                },
+                film,
+                1.5,
+                Vec2::ZERO,
+            );
             let r = ray(&c, film, 1.5, rng.next_vec2());
             // In f64: the focus the pinhole ray reaches, and how far the lens
             // ray's line (from its stored origin) passes from it.

@@ -95,11 +95,18 @@ mod tests {
     fn offset_point_lies_beyond_the_error_bound_on_the_side_of_w() {
         let p = Vec3A::new(10_000.0, -3.0, 10_000.0);
         let n = Vec3A::new(0.0, 1.0, 0.0);
-        let d = error_along(n, Vec3A::splat(1e-3));
+        let d = error_along(n, gamma_offset(3) * p.abs());
         let up = offset_along_normal(p, n, d, Vec3A::new(0.3, 0.2, 0.0));
         let down = offset_along_normal(p, n, d, Vec3A::new(0.3, -0.2, 0.0));
-        assert!(up.y > p.y + d, "{up} not above {p} by {d}");
-        assert!(down.y < p.y - d, "{down} not below {p} by {d}");
+        let own = f64::from(error_along(n, gamma(3) * p.abs()));
+        assert!(
+            f64::from(up.y) - f64::from(p.y) > own,
+            "{up} not above {p} by {own}"
+        );
+        assert!(
+            f64::from(p.y) - f64::from(down.y) > own,
+            "{down} not below {p} by {own}"
+        );
         assert_eq!((up.x, up.z), (p.x, p.z), "no move along the surface");
     }
 
@@ -111,6 +118,8 @@ mod tests {
             let u = |r: &mut crate::math::Pcg32| r.next_f32() * 2.0 - 1.0;
             let p = Vec3A::new(u(&mut rng), u(&mut rng), u(&mut rng)) * scale;
             let n = Vec3A::new(u(&mut rng), u(&mut rng), u(&mut rng)).normalize();
+            // The point's own bound, and the one a shape reports for it.
+            let own = error_along(n, gamma(1) * p.abs());
             let d = error_along(n, gamma_offset(1) * p.abs());
             let o = offset_along_normal(p, n, d, n);
             // Exactly, in f64: how far the stored point moved along n.
@@ -118,8 +127,8 @@ mod tests {
                 .map(|k| (f64::from(o[k]) - f64::from(p[k])) * f64::from(n[k]))
                 .sum();
             assert!(
-                moved > f64::from(d),
-                "{p} along {n}: moved {moved:e}, bound {d:e}"
+                moved > f64::from(own),
+                "{p} along {n}: moved {moved:e}, own bound {own:e}"
             );
         }
     }
