@@ -11,6 +11,7 @@ use super::mesh::{Mesh, MeshHit};
 use super::{Hit, NO_LIGHT};
 use crate::accel::Aabb;
 use crate::math::Ray;
+use crate::math::float_error::{error_along, transform_point_error};
 use glam::{Affine3A, Mat3A, Vec3A};
 
 /// A mesh placed in the world by an affine transform, with its own material mapping;
@@ -75,7 +76,10 @@ impl Instance {
         meshes[self.mesh as usize].occluded(&self.local(ray), t_max)
     }
 
-    /// World-space shading record.
+    /// World-space shading record. The point's error bound is the mesh's
+    /// carried through `world_from_object` with the transform's own
+    /// rounding (pbrt-v4's `Transform` of a `Point3fi`), then measured along
+    /// the world normal.
     pub fn hit(&self, ray: &Ray, h: MeshHit, meshes: &[Mesh]) -> Hit {
         let mesh = &meshes[self.mesh as usize];
         let mut hit = mesh.hit(h.tri, h.t, h.bc);
@@ -83,9 +87,12 @@ impl Instance {
         hit.material = self.materials.get(slot).copied().unwrap_or(0);
         hit.light = self.lights.get(slot).copied().unwrap_or(NO_LIGHT);
         if !self.identity {
+            let p_err = mesh.point_error(h.tri, h.bc);
+            let p_err = transform_point_error(&self.world_from_object, hit.p, p_err);
             hit.p = self.world_from_object.transform_point3a(hit.p);
             hit.ng = (self.normal_from_object * hit.ng).normalize_or(hit.ng);
             hit.ns = (self.normal_from_object * hit.ns).normalize_or(hit.ng);
+            hit.p_error = error_along(hit.ng, p_err);
         }
         // A point on the world-space ray is more accurate far from the origin.
         debug_assert!(hit.p.is_finite() && ray.at(h.t).is_finite());

@@ -13,6 +13,7 @@ use super::triangle::{self, FLOATS, Tri4, WatertightRay4};
 use super::{Hit, NO_LIGHT};
 use crate::accel::{Aabb, WideBvh};
 use crate::math::Ray;
+use crate::math::float_error::{error_along, gamma_offset};
 use glam::{Vec2, Vec3A};
 use rayon::prelude::*;
 
@@ -181,9 +182,17 @@ impl Mesh {
 
     /// Shading record in the mesh's space for a hit of triangle `tri` at
     /// `p` with barycentrics `bc`; `material` is left 0 for the caller.
+    ///
+    /// The point is the barycentric sum of the corners, so its error is
+    /// pbrt-v4's γ(7)·Σ|bᵢ·pᵢ| (the barycentrics' own rounding included),
+    /// not that of `o + t·d` ([`Mesh::point_error`]); `p_error` is that
+    /// bound along `ng`, in the mesh's space.
+    #[inline]
     pub fn hit(&self, tri: u32, t: f32, bc: Vec2) -> Hit {
         let (a, b, c) = self.corners(tri);
         let w = Vec3A::new(1.0 - bc.x - bc.y, bc.x, bc.y);
+        let (pa, pb, pc) = (a * w.x, b * w.y, c * w.z);
+        let p_err = gamma_offset(7) * (pa.abs() + pb.abs() + pc.abs());
         // Counter-clockwise winding faces outward.
         let ng = (b - a).cross(c - a).normalize_or(Vec3A::Z);
         let [ia, ib, ic] = self.indices[tri as usize].map(|i| i as usize);
@@ -205,13 +214,22 @@ impl Mesh {
         };
         Hit {
             t,
-            p: a * w.x + b * w.y + c * w.z,
+            p: pa + pb + pc,
+            p_error: error_along(ng, p_err),
             ng,
             ns,
             uv,
             material: 0,
             light: NO_LIGHT,
         }
+    }
+
+    /// Per-axis error bound of the point [`Mesh::hit`] reports, for an
+    /// instance to carry through its transform.
+    pub fn point_error(&self, tri: u32, bc: Vec2) -> Vec3A {
+        let (a, b, c) = self.corners(tri);
+        let w = Vec3A::new(1.0 - bc.x - bc.y, bc.x, bc.y);
+        gamma_offset(7) * ((a * w.x).abs() + (b * w.y).abs() + (c * w.z).abs())
     }
 
     /// Material slot of triangle `tri`.

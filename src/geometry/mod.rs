@@ -74,6 +74,14 @@ pub struct Hit {
     pub t: f32,
     /// World-space hit point.
     pub p: Vec3A,
+    /// How far the true surface may lie from `p` along `ng`: the shape's
+    /// per-axis rounding-error bound of `p` projected on the normal
+    /// (`float_error::error_along`). Rays leave the hit moved along `ng` by
+    /// this much (`integrators::spawn`), so the bound must cover how `p` was
+    /// computed: shapes reconstruct `p` from their own parametrisation
+    /// rather than take `o + t·d`, whose error grows with the distance to
+    /// the ray's origin (a far camera).
+    pub p_error: f32,
     /// Unit geometric normal, on the side the shape defines as outside
     /// (not flipped toward the ray).
     pub ng: Vec3A,

@@ -1,6 +1,7 @@
 //! Infinite plane. Unbounded, so it is tested outside the BVH.
 
 use super::{Hit, NO_LIGHT};
+use crate::math::float_error::{error_along, gamma_offset};
 use crate::math::{Frame, Ray};
 use glam::{Vec2, Vec3A};
 
@@ -30,16 +31,29 @@ impl Plane {
 
     /// Shading record at `p`; UVs are coordinates in the plane's own frame, one unit
     /// per scene unit, so textures repeat once per unit.
+    ///
+    /// `p` (the ray's `o + t·d`) is projected into the plane's frame and
+    /// rebuilt as `point + a·s + b·t`, whose distance from the plane is a few
+    /// roundings of `|point|`, `|a·s|` and `|b·t|` (γ(7): the products, two
+    /// sums and the frame's own error against the normal) however far the
+    /// ray travelled.
     pub fn hit(&self, p: Vec3A, t: f32) -> Hit {
         // UVs: coordinates in the plane's own frame, one unit per scene unit.
         let f = Frame::from_normal(self.normal);
         let d = p - self.point;
+        let uv = Vec2::new(d.dot(f.s), d.dot(f.t));
+        let (a, b) = (f.s * uv.x, f.t * uv.y);
+        let p = self.point + a + b;
         Hit {
             t,
             p,
+            p_error: error_along(
+                self.normal,
+                gamma_offset(7) * (self.point.abs() + a.abs() + b.abs()),
+            ),
             ng: self.normal,
             ns: self.normal,
-            uv: Vec2::new(d.dot(f.s), d.dot(f.t)),
+            uv,
             material: self.material,
             light: NO_LIGHT,
         }

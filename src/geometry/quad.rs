@@ -4,6 +4,7 @@
 use super::Hit;
 use crate::accel::Aabb;
 use crate::math::Ray;
+use crate::math::float_error::{error_along, gamma_offset};
 use glam::{Vec2, Vec3A};
 
 /// A parallelogram in world space, hit from both sides; an area light's emitting
@@ -83,11 +84,23 @@ impl Quad {
     /// Shading record for a hit at distance `t` whose `(s, t)` coordinates
     /// `uv` [`Quad::intersect`] already returned: the scene's closest-hit
     /// query keeps them rather than intersecting the quad a second time.
+    ///
+    /// The point is rebuilt from `(s, t)` as `corner + s·u + t·v`, not taken
+    /// as `o + t·d`: its distance from the quad's plane is then one product
+    /// and two sums of terms no larger than `|corner|`, `|s·u|` and `|t·v|`
+    /// (γ(3)), whatever the ray's length; γ(5) leaves room for `n` being
+    /// perpendicular to `u` and `v` only to its own rounding.
     #[inline]
-    pub fn hit_at(&self, ray: &Ray, t: f32, uv: Vec2) -> Hit {
+    pub fn hit_at(&self, _ray: &Ray, t: f32, uv: Vec2) -> Hit {
+        let (su, tv) = (self.u * uv.x, self.v * uv.y);
+        let p = self.corner + su + tv;
         Hit {
             t,
-            p: ray.at(t),
+            p,
+            p_error: error_along(
+                self.n,
+                gamma_offset(5) * (self.corner.abs() + su.abs() + tv.abs()),
+            ),
             ng: self.n,
             ns: self.n,
             uv,

@@ -10,6 +10,7 @@
 use super::sdf::{MarchParams, Sdf, normal, occluded, trace};
 use super::{Hit, NO_LIGHT};
 use crate::accel::Aabb;
+use crate::math::float_error::{error_along, gamma_offset};
 use crate::math::{Ray, ray_epsilon};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
@@ -18,8 +19,9 @@ use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 /// Smallest hit threshold for scene SDFs, in scene units.
 ///
 /// Secondary rays leave a hit through `integrators::spawn`, offset along the
-/// normal by `ray_epsilon(p) = 1e-4·(1 + |p|max)`: at least 1e-4, about
-/// 2e-4 for a unit-sized object at the origin. The march needs that offset
+/// normal by the hit's `p_error`, which [`SdfObject::hit`] sets to at least
+/// `4·min_eps` (1e-4 at this value) plus the rounding of the distance
+/// evaluation far from the origin. The march needs that offset
 /// to be at least twice its hit threshold on both ends of the ray:
 /// - where the spawned ray starts (`t ≈ 0`) the threshold is `min_eps`; the
 ///   engine's 1e-4 would equal the offset, so a ray could "hit" at its own
@@ -118,9 +120,15 @@ impl SdfObject {
         let dir = (p - self.uv_center).normalize_or(Vec3A::Y);
         let u = 0.5 + dir.z.atan2(dir.x) / (2.0 * PI);
         let v = dir.y.clamp(-1.0, 1.0).acos() / PI;
+        // The bound a spawned ray's origin is moved by: four times the hit
+        // threshold a march starting there uses (see MIN_EPS), plus the
+        // rounding of `p` and of the distance evaluations around it, a few
+        // ulps of |p| through the object's transform and the primitive.
+        let p_err = Vec3A::splat(4.0 * self.params.min_eps) + gamma_offset(16) * p.abs();
         Hit {
             t,
             p,
+            p_error: error_along(n, p_err),
             ng: n,
             ns: n,
             uv: Vec2::new(u, 1.0 - v),

@@ -3,6 +3,7 @@
 use super::Hit;
 use crate::accel::Aabb;
 use crate::math::Ray;
+use crate::math::float_error::{error_along, gamma_offset};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
 
@@ -65,11 +66,20 @@ impl Sphere {
 
     /// [`Sphere::hit`] with `uv` left zero, for untextured materials: the
     /// `atan2` and `acos` were 4% of a render of the specular Cornell box.
+    ///
+    /// `p` is re-projected onto the sphere, so its error does not depend on
+    /// how far the ray came: the radius vector `n·r` is off by the
+    /// normalisation's few roundings of `r` (γ(5)·|n·r|, pbrt-v4's bound
+    /// for its reprojection), the sum with the centre by one more rounding
+    /// of the result (taken as γ(5)·|p| too, for margin).
     pub fn hit_without_uv(&self, p: Vec3A, t: f32) -> Hit {
         let n = ((p - self.center) / self.radius).normalize();
+        let radial = n * self.radius;
+        let p = self.center + radial;
         Hit {
             t,
-            p: self.center + n * self.radius,
+            p,
+            p_error: error_along(n, gamma_offset(5) * (radial.abs() + p.abs())),
             ng: n,
             ns: n,
             uv: Vec2::ZERO,

@@ -54,7 +54,7 @@
 //! one-sided emissive spheres. Caustics of other lights (meshes, SDFs, the
 //! sky) stay with the path tracer, as before.
 
-use super::{Counters, offset_origin, spawn};
+use super::{Counters, light_point_error, offset_origin, spawn};
 use crate::camera::Camera;
 use crate::geometry::Hit;
 use crate::lights::{CausticEmitters, Light};
@@ -146,7 +146,7 @@ pub fn trace(
         return None;
     }
     let side = if d.dot(n) >= 0.0 { n } else { -n };
-    let mut ray = Ray::new(offset_origin(p, side, d), d);
+    let mut ray = Ray::new(offset_origin(p, side, light_point_error(p, side), d), d);
     let mut chain = 0u32;
     loop {
         counters.rays += 1;
@@ -211,7 +211,7 @@ pub fn splat(
     if !c.is_finite() || c == Rgb::ZERO {
         return None;
     }
-    let o = offset_origin(y.hit.p, y.hit.ng, to_eye);
+    let o = offset_origin(y.hit.p, y.hit.ng, y.hit.p_error, to_eye);
     let seg = camera.eye - o;
     let len = seg.length();
     if !(len > 0.0 && len.is_finite()) {

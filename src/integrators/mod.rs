@@ -5,6 +5,8 @@ pub mod caustic;
 pub mod direct;
 pub mod path;
 pub mod sky_visibility;
+#[cfg(test)]
+mod spawn_tests;
 pub mod whitted;
 
 pub use direct::Direct;
@@ -13,7 +15,8 @@ pub use whitted::Whitted;
 
 use crate::geometry::{Hit, NO_LIGHT};
 use crate::lights::LightSample;
-use crate::math::{Ray, Rgb, ray_epsilon};
+use crate::math::float_error::{error_along, gamma_offset, offset_along_normal};
+use crate::math::{Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use glam::Vec3A;
@@ -88,21 +91,39 @@ pub(crate) fn escaped(scene: &Scene, d: Vec3A, camera: bool) -> Rgb {
 /// the geometric normal on `w`'s side so it cannot re-hit its own surface.
 #[inline]
 pub fn spawn(hit: &Hit, w: Vec3A) -> Ray {
-    Ray::new(offset_origin(hit.p, hit.ng, w), w)
+    Ray::new(offset_origin(hit.p, hit.ng, hit.p_error, w), w)
 }
 
-/// `p` moved off its surface (normal `n`) by [`ray_epsilon`] to the side
-/// `w` points into. The offset is along the normal, so the moved point is off
-/// the surface's plane by the full margin whatever the angle of `w`.
+/// `p` moved off its surface (unit normal `n`) by `d`, the bound on how far
+/// the true surface may lie from `p` along `n` (`Hit::p_error`), to the side
+/// `w` points into, and rounded one ulp further (pbrt-v4's
+/// `OffsetRayOrigin`). The offset is along the normal, so the moved point is
+/// off the surface's plane by the full margin whatever the angle of `w`.
+///
+/// The margin is each hit's own rounding error rather than an epsilon that
+/// scales with `|p|` (`1e-4·(1 + |p|)`, before issue 44): at 1,000 units from
+/// the origin that epsilon was 0.1, more than the gap between a floor and a
+/// sphere resting on it near their contact, so shadow rays started beyond
+/// the sphere and bright rings lit the contact shadows.
 #[inline]
-pub(crate) fn offset_origin(p: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
-    let off = n * ray_epsilon(p);
-    if n.dot(w) >= 0.0 { p + off } else { p - off }
+pub(crate) fn offset_origin(p: Vec3A, n: Vec3A, d: f32, w: Vec3A) -> Vec3A {
+    offset_along_normal(p, n, d, w)
+}
+
+/// Error bound along `n` of a point `p` sampled on a light, which a
+/// [`LightSample`] does not carry: a few roundings of `|p|` (γ(7), as for a
+/// point rebuilt from a triangle's or a quad's parametrisation), at least
+/// `4 × 2.5e-5`, the march threshold of scene SDFs (`MIN_EPS`), because an
+/// SDF emitter's sample lies on the level set its march stopped at.
+#[inline]
+pub(crate) fn light_point_error(p: Vec3A, n: Vec3A) -> f32 {
+    error_along(n, Vec3A::splat(1e-4) + gamma_offset(7) * p.abs())
 }
 
 /// The shadow ray from `hit` to the point `ls` sampled on a light, and its
 /// extent: the segment between the two points, each moved off its own
-/// surface (pbrt-v4's `SpawnRayTo` between two interactions).
+/// surface by its own error bound (pbrt-v4's `SpawnRayTo` between two
+/// interactions).
 ///
 /// Direction and extent are measured from the moved origin to the moved
 /// target, so the segment lies on the open side of both surfaces' planes and
@@ -111,18 +132,19 @@ pub(crate) fn offset_origin(p: Vec3A, n: Vec3A, w: Vec3A) -> Vec3A {
 /// grazing angles the ray then crossed the light's own plane before its
 /// extent ended, and a floor beyond about 60° from a quad light went black.)
 /// Delta lights have no surface (`ls.n` is zero); their point is the target.
-/// The extent stops a relative 1e-4 short of the target. A sample at infinite
-/// distance (the environment) gives an unbounded ray from the moved origin.
+/// The extent stops a relative 1e-4 short of the target (pbrt's
+/// `ShadowEpsilon`). A sample at infinite distance (the environment) gives an
+/// unbounded ray from the moved origin.
 #[inline]
 pub fn shadow_ray(hit: &Hit, ls: &LightSample) -> (Ray, f32) {
-    let o = offset_origin(hit.p, hit.ng, ls.wi);
+    let o = offset_origin(hit.p, hit.ng, hit.p_error, ls.wi);
     if ls.dist == f32::INFINITY {
         return (Ray::new(o, ls.wi), f32::INFINITY);
     }
     let target = if ls.n == Vec3A::ZERO {
         ls.p
     } else {
-        offset_origin(ls.p, ls.n, o - ls.p)
+        offset_origin(ls.p, ls.n, light_point_error(ls.p, ls.n), o - ls.p)
     };
     let d = target - o;
     let len = d.length();

@@ -14,6 +14,7 @@ fn hit_of(ls: &LightSample) -> Hit {
     Hit {
         t: ls.dist,
         p: ls.p,
+        p_error: 0.0,
         ng: ls.n,
         ns: ls.n,
         uv: Vec2::ZERO,

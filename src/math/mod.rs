@@ -3,6 +3,7 @@
 //! number generator and exact sums of samples.
 
 pub mod exact_sum;
+pub mod float_error;
 pub mod frame;
 pub mod piecewise;
 pub mod ray;
@@ -29,8 +30,12 @@ pub fn luminance(c: Rgb) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
-/// Offset added to shadow-ray and secondary-ray origins, scaled by the size of
-/// the hit coordinates so it works for both tiny and huge scenes.
+/// A margin that scales with the size of the coordinates: `1e-4·(1 + |p|max)`.
+///
+/// No longer how rays leave surfaces (they are offset by each hit's own
+/// rounding-error bound, see [`float_error`]); kept for SDF march
+/// thresholds and normal estimates, whose tolerances are of this size, and
+/// for tests that step off SDF hits by it.
 #[inline]
 pub fn ray_epsilon(p: Vec3A) -> f32 {
     1e-4 * (1.0 + p.abs().max_element())
