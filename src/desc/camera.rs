@@ -285,7 +285,7 @@ pub enum LightSelectionDesc {
     /// and orientation), so scenes of many lights spend their shadow rays
     /// on the near ones that face the point. The sky is weighed by what it
     /// sends to the point (its irradiance there), not by its power through
-    /// the scene, and a fifth of the picks stay uniform over all lights, so
+    /// the scene, and a tenth of the picks stay uniform over all lights, so
     /// no light is starved where the estimate is wrong. With one light of
     /// finite extent and no sky it is `Power`: there is nothing to choose.
     #[default]

@@ -316,7 +316,12 @@ impl Node {
 
 /// The share of picks made uniformly over all lights with power, whatever
 /// the estimate says (the defensive part of the mixture; module docs).
-pub const UNIFORM_SHARE: f32 = 0.2;
+/// Measured (64 spp, two-seed noise): on `tests/open_scenes.rs`' 36 scenes
+/// the worst ratio to uniform selection is 1.008 at 0.1, 1.012 at 0.05
+/// and 1.06 at 0 (before the sky's visibility was measured); on
+/// `scenes/many_lights.ron` (64 lamps) it costs 6% of noise at 0.1 and 10%
+/// at 0.2 against none.
+pub const UNIFORM_SHARE: f32 = 0.1;
 
 /// See the module docs.
 #[derive(Clone, Debug)]
@@ -698,7 +703,7 @@ mod tests {
         let away = (0..1000)
             .filter(|k| tree.pick(p, n, (*k as f32 + 0.5) / 1000.0).expect("a light").0 == 2)
             .count();
-        assert!((60..=74).contains(&away), "picked {away} times in 1000");
+        assert!((28..=38).contains(&away), "picked {away} times in 1000");
     }
 
     /// Area lights beside an environment: what the sky gets follows what it
