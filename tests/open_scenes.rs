@@ -203,7 +203,10 @@ fn sky_light(spec: &Spec) -> String {
 /// Rectangles (centre, half_u, half_v, material) the scene holds besides
 /// its lamps and spheres: the ground, or the room's floor, ceiling and
 /// walls, one of them with a 2 × 1.5 window.
-fn rects(spec: &Spec) -> Vec<([f32; 3], [f32; 3], [f32; 3], &'static str)> {
+/// A rectangle: centre, half_u, half_v (normal half_u × half_v) and material.
+type RectSpec = ([f32; 3], [f32; 3], [f32; 3], &'static str);
+
+fn rects(spec: &Spec) -> Vec<RectSpec> {
     if spec.ground > 0.0 {
         let g = 0.5 * spec.ground;
         return vec![([0.0, 0.0, 0.0], [g, 0.0, 0.0], [0.0, 0.0, -g], "ground")];

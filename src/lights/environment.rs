@@ -17,20 +17,14 @@
 //! frame is the world's turned by `rotation` about +y (right-handed).
 //!
 //! # Sampling
-//! An image is importance sampled by a piecewise-constant distribution over
-//! its pixels ([`PiecewiseConstant2d`]) with weights `luminance × sin θ`:
-//! the luminance is the mean of the bilinear radiance over the pixel's cell
-//! (weights ⅛, ¾, ⅛ over the 3 × 3 neighbourhood in each direction), so every
-//! cell the interpolated image lights has a non-zero probability and light
-//! sampling alone (`Direct`, `Whitted`) misses nothing; `sin θ` is the
-//! solid angle of the row. (The distribution's H rows are equal bands of v,
-//! which the rows of the image, spaced 1/(H − 1) apart, straddle by less than
-//! a pixel: the 3-row blur still covers every band the image lights.) A
-//! point `(u, v)` of density `p(u, v)` is the
-//! direction of density `p(u, v) / (2π² sin θ)`. The tables take about 5
-//! bytes per pixel (CDFs and their guide tables, see `math/piecewise.rs`),
-//! the image 12 (f32 RGB); an
-//! 8192 × 4096 map's tables build in 0.08 s on 2 cores.
+//! An image is importance sampled in proportion to its bilinearly
+//! interpolated `luminance × sin θ` ([`EnvTable`], as Mitsuba 3 does): a
+//! cell between four pixel centres by its mean, then a point in it from
+//! the bilinear patch, so a sample's weight `L / pdf` hardly varies even
+//! across a sun a few pixels wide. A point `(u, v)` of density `p(u, v)` is
+//! the direction of density `p(u, v) / (2π² sin θ)`. The tables take about
+//! 9 bytes per pixel (the corner weights and the cells' CDFs with their
+//! guide tables, see `math/piecewise.rs`), the image 12 (f32 RGB).
 //! A constant environment is sampled by the cosine about the shading
 //! normal when the integrator gives one (the hemisphere a reflecting
 //! surface sees: for an unoccluded Lambert surface every sample then
@@ -39,9 +33,9 @@
 //! sphere uniformly: half its shadow rays from a floor go into the floor.
 
 use super::LightSample;
+use super::env_table::EnvTable;
 use super::irradiance::{ShSum, SkyIrradiance};
 use crate::math::Frame;
-use crate::math::piecewise::PiecewiseConstant2d;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
 use crate::math::trig::sin_cos_turns;
 use crate::math::{Rgb, luminance};
@@ -99,32 +93,6 @@ impl EnvMap {
         let n = 3 * self.width as usize;
         &self.rgb[j * n..(j + 1) * n]
     }
-
-    /// Luminance of the mean bilinear radiance over each cell of row `j`, into
-    /// `out`: weights ⅛, ¾, ⅛ over the neighbours in each direction (columns
-    /// wrap, rows clamp), computed separably from the three rows' luminances.
-    fn cell_luminance_row(&self, j: usize, out: &mut [f32]) {
-        const K: [f32; 3] = [0.125, 0.75, 0.125];
-        let (w, h) = (self.width as usize, self.height as usize);
-        // Vertical pass: a weighted sum of the luminances of rows j−1, j, j+1.
-        out.fill(0.0);
-        for (b, kb) in K.iter().enumerate() {
-            let jj = (j + b).saturating_sub(1).min(h - 1);
-            let row = &self.rgb[3 * jj * w..3 * (jj + 1) * w];
-            for (o, px) in out.iter_mut().zip(row.chunks_exact(3)) {
-                *o += kb * luminance(Rgb::new(px[0], px[1], px[2])).max(0.0);
-            }
-        }
-        // Horizontal pass, wrapping around the seam.
-        let (first, last) = (out[0], out[w - 1]);
-        let mut prev = last;
-        for i in 0..w {
-            let next = if i + 1 < w { out[i + 1] } else { first };
-            let here = out[i];
-            out[i] = K[0] * prev + K[1] * here + K[2] * next;
-            prev = here;
-        }
-    }
 }
 
 /// How next-event estimation picks directions toward the environment.
@@ -144,7 +112,7 @@ pub struct EnvironmentLight {
     /// Multiplies the image (or is the constant radiance), W/(m²·sr).
     scale: Rgb,
     map: Option<EnvMap>,
-    distribution: Option<PiecewiseConstant2d>,
+    distribution: Option<EnvTable>,
     /// cos and sin of the rotation about +y (world from environment).
     cos_sin: (f32, f32),
     /// Which directions next-event estimation draws.
@@ -183,12 +151,7 @@ impl EnvironmentLight {
     /// builds the sampling tables on all cores.
     pub fn from_map(map: EnvMap, strength: f32, rotation_degrees: f32) -> Self {
         let (w, h) = (map.width as usize, map.height as usize);
-        let sin_row = |j: usize| (PI * (j as f32 + 0.5) / h as f32).sin();
-        let distribution = PiecewiseConstant2d::new(w, h, |j, row| {
-            map.cell_luminance_row(j, row);
-            let s = sin_row(j);
-            row.iter_mut().for_each(|x| *x *= s);
-        });
+        let distribution = EnvTable::new(&map);
         // ∫ L dω of the bilinear image, exactly: (2π/W) Σ_j ω_j Σ_i L(i, j),
         // with ω_j = ∫ sin θ of row j's hat function in θ (θj = πj/(H − 1)).
         let row_weight = |j: usize| row_weight(j, h);
@@ -387,7 +350,7 @@ impl EnvironmentLight {
 
     /// Heap bytes of the sampling tables (the image itself not included).
     pub fn table_bytes(&self) -> usize {
-        self.distribution.as_ref().map_or(0, PiecewiseConstant2d::bytes)
+        self.distribution.as_ref().map_or(0, EnvTable::bytes)
     }
 }
 

@@ -21,6 +21,7 @@
 
 pub mod alias;
 pub mod caustic;
+pub mod env_table;
 pub mod environment;
 pub mod irradiance;
 pub mod mesh;

@@ -466,7 +466,7 @@ impl LightTree {
         let (env, root) = self.top(p, n);
         let root_total = root.map_or(0.0, |r| r.1);
         let sum = env + root_total;
-        if !(sum > 0.0) {
+        if sum.is_nan() || sum <= 0.0 {
             return None;
         }
         if let Some((i, _)) = self.env
@@ -519,7 +519,7 @@ impl LightTree {
         let (env, root) = self.top(p, n);
         let root_total = root.map_or(0.0, |r| r.1);
         let sum = env + root_total;
-        if !(sum > 0.0) {
+        if sum.is_nan() || sum <= 0.0 {
             return 0.0;
         }
         if self.env.is_some_and(|e| e.0 as usize == i) {
