@@ -13,7 +13,12 @@ Needs the `mitsuba` and `numpy` packages and ../shared/tools/mitsuba_run.py (or
 MITSUBA_RUN=...). Dumps the scenes with `cargo test --test open_scenes dump`
 (RONRAY_DUMP_OPEN_SCENES), renders each with ronray (Independent, as written) and with
 Mitsuba `llvm_ad_rgb` (independent sampler), two seeds each, and prints a Markdown table.
-Timing is not measured here (see tools/side_by_side.sh)."""
+
+With --timing (run it on a quiet machine): Mitsuba at 256 spp and ronray's defaults (Sobol,
+samples spread by noise) at --spp, two seeds each, timed (Mitsuba's render_s, ronray's own
+render time, as tools/side_by_side.sh takes them); the error of an unbiased render is its
+noise, so ronray's time to Mitsuba's 256-spp error is its time x (its noise / Mitsuba's)^2.
+Prints that time over Mitsuba's."""
 import argparse, json, os, subprocess, sys, tempfile
 
 here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -36,6 +41,7 @@ def main():
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--only", default="")
     ap.add_argument("--no-mitsuba", action="store_true")
+    ap.add_argument("--timing", action="store_true")
     a = ap.parse_args()
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
@@ -46,6 +52,8 @@ def main():
     subprocess.run(["cargo", "test", "-q", "--test", "open_scenes", "dump"], cwd=here, env=env,
                    check=True, stdout=subprocess.DEVNULL)
     names = sorted(f[:-5] for f in os.listdir(out) if f.endswith(".json") and a.only in f)
+    if a.timing:
+        return timing(a, names, out, run, ronray)
     print(f"| scene | Mitsuba llvm | ronray uniform | ronray default | default / Mitsuba | default / uniform |")
     print("|---|---|---|---|---|---|")
     worse = 0
@@ -74,6 +82,38 @@ def main():
         print(f"| {name} | {m:.5f} | {res['uniform']:.5f} | {res['default']:.5f} | {r:.2f}x | "
               f"{res['default'] / res['uniform']:.2f}x |", flush=True)
     print(f"\n{worse} of {len(names)} scenes noisier than Mitsuba at equal spp ({a.size}^2, {a.spp} spp).")
+
+
+def timing(a, names, out, run, ronray):
+    import re
+    # Warm Mitsuba's JIT caches.
+    subprocess.run([sys.executable, run, os.path.join(out, f"{names[0]}.json"), "--spp", "4"],
+                   check=True, stdout=subprocess.DEVNULL)
+    print("| scene | Mitsuba 256 spp: s, noise | ronray defaults " + str(a.spp) +
+          " spp: s, noise | ronray's time to Mitsuba's noise / Mitsuba's time |")
+    print("|---|---|---|---|")
+    ratios = []
+    for name in names:
+        mi_t, mi_img, rr_t, rr_img = [], [], [], []
+        for seed in (1, 2):
+            o = os.path.join(out, f"{name}.mi256.{seed}.exr")
+            r = subprocess.run([sys.executable, run, os.path.join(out, f"{name}.json"), "--variant", "llvm_ad_rgb",
+                                "--spp", "256", "--seed", str(seed), "--out", o], check=True,
+                               capture_output=True, text=True)
+            mi_t.append(json.loads(r.stdout.strip().splitlines()[-1])["render_s"])
+            mi_img.append(load(o))
+            o = os.path.join(out, f"{name}.def.{seed}.exr")
+            r = subprocess.run([ronray, "render", f"{name}.ron", "--spp", str(a.spp), "--seed", str(seed),
+                                "--set", "film.sampler=Sobol", "-o", o, "--progress", "none"], cwd=out,
+                               check=True, capture_output=True, text=True)
+            rr_t.append(float(re.search(r" in ([0-9.]+) s", r.stderr + r.stdout).group(1)))
+            rr_img.append(load(o))
+        nm, nr = noise(*mi_img), noise(*rr_img)
+        tm, tr = sum(mi_t) / 2, sum(rr_t) / 2
+        ratio = tr * (nr / nm) ** 2 / tm
+        ratios.append(ratio)
+        print(f"| {name} | {tm:.2f} s, {nm:.5f} | {tr:.2f} s, {nr:.5f} | {ratio:.2f}x |", flush=True)
+    print(f"\nworst {max(ratios):.2f}x, median {sorted(ratios)[len(ratios) // 2]:.2f}x over {len(ratios)} scenes.")
 
 
 if __name__ == "__main__":
