@@ -190,7 +190,13 @@ impl Path {
             // polynomial, a square root) runs while the shadow ray
             // traverses instead of after it. Same numbers, same image.
             let delta = bsdf.is_delta();
-            let side = bsdf.light_side(hit.ns, wo.z);
+            // Only the sky's sampling and density read the side: scenes
+            // without one skip it (0.9% of the Cornell box's instructions).
+            let side = if scene.environment.is_some() {
+                bsdf.light_side(hit.ns, wo.z)
+            } else {
+                Vec3A::ZERO
+            };
             let (u_pick, u_light) = if delta {
                 (0.0, glam::Vec2::ZERO)
             } else {
