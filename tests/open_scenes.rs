@@ -524,3 +524,34 @@ fn the_family_has_at_least_24_scenes_with_distinct_names_that_load() {
         assert!(j["shapes"].as_array().is_some_and(|s| s.len() >= 6));
     }
 }
+
+/// The sky's measured visibility (light selection's weight for it) follows
+/// what hides it: nearly all of it over an open ground, a little through a
+/// window, the floor of 1/256 in a closed room.
+#[test]
+fn sky_visibility_follows_what_the_walls_hide() {
+    use ronray::integrators::sky_visibility::sky_visibility;
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let v = |text: &str| {
+        let l = common::load_in(dir.path(), text, &Default::default());
+        let aspect = l.view.film.width as f32 / l.view.film.height as f32;
+        sky_visibility(&l.scene, &l.view.camera, aspect)
+    };
+    let open = Spec {
+        ground: 40.0,
+        sky: Sky::Constant(1.0),
+        lights: 1,
+    };
+    let room = Spec { ground: 0.0, ..open };
+    let windowed = ron(&room, "Tree", 16, 1, 0);
+    // The same room with its window walled up.
+    let closed = windowed.replace(
+        "    ],\n)",
+        "Rect(center: (-5, 2.75, 0), half_u: (0, 0, -1), half_v: (0, 0.75, 0), material: \"wall\"),\n    ],\n)",
+    );
+    let (vo, vw, vc) = (v(&ron(&open, "Tree", 16, 1, 0)), v(&windowed), v(&closed));
+    // Not 1: the spheres' sides see the ground below their horizon.
+    assert!(vo > 0.6, "open ground sees {vo} of the sky");
+    assert!(vw > 1.0 / 256.0 && vw < 0.3, "the windowed room sees {vw}");
+    assert_eq!(vc, 1.0 / 256.0, "the closed room sees {vc}");
+}
