@@ -14,8 +14,10 @@
 //! count fully, since light sampling cannot produce those paths. Each path
 //! therefore counts every emitter exactly once. The environment is an
 //! emitter like the others: a BSDF sample that escapes the scene is weighted
-//! against the environment's own density (its luminance distribution), and
-//! next-event estimation picks it by power like any light. A camera ray that
+//! against the environment's own density (its luminance distribution, or
+//! the cosine about the previous vertex's normal for a constant sky), and
+//! next-event estimation picks it like any light (by the light tree, which
+//! weighs it by its irradiance at the point). A camera ray that
 //! escapes sees the environment, or its background when it is not
 //! `visible`.
 //!

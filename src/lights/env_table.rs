@@ -148,11 +148,8 @@ impl EnvTable {
         if uu >= 1.0 {
             uu -= 1.0;
         }
-        let vv = if self.height > 1 {
-            (j as f32 + by) / rows
-        } else {
-            0.5
-        };
+        // (A map of one row is constant in v: its one cell row spans it all.)
+        let vv = (j as f32 + by) / rows;
         (
             Vec2::new(uu.clamp(0.0, 1.0 - f32::EPSILON), vv.clamp(0.0, 1.0)),
             pdf,
@@ -169,13 +166,9 @@ impl EnvTable {
         }
         let i = (x as usize).min(self.width - 1);
         let fx = (x - i as f32).clamp(0.0, 1.0);
-        let (j, fy) = if self.height > 1 {
-            let y = (uv.y * rows).clamp(0.0, rows);
-            let j = (y as usize).min(self.rows() - 1);
-            (j, (y - j as f32).clamp(0.0, 1.0))
-        } else {
-            (0, 0.5)
-        };
+        let y = (uv.y * rows).clamp(0.0, rows);
+        let j = (y as usize).min(self.rows() - 1);
+        let fy = (y - j as f32).clamp(0.0, 1.0);
         let cell = Vec2::new((i as f32 + 0.5) / w, (j as f32 + 0.5) / rows);
         self.cells.pdf(cell) * bilinear_pdf(Vec2::new(fx, fy), self.corners_of(i, j))
     }
@@ -243,6 +236,31 @@ mod tests {
 
     /// A small sun: weights `L sin θ / pdf` of samples nearly equal (they
     /// ranged 0 to ~2× with a density constant per pixel).
+    /// Maps of one row or one column: still a density over the whole
+    /// square that matches what is sampled.
+    #[test]
+    fn one_row_and_one_column_maps_cover_the_square() {
+        let mut rng = Pcg32::new(5, 5);
+        for (w, h) in [(1, 1), (1, 7), (9, 1)] {
+            let t = EnvTable::new(&map(w, h, |i, j| 1.0 + (i + 2 * j) as f32));
+            let n = 100_000;
+            let sum: f64 = (0..n).map(|_| t.pdf(rng.next_vec2()) as f64).sum();
+            assert!(
+                (sum / n as f64 - 1.0).abs() < 0.02,
+                "{w}×{h}: ∫ pdf = {}",
+                sum / n as f64
+            );
+            let (mut lo, mut hi) = (1.0f32, 0.0f32);
+            for _ in 0..2000 {
+                let (uv, pdf) = t.sample(rng.next_vec2());
+                assert!((t.pdf(uv) - pdf).abs() <= 2e-3 * pdf, "{w}×{h} at {uv}");
+                lo = lo.min(uv.y);
+                hi = hi.max(uv.y);
+            }
+            assert!(lo < 0.1 && hi > 0.9, "{w}×{h}: v from {lo} to {hi}");
+        }
+    }
+
     #[test]
     fn a_small_suns_samples_carry_nearly_equal_weights() {
         let (w, h) = (360u32, 181u32);
