@@ -38,8 +38,21 @@ struct Spec {
     /// Side of the square ground; 0 for the room.
     ground: f32,
     sky: Sky,
-    /// Area lights, 1 to 3.
+    /// Lights, 1 to 3.
     lights: usize,
+    /// What the lights are.
+    kind: Kind,
+}
+
+/// What a scene's lights are: downward rectangles (most scenes), or at the
+/// same places points, emissive spheres or emissive octahedron meshes, so
+/// the family also mixes the sky with every other kind of light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Kind {
+    Rect,
+    Point,
+    Sphere,
+    Mesh,
 }
 
 impl Spec {
@@ -53,14 +66,21 @@ impl Spec {
             Sky::Constant(k) => format!("sky{k}"),
             Sky::Sun => "sun".into(),
         };
-        format!("{place}_{sky}_{}lights", self.lights)
+        let kind = match self.kind {
+            Kind::Rect => "lights",
+            Kind::Point => "points",
+            Kind::Sphere => "spheres",
+            Kind::Mesh => "meshes",
+        };
+        format!("{place}_{sky}_{}{kind}", self.lights)
     }
 }
 
 /// The family: 24 open scenes under a constant sky (three grounds × four
 /// sky levels × one or three lights), 6 under the sun map (three grounds ×
-/// one or two lights) and 6 rooms lit through a window (three sky levels ×
-/// one or three lights).
+/// one or two lights), 6 rooms lit through a window (three sky levels ×
+/// one or three lights), and 6 with two point, sphere or mesh lights under
+/// the constant sky or the sun.
 fn family() -> Vec<Spec> {
     let mut v = Vec::new();
     for ground in [4.0, 40.0, 400.0] {
@@ -70,6 +90,7 @@ fn family() -> Vec<Spec> {
                     ground,
                     sky: Sky::Constant(k),
                     lights,
+                    kind: Kind::Rect,
                 });
             }
         }
@@ -80,6 +101,7 @@ fn family() -> Vec<Spec> {
                 ground,
                 sky: Sky::Sun,
                 lights,
+                kind: Kind::Rect,
             });
         }
     }
@@ -89,10 +111,61 @@ fn family() -> Vec<Spec> {
                 ground: 0.0,
                 sky: Sky::Constant(k),
                 lights,
+                kind: Kind::Rect,
+            });
+        }
+    }
+    for kind in [Kind::Point, Kind::Sphere, Kind::Mesh] {
+        for sky in [Sky::Constant(0.3), Sky::Sun] {
+            v.push(Spec {
+                ground: 40.0,
+                sky,
+                lights: 2,
+                kind,
             });
         }
     }
     v
+}
+
+/// Radius of the emissive spheres and octahedra that stand for lamps.
+const BULB: f32 = 0.3;
+
+impl Lamp {
+    /// Area of the rectangle.
+    fn area(&self) -> f32 {
+        4.0 * self.hx * self.hz
+    }
+    /// A point light's intensity giving about the rectangle's irradiance
+    /// below it (W/sr).
+    fn intensity(&self) -> [f32; 3] {
+        self.l.map(|c| c * self.area())
+    }
+    /// A bulb's radiance giving about the rectangle's power downward.
+    fn bulb_radiance(&self) -> [f32; 3] {
+        self.l.map(|c| c * self.area() / (PI * BULB * BULB))
+    }
+}
+
+/// An octahedron of radius [`BULB`] around `c`, outward counter-clockwise
+/// faces, as OBJ text.
+fn octahedron(c: [f32; 3]) -> String {
+    let r = BULB;
+    let v = [
+        [c[0] + r, c[1], c[2]],
+        [c[0] - r, c[1], c[2]],
+        [c[0], c[1] + r, c[2]],
+        [c[0], c[1] - r, c[2]],
+        [c[0], c[1], c[2] + r],
+        [c[0], c[1], c[2] - r],
+    ];
+    let mut s = String::new();
+    for p in v {
+        let _ = writeln!(s, "v {} {} {}", p[0], p[1], p[2]);
+    }
+    // glow_octahedron.obj's faces: the same vertex order.
+    s.push_str("f 1 3 5\nf 5 3 2\nf 2 3 6\nf 6 3 1\nf 1 5 4\nf 5 2 4\nf 2 6 4\nf 6 1 4\n");
+    s
 }
 
 /// A downward rectangle light: centre, half extents along x and z, radiance.
@@ -172,8 +245,12 @@ fn sun_map(e: f32) -> Vec<f32> {
     rgb
 }
 
-/// Writes the sun map as `sun.exr` in `dir` (once per folder).
+/// Writes the sun map as `sun.exr` and the lamp octahedra as
+/// `lamp<k>.obj` in `dir` (once per folder).
 fn write_sun_map(dir: &Path) {
+    for (k, l) in lamps(3).iter().enumerate() {
+        std::fs::write(dir.join(format!("lamp{k}.obj")), octahedron(l.c)).expect("a lamp mesh");
+    }
     let path = dir.join("sun.exr");
     if path.exists() {
         return;
@@ -250,19 +327,39 @@ fn v3(v: [f32; 3]) -> String {
 fn ron(spec: &Spec, selection: &str, size: u32, spp: u32, seed: u64) -> String {
     let (eye, target) = camera(spec);
     let mut lights = String::new();
-    for l in lamps(spec.lights) {
-        // Normal half_u × half_v = −y: facing down.
-        let _ = writeln!(
-            lights,
-            "Rect(center: {}, half_u: ({}, 0, 0), half_v: (0, 0, {}), radiance: {}),",
-            v3(l.c),
-            l.hx,
-            l.hz,
-            v3(l.l)
-        );
+    let mut objects = String::new();
+    for (k, l) in lamps(spec.lights).iter().enumerate() {
+        match spec.kind {
+            // Normal half_u × half_v = −y: facing down.
+            Kind::Rect => writeln!(
+                lights,
+                "Rect(center: {}, half_u: ({}, 0, 0), half_v: (0, 0, {}), radiance: {}),",
+                v3(l.c),
+                l.hx,
+                l.hz,
+                v3(l.l)
+            ),
+            Kind::Point => writeln!(
+                lights,
+                "Point(position: {}, intensity: {}),",
+                v3(l.c),
+                v3(l.intensity())
+            ),
+            Kind::Sphere => writeln!(
+                objects,
+                r#"Sphere(center: {}, radius: {BULB}, material: "black", emission: (radiance: {})),"#,
+                v3(l.c),
+                v3(l.bulb_radiance())
+            ),
+            Kind::Mesh => writeln!(
+                objects,
+                r#"Mesh(file: "lamp{k}.obj", material: "black", emission: (radiance: {})),"#,
+                v3(l.bulb_radiance())
+            ),
+        }
+        .expect("writing to a String");
     }
     lights.push_str(&sky_light(spec));
-    let mut objects = String::new();
     for (c, u, v, m) in rects(spec) {
         let _ = writeln!(
             objects,
@@ -286,6 +383,7 @@ fn ron(spec: &Spec, selection: &str, size: u32, spp: u32, seed: u64) -> String {
     integrator: Path(max_depth: 8, rr_depth: 5, light_selection: {selection}),
     materials: {{
         "ground": Lambert(albedo: (0.5, 0.5, 0.5)),
+        "black": Lambert(albedo: (0, 0, 0)),
         "wall": Lambert(albedo: (0.7, 0.7, 0.7)),
         "green": Lambert(albedo: (0.2, 0.6, 0.25)),
         // Mitsuba's GGX α is roughness² here.
@@ -323,15 +421,37 @@ fn json(spec: &Spec, size: u32) -> String {
         )
     };
     let mut shapes = Vec::new();
+    let mut points = Vec::new();
     for (k, l) in lamps(spec.lights).iter().enumerate() {
-        shapes.push(rect(
-            format!("lamp{k}"),
-            l.c,
-            [l.hx, 0.0, 0.0],
-            [0.0, 0.0, l.hz],
-            "black",
-            Some(l.l),
-        ));
+        let emitter = |c: [f32; 3]| format!(r#""emitter": {{"radiance": [{}, {}, {}]}}"#, c[0], c[1], c[2]);
+        match spec.kind {
+            Kind::Rect => shapes.push(rect(
+                format!("lamp{k}"),
+                l.c,
+                [l.hx, 0.0, 0.0],
+                [0.0, 0.0, l.hz],
+                "black",
+                Some(l.l),
+            )),
+            Kind::Point => {
+                let i = l.intensity();
+                points.push(format!(
+                    r#"{{"position": [{}, {}, {}], "intensity": [{}, {}, {}]}}"#,
+                    l.c[0], l.c[1], l.c[2], i[0], i[1], i[2]
+                ))
+            }
+            Kind::Sphere => shapes.push(format!(
+                r#"{{"name": "lamp{k}", "type": "sphere", "center": [{}, {}, {}], "radius": {BULB}, "material": "black", {}}}"#,
+                l.c[0],
+                l.c[1],
+                l.c[2],
+                emitter(l.bulb_radiance())
+            )),
+            Kind::Mesh => shapes.push(format!(
+                r#"{{"name": "lamp{k}", "type": "mesh", "file": "lamp{k}.obj", "material": "black", {}}}"#,
+                emitter(l.bulb_radiance())
+            )),
+        }
     }
     for (k, (c, u, v, m)) in rects(spec).into_iter().enumerate() {
         shapes.push(rect(format!("rect{k}"), c, u, v, m, None));
@@ -376,7 +496,8 @@ fn json(spec: &Spec, size: u32) -> String {
  }},
  "shapes": [
   {}
- ]{env}
+ ],
+ "point_lights": [{}]{env}
 }}
 "#,
         eye[0],
@@ -388,6 +509,7 @@ fn json(spec: &Spec, size: u32) -> String {
         conductor(0.2, [0.143036, 0.375307, 1.44205], [3.983, 2.38556, 1.60336]),
         conductor(0.3, [0.200438, 0.924033, 1.10221], [3.91295, 2.45285, 2.14219]),
         shapes.join(",\n  "),
+        points.join(", "),
         name = spec.name(),
     )
 }
@@ -511,6 +633,9 @@ fn dump_the_family_for_mitsuba_when_asked() {
 fn the_family_has_at_least_24_scenes_with_distinct_names_that_load() {
     let specs = family();
     assert!(specs.len() >= 24, "{} scenes", specs.len());
+    for kind in [Kind::Rect, Kind::Point, Kind::Sphere, Kind::Mesh] {
+        assert!(specs.iter().any(|s| s.kind == kind), "no {kind:?} lights");
+    }
     let mut names: Vec<String> = specs.iter().map(Spec::name).collect();
     names.sort();
     names.dedup();
@@ -521,7 +646,7 @@ fn the_family_has_at_least_24_scenes_with_distinct_names_that_load() {
         let text = ron(&spec, "Tree", 16, 1, 0);
         common::load_in(dir.path(), &text, &Default::default());
         let j: serde_json::Value = serde_json::from_str(&json(&spec, 16)).expect("valid JSON");
-        assert!(j["shapes"].as_array().is_some_and(|s| s.len() >= 6));
+        assert!(j["shapes"].as_array().is_some_and(|s| s.len() >= 5));
     }
 }
 
@@ -541,6 +666,7 @@ fn sky_visibility_follows_what_the_walls_hide() {
         ground: 40.0,
         sky: Sky::Constant(1.0),
         lights: 1,
+        kind: Kind::Rect,
     };
     let room = Spec { ground: 0.0, ..open };
     let windowed = ron(&room, "Tree", 16, 1, 0);
