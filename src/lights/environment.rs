@@ -98,7 +98,8 @@ impl EnvMap {
 /// How next-event estimation picks directions toward the environment.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum EnvSampling {
-    /// By the image's luminance × sin θ (uniform for a constant environment).
+    /// By the image's bilinear luminance × sin θ; a constant environment by
+    /// the cosine about the shading normal (over the sphere without one).
     #[default]
     Importance,
     /// Uniformly over the sphere: only for comparisons (`tests/reference.rs`

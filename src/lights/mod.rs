@@ -9,7 +9,7 @@
 //! | `Sphere` | an emissive sphere | uniformly in the cone it subtends |
 //! | `Mesh` | the emissive triangles of a placed mesh (one material slot) | by area: a triangle by an alias table, then a uniform point |
 //! | `Sdf` | an emissive implicit surface | uniformly in its bounding sphere's cone, then marched |
-//! | `Environment` | the sky at infinity (at most one) | by the image's luminance × sin θ |
+//! | `Environment` | the sky at infinity (at most one) | an image by its bilinear luminance × sin θ; a constant sky by the cosine about the shading normal |
 //!
 //! Every light but points and spots is also reached by BSDF sampling (a
 //! surface in the BVH, or a ray that misses everything); the path tracer

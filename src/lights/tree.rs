@@ -33,7 +33,8 @@
 //! The environment is not in the tree (it has no position): at each point
 //! it is weighed against the tree's root by its own importance in the same
 //! units, π × its unoccluded irradiance on the point's surface
-//! (`irradiance.rs`). Its power through the scene's bounding disk, as
+//! (`irradiance.rs`), times the share of the sky the camera's surfaces were
+//! measured to see (`integrators/sky_visibility.rs`). Its power through the scene's bounding disk, as
 //! pbrt-v4 weighs it, grows with the scene's size: a 40 × 40 floor under a
 //! dim sky sent ~90% of the shadow rays to the sky while one area light did
 //! nearly all the lighting, and the image was up to 2.2× noisier than
