@@ -27,7 +27,7 @@
 use super::shadow_ray;
 use crate::camera::Camera;
 use crate::materials::Bxdf;
-use crate::math::{Frame, Pcg32, luminance};
+use crate::math::{Pcg32, luminance};
 use crate::scene::Scene;
 use glam::Vec2;
 
@@ -63,12 +63,11 @@ pub fn sky_visibility(scene: &Scene, camera: &Camera, aspect: f32) -> f32 {
             }
             let wo_z = (-ray.d).dot(hit.ns);
             let side = bsdf.light_side(hit.ns, wo_z);
-            let frame = Frame::from_normal(hit.ns);
             for _ in 0..RAYS {
                 let Some(ls) = env.sample(hit.p, side, rng.next_vec2()) else {
                     continue;
                 };
-                let cos = frame.to_local(ls.wi).z.abs();
+                let cos = ls.wi.dot(hit.ns).abs();
                 let w = luminance(ls.li) * cos / ls.pdf;
                 if !(w.is_finite() && w > 0.0) || (side != glam::Vec3A::ZERO && ls.wi.dot(side) <= 0.0) {
                     continue;

@@ -155,13 +155,12 @@ impl EnvironmentLight {
         let distribution = EnvTable::new(&map);
         // ∫ L dω of the bilinear image, exactly: (2π/W) Σ_j ω_j Σ_i L(i, j),
         // with ω_j = ∫ sin θ of row j's hat function in θ (θj = πj/(H − 1)).
-        let row_weight = |j: usize| row_weight(j, h);
         let sum: [f64; 3] = map
             .rgb
             .par_chunks(3 * w)
             .enumerate()
             .map(|(j, row)| {
-                let s = row_weight(j);
+                let s = row_weight(j, h);
                 let mut acc = [0.0f64; 3];
                 for px in row.chunks_exact(3) {
                     for c in 0..3 {
@@ -199,8 +198,7 @@ impl EnvironmentLight {
     /// Environment direction `d` in the world (turned by the rotation).
     #[inline]
     fn to_world(&self, d: Vec3A) -> Vec3A {
-        let (c, s) = self.cos_sin;
-        Vec3A::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
+        turn(self.cos_sin, d)
     }
 
     /// Image coordinates of environment-frame direction `d` (unit); the
@@ -331,15 +329,8 @@ impl EnvironmentLight {
         PI * self.scene_radius * self.scene_radius * self.radiant_exitance
     }
 
-    /// What the environment sends toward a shading point of normal `n`
-    /// (zero: no surface), in the light tree's units: π × its unoccluded
-    /// irradiance (see `irradiance.rs`), the larger side's.
-    #[inline]
-    pub fn importance(&self, n: Vec3A) -> f32 {
-        PI * self.irradiance.either_side(n)
-    }
-
-    /// The irradiance by normal the environment's importance reads.
+    /// Its irradiance by surface normal, in the world (light selection's
+    /// weight for the sky).
     pub fn irradiance(&self) -> &SkyIrradiance {
         &self.irradiance
     }
@@ -353,6 +344,13 @@ impl EnvironmentLight {
     pub fn table_bytes(&self) -> usize {
         self.distribution.as_ref().map_or(0, EnvTable::bytes)
     }
+}
+
+/// Direction `d` turned about +y by the angle of cosine and sine `cos_sin`
+/// (world from environment).
+#[inline]
+fn turn((c, s): (f32, f32), d: Vec3A) -> Vec3A {
+    Vec3A::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z)
 }
 
 /// Solid angle per unit of `φ` (2π in all) of row `j` of `h`: the integral
@@ -378,7 +376,7 @@ fn row_weight(j: usize, h: usize) -> f64 {
 /// The irradiance by world normal of `map` × `strength` turned by
 /// `cos_sin` about +y: every texel's luminance × solid angle projected on
 /// the first nine spherical harmonics, rows in parallel.
-fn map_irradiance(map: &EnvMap, strength: f32, (c, s): (f32, f32)) -> SkyIrradiance {
+fn map_irradiance(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyIrradiance {
     let (w, h) = (map.width as usize, map.height as usize);
     let dphi = 2.0 * PI / w as f32;
     // Columns are summed in blocks of `bw` (at most 1,024 blocks a row) and
@@ -413,8 +411,7 @@ fn map_irradiance(map: &EnvMap, strength: f32, (c, s): (f32, f32)) -> SkyIrradia
                     .sum();
                 // The image's direction (as `sample` maps it), turned into the world.
                 let d = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
-                let d = Vec3A::new(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
-                acc.add(d, strength * l * d_omega);
+                acc.add(turn(cos_sin, d), strength * l * d_omega);
             }
             acc
         })

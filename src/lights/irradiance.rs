@@ -54,7 +54,9 @@ impl SkyIrradiance {
 
     /// From luminance samples `(direction, luminance × solid angle)` that
     /// cover the sphere (a map's texels, each with the solid angle it
-    /// subtends). Non-finite or negative samples count as zero.
+    /// subtends). Non-finite or negative samples count as zero. (Maps are
+    /// projected in parallel through [`ShSum`]; this is the tests' way in.)
+    #[cfg(test)]
     pub fn from_samples(samples: impl Iterator<Item = (Vec3A, f32)>) -> Self {
         let mut sum = ShSum::default();
         samples.for_each(|(d, w)| sum.add(d, w));

@@ -340,8 +340,6 @@ pub struct LightTree {
     /// Every light with power (the tree's and the environment), for the
     /// uniform part of the mixture.
     candidates: Vec<u32>,
-    /// Whether each light is among `candidates`.
-    candidate: Vec<bool>,
 }
 
 impl LightTree {
@@ -367,15 +365,12 @@ impl LightTree {
         }
         let mut candidates: Vec<u32> = items.iter().map(|it| it.0).chain(env.map(|e| e.0)).collect();
         candidates.sort_unstable();
-        let mut candidate = vec![false; lights.len()];
-        candidates.iter().for_each(|&i| candidate[i as usize] = true);
         let mut tree = Self {
             nodes: Vec::with_capacity(items.len()),
             trail: vec![None; lights.len()],
             env,
             sky_visibility: 1.0,
             candidates,
-            candidate,
         };
         tree.build(&mut items, 0, 0);
         Some(tree)
@@ -508,7 +503,9 @@ impl LightTree {
 
     /// The probability that [`Self::pick`] from `p`, `n` returns light `i`.
     pub fn pmf(&self, p: Vec3A, n: Vec3A, i: usize) -> f32 {
-        if !self.candidate.get(i).copied().unwrap_or(false) {
+        // A candidate is in the tree or is the sky.
+        let in_tree = self.trail.get(i).is_some_and(Option::is_some);
+        if !in_tree && self.env.is_none_or(|e| e.0 as usize != i) {
             return 0.0;
         }
         self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * self.estimate_pmf(p, n, i)
