@@ -30,6 +30,7 @@ mod light;
 mod material;
 mod object;
 mod sdf;
+mod texture;
 mod transform;
 
 pub use aov::AovDesc;
@@ -41,9 +42,15 @@ pub use color::ColorDesc;
 pub use display::{FilterDesc, TonemapDesc};
 pub use emission::EmissionDesc;
 pub use light::LightDesc;
-pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
-pub use object::{MeshDesc, ObjectDesc};
+pub use material::{
+    CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc,
+    RoughnessUnitDesc,
+};
+pub use object::{MeshDesc, ObjectDesc, SphereUvDesc};
 pub use sdf::{MarchDesc, RotationDesc, SdfDesc};
+pub use texture::{
+    ChannelDesc, ColorspaceDesc, ImageDesc, OriginDesc, PatternDesc, ScalarDesc, TexDesc, UvDesc,
+};
 pub use transform::TransformDesc;
 
 use serde::{Deserialize, Serialize};

@@ -116,6 +116,7 @@ pub fn build_in(
     let t0 = Instant::now();
     let super::material::Materials {
         mut materials,
+        mut surfaces,
         mut textures,
         index,
         files: texture_files,
@@ -226,10 +227,16 @@ pub fn build_in(
             .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
     });
     let caustics = CausticEmitters::new(&ctx.lights, targets);
+    // Only scenes with a normal map, bump map or cut-out pay for them.
+    if surfaces.iter().all(crate::materials::Surface::is_plain) {
+        surfaces.clear();
+    }
     let mut scene = Scene {
         caustics,
         light_picker: LightPicker::new(&ctx.lights, selection),
         materials,
+        surfaces,
+        black: emitter,
         textures,
         lights: ctx.lights,
         environment: ctx.environment,

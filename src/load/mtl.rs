@@ -14,7 +14,7 @@
 //! counter-clockwise front of their triangles (see `mesh.rs`); the material
 //! itself is mapped as above, so the surface also reflects its `Kd`.
 
-use crate::materials::{ColorTex, DielectricFresnel, Material, Texture};
+use crate::materials::{ColorTex, DielectricFresnel, Material, Tex, Texture};
 use crate::math::Rgb;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -96,7 +96,7 @@ impl MtlMaterials {
             .and_then(crate::geometry::obj::texture_file)
         {
             Some(file) => match self.texture(&dir.join(file), notes) {
-                Some(t) => ColorTex::Image(t),
+                Some(t) => ColorTex::image(t),
                 None => ColorTex::Const(kd),
             },
             None => ColorTex::Const(kd),
@@ -111,10 +111,11 @@ impl MtlMaterials {
                 })
                 .map_or(Rgb::ONE, |c| rgb(Some(c), 1.0));
             Material::Glass {
-                ior: m
-                    .optical_density
-                    .filter(|n| n.is_finite() && *n >= 1.0)
-                    .unwrap_or(1.5),
+                ior: Tex::Const(
+                    m.optical_density
+                        .filter(|n| n.is_finite() && *n >= 1.0)
+                        .unwrap_or(1.5),
+                ),
                 tint: ColorTex::Const(tint),
                 fresnel: DielectricFresnel::Exact,
             }
@@ -131,7 +132,7 @@ impl MtlMaterials {
             Material::Phong {
                 kd: albedo,
                 ks: ColorTex::Const(ks),
-                exponent: m.shininess.filter(|n| n.is_finite() && *n > 0.0).unwrap_or(10.0),
+                exponent: Tex::Const(m.shininess.filter(|n| n.is_finite() && *n > 0.0).unwrap_or(10.0)),
             }
         } else {
             Material::Lambert { albedo }
