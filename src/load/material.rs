@@ -269,13 +269,12 @@ impl Checker {
                     "opacity",
                     "0 is a hole, 1 is solid",
                 );
-                if let CutoutModeDesc::Threshold(c) = mode {
-                    self.range(
+                if let CutoutModeDesc::Threshold(c) = mode
+                    && !(*c > 0.0 && *c <= 1.0)
+                {
+                    self.push(
                         &p("mode"),
-                        *c,
-                        f32::MIN_POSITIVE,
-                        1.0,
-                        "cut-off",
+                        format!("cut-off {c} is outside (0, 1]"),
                         "the surface is kept where opacity ≥ the cut-off: 0.5 is usual",
                     );
                 }

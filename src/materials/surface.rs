@@ -111,7 +111,7 @@ impl Perturb {
                 if t.x == 0.0 && t.y == 0.0 {
                     return n;
                 }
-                let Some(nt) = Vec3A::from(t).try_normalize() else {
+                let Some(nt) = t.try_normalize() else {
                     return n;
                 };
                 let (s, t) = tangent_frame(n, dpdu);
