@@ -159,6 +159,9 @@ pub fn build_in(
     if !ctx.problems.is_empty() {
         return Err(ctx.problems);
     }
+    // The emitter's surface, then the MTL materials' (cut-outs from `map_d`).
+    surfaces.push(crate::materials::Surface::default());
+    surfaces.extend(std::mem::take(&mut ctx.mtl.surfaces));
     materials.extend(std::mem::take(&mut ctx.mtl.materials));
     textures.extend(std::mem::take(&mut ctx.mtl.textures));
     let load_time = t0.elapsed();
