@@ -303,20 +303,26 @@ impl RenderSettings {
     /// fields (an unknown tone map gets a suggestion).
     pub fn overrides(&self) -> Overrides {
         let mut sets = self.sets.clone();
+        let mut flags = Vec::new();
+        let mut flag = |set: String, written: String| {
+            flags.push((set.clone(), written));
+            sets.push(set);
+        };
         if let Some(e) = self.exposure {
-            sets.push(format!("film.exposure={e:?}"));
+            flag(format!("film.exposure={e:?}"), format!("--exposure {e}"));
         }
         if let Some(t) = &self.tonemap {
-            sets.push(format!("film.tonemap={t}"));
+            flag(format!("film.tonemap={t}"), format!("--tonemap {t}"));
         }
         if let Some(b) = self.png_bits {
-            sets.push(format!("film.png_bits={b}"));
+            flag(format!("film.png_bits={b}"), format!("--png-bits {b}"));
         }
         Overrides {
             spp: self.spp,
             size: self.size,
             seed: self.seed,
             sets,
+            flags,
             root: None,
         }
     }

@@ -36,13 +36,22 @@ impl Gaps {
     /// for a path inside a stand-in (nothing is reported there: its own
     /// parse error already was).
     pub fn original(&self, path: &str) -> Option<String> {
+        let written = self.written(path);
+        // Stand-ins are named as written (`materials.glass`, and for the
+        // repaired fields of a list element, `objects[3].center`).
         let under = |p: &str| {
-            path.strip_prefix(p)
+            written
+                .strip_prefix(p)
                 .is_some_and(|r| r.is_empty() || r.starts_with(['.', '[']))
         };
         if self.stand_ins.iter().any(|s| under(s)) {
             return None;
         }
+        Some(written)
+    }
+
+    /// `path` of the partial document with list indices as written.
+    fn written(&self, path: &str) -> String {
         for (list, kept) in &self.kept {
             let Some(rest) = path.strip_prefix(list).and_then(|r| r.strip_prefix('[')) else {
                 continue;
@@ -51,10 +60,10 @@ impl Gaps {
                 continue;
             };
             if let Some(written) = index.parse::<usize>().ok().and_then(|i| kept.get(i)) {
-                return Some(format!("{list}[{written}]{tail}"));
+                return format!("{list}[{written}]{tail}");
             }
         }
-        Some(path.to_string())
+        path.to_string()
     }
 }
 

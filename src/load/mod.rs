@@ -20,6 +20,7 @@ mod mtl;
 pub mod object;
 mod outline;
 pub mod pipeline;
+mod repair;
 pub mod sdf;
 mod sections;
 pub mod set;
