@@ -187,7 +187,7 @@ impl Checker {
             self.push(
                 "test.tolerance",
                 format!("tolerance {} must be > 0", t.tolerance),
-                "it is the largest accepted score of `ronray check` (about 1 for noise alone), e.g. 3.5",
+                "it is the largest accepted score of `ronray check` (about 1 per window for noise alone), e.g. 8",
             );
         }
     }
