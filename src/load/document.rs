@@ -18,6 +18,8 @@ pub struct Gaps {
     kept: Vec<(&'static str, Vec<usize>)>,
     /// Sections replaced by a stand-in (`camera`, `materials.glass`).
     stand_ins: Vec<String>,
+    /// Fields of entries read with them repaired (also stand-ins).
+    repaired: Vec<String>,
 }
 
 impl Gaps {
@@ -30,6 +32,21 @@ impl Gaps {
     /// `path` (`camera`, `materials.glass`) holds a stand-in.
     pub(super) fn stand_in(&mut self, path: String) {
         self.stand_ins.push(path);
+    }
+
+    /// `path` is a field of an entry that was read with it repaired
+    /// (`objects[3].center`): the entry itself is whole.
+    pub(super) fn repaired(&mut self, path: String) {
+        self.repaired.push(path.clone());
+        self.stand_ins.push(path);
+    }
+
+    /// Whether `path` (as written) is in a repaired field.
+    pub fn is_repaired(&self, path: &str) -> bool {
+        self.repaired.iter().any(|s| {
+            path.strip_prefix(s.as_str())
+                .is_some_and(|r| r.is_empty() || r.starts_with(['.', '[']))
+        })
     }
 
     /// The path the user wrote for `path` of the partial document, or `None`
@@ -198,6 +215,7 @@ mod tests {
         let g = Gaps {
             kept: vec![("objects", vec![0, 2, 3])],
             stand_ins: vec!["materials.glass".into()],
+            repaired: Vec::new(),
         };
         assert_eq!(
             g.original("objects[1].radius").as_deref(),

@@ -17,9 +17,10 @@
 //! the object or `meshes` entry that names it.
 
 use super::build::BuildContext;
+use super::mesh_keys::{Key, key_problem, parts_list, twice_defined};
 use super::validate::Checker;
 use crate::desc::{MeshDesc, ObjectDesc};
-use crate::diagnostic::{Problem, suggest};
+use crate::diagnostic::Problem;
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::{ObjData, ObjGroup};
 use crate::geometry::{Instance, MeshTriangle, NO_LIGHT, Shape};
@@ -205,8 +206,8 @@ fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> Loa
         let help = "an untrusted scene may read only files inside --root";
         ctx.problems.push(Problem::new(at, why).help(help));
     }
-    twice_defined(ctx, &data, at);
-    ctx.obj_parts.push((obj.clone(), parts(&data)));
+    ctx.problems.extend(twice_defined(&data, at));
+    ctx.obj_parts.push((obj.clone(), parts_list(&data)));
     ctx.mtl_files.extend(data.mtl_files);
     ctx.geometry.meshes.push(data.mesh);
     LoadedMesh {
@@ -214,87 +215,6 @@ fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> Loa
         groups: data.groups,
         mtl,
     }
-}
-
-/// What a `materials` key of a mesh object names: `group:NAME`,
-/// `material:NAME`, or a bare name that may be either (an error when it
-/// names a group and an MTL material worn by another group, since it would
-/// recolour both).
-#[derive(Clone, Copy, PartialEq)]
-enum Key<'a> {
-    Group(&'a str),
-    Material(&'a str),
-    Either(&'a str),
-}
-
-impl<'a> Key<'a> {
-    fn of(key: &'a str) -> Self {
-        if let Some(g) = key.strip_prefix("group:") {
-            Key::Group(g.trim())
-        } else if let Some(m) = key.strip_prefix("material:") {
-            Key::Material(m.trim())
-        } else {
-            Key::Either(key)
-        }
-    }
-
-    /// Whether it selects the group `group` wearing MTL material `mtl`.
-    fn selects(self, group: &str, mtl: Option<&str>) -> bool {
-        match self {
-            Key::Group(n) => n == group,
-            Key::Material(n) => mtl == Some(n),
-            Key::Either(n) => n == group || mtl == Some(n),
-        }
-    }
-
-    /// Prefixed keys first: they say what they mean.
-    fn rank(self) -> u8 {
-        match self {
-            Key::Group(_) => 0,
-            Key::Material(_) => 1,
-            Key::Either(_) => 2,
-        }
-    }
-}
-
-/// An MTL material name defined twice (in one MTL file or across the OBJ's
-/// MTL files) is a problem: tobj keeps the last, silently.
-fn twice_defined(ctx: &mut BuildContext, data: &ObjData, at: &str) {
-    let mut seen = std::collections::BTreeSet::new();
-    let files = data
-        .mtl_files
-        .iter()
-        .map(|f| f.display().to_string())
-        .collect::<Vec<_>>()
-        .join(", ");
-    for m in &data.materials {
-        if !seen.insert(m.name.as_str()) {
-            ctx.problems.push(
-                Problem::new(
-                    at,
-                    format!(
-                        "MTL material `{}` is defined twice in {files}: the last definition would win",
-                        m.name
-                    ),
-                )
-                .help("rename one of them (`newmtl NAME`) or delete the one not meant"),
-            );
-        }
-    }
-}
-
-/// `groups: `a` (material `m`), `b``: an OBJ's groups and the MTL material
-/// each wears, for `validate -v`.
-fn parts(data: &ObjData) -> String {
-    let groups: Vec<String> = data
-        .groups
-        .iter()
-        .map(|g| match g.material.and_then(|m| data.materials.get(m)) {
-            Some(m) => format!("`{}` (material `{}`)", g.name, m.name),
-            None => format!("`{}`", g.name),
-        })
-        .collect();
-    format!("groups: {}", groups.join(", "))
 }
 
 /// Scene material of each slot; unknown and two-sided override keys are
@@ -311,19 +231,14 @@ fn resolve(
         .iter()
         .map(|g| g.material.and_then(|m| ctx.mtl.name(l.mtl[m])))
         .collect();
-    let groups: Vec<&str> = l.groups.iter().map(|g| g.name.as_str()).collect();
-    let mut materials: Vec<&str> = mtl_names.iter().flatten().map(String::as_str).collect();
-    materials.sort_unstable();
-    materials.dedup();
+    let parts: Vec<(&str, Option<&str>)> = l
+        .groups
+        .iter()
+        .zip(&mtl_names)
+        .map(|(g, m)| (g.name.as_str(), m.as_deref()))
+        .collect();
     for key in overrides.keys() {
-        if let Some(p) = key_problem(
-            &format!("{path}.materials.{key}"),
-            key,
-            l,
-            &mtl_names,
-            &groups,
-            &materials,
-        ) {
+        if let Some(p) = key_problem(&format!("{path}.materials.{key}"), key, &parts) {
             ctx.problems.push(p);
         }
     }
@@ -347,75 +262,6 @@ fn resolve(
             grey(ctx, path, &g.name)
         })
         .collect()
-}
-
-/// What is wrong with override key `key`, if anything: it names nothing,
-/// or, bare, it names a group and an MTL material another group wears.
-fn key_problem(
-    at: &str,
-    key: &str,
-    l: &LoadedMesh,
-    mtl_names: &[Option<String>],
-    groups: &[&str],
-    materials: &[&str],
-) -> Option<Problem> {
-    let (what, name, known): (&str, &str, Vec<&str>) = match Key::of(key) {
-        Key::Group(n) => ("group", n, groups.to_vec()),
-        Key::Material(n) => ("MTL material", n, materials.to_vec()),
-        Key::Either(n) => {
-            let group = groups.contains(&n);
-            let others: Vec<&str> = l
-                .groups
-                .iter()
-                .zip(mtl_names)
-                .filter(|(g, m)| g.name != n && m.as_deref() == Some(n))
-                .map(|(g, _)| g.name.as_str())
-                .collect();
-            if group && !others.is_empty() {
-                return Some(
-                    Problem::new(
-                        at,
-                        format!(
-                            "`{n}` names both OBJ group `{n}` and MTL material `{n}` (worn by {}): it would recolour both",
-                            quoted_strs(&others)
-                        ),
-                    )
-                    .help(format!("write `group:{n}` or `material:{n}` to say which")),
-                );
-            }
-            let mut all = groups.to_vec();
-            all.extend(materials.iter().copied());
-            ("group or material", n, all)
-        }
-    };
-    if known.contains(&name) {
-        return None;
-    }
-    let p = Problem::new(at, format!("the OBJ has no {what} `{name}`"));
-    Some(match suggest(name, known.iter().copied()) {
-        Some(s) => p.help(format!("did you mean `{s}`?")),
-        None => p.help(format!(
-            "its groups are {}; its MTL materials are {}",
-            or_none(groups),
-            or_none(materials)
-        )),
-    })
-}
-
-fn or_none(names: &[&str]) -> String {
-    if names.is_empty() {
-        "none".into()
-    } else {
-        quoted_strs(names)
-    }
-}
-
-fn quoted_strs(names: &[&str]) -> String {
-    names
-        .iter()
-        .map(|n| format!("`{n}`"))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// The grey default for a group that has no material from anywhere.

@@ -16,6 +16,7 @@ pub mod include;
 mod light;
 pub mod material;
 mod mesh;
+mod mesh_keys;
 mod mtl;
 pub mod object;
 mod outline;

@@ -217,13 +217,17 @@ pub fn load_str_with_meshes(
             d.severity != crate::diagnostic::Severity::Error
                 || d.path.as_ref().is_some_and(|p| missing_files.contains(p))
         });
-        if only_missing && let Err(p) = build_in(&desc, base, load_mesh, root) {
-            let more: Vec<_> = p
-                .into_iter()
-                .filter(|p| !missing_files.contains(&p.path))
-                .collect();
-            report.diagnostics.extend(composition.locate(&more).diagnostics);
-        }
+        let more = if only_missing {
+            build_in(&desc, base, load_mesh, root).err().unwrap_or_default()
+        } else {
+            // What the build would find in the OBJ files that are there.
+            super::mesh_keys::content_problems(&desc, base, load_mesh)
+        };
+        let more: Vec<_> = more
+            .into_iter()
+            .filter(|p| !missing_files.contains(&p.path))
+            .collect();
+        report.diagnostics.extend(composition.locate(&more).diagnostics);
         return Err(LoadError::Invalid(report.sorted()));
     }
     let (scene, view, stats) = build_in(&desc, base, load_mesh, root)
@@ -288,6 +292,17 @@ fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<Checked, Repo
     let mut bad_sets = super::set::apply_sets(&mut desc, &overrides.sets)
         .err()
         .unwrap_or_default();
+    // What the command line really set: a `--set` that did not apply set
+    // nothing, and the file's value is judged where the file wrote it.
+    let applied = Overrides {
+        sets: overrides
+            .sets
+            .iter()
+            .filter(|s| !bad_sets.iter().any(|b| b.arg == **s))
+            .cloned()
+            .collect(),
+        ..overrides.clone()
+    };
     for b in &mut bad_sets {
         if let Some((_, written)) = overrides.flags.iter().find(|(s, _)| *s == b.arg) {
             b.arg = written.clone();
@@ -301,29 +316,30 @@ fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<Checked, Repo
     let (on_args, in_files): (Vec<_>, Vec<_>) = validated
         .problems
         .into_iter()
-        .partition(|p| overrides.argument_for(&p.path).is_some());
+        .partition(|p| applied.argument_for(&p.path).is_some());
     let mut report = composition.locate(&in_files);
     report.diagnostics.extend(on_args.iter().map(|p| {
-        let arg = overrides.argument_for(&p.path).unwrap_or_default();
+        let arg = applied.argument_for(&p.path).unwrap_or_default();
         let mut d = crate::diagnostic::Diagnostic::new(Path::new(&arg), "", None, p.message.clone());
         d.path = Some(p.path.clone());
         d.help = p.help.clone();
         d
     }));
+    // The sections with a parse mistake (which may have lost an entry; one
+    // with only mistakes of value, or whose entries were read with a field
+    // repaired, has not).
+    let broken: Vec<String> = found
+        .iter()
+        .filter(|d| {
+            !d.path
+                .as_deref()
+                .is_some_and(|p| !p.is_empty() && composition.is_repaired(&d.file, p))
+        })
+        .map(|d| section_of(d.path.as_deref().unwrap_or("")))
+        .collect();
     report.diagnostics.append(&mut found);
     if !report.diagnostics.is_empty() {
-        // The warnings the mistakes cannot have caused come with them (a
-        // missing file leaves its entry whole).
-        let broken: Vec<String> = report
-            .diagnostics
-            .iter()
-            .filter(|d| {
-                !d.path
-                    .as_ref()
-                    .is_some_and(|p| validated.missing_files.contains(p))
-            })
-            .map(|d| section_of(d.path.as_deref().unwrap_or("")))
-            .collect();
+        // The warnings the mistakes cannot have caused come with them.
         let beside =
             super::warnings::warnings_beside(&desc, &|s| broken.iter().any(|b| b.is_empty() || b == s));
         let mut warned = super::warnings::located(&composition, &beside);

@@ -145,7 +145,7 @@ impl Reader<'_> {
         }
         let r = super::repair::repaired(self.format, self.text, value)?;
         for f in r.fields {
-            self.gaps.stand_in(format!("{path}.{f}"));
+            self.gaps.repaired(format!("{path}.{f}"));
         }
         for slip in r.slips {
             self.push(slip);
