@@ -194,6 +194,12 @@ fn check_fails_a_tiny_sphere_recoloured_or_halved() {
         println!("{what}:\n{out}");
         assert_eq!(code, Some(1), "the small sphere {what} must fail:\n{out}");
     }
+    let o = ronray_in(d, &["check", "scenes/ball.ron"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("`ronray check scenes/ball.ron --bless`"),
+        "the hint names the scene checked:\n{err}"
+    );
     let (code, out) = check_changed(d, SMALL_SPHERE);
     assert_eq!(code, Some(0), "the unchanged scene passes:\n{out}");
     let reseeded = ronray_in(d, &["check", "scenes", "--set", "test.seed=7"]);
