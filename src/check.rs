@@ -1,12 +1,14 @@
 //! Regression checks: render each scene at its `test` settings and compare
 //! with its golden image, `golden/<scene name>.png` beside the scene file.
 //!
-//! The metric ([`metric`]) judges each region against its own noise: the
-//! largest mean over 16×16-pixel windows of the squared z-scores of 4×4-cell
-//! differences, the noise estimated from both images, after the new render
-//! has gone through the same 8-bit sRGB encoding as the golden (so an
-//! unchanged renderer scores exactly 0). The threshold is the scene's
-//! `test.tolerance` (default [`DEFAULT_TOLERANCE`]) unless the
+//! The metric ([`metric`]) judges each region against the noise of the
+//! sampling: the largest mean over 8×8-pixel windows of the squared z-scores
+//! of 4×4-cell differences, the noise measured by rendering the scene with
+//! other seeds and kept beside the golden as a per-pixel variance image
+//! (`golden/<scene name>.var.exr`, written by `--bless`; measured again at
+//! check time when it is missing). The new render goes through the same
+//! 8-bit sRGB encoding as the golden, so an unchanged renderer scores
+//! exactly 0. The threshold is the scene's `test.tolerance` (default [`DEFAULT_TOLERANCE`]) unless the
 //! command line gives one. A failure leaves the new render and a heat map
 //! beside the golden, and an HTML page showing the three side by side
 //! ([`report`]).
@@ -22,11 +24,26 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 pub use crate::desc::DEFAULT_TOLERANCE;
-pub use metric::{COMPARE_FACTOR, Score, WINDOW, score};
+pub use metric::{COMPARE_FACTOR, Score, WINDOW, score, variance_of};
 
 /// The judged figure of [`score`]: the worst window's mean squared z-score.
-pub fn golden_error(new: &Image, golden: &Image) -> Result<f64, String> {
-    score(new, golden).map(|s| s.worst)
+pub fn golden_error(new: &Image, golden: &Image, variance: &Image) -> Result<f64, String> {
+    score(new, golden, variance).map(|s| s.worst)
+}
+
+/// What the seed of the second render, the one that measures noise, differs
+/// by: far from any seed a user would write in `test.seed`.
+const NOISE_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// How many renders beside the golden's measure its noise (at `--bless`, or
+/// at check time when the variance image is missing): the variance of each
+/// pixel then has this many degrees of freedom.
+const NOISE_RENDERS: u64 = 3;
+
+/// The per-pixel variance image kept beside a golden:
+/// `golden/<name>.var.exr` (linear, one render's variance per channel).
+pub fn variance_path(golden: &Path) -> PathBuf {
+    golden.with_extension("var.exr")
 }
 
 /// What `ronray check` was asked, beside the scenes.
@@ -174,6 +191,47 @@ pub fn render_test_in(
     sets: &[String],
     root: Option<&Path>,
 ) -> Result<(Image, TestDesc), LoadError> {
+    let (o, t) = test_overrides(scene, sets, root)?;
+    Ok((render_with(scene, &o, threads)?, t))
+}
+
+/// The per-pixel variance of `scene`'s test render after `sets`
+/// ([`variance_of`] of renders with different seeds).
+pub fn test_variance(
+    scene: &Path,
+    threads: Option<usize>,
+    sets: &[String],
+    root: Option<&Path>,
+) -> Result<Image, LoadError> {
+    let (o, _) = test_overrides(scene, sets, root)?;
+    let first = render_with(scene, &o, threads)?;
+    noise_of(scene, &o, threads, &first)
+}
+
+/// [`variance_of`] `first` (rendered with `o`) and [`NOISE_RENDERS`]
+/// renders with other seeds.
+fn noise_of(scene: &Path, o: &Overrides, threads: Option<usize>, first: &Image) -> Result<Image, LoadError> {
+    let mut renders = vec![first.clone()];
+    for i in 0..NOISE_RENDERS {
+        let other = Overrides {
+            seed: Some((o.seed.unwrap_or_default() ^ NOISE_SEED).wrapping_add(i)),
+            ..o.clone()
+        };
+        renders.push(render_with(scene, &other, threads)?);
+    }
+    variance_of(&renders).map_err(|e| LoadError::Io {
+        path: scene.to_path_buf(),
+        source: std::io::Error::other(e),
+    })
+}
+
+/// The overrides that turn `scene` into its test render (size, samples and
+/// seed from `test`, after `sets`), and the test settings.
+fn test_overrides(
+    scene: &Path,
+    sets: &[String],
+    root: Option<&Path>,
+) -> Result<(Overrides, TestDesc), LoadError> {
     let (test_sets, scene_sets): (Vec<String>, Vec<String>) = sets
         .iter()
         .cloned()
@@ -199,7 +257,12 @@ pub fn render_test_in(
         seed: Some(t.seed),
         ..with_sets
     };
-    let loaded = load_with(scene, &o)?;
+    Ok((o, t))
+}
+
+/// `scene` loaded with `o`, rendered and 8-bit quantised.
+fn render_with(scene: &Path, o: &Overrides, threads: Option<usize>) -> Result<Image, LoadError> {
+    let loaded = load_with(scene, o)?;
     let (img, _) = render(
         &loaded.scene,
         &loaded.view,
@@ -208,7 +271,14 @@ pub fn render_test_in(
             ..Default::default()
         },
     );
-    Ok((quantise(&img), t))
+    Ok(quantise(&img))
+}
+
+/// The stored variance of `golden` when it is there and fits `img`.
+fn stored_variance(golden: &Path, img: &Image) -> Option<Image> {
+    read_image(&variance_path(golden))
+        .ok()
+        .filter(|v| (v.width, v.height) == (img.width, img.height))
 }
 
 /// The by-products of a failed check beside the golden: `<name>.new.png`,
@@ -248,69 +318,89 @@ fn golden_state(golden: &Path, img: &Image) -> Golden {
 }
 
 /// Checks one scene; with `bless`, a failed or missing golden is rewritten
-/// (a corrupt or wrong-size one only with `force`).
+/// (a corrupt or wrong-size one only with `force`), with its variance image.
 pub fn check_scene(scene: &Path, opts: &CheckOptions) -> CheckResult {
     let start = Instant::now();
-    let golden = golden_path(scene);
-    let outcome = match render_test_in(scene, opts.threads, &opts.sets, opts.root.as_deref()) {
-        Err(e) => Outcome::Invalid(e),
-        Ok((img, t)) => {
-            let tolerance = opts.tolerance.unwrap_or(t.tolerance as f64);
-            let previous = match golden_state(&golden, &img) {
-                Golden::Usable(g) => Some(g),
-                Golden::Absent => None,
-                Golden::Bad(_) if opts.bless && opts.force => None,
-                Golden::Bad(reason) => {
-                    let new = by_product(&golden, "new.png");
-                    let _ = write_image(&img, &new);
-                    return CheckResult {
-                        scene: scene.to_path_buf(),
-                        outcome: Outcome::BadGolden { reason, new },
-                        time: start.elapsed(),
-                    };
-                }
-            };
-            let score = previous.as_ref().and_then(|g| score(&img, g).ok());
-            match (score, opts.bless) {
-                (Some(s), _) if s.worst <= tolerance => {
-                    remove_by_products(&golden);
-                    Outcome::Pass { score: s, tolerance }
-                }
-                (score, true) => match write_image(&img, &golden) {
-                    Ok(()) => {
-                        remove_by_products(&golden);
-                        Outcome::Blessed { score }
-                    }
-                    Err(e) => Outcome::Invalid(LoadError::Io {
-                        path: golden.clone(),
-                        source: std::io::Error::other(e.to_string()),
-                    }),
-                },
-                (None, false) => {
-                    let new = by_product(&golden, "new.png");
-                    let _ = write_image(&img, &new);
-                    Outcome::Missing { new }
-                }
-                (Some(score), false) => {
-                    let (new, heatmap) = (by_product(&golden, "new.png"), by_product(&golden, "diff.png"));
-                    let _ = write_image(&img, &new);
-                    if let Some(g) = &previous {
-                        let _ = write_image(&metrics::heatmap(&img, g, 0.1), &heatmap);
-                    }
-                    Outcome::Fail {
-                        score,
-                        tolerance,
-                        new,
-                        heatmap,
-                    }
-                }
-            }
-        }
-    };
+    let outcome = judge(scene, opts).unwrap_or_else(Outcome::Invalid);
     CheckResult {
         scene: scene.to_path_buf(),
         outcome,
         time: start.elapsed(),
+    }
+}
+
+fn judge(scene: &Path, opts: &CheckOptions) -> Result<Outcome, LoadError> {
+    let golden = golden_path(scene);
+    let (o, t) = test_overrides(scene, &opts.sets, opts.root.as_deref())?;
+    let img = render_with(scene, &o, opts.threads)?;
+    let tolerance = opts.tolerance.unwrap_or(t.tolerance as f64);
+    let previous = match golden_state(&golden, &img) {
+        Golden::Usable(g) => Some(g),
+        Golden::Absent => None,
+        Golden::Bad(_) if opts.bless && opts.force => None,
+        Golden::Bad(reason) => {
+            let new = by_product(&golden, "new.png");
+            let _ = write_image(&img, &new);
+            return Ok(Outcome::BadGolden { reason, new });
+        }
+    };
+    // The noise: kept beside the golden, or measured now.
+    let stored = stored_variance(&golden, &img);
+    let mut fresh = None;
+    let score = match (&previous, &stored) {
+        (None, _) => None,
+        (Some(g), Some(v)) => score(&img, g, v).ok(),
+        (Some(g), None) => {
+            let v = noise_of(scene, &o, opts.threads, &img)?;
+            let s = score(&img, g, &v).ok();
+            fresh = Some(v);
+            s
+        }
+    };
+    Ok(match (score, opts.bless) {
+        (Some(s), _) if s.worst <= tolerance => {
+            remove_by_products(&golden);
+            if let (true, None, Some(v)) = (opts.bless, &stored, &fresh) {
+                // A golden from before variance images gets one.
+                write_image(v, &variance_path(&golden)).map_err(|e| io_error(&golden, e))?;
+            }
+            Outcome::Pass { score: s, tolerance }
+        }
+        (score, true) => {
+            let v = match fresh {
+                Some(v) => v,
+                None => noise_of(scene, &o, opts.threads, &img)?,
+            };
+            write_image(&img, &golden).map_err(|e| io_error(&golden, e))?;
+            write_image(&v, &variance_path(&golden)).map_err(|e| io_error(&golden, e))?;
+            remove_by_products(&golden);
+            Outcome::Blessed { score }
+        }
+        (None, false) => {
+            let new = by_product(&golden, "new.png");
+            let _ = write_image(&img, &new);
+            Outcome::Missing { new }
+        }
+        (Some(score), false) => {
+            let (new, heatmap) = (by_product(&golden, "new.png"), by_product(&golden, "diff.png"));
+            let _ = write_image(&img, &new);
+            if let Some(g) = &previous {
+                let _ = write_image(&metrics::heatmap(&img, g, 0.1), &heatmap);
+            }
+            Outcome::Fail {
+                score,
+                tolerance,
+                new,
+                heatmap,
+            }
+        }
+    })
+}
+
+fn io_error(path: &Path, e: impl std::fmt::Display) -> LoadError {
+    LoadError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(e.to_string()),
     }
 }
 

@@ -12,12 +12,62 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// The errors of a broken fixture (the warnings shown with them are left
+/// out: see `warnings_come_with_the_errors`), and the whole rendered report.
 fn diagnostics(name: &str) -> (Vec<Diagnostic>, String) {
     match load(&fixture(name)) {
         Ok(_) => panic!("{name} loaded, but it is broken on purpose"),
-        Err(LoadError::Invalid(r)) => (r.diagnostics.clone(), r.render(false)),
+        Err(LoadError::Invalid(r)) => (errors(&r.diagnostics), r.render(false)),
         Err(e) => panic!("{name}: expected diagnostics, got {e}"),
     }
+}
+
+fn errors(d: &[Diagnostic]) -> Vec<Diagnostic> {
+    d.iter()
+        .filter(|d| d.severity == ronray::diagnostic::Severity::Error)
+        .cloned()
+        .collect()
+}
+
+/// Issue 46: a warning no longer waits until every error is fixed; one that
+/// a broken entry could have caused (a lamp that did not parse is not "no
+/// light") still does.
+#[test]
+fn warnings_come_with_the_errors() {
+    use ronray::diagnostic::Severity;
+    let text = r#"Scene(camera: (eye: (0, 0, 5), target: (0, 0, 0), fov_y_degrees: 0.7),
+    film: (spp: 0))"#;
+    let all = match load_str(Path::new("w.ron"), text, &Overrides::default()) {
+        Err(LoadError::Invalid(r)) => r,
+        _ => panic!("spp 0 is an error"),
+    };
+    let kinds: Vec<(Severity, Option<&str>)> = all
+        .diagnostics
+        .iter()
+        .map(|d| (d.severity, d.path.as_deref()))
+        .collect();
+    assert!(kinds.contains(&(Severity::Error, Some("film.spp"))), "{kinds:?}");
+    assert!(kinds.contains(&(Severity::Warning, Some("lights"))), "{kinds:?}");
+    assert!(
+        kinds.contains(&(Severity::Warning, Some("camera.fov_y_degrees"))),
+        "{kinds:?}"
+    );
+    let e = LoadError::Invalid(all);
+    assert!(
+        e.to_string().starts_with("1 error in"),
+        "warnings are not counted as errors: {e}"
+    );
+    let broken_lamp = r#"Scene(camera: (eye: (0, 0, 5), target: (0, 0, 0), fov_y_degrees: 40),
+    lights: [Point(position: (0, 1), intensity: (1, 1, 1))])"#;
+    let d = match load_str(Path::new("w.ron"), broken_lamp, &Overrides::default()) {
+        Err(LoadError::Invalid(r)) => r.diagnostics,
+        _ => panic!("a short position is an error"),
+    };
+    assert!(
+        d.iter().all(|d| d.severity == Severity::Error),
+        "no 'no light' warning beside a lamp that did not parse: {}",
+        list(&d)
+    );
 }
 
 /// The diagnostics of scene `text` read as file `name` (its extension picks
@@ -27,7 +77,7 @@ fn diagnostics_of(name: &str, text: &str) -> Vec<Diagnostic> {
         Ok(_) => panic!("{name} loaded, but it is broken on purpose:\n{text}"),
         Err(LoadError::Invalid(r)) => {
             assert!(!r.render(true).is_empty() && !r.render(false).is_empty());
-            r.diagnostics
+            errors(&r.diagnostics)
         }
         Err(e) => panic!("{name}: expected diagnostics, got {e}"),
     }
@@ -396,7 +446,7 @@ fn set_error_points_at_the_argument() {
     };
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.ron");
     let d = match load_with(&scene, &o) {
-        Err(LoadError::Invalid(r)) => r.diagnostics,
+        Err(LoadError::Invalid(r)) => errors(&r.diagnostics),
         Err(e) => panic!("expected diagnostics, got {e}"),
         Ok(_) => panic!("spp=abc must be rejected"),
     };
@@ -420,13 +470,46 @@ fn set_error_points_at_the_argument() {
         ..Default::default()
     };
     let d = match load_with(&fixture("three_mistakes.ron"), &o) {
-        Err(LoadError::Invalid(r)) => r.diagnostics,
+        Err(LoadError::Invalid(r)) => errors(&r.diagnostics),
         _ => panic!("three_mistakes.ron is broken"),
     };
     let places: Vec<String> = d.iter().map(|d| d.location()).collect();
     assert_eq!(places.len(), 3, "{}", list(&d));
     assert_eq!(places[0], "--set camera.up=(0, 1)");
     assert!(places[1].ends_with("three_mistakes.ron:2:53") && places[2].ends_with("three_mistakes.ron:6:43"));
+}
+
+/// Issue 46: a value out of range that the command line gave is blamed on
+/// the argument (`--spp 0`, `--png-bits 12`, `--set film.exposure=NaN`),
+/// not on the scene file, and `--set` takes `Path()` as a file does.
+#[test]
+fn range_errors_from_arguments_point_at_the_argument() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.ron");
+    let o = Overrides {
+        spp: Some(0),
+        sets: vec!["film.png_bits=12".into(), "film.exposure=NaN".into()],
+        flags: vec![("film.png_bits=12".into(), "--png-bits 12".into())],
+        ..Default::default()
+    };
+    let d = match load_with(&scene, &o) {
+        Err(LoadError::Invalid(r)) => errors(&r.diagnostics),
+        _ => panic!("spp 0 is an error"),
+    };
+    let mut places: Vec<String> = d.iter().map(|d| d.location()).collect();
+    places.sort();
+    assert_eq!(
+        places,
+        ["--png-bits 12", "--set film.exposure=NaN", "--spp 0"],
+        "{}",
+        list(&d)
+    );
+    let o = Overrides {
+        sets: vec!["integrator=Path()".into(), "film.filter=Gaussian()".into()],
+        ..Default::default()
+    };
+    if let Err(e) = load_with(&scene, &o) {
+        panic!("{}", common::message(&e));
+    }
 }
 
 #[test]
@@ -560,6 +643,30 @@ fn area_light_facing_away_from_every_object_warns_with_swap_help() {
     assert_eq!(
         d.help.as_deref(),
         Some("a light emits on the side of `edge_u × edge_v`; swap `edge_u` and `edge_v` to flip it")
+    );
+}
+
+/// Falsehood 4 of issue 46: meshes, instances and SDFs counted as lit, so
+/// the warning never fired in a scene that had one. Their built bounds are
+/// judged now.
+#[test]
+fn area_light_facing_away_from_meshes_instances_and_sdfs_warns() {
+    let d = one_warning("light_facing_away_mesh.ron", "lights[1]", 10, 9);
+    assert!(d.message.contains("lights nothing"), "{d}");
+    // Raised through the light's plane, the instance is lit: no warning.
+    let text = std::fs::read_to_string(warning_fixture("light_facing_away_mesh.ron")).expect("fixture");
+    let raised = text.replace("Translate((0, 0.5, 0))", "Translate((0, 3.5, 0))");
+    assert_ne!(raised, text);
+    let loaded = ronray::load::load_str(
+        &warning_fixture("light_facing_away_mesh.ron"),
+        &raised,
+        &Default::default(),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        loaded.warnings.diagnostics.is_empty(),
+        "{}",
+        loaded.warnings.render(false)
     );
 }
 

@@ -103,9 +103,19 @@ fn obj_corpus_groups_materials_and_overrides() {
     // A group override and an MTL-name override are accepted…
     load(
         &cornell,
-        r#", materials: { "shortBox": "red", "leftWall": "red" }"#,
+        r#", materials: { "group:shortBox": "red", "leftWall": "red" }"#,
     )
     .expect("known groups");
+    // …a bare key naming the group `shortBox` and the MTL material
+    // `shortBox` another group wears would recolour both boxes (issue 46)…
+    let e = load(&cornell, r#", materials: { "shortBox": "red" }"#)
+        .err()
+        .expect("a key that names two things");
+    let m = message(&e);
+    assert!(
+        m.contains("group:shortBox") && m.contains("material:shortBox"),
+        "got: {m}"
+    );
     // …an unknown one is a located error with a suggestion.
     let e = load(&cornell, r#", materials: { "shortBx": "red" }"#)
         .err()

@@ -164,12 +164,19 @@ fn validate_json_format_is_machine_readable() {
     let bad = root().join("tests/fixtures/broken/three_mistakes.ron");
     let o = ronray(&["validate", "--format", "json", bad.to_str().expect("utf-8")]);
     assert_eq!(o.status.code(), Some(1));
-    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&o.stdout)
+    let all: Vec<serde_json::Value> = String::from_utf8_lossy(&o.stdout)
         .lines()
         .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("not JSON ({e}): {l}")))
         .collect();
+    // The warning the mistakes cannot have caused (no light) comes with them.
+    assert!(
+        all.iter()
+            .any(|l| l["severity"] == "warning" && l["path"] == "lights"),
+        "{all:?}"
+    );
+    let lines: Vec<&serde_json::Value> = all.iter().filter(|l| l["severity"] == "error").collect();
     assert_eq!(lines.len(), 3);
-    for l in &lines {
+    for l in &all {
         for key in [
             "file",
             "line",

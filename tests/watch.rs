@@ -59,13 +59,19 @@ impl Watch {
     /// Writes the default scene and its OBJ, starts watching, and waits for
     /// the first complete image.
     fn start() -> Watch {
+        Watch::start_with(&[
+            ("tri.obj", TRIANGLE),
+            ("scene.ron", &scene("0.8, 0.2, 0.2", 0.4, "tri.obj")),
+        ])
+    }
+
+    /// Writes `files` (`scene.ron` among them), starts watching, and waits
+    /// for the first complete image.
+    fn start_with(files: &[(&str, &str)]) -> Watch {
         let dir = tempfile::tempdir().expect("temp dir");
-        std::fs::write(dir.path().join("tri.obj"), TRIANGLE).expect("write obj");
-        std::fs::write(
-            dir.path().join("scene.ron"),
-            scene("0.8, 0.2, 0.2", 0.4, "tri.obj"),
-        )
-        .expect("write");
+        for (name, text) in files {
+            std::fs::write(dir.path().join(name), text).expect("write");
+        }
         let mut child = Command::new(env!("CARGO_BIN_EXE_ronray"))
             .current_dir(dir.path())
             .args(["watch", "scene.ron", "-o", "out.png"])
@@ -247,6 +253,49 @@ fn watch_rerenders_when_a_referenced_obj_changes() {
         .expect("touch");
     w.wait_finals(3);
     assert_eq!(w.image(), second);
+}
+
+/// A triangle whose material comes from its MTL file (the scene names none).
+const MTL_TRIANGLE: &str =
+    "mtllib tri.mtl\nv -0.6 -0.6 0\nv 0.4 -0.6 0\nv -0.1 0.4 0\nusemtl paint\nf 1 2 3\n";
+
+/// The scene of [`scene`] with the triangle keeping its MTL material.
+fn mtl_scene(albedo: &str) -> String {
+    scene(albedo, 0.4, "tri.obj").replace(
+        r#"Mesh(file: "tri.obj", material: "grey")"#,
+        r#"Mesh(file: "tri.obj")"#,
+    )
+}
+
+/// Falsehood 1 of issue 46: after an MTL colour edit and a scene edit, the
+/// watch image kept the old colour while `render` gave the new one (the MTL
+/// was not watched, and the mesh cache kept the materials it was first read
+/// with).
+#[test]
+fn watch_follows_an_mtl_edit() {
+    let w = Watch::start_with(&[
+        ("tri.obj", MTL_TRIANGLE),
+        ("tri.mtl", "newmtl paint\nKd 0.8 0.1 0.1\n"),
+        ("scene.ron", &mtl_scene("0.8, 0.2, 0.2")),
+    ]);
+    let first = w.image();
+    std::fs::write(w.path("tri.mtl"), "newmtl paint\nKd 0.1 0.7 0.15\n").expect("edit mtl");
+    std::fs::write(w.path("scene.ron"), mtl_scene("0.2, 0.3, 0.9")).expect("edit scene");
+    w.wait_finals(2);
+    let log = w.settle();
+    assert_ne!(w.image(), first, "the edits did not change the image");
+    assert_eq!(w.image(), w.reference(), "after an MTL edit and a scene edit");
+    assert!(
+        log.iter().any(|l| l.contains("3 files watched")),
+        "the scene, the OBJ and the MTL are watched:\n{}",
+        log.join("\n")
+    );
+    // An MTL edit alone re-renders.
+    let n = finals(&log);
+    std::fs::write(w.path("tri.mtl"), "newmtl paint\nKd 0.7 0.7 0.1\n").expect("edit mtl");
+    w.wait_finals(n + 1);
+    w.settle();
+    assert_eq!(w.image(), w.reference(), "after an MTL edit alone");
 }
 
 #[test]

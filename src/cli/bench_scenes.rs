@@ -101,6 +101,7 @@ pub fn run(b: &SceneBench) -> Result<(), String> {
                     seed: b.settings.seed,
                     sets,
                     root: b.root.map(Path::to_path_buf),
+                    ..Default::default()
                 };
                 let loaded = load_with(scene, &o).map_err(|e| format!("{}: {e}", scene.display()))?;
                 let opts = RenderOptions {

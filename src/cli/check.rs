@@ -48,21 +48,24 @@ pub(super) fn cmd_check(paths: Vec<PathBuf>, opts: &CheckOptions) -> ExitCode {
             Outcome::Invalid(e) => print_load_error(e, ""),
             Outcome::Fail { new, heatmap, .. } => {
                 eprintln!(
-                    "{}: regression; new render {}, heat map {}",
+                    "{}: regression; new render {}, heat map {} (if the change is meant, accept it with `ronray check {} --bless`)",
                     scene.display(),
                     new.display(),
-                    heatmap.display()
+                    heatmap.display(),
+                    scene.display()
                 )
             }
             Outcome::BadGolden { reason, new } => eprintln!(
-                "{}: {reason}; new render written to {} (delete the golden, or run `ronray check --bless --force` to replace it)",
+                "{}: {reason}; new render written to {} (delete the golden, or run `ronray check {} --bless --force` to replace it)",
                 scene.display(),
-                new.display()
+                new.display(),
+                scene.display()
             ),
             Outcome::Missing { new } => eprintln!(
-                "{}: no golden image; new render written to {} (run `ronray check --bless` to accept it)",
+                "{}: no golden image; new render written to {} (run `ronray check {} --bless` to accept it)",
                 scene.display(),
-                new.display()
+                new.display(),
+                scene.display()
             ),
             _ => {}
         }

@@ -196,7 +196,9 @@ pub enum Command {
     Check {
         /// Scene files or folders (every scene in a folder); default `scenes`.
         paths: Vec<PathBuf>,
-        /// Rewrite the goldens that fail or are missing, on purpose.
+        /// Rewrite the goldens that fail or are missing, on purpose, each
+        /// with the variance image that measures its noise
+        /// (`golden/<name>.var.exr`, from renders with other seeds).
         #[arg(long)]
         bless: bool,
         /// With --bless, also replace goldens that are corrupt or of
@@ -210,7 +212,8 @@ pub enum Command {
         /// test settings are read: `--set test.seed=7` re-seeds.
         #[arg(long = "set", value_name = "PATH=VALUE")]
         sets: Vec<String>,
-        /// Largest accepted score (worst 16×16 window's relative MSE),
+        /// Largest accepted score (the worst 8×8-pixel window's mean squared
+        /// z-score against the sampling noise; about 1 for noise alone),
         /// replacing every scene's `test.tolerance`.
         #[arg(long, value_parser = parse_tolerance)]
         tolerance: Option<f64>,
@@ -303,20 +306,26 @@ impl RenderSettings {
     /// fields (an unknown tone map gets a suggestion).
     pub fn overrides(&self) -> Overrides {
         let mut sets = self.sets.clone();
+        let mut flags = Vec::new();
+        let mut flag = |set: String, written: String| {
+            flags.push((set.clone(), written));
+            sets.push(set);
+        };
         if let Some(e) = self.exposure {
-            sets.push(format!("film.exposure={e:?}"));
+            flag(format!("film.exposure={e:?}"), format!("--exposure {e}"));
         }
         if let Some(t) = &self.tonemap {
-            sets.push(format!("film.tonemap={t}"));
+            flag(format!("film.tonemap={t}"), format!("--tonemap {t}"));
         }
         if let Some(b) = self.png_bits {
-            sets.push(format!("film.png_bits={b}"));
+            flag(format!("film.png_bits={b}"), format!("--png-bits {b}"));
         }
         Overrides {
             spp: self.spp,
             size: self.size,
             seed: self.seed,
             sets,
+            flags,
             root: None,
         }
     }

@@ -100,8 +100,9 @@ fn report_lines(r: &Report) -> String {
         .collect()
 }
 
-/// `validate -v`: every file the scene reads and the image `render` would
-/// write, each resolved (symlinks followed) so that what is really touched
+/// `validate -v`: every file the scene reads, each OBJ's groups and the MTL
+/// material each wears (what `materials: { ... }` keys may name), and the
+/// image `render` would write, each resolved (symlinks followed) so that what is really touched
 /// is what is shown.
 fn files_of(scene: &Path, loaded: &crate::load::Loaded) -> String {
     let mut out = format!("{}:\n", scene.display());
@@ -111,6 +112,9 @@ fn files_of(scene: &Path, loaded: &crate::load::Loaded) -> String {
         if seen.insert(real.clone()) {
             out += &format!("  reads  {}\n", real.display());
         }
+    }
+    for (obj, parts) in &loaded.stats.obj_parts {
+        out += &format!("  OBJ    {}: {parts}\n", crate::files::resolved(obj).display());
     }
     let target = loaded.view.output_path(scene, None);
     out += &format!("  writes {}\n", crate::files::resolved(&target).display());

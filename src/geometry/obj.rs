@@ -36,6 +36,9 @@ pub struct ObjData {
     pub materials: Vec<tobj::Material>,
     /// Repairs made, one sentence each.
     pub warnings: Vec<String>,
+    /// The MTL files the OBJ names (`mtllib`), resolved against its folder,
+    /// whether or not they could be read: what the materials depend on.
+    pub mtl_files: Vec<std::path::PathBuf>,
 }
 
 /// Loads `path` as one mesh, ignoring materials.
@@ -94,11 +97,16 @@ pub fn parse_obj_data(
         ignore_lines: true,
     };
     let mtl_errors = std::cell::RefCell::new(Vec::new());
-    let material_loader = |name: &Path| match mtl(name) {
-        Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(complete_colours(&b))),
-        Err(e) => {
-            mtl_errors.borrow_mut().push(e);
-            Err(tobj::LoadError::OpenFileFailed)
+    let mtl_files = std::cell::RefCell::new(Vec::new());
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let material_loader = |name: &Path| {
+        mtl_files.borrow_mut().push(dir.join(name));
+        match mtl(name) {
+            Ok(b) => tobj::load_mtl_buf(&mut std::io::Cursor::new(complete_colours(&b))),
+            Err(e) => {
+                mtl_errors.borrow_mut().push(e);
+                Err(tobj::LoadError::OpenFileFailed)
+            }
         }
     };
     // tobj is not ours: a panic on some input we did not foresee becomes an
@@ -203,6 +211,7 @@ pub fn parse_obj_data(
         groups,
         materials,
         warnings,
+        mtl_files: mtl_files.into_inner(),
     })
 }
 

@@ -36,6 +36,13 @@ pub struct BuildStats {
     /// Texture files and environment maps read while building (watch mode
     /// re-reads on change).
     pub texture_files: Vec<PathBuf>,
+    /// What OBJ files read beside themselves: their MTL files and the
+    /// textures those name (watch mode re-reads on change; `validate -v`
+    /// lists them).
+    pub mesh_inputs: Vec<PathBuf>,
+    /// Each OBJ file read, with its groups and the MTL material each wears
+    /// (`validate -v`).
+    pub obj_parts: Vec<(PathBuf, String)>,
     /// Distinct meshes held in memory.
     pub meshes: usize,
     /// Placements of those meshes (`Mesh` and `Instance` objects).
@@ -87,6 +94,10 @@ pub(super) struct BuildContext<'a> {
     pub env_times: (Duration, Duration),
     /// Image files lights read (an environment map), watched like textures.
     pub light_files: Vec<PathBuf>,
+    /// MTL files the OBJ files named.
+    pub mtl_files: Vec<PathBuf>,
+    /// Each OBJ read and its parts, for the stats.
+    pub obj_parts: Vec<(PathBuf, String)>,
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
@@ -142,6 +153,8 @@ pub fn build_in(
         notes: Vec::new(),
         env_times: Default::default(),
         light_files: Vec::new(),
+        mtl_files: Vec::new(),
+        obj_parts: Vec::new(),
     };
     // Object ids: 1 + i for `objects[i]`, then the area lights after them
     // (0 is "no surface" in the object-index layer).
@@ -162,6 +175,10 @@ pub fn build_in(
     // The emitter's surface, then the MTL materials' (cut-outs from `map_d`).
     surfaces.push(crate::materials::Surface::default());
     surfaces.extend(std::mem::take(&mut ctx.mtl.surfaces));
+    let mut mesh_inputs = std::mem::take(&mut ctx.mtl_files);
+    let mut mtl_textures: Vec<PathBuf> = ctx.mtl.files().cloned().collect();
+    mtl_textures.sort();
+    mesh_inputs.extend(mtl_textures);
     materials.extend(std::mem::take(&mut ctx.mtl.materials));
     textures.extend(std::mem::take(&mut ctx.mtl.textures));
     let load_time = t0.elapsed();
@@ -186,6 +203,8 @@ pub fn build_in(
         load_time,
         triangles: ctx.triangles,
         texture_files: texture_files.into_iter().chain(ctx.light_files).collect(),
+        mesh_inputs,
+        obj_parts: ctx.obj_parts,
         meshes: ctx.geometry.meshes.len(),
         instances: ctx.geometry.instances.len(),
         mesh_accel_bytes: ctx.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),

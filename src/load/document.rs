@@ -18,6 +18,8 @@ pub struct Gaps {
     kept: Vec<(&'static str, Vec<usize>)>,
     /// Sections replaced by a stand-in (`camera`, `materials.glass`).
     stand_ins: Vec<String>,
+    /// Fields of entries read with them repaired (also stand-ins).
+    repaired: Vec<String>,
 }
 
 impl Gaps {
@@ -32,17 +34,41 @@ impl Gaps {
         self.stand_ins.push(path);
     }
 
+    /// `path` is a field of an entry that was read with it repaired
+    /// (`objects[3].center`): the entry itself is whole.
+    pub(super) fn repaired(&mut self, path: String) {
+        self.repaired.push(path.clone());
+        self.stand_ins.push(path);
+    }
+
+    /// Whether `path` (as written) is in a repaired field.
+    pub fn is_repaired(&self, path: &str) -> bool {
+        self.repaired.iter().any(|s| {
+            path.strip_prefix(s.as_str())
+                .is_some_and(|r| r.is_empty() || r.starts_with(['.', '[']))
+        })
+    }
+
     /// The path the user wrote for `path` of the partial document, or `None`
     /// for a path inside a stand-in (nothing is reported there: its own
     /// parse error already was).
     pub fn original(&self, path: &str) -> Option<String> {
+        let written = self.written(path);
+        // Stand-ins are named as written (`materials.glass`, and for the
+        // repaired fields of a list element, `objects[3].center`).
         let under = |p: &str| {
-            path.strip_prefix(p)
+            written
+                .strip_prefix(p)
                 .is_some_and(|r| r.is_empty() || r.starts_with(['.', '[']))
         };
         if self.stand_ins.iter().any(|s| under(s)) {
             return None;
         }
+        Some(written)
+    }
+
+    /// `path` of the partial document with list indices as written.
+    fn written(&self, path: &str) -> String {
         for (list, kept) in &self.kept {
             let Some(rest) = path.strip_prefix(list).and_then(|r| r.strip_prefix('[')) else {
                 continue;
@@ -51,10 +77,10 @@ impl Gaps {
                 continue;
             };
             if let Some(written) = index.parse::<usize>().ok().and_then(|i| kept.get(i)) {
-                return Some(format!("{list}[{written}]{tail}"));
+                return format!("{list}[{written}]{tail}");
             }
         }
-        Some(path.to_string())
+        path.to_string()
     }
 }
 
@@ -189,6 +215,7 @@ mod tests {
         let g = Gaps {
             kept: vec![("objects", vec![0, 2, 3])],
             stand_ins: vec!["materials.glass".into()],
+            repaired: Vec::new(),
         };
         assert_eq!(
             g.original("objects[1].radius").as_deref(),

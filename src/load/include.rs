@@ -74,6 +74,16 @@ impl Composition {
         }
     }
 
+    /// Whether a parse mistake at `path` of `file` (as written) was in a
+    /// field its entry was read without: the entry itself is whole.
+    pub fn is_repaired(&self, file: &std::path::Path, path: &str) -> bool {
+        self.sources
+            .iter()
+            .position(|(f, _)| f == file)
+            .and_then(|i| self.gaps.get(i))
+            .is_some_and(|g| g.is_repaired(path))
+    }
+
     fn origin_of(&self, path: &str) -> (usize, String) {
         let best = self
             .origins

@@ -17,9 +17,10 @@
 //! the object or `meshes` entry that names it.
 
 use super::build::BuildContext;
+use super::mesh_keys::{Key, key_problem, parts_list, twice_defined};
 use super::validate::Checker;
 use crate::desc::{MeshDesc, ObjectDesc};
-use crate::diagnostic::{Problem, suggest};
+use crate::diagnostic::Problem;
 use crate::geometry::mesh_quad::pairing;
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::{ObjData, ObjGroup};
@@ -231,6 +232,9 @@ fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> Loa
         let help = "an untrusted scene may read only files inside --root";
         ctx.problems.push(Problem::new(at, why).help(help));
     }
+    ctx.problems.extend(twice_defined(&data, at));
+    ctx.obj_parts.push((obj.clone(), parts_list(&data)));
+    ctx.mtl_files.extend(data.mtl_files);
     ctx.geometry.meshes.push(data.mesh);
     LoadedMesh {
         mesh: ctx.geometry.meshes.len() as u32 - 1,
@@ -239,7 +243,8 @@ fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> Loa
     }
 }
 
-/// Scene material of each slot; unknown override keys are problems.
+/// Scene material of each slot; unknown and two-sided override keys are
+/// problems.
 fn resolve(
     ctx: &mut BuildContext,
     path: &str,
@@ -252,35 +257,29 @@ fn resolve(
         .iter()
         .map(|g| g.material.and_then(|m| ctx.mtl.name(l.mtl[m])))
         .collect();
-    let names: Vec<String> = l
+    let parts: Vec<(&str, Option<&str>)> = l
         .groups
         .iter()
         .zip(&mtl_names)
-        .flat_map(|(g, m)| std::iter::once(g.name.clone()).chain(m.clone()))
+        .map(|(g, m)| (g.name.as_str(), m.as_deref()))
         .collect();
-    for key in overrides.keys().filter(|k| !names.contains(k)) {
-        let mut p = Problem::new(
-            format!("{path}.materials.{key}"),
-            format!("the OBJ has no group or material `{key}`"),
-        );
-        p = match suggest(key, names.iter().map(String::as_str)) {
-            Some(s) => p.help(format!("did you mean `{s}`?")),
-            None => p.help(format!("its groups and materials are: {}", quoted(&names))),
-        };
-        ctx.problems.push(p);
+    for key in overrides.keys() {
+        if let Some(p) = key_problem(&format!("{path}.materials.{key}"), key, &parts) {
+            ctx.problems.push(p);
+        }
     }
+    let mut keys: Vec<(Key, &String)> = overrides.iter().map(|(k, m)| (Key::of(k), m)).collect();
+    keys.sort_by_key(|(k, _)| k.rank());
     l.groups
         .iter()
         .zip(&mtl_names)
         .map(|(g, mtl_name)| {
             let scene = |n: &str| ctx.material_index.get(n).copied();
-            let by_name = overrides
-                .get(&g.name)
-                .or_else(|| mtl_name.as_ref().and_then(|m| overrides.get(m)));
-            if let Some(m) = by_name
-                .and_then(|n| scene(n))
-                .or_else(|| material.and_then(scene))
-            {
+            let by_name = keys
+                .iter()
+                .find(|(k, _)| k.selects(&g.name, mtl_name.as_deref()))
+                .map(|(_, m)| m.as_str());
+            if let Some(m) = by_name.and_then(&scene).or_else(|| material.and_then(&scene)) {
                 return m;
             }
             if let Some(m) = g.material {
@@ -304,14 +303,6 @@ fn grey(ctx: &mut BuildContext, path: &str, group: &str) -> u32 {
     });
     ctx.mesh_state.grey = Some(g);
     g
-}
-
-fn quoted(names: &[String]) -> String {
-    names
-        .iter()
-        .map(|n| format!("`{n}`"))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// Transforms positions and normals of `data` into world space. A mirroring

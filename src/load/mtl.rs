@@ -265,6 +265,12 @@ impl MtlMaterials {
         t
     }
 
+    /// The texture files MTL materials named, read or not (watch mode
+    /// re-renders when one changes or appears).
+    pub fn files(&self) -> impl Iterator<Item = &PathBuf> {
+        self.textures_by_path.keys().chain(self.linear_by_path.keys())
+    }
+
     /// Decodes an image once per path; `None` (with a note) if unreadable.
     fn texture(&mut self, path: &Path, notes: &mut Vec<String>) -> Option<u32> {
         if let Some(t) = self.textures_by_path.get(path) {

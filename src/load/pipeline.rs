@@ -22,7 +22,9 @@ pub struct Loaded {
     pub desc: SceneDesc,
     /// What building cost, and its notes.
     pub stats: BuildStats,
-    /// Every file the scene depends on (itself, meshes…), for watch mode.
+    /// Every file the scene depends on (itself, its includes, OBJ files, the
+    /// MTL files they name and those files' textures, textures, environment
+    /// maps), for watch mode and `validate -v`.
     pub files: Vec<PathBuf>,
     /// Located [`Severity::Warning`](crate::diagnostic::Severity) diagnostics
     /// for a scene that loads but will surprise (`load::warnings`), with the
@@ -58,7 +60,7 @@ pub enum LoadError {
         source: std::io::Error,
     },
     /// The scene has mistakes: every one found, located.
-    #[error("{} in {}", plural(.0.diagnostics.len()), files(.0))]
+    #[error("{} in {}", plural(.0.count(crate::diagnostic::Severity::Error)), files(.0))]
     Invalid(Report),
 }
 
@@ -104,6 +106,10 @@ pub struct Overrides {
     pub seed: Option<u64>,
     /// `path=value` typed overrides (`--set`), applied before the others.
     pub sets: Vec<String>,
+    /// The entries of `sets` that came from a flag of their own, with the
+    /// flag as written (`("film.png_bits=12", "--png-bits 12")`), so a
+    /// diagnostic names what the user typed.
+    pub flags: Vec<(String, String)>,
     /// `--root DIR`: every file the scene reads (the scene itself, includes,
     /// OBJ and MTL files, textures, environment maps) must resolve, symlinks
     /// followed, inside this folder; for rendering untrusted scenes. It also
@@ -112,6 +118,34 @@ pub struct Overrides {
 }
 
 impl Overrides {
+    /// The command-line argument that set the scene field `path` (or a
+    /// field around it), as the user wrote it: `--spp 0`, `--set
+    /// film.spp=0`, `--png-bits 12`.
+    pub fn argument_for(&self, path: &str) -> Option<String> {
+        let under = |p: &str| {
+            path.strip_prefix(p)
+                .is_some_and(|r| r.is_empty() || r.starts_with(['.', '[']))
+        };
+        let flag = match path {
+            "film.spp" => self.spp.map(|n| format!("--spp {n}")),
+            "film.width" | "film.height" => self.size.map(|(w, h)| format!("--size {w}x{h}")),
+            "film.seed" => self.seed.map(|n| format!("--seed {n}")),
+            _ => None,
+        };
+        // The flags are applied after the sets: they win.
+        flag.or_else(|| {
+            let set = self
+                .sets
+                .iter()
+                .rev()
+                .find(|s| s.split_once('=').is_some_and(|(p, _)| under(p.trim())))?;
+            Some(match self.flags.iter().find(|(s, _)| s == set) {
+                Some((_, written)) => written.clone(),
+                None => format!("--set {set}"),
+            })
+        })
+    }
+
     /// Writes `--spp`, `--size` and `--seed` into the description (`--set`
     /// is applied earlier, by `set.rs`).
     pub fn apply(&self, desc: &mut SceneDesc) {
@@ -164,16 +198,44 @@ pub fn load_str_with_meshes(
             sources: Vec::new(),
         }));
     }
-    let (desc, composition) = check(path, text, overrides).map_err(|r| LoadError::Invalid(r.sorted()))?;
+    let Checked {
+        desc,
+        composition,
+        mut report,
+        missing_files,
+    } = check(path, text, overrides).map_err(|r| LoadError::Invalid(r.sorted()))?;
     let base = path.parent().unwrap_or(Path::new("."));
-    let mut warnings = super::warnings::located(&composition, &super::warnings::warnings(&desc));
     // Under --root the MTL files an OBJ names are fenced too, which only the
     // plain OBJ reader knows how to do (watch mode's cache is skipped).
     let fenced = |p: &Path| crate::geometry::obj::load_obj_data_in(p, root);
     let load_mesh: &dyn Fn(&Path) -> Result<crate::geometry::obj::ObjData, String> =
         if root.is_some() { &fenced } else { load_mesh };
+    if report.count(crate::diagnostic::Severity::Error) > 0 {
+        // Missing files alone do not hide the checks that need no content
+        // of theirs: the build's, of every other object.
+        let only_missing = report.diagnostics.iter().all(|d| {
+            d.severity != crate::diagnostic::Severity::Error
+                || d.path.as_ref().is_some_and(|p| missing_files.contains(p))
+        });
+        let more = if only_missing {
+            build_in(&desc, base, load_mesh, root).err().unwrap_or_default()
+        } else {
+            // What the build would find in the OBJ files that are there.
+            super::mesh_keys::content_problems(&desc, base, load_mesh)
+        };
+        let more: Vec<_> = more
+            .into_iter()
+            .filter(|p| !missing_files.contains(&p.path))
+            .collect();
+        report.diagnostics.extend(composition.locate(&more).diagnostics);
+        return Err(LoadError::Invalid(report.sorted()));
+    }
     let (scene, view, stats) = build_in(&desc, base, load_mesh, root)
         .map_err(|p| LoadError::Invalid(composition.locate(&p).sorted()))?;
+    // Warnings once built: meshes, instances and SDFs have bounds then.
+    let extents = super::warnings::object_extents(&scene, desc.objects.len());
+    let mut warnings =
+        super::warnings::located(&composition, &super::warnings::warnings_built(&desc, &extents));
     // What the build repaired or defaulted (OBJ fixes, a grey default) is
     // reported beside the warnings, as notes.
     warnings
@@ -190,6 +252,7 @@ pub fn load_str_with_meshes(
         }
     }
     files.extend(desc.meshes.values().map(|m| base.join(&m.file)));
+    files.extend(stats.mesh_inputs.iter().cloned());
     Ok(Loaded {
         scene,
         view,
@@ -200,10 +263,22 @@ pub fn load_str_with_meshes(
     })
 }
 
+/// What the checks before building found.
+struct Checked {
+    desc: SceneDesc,
+    composition: Composition,
+    /// Every mistake, with the warnings they cannot have caused; empty
+    /// when the scene may be built.
+    report: Report,
+    /// Paths of the mistakes that are only a missing file.
+    missing_files: Vec<String>,
+}
+
 /// Every check before building: parse (as far as each entry allows),
 /// compose includes, apply overrides, validate. All mistakes found, of every
 /// kind and in every file, fail together; a scene with any is never built.
-fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<(SceneDesc, Composition), Report> {
+/// `Err` when the description could not be read far enough to check.
+fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<Checked, Report> {
     let parsed = read::<SceneDesc>(path, text)?;
     let mut desc = parsed.desc;
     let mut found = parsed.diagnostics;
@@ -214,17 +289,73 @@ fn check(path: &Path, text: &str, overrides: &Overrides) -> Result<(SceneDesc, C
             r
         })?;
     found.extend(composition.diagnostics.iter().cloned());
-    let bad_sets = super::set::apply_sets(&mut desc, &overrides.sets)
+    let mut bad_sets = super::set::apply_sets(&mut desc, &overrides.sets)
         .err()
         .unwrap_or_default();
+    // What the command line really set: a `--set` that did not apply set
+    // nothing, and the file's value is judged where the file wrote it.
+    let applied = Overrides {
+        sets: overrides
+            .sets
+            .iter()
+            .filter(|s| !bad_sets.iter().any(|b| b.arg == **s))
+            .cloned()
+            .collect(),
+        ..overrides.clone()
+    };
+    for b in &mut bad_sets {
+        if let Some((_, written)) = overrides.flags.iter().find(|(s, _)| *s == b.arg) {
+            b.arg = written.clone();
+        }
+    }
     found.extend(command_line(&bad_sets).diagnostics);
     overrides.apply(&mut desc);
     let base = path.parent().unwrap_or(Path::new("."));
-    let mut report = composition.locate(&super::validate::validate_in(&desc, base, root));
+    let validated = super::validate::validate_files_apart(&desc, base, root);
+    // A value the command line set is blamed on its argument, not the file.
+    let (on_args, in_files): (Vec<_>, Vec<_>) = validated
+        .problems
+        .into_iter()
+        .partition(|p| applied.argument_for(&p.path).is_some());
+    let mut report = composition.locate(&in_files);
+    report.diagnostics.extend(on_args.iter().map(|p| {
+        let arg = applied.argument_for(&p.path).unwrap_or_default();
+        let mut d = crate::diagnostic::Diagnostic::new(Path::new(&arg), "", None, p.message.clone());
+        d.path = Some(p.path.clone());
+        d.help = p.help.clone();
+        d
+    }));
+    // The sections with a parse mistake (which may have lost an entry; one
+    // with only mistakes of value, or whose entries were read with a field
+    // repaired, has not).
+    let broken: Vec<String> = found
+        .iter()
+        .filter(|d| {
+            !d.path
+                .as_deref()
+                .is_some_and(|p| !p.is_empty() && composition.is_repaired(&d.file, p))
+        })
+        .map(|d| section_of(d.path.as_deref().unwrap_or("")))
+        .collect();
     report.diagnostics.append(&mut found);
-    if report.diagnostics.is_empty() {
-        return Ok((desc, composition));
+    if !report.diagnostics.is_empty() {
+        // The warnings the mistakes cannot have caused come with them.
+        let beside =
+            super::warnings::warnings_beside(&desc, &|s| broken.iter().any(|b| b.is_empty() || b == s));
+        let mut warned = super::warnings::located(&composition, &beside);
+        report.diagnostics.append(&mut warned.diagnostics);
+        report.sources = composition.sources.clone();
     }
-    report.sources = composition.sources;
-    Err(report)
+    Ok(Checked {
+        desc,
+        composition,
+        report,
+        missing_files: validated.missing_files,
+    })
+}
+
+/// The top-level section a diagnostic path is in (`objects` for
+/// `objects[2].radius`); empty for none.
+fn section_of(path: &str) -> String {
+    path.split(['.', '[']).next().unwrap_or("").to_string()
 }

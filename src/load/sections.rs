@@ -137,6 +137,22 @@ impl Reader<'_> {
 
     /// Reports `whole` (the list's or map's own error) when none of its
     /// items showed a mistake: the mistake is between them.
+    /// As [`Self::one`], or the entry with its broken fields repaired
+    /// (`repair.rs`); those fields (under `path`) hold stand-ins.
+    fn one_or_repaired<V: DeserializeOwned>(&mut self, value: &Range<usize>, path: &str) -> Option<V> {
+        if let Some(v) = self.one(value) {
+            return Some(v);
+        }
+        let r = super::repair::repaired(self.format, self.text, value)?;
+        for f in r.fields {
+            self.gaps.repaired(format!("{path}.{f}"));
+        }
+        for slip in r.slips {
+            self.push(slip);
+        }
+        Some(r.value)
+    }
+
     fn fallback(&mut self, field: &Entry, whole: Slip) {
         if !self.slips.iter().any(|s| field.value.contains(&s.span.start)) {
             self.push(whole);
@@ -150,7 +166,7 @@ impl Reader<'_> {
         };
         let (mut out, mut kept) = (Vec::new(), Vec::new());
         for (i, item) in field.items.iter().enumerate() {
-            if let Some(v) = self.one(&item.value) {
+            if let Some(v) = self.one_or_repaired(&item.value, &format!("{name}[{i}]")) {
                 out.push(v);
                 kept.push(i);
             }
@@ -183,7 +199,8 @@ impl Reader<'_> {
                 ];
                 written.trim_matches(quotes).to_string()
             });
-            let value = self.one(&item.value).unwrap_or_else(|| {
+            let at = format!("{name}.{key_name}");
+            let value = self.one_or_repaired(&item.value, &at).unwrap_or_else(|| {
                 self.gaps.stand_in(format!("{name}.{key_name}"));
                 stand_in()
             });

@@ -107,6 +107,9 @@ fn parse_value(text: &str) -> Result<Value, String> {
     let body = || match plain(rest)? {
         // `(x)`: a newtype variant's one value.
         Value::Array(mut a) if a.len() == 1 => Ok(a.remove(0)),
+        // `()`: a struct variant with every field at its default, as a
+        // file writes `Path()` or `Gaussian()`.
+        Value::Null => Ok(Value::Object(Default::default())),
         v => Ok(v),
     };
     match (ident, rest) {
@@ -234,6 +237,7 @@ mod tests {
             v("Path(max_depth: 8, rr_depth: 5)"),
             json!({"Path": {"max_depth": 8, "rr_depth": 5}})
         );
+        assert_eq!(v("Path()"), json!({"Path": {}}), "as a file writes it");
         assert_eq!(v("Some(3.5)"), json!(3.5));
         assert_eq!(v("None"), json!(null));
         assert_eq!(v("true"), json!(true));

@@ -280,7 +280,12 @@ pub fn command_line(problems: &[SetProblem]) -> Report {
     let diagnostics = problems
         .iter()
         .map(|s| {
-            let file = format!("--set {}", s.arg);
+            // A flag of its own (`--tonemap X`) is named as written.
+            let file = if s.arg.starts_with("--") {
+                s.arg.clone()
+            } else {
+                format!("--set {}", s.arg)
+            };
             let mut d = Diagnostic::new(Path::new(&file), "", None, s.problem.message.clone());
             d.path = Some(s.problem.path.clone()).filter(|p| !p.is_empty());
             d.help = s.problem.help.clone();

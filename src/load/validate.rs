@@ -50,10 +50,26 @@ pub fn validate(scene: &SceneDesc, base: &Path) -> Vec<Problem> {
 /// As [`validate`], refusing every file the scene names that resolves
 /// outside `root` (`--root`).
 pub fn validate_in(scene: &SceneDesc, base: &Path, root: Option<&Path>) -> Vec<Problem> {
+    validate_files_apart(scene, base, root).problems
+}
+
+/// What validation found, with the problems that are only a missing file
+/// told apart: checks that do not need the file's content (the build's,
+/// of the other objects) can still run.
+pub struct Validated {
+    /// Every problem found.
+    pub problems: Vec<Problem>,
+    /// The paths (`objects[2].file`) of the problems that are a missing file.
+    pub missing_files: Vec<String>,
+}
+
+/// As [`validate_in`], telling missing files apart.
+pub fn validate_files_apart(scene: &SceneDesc, base: &Path, root: Option<&Path>) -> Validated {
     let mut v = Checker {
         problems: Vec::new(),
         base: base.to_path_buf(),
         root: root.map(Path::to_path_buf),
+        missing_files: Vec::new(),
     };
     v.camera(&scene.camera);
     v.film(&scene.film);
@@ -75,7 +91,10 @@ pub fn validate_in(scene: &SceneDesc, base: &Path, root: Option<&Path>) -> Vec<P
     for (name, m) in &scene.meshes {
         v.mesh_entry(&format!("meshes.{name}"), m);
     }
-    v.problems
+    Validated {
+        problems: v.problems,
+        missing_files: v.missing_files,
+    }
 }
 
 /// The help for a reflectance written on a 0–255 scale, as image editors
@@ -92,6 +111,20 @@ fn byte_scale_help(c: &Color) -> Option<String> {
     ))
 }
 
+/// `written` (which resolves to the missing `full`) with its file name
+/// replaced by the closest name in its folder, if one is close.
+fn near_name(full: &Path, written: &str) -> Option<String> {
+    let name = full.file_name()?.to_str()?;
+    let names: Vec<String> = std::fs::read_dir(full.parent()?)
+        .ok()?
+        .flatten()
+        .filter_map(|e| e.file_name().into_string().ok())
+        .collect();
+    let near = suggest(name, names.iter().map(String::as_str))?;
+    let folder = written.len() - written.rsplit(['/', '\\']).next().map_or(0, str::len);
+    Some(format!("{}{near}", &written[..folder]))
+}
+
 /// Collects problems; each kind adds its own `impl Checker` block in its
 /// file, with the shared helpers below.
 pub(super) struct Checker {
@@ -100,6 +133,8 @@ pub(super) struct Checker {
     pub(super) base: PathBuf,
     /// `--root`: no file outside it may be read.
     pub(super) root: Option<PathBuf>,
+    /// Paths of the problems that are a missing file.
+    pub(super) missing_files: Vec<String>,
 }
 
 impl Checker {
@@ -152,7 +187,7 @@ impl Checker {
             self.push(
                 "test.tolerance",
                 format!("tolerance {} must be > 0", t.tolerance),
-                "it is the largest accepted score of `ronray check` (about 1 for noise alone), e.g. 3.5",
+                "it is the largest accepted score of `ronray check` (about 1 per window for noise alone), e.g. 8",
             );
         }
     }
@@ -189,14 +224,19 @@ impl Checker {
                 format!("{what} `{file}` is not a regular file"),
                 format!("{} is a folder, a device or a pipe", full.display()),
             ),
-            Err(e) => self.push(
-                path,
-                format!("cannot read {what} `{file}`: {e}"),
-                format!(
-                    "the path resolves to {} (paths are relative to the scene file's folder)",
-                    full.display()
-                ),
-            ),
+            Err(e) => {
+                let help = match near_name(&full, file) {
+                    Some(s) => format!("did you mean `{s}`?"),
+                    None => format!(
+                        "the path resolves to {} (paths are relative to the scene file's folder)",
+                        full.display()
+                    ),
+                };
+                if e.kind() == std::io::ErrorKind::NotFound {
+                    self.missing_files.push(path.to_string());
+                }
+                self.push(path, format!("cannot read {what} `{file}`: {e}"), help);
+            }
         }
     }
 

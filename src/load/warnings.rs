@@ -16,9 +16,8 @@
 //! - **Area light facing away.** A `Quad`/`Rect` light emits only on the side
 //!   its normal (`edge_u × edge_v`, `half_u × half_v`) points to; it warns
 //!   when every receiver lies behind or in that plane (`facing`).
-//!   Receivers whose extent is not known without loading files or building
-//!   trees (meshes, instances, SDFs) count as lit, so they never cause a
-//!   warning.
+//!   Meshes, instances and SDFs are judged by their bounds once built
+//!   ([`warnings_built`]); where those are not known they count as lit.
 //! - **Field of view under 5°.** `fov_y_degrees` written in radians by habit
 //!   (`0.7`) still validates and zooms in about 57 times.
 //!
@@ -42,14 +41,47 @@ use std::collections::BTreeSet;
 /// scene file with such a camera is far rarer than `fov_y_degrees: 0.7`.
 pub const MIN_FOV_DEGREES: f32 = 5.0;
 
+pub use facing::object_extents;
+
 /// Every warning for a scene that passed validation, in a stable order:
-/// lights, materials, area lights in file order, camera.
+/// lights, materials, area lights in file order, camera. Meshes, instances
+/// and SDFs count as lit by every area light (see [`warnings_built`]).
 pub fn warnings(desc: &SceneDesc) -> Vec<Problem> {
+    warnings_built(desc, &[])
+}
+
+/// As [`warnings`], with the world bounds of each object as built
+/// ([`object_extents`]), so that meshes, instances and SDFs are judged too.
+pub fn warnings_built(desc: &SceneDesc, built: &[Option<crate::accel::Aabb>]) -> Vec<Problem> {
     let mut out = Vec::new();
     out.extend(no_light(desc));
     out.extend(specular_under_direct(desc));
-    out.extend(facing::lights_facing_away(desc));
+    out.extend(facing::lights_facing_away(desc, built));
     out.extend(narrow_fov(&desc.camera));
+    out
+}
+
+/// The warnings a scene with mistakes can still trust, shown with its
+/// errors: a rule speaks only when none of the sections it reads has one
+/// (`broken(section)`: `lights`, `objects`, …), since a broken entry left
+/// out of a partial description could make it speak falsely (a lamp that
+/// did not parse is not "no light").
+pub fn warnings_beside(desc: &SceneDesc, broken: &dyn Fn(&str) -> bool) -> Vec<Problem> {
+    let clean = |sections: &[&str]| !sections.iter().any(|s| broken(s));
+    let lit = clean(&["include", "lights", "objects", "meshes"]);
+    let mut out = Vec::new();
+    if lit {
+        out.extend(no_light(desc));
+    }
+    if clean(&["include", "materials", "integrator", "objects", "lights"]) {
+        out.extend(specular_under_direct(desc));
+    }
+    if lit {
+        out.extend(facing::lights_facing_away(desc, &[]));
+    }
+    if clean(&["include", "camera"]) {
+        out.extend(narrow_fov(&desc.camera));
+    }
     out
 }
 

@@ -2,7 +2,8 @@
 //! re-read and re-triangulate OBJ files.
 //!
 //! A mesh is reused while its file's (path, modification time, size) is
-//! unchanged. The cached mesh is the file's content in object space; the
+//! unchanged, and so are those of the MTL files it names: the cached value
+//! holds the MTL materials too, so an MTL edit must read the OBJ again. The cached mesh is the file's content in object space; the
 //! scene's transform is applied to a copy by `build`, and the BVH is rebuilt
 //! (milliseconds for thousands of triangles).
 
@@ -14,10 +15,14 @@ use std::time::SystemTime;
 
 type Stamp = (Option<SystemTime>, u64);
 
-/// Parsed OBJ files by path, reused while the file is unchanged.
+/// A cached OBJ: its stamp, its MTL files' stamps (`None`: missing), the data.
+type Entry = (Stamp, Vec<Option<Stamp>>, ObjData);
+
+/// Parsed OBJ files by path, reused while the file and its MTL files are
+/// unchanged.
 #[derive(Default)]
 pub struct MeshCache {
-    entries: RefCell<HashMap<PathBuf, (Stamp, ObjData)>>,
+    entries: RefCell<HashMap<PathBuf, Entry>>,
     hits: RefCell<usize>,
 }
 
@@ -31,20 +36,24 @@ impl MeshCache {
     pub fn load(&self, path: &Path) -> Result<ObjData, String> {
         let before = stamp(path);
         if let Some(s) = before
-            && let Some((cached, mesh)) = self.entries.borrow().get(path)
+            && let Some((cached, mtl, mesh)) = self.entries.borrow().get(path)
             && *cached == s
+            && mesh.mtl_files.iter().map(|m| stamp(m)).eq(mtl.iter().copied())
         {
             *self.hits.borrow_mut() += 1;
             return Ok(mesh.clone());
         }
         let mesh = obj::load_obj_data(path)?;
         // A file rewritten while it was read is not cached: the next event
-        // reloads it.
+        // reloads it. (An MTL file rewritten between its read and the stamp
+        // below is kept stale until its next change: the window is the
+        // parse of the OBJ.)
+        let mtl = mesh.mtl_files.iter().map(|m| stamp(m)).collect();
         match before {
             Some(s) if stamp(path) == before => {
                 self.entries
                     .borrow_mut()
-                    .insert(path.to_path_buf(), (s, mesh.clone()));
+                    .insert(path.to_path_buf(), (s, mtl, mesh.clone()));
             }
             _ => {
                 self.entries.borrow_mut().remove(path);
@@ -82,5 +91,22 @@ mod tests {
         assert_eq!(cache.take_hits(), 0, "a changed file is read again");
         cache.retain(&[]);
         assert!(cache.entries.borrow().is_empty());
+    }
+
+    #[test]
+    fn mesh_cache_reads_again_when_its_mtl_changes() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("t.obj");
+        let obj = "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+        std::fs::write(&path, obj).expect("write");
+        std::fs::write(dir.path().join("t.mtl"), "newmtl red\nKd 0.8 0.1 0.1\n").expect("write");
+        let kd = |c: &MeshCache| c.load(&path).map(|m| m.materials[0].diffuse);
+        let cache = MeshCache::default();
+        assert_eq!(kd(&cache), Ok(Some([0.8, 0.1, 0.1])));
+        std::fs::write(dir.path().join("t.mtl"), "newmtl red\nKd 0.1 0.8 0.15\n").expect("write");
+        assert_eq!(kd(&cache), Ok(Some([0.1, 0.8, 0.15])), "the MTL edit is seen");
+        assert_eq!(cache.take_hits(), 0);
+        assert_eq!(kd(&cache), Ok(Some([0.1, 0.8, 0.15])));
+        assert_eq!(cache.take_hits(), 1, "unchanged files are reused");
     }
 }

@@ -3,15 +3,36 @@
 //!
 //! Receivers are the scene's objects, with their transforms applied as
 //! `build` applies them, and area lights that have a surface `material`.
-//! Only extents known from the description itself count: corners of quads
-//! and rects, spheres, infinite planes (behind only when parallel to the
-//! light). Meshes, instances and SDFs would need files read or trees built,
-//! so they count as lit and keep the warning quiet.
+//! Quads, rects, spheres and infinite planes (behind only when parallel to
+//! the light) are judged from the description. Meshes, instances and SDFs
+//! are judged by their world bounds once built ([`object_extents`]); before
+//! a build, or unbounded, they count as lit and keep the warning quiet.
+//! A box is behind when its eight corners are: a bound larger than the
+//! object errs on the side of silence.
 
+use crate::accel::Aabb;
 use crate::desc::{LightDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::Problem;
 use crate::load::object::compose;
+use crate::scene::Scene;
 use glam::Vec3;
+
+/// The world bounds of each of the scene's first `objects` objects as
+/// built (`None` where one has an unbounded part, an unbounded SDF).
+pub fn object_extents(scene: &Scene, objects: usize) -> Vec<Option<Aabb>> {
+    let mut out = vec![Some(Aabb::EMPTY); objects];
+    for (shape, &id) in scene.shapes.iter().zip(&scene.objects) {
+        // Object ids are 1 + the index in `objects`; area lights follow.
+        let Some(slot) = (id as usize).checked_sub(1).and_then(|i| out.get_mut(i)) else {
+            continue;
+        };
+        *slot = match (*slot, shape.bounds(&scene.geometry)) {
+            (Some(b), Some(s)) => Some(b.union(s)),
+            _ => None,
+        };
+    }
+    out
+}
 
 /// What an area light could shine on, as far as it is cheaply known.
 enum Receiver {
@@ -26,13 +47,15 @@ enum Receiver {
         point: Vec3,
         normal: Vec3,
     },
+    /// A box around what a file or a tree holds.
+    Bounds(Aabb),
     /// Extent unknown without loading a file or building a tree.
     Unknown,
 }
 
 impl Receiver {
     /// The object in world space (its `transform` applied, as `build` does).
-    fn of_object(o: &ObjectDesc) -> Self {
+    fn of_object(o: &ObjectDesc, built: Option<Aabb>) -> Self {
         let m = compose(o.transform());
         let point = |p: &[f32; 3]| m.transform_point3(Vec3::from(*p));
         let vector = |v: &[f32; 3]| m.transform_vector3(Vec3::from(*v));
@@ -61,7 +84,7 @@ impl Receiver {
                 Receiver::parallelogram(point(center) - u - v, 2.0 * u, 2.0 * v)
             }
             ObjectDesc::Sdf { .. } | ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => {
-                Receiver::Unknown
+                built.map_or(Receiver::Unknown, Receiver::Bounds)
             }
         }
     }
@@ -82,6 +105,15 @@ impl Receiver {
                 let parallel = normal.normalize_or_zero().cross(n).length() <= 1e-6;
                 parallel && height(*point) <= tolerance
             }
+            Receiver::Bounds(b) => (0..8).all(|k| {
+                let pick = |bit: usize, lo: f32, hi: f32| if k & bit == 0 { lo } else { hi };
+                let p = Vec3::new(
+                    pick(1, b.min.x, b.max.x),
+                    pick(2, b.min.y, b.max.y),
+                    pick(4, b.min.z, b.max.z),
+                );
+                height(p) <= tolerance
+            }),
             Receiver::Unknown => false,
         }
     }
@@ -121,9 +153,10 @@ fn area_light(l: &LightDesc) -> Option<(Vec3, Vec3, Vec3, [&'static str; 2])> {
 }
 
 /// Area lights whose emitting side faces away from every receiver: the
-/// scene's objects, and area lights that have a surface `material`.
-/// Nothing is said when there are no receivers at all.
-pub(super) fn lights_facing_away(desc: &SceneDesc) -> Vec<Problem> {
+/// scene's objects (`built[i]`: the world bounds of object `i` once built,
+/// if known), and area lights that have a surface `material`. Nothing is
+/// said when there are no receivers at all.
+pub(super) fn lights_facing_away(desc: &SceneDesc, built: &[Option<Aabb>]) -> Vec<Problem> {
     let surfaces = desc
         .lights
         .iter()
@@ -144,7 +177,8 @@ pub(super) fn lights_facing_away(desc: &SceneDesc) -> Vec<Problem> {
     let receivers: Vec<Receiver> = desc
         .objects
         .iter()
-        .map(Receiver::of_object)
+        .enumerate()
+        .map(|(i, o)| Receiver::of_object(o, built.get(i).copied().flatten()))
         .chain(surfaces)
         .collect();
     if receivers.is_empty() {
