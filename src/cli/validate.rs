@@ -112,7 +112,7 @@ fn files_of(scene: &Path, loaded: &crate::load::Loaded) -> String {
             out += &format!("  reads  {}\n", real.display());
         }
     }
-    let target = loaded.view.output_path(scene, None);
+    let target = crate::frame::Output::path(&loaded.view, scene, None, None);
     out += &format!("  writes {}\n", crate::files::resolved(&target).display());
     out
 }

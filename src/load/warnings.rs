@@ -134,7 +134,15 @@ pub fn specular_kind(m: &MaterialDesc) -> Option<&'static str> {
         } if *roughness <= 0.0 && *metalness >= 1.0 => {
             Some("a polished metal (roughness 0, metalness 1: a mirror in effect)")
         }
-        _ => None,
+        // Listed, not `_`: a new material must say whether it is specular.
+        MaterialDesc::CookTorrance { .. }
+        | MaterialDesc::MetalPlastic { .. }
+        | MaterialDesc::Lambert { .. }
+        | MaterialDesc::OrenNayar { .. }
+        | MaterialDesc::Phong { .. }
+        | MaterialDesc::BlinnPhong { .. }
+        | MaterialDesc::RoughPlastic { .. }
+        | MaterialDesc::RoughGlass { .. } => None,
     }
 }
 
@@ -147,7 +155,7 @@ fn specular_under_direct(desc: &SceneDesc) -> Vec<Problem> {
     }
     let lights = desc.lights.iter().filter_map(|l| match l {
         LightDesc::Quad { material, .. } | LightDesc::Rect { material, .. } => material.as_deref(),
-        _ => None,
+        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Environment { .. } => None,
     });
     let overrides = desc.objects.iter().flat_map(|o| {
         o.material_overrides()

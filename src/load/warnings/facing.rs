@@ -10,7 +10,7 @@
 
 use crate::desc::{LightDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::Problem;
-use crate::load::object::compose;
+use crate::load::transform::compose;
 use glam::Vec3;
 
 /// What an area light could shine on, as far as it is cheaply known.
