@@ -52,6 +52,8 @@ enum Nearest {
     /// Shape index, instance index, hit.
     Mesh(u32, u32, MeshHit),
     Triangle(u32, Vec2),
+    /// Shape index of a triangle pair, which of the two, barycentrics.
+    MeshQuad(u32, u32, Vec2),
     /// Shape index of a quad and the hit's `(s, t)`.
     Quad(u32, Vec2),
 }
@@ -114,6 +116,13 @@ impl Scene {
                         };
                         (t, Nearest::Triangle(i, bc))
                     }
+                    Shape::MeshQuad(q) => {
+                        let wt = wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray));
+                        let Some((t, k, bc)) = q.intersect(wt, t_best) else {
+                            continue;
+                        };
+                        (t, Nearest::MeshQuad(i, k, bc))
+                    }
                     // The common analytic shapes inline (the shared match
                     // in `intersect_t` stayed an out-of-line call).
                     Shape::Quad(q) => {
@@ -154,6 +163,10 @@ impl Scene {
                 Shape::Triangle(tr) => (tr.hit(ray, t_best, bc, geo), i),
                 s => (s.hit(ray, t_best, geo), i),
             },
+            Nearest::MeshQuad(i, k, bc) => match &shapes[i as usize] {
+                Shape::MeshQuad(q) => (q.hit(ray, t_best, k, bc, geo), i),
+                s => (s.hit(ray, t_best, geo), i),
+            },
             Nearest::Quad(i, uv) => match &shapes[i as usize] {
                 Shape::Quad(q) => (q.hit_at(ray, t_best, uv), i),
                 s => (s.hit(ray, t_best, geo), i),
@@ -180,6 +193,12 @@ impl Scene {
                 .iter()
                 .any(|s| match s {
                     Shape::Triangle(tr) => tr
+                        .intersect(
+                            wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray)),
+                            t_max,
+                        )
+                        .is_some(),
+                    Shape::MeshQuad(q) => q
                         .intersect(
                             wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray)),
                             t_max,

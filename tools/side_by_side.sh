@@ -54,9 +54,33 @@ for json in "$refs"/*.json; do
     [ "$name" = cornell_diffuse ] && twin="$here/scenes/cornell.ron"
     [ -f "$twin" ] && scenes+=("$name:$twin")
 done
-mask_of() { [ -f "$refs/${1}_emitter_mask.png" ] && echo "--mask $refs/${1}_emitter_mask.png"; }
+# The benchmark scenes of bench/NAME/ (tools/make_bench_scenes.py): a ronray
+# scene and its Mitsuba twin rendering one of the references (the JSON's
+# "reference"), measured against that reference. Each gets a folder of its
+# own that holds the reference under its name, for `ronray bench --scenes`.
+for json in "$here"/bench/*/*.json; do
+    [ -f "$json" ] || continue
+    name="$(basename "$json" .json)"
+    ref="$(sed -n 's/.*"reference": "\([^"]*\)".*/\1/p' "$json")"
+    twin="${json%.json}.ron"
+    [ -n "$ref" ] && [ -f "$twin" ] && [ -f "$refs/${ref}_ref.exr" ] || continue
+    mkdir -p "$out/b_$name"
+    ln -s "$refs/${ref}_ref.exr" "$out/b_$name/${name}_ref.exr"
+    [ -f "$refs/${ref}_emitter_mask.png" ] && ln -s "$refs/${ref}_emitter_mask.png" "$out/b_$name/${name}_emitter_mask.png"
+    scenes+=("$name:$twin")
+done
+# ONLY=SUBSTRING keeps the scenes whose name holds it.
+if [ -n "${ONLY:-}" ]; then
+    kept=()
+    for s in "${scenes[@]}"; do [[ "${s%%:*}" == *"$ONLY"* ]] && kept+=("$s"); done
+    scenes=("${kept[@]}")
+fi
+# Where scene NAME's reference, mask and Mitsuba JSON are.
+refdir_of() { if [ -d "$out/b_$1" ]; then echo "$out/b_$1"; else echo "$refs"; fi; }
+json_of() { local j=("$here"/bench/*/"$1".json); if [ -f "${j[0]}" ]; then echo "${j[0]}"; else echo "$refs/$1.json"; fi; }
+mask_of() { local d; d="$(refdir_of "$1")"; [ -f "$d/${1}_emitter_mask.png" ] && echo "--mask $d/${1}_emitter_mask.png"; }
 mi_render() { # NAME OUT -> "render_s" or "failed"
-    "$py" "$run" "$refs/$1.json" --variant llvm_ad_rgb --spp 256 --out "$2" 2>/dev/null \
+    "$py" "$run" "$(json_of "$1")" --variant llvm_ad_rgb --spp 256 --out "$2" 2>/dev/null \
         | sed -n 's/.*"render_s": \([0-9.]*\).*/\1/p' | grep . || echo failed
 }
 rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed"
@@ -64,18 +88,27 @@ rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed"
     "$ronray" render "$twin" --size 256x256 --spp "$spp" --threads "$threads" "$@" \
         --progress none -o "$o" 2>&1 | sed -n 's/.* in \([0-9.]*\) s.*/\1/p' | grep . || echo failed
 }
-err_of() { "$ronray" diff "$1" "$refs/${2}_ref.exr" $(mask_of "$2") | awk '$1 == "rmse" {print $2}'; }
+err_of() { "$ronray" diff "$1" "$(refdir_of "$2")/${2}_ref.exr" $(mask_of "$2") | awk '$1 == "rmse" {print $2}'; }
 
 echo "== $("$ronray" --version) at $ronray"
 echo "== warm-up (Mitsuba's JIT caches) and Mitsuba's 256-spp error per scene"
 for s in "${scenes[@]}"; do
     name="${s%%:*}"
-    "$py" "$run" "$refs/$name.json" --variant llvm_ad_rgb --spp 16 --out "$out/warm.exr" > /dev/null 2>&1 || true
+    "$py" "$run" "$(json_of "$name")" --variant llvm_ad_rgb --spp 16 --out "$out/warm.exr" > /dev/null 2>&1 || true
     [ "$(mi_render "$name" "$out/mi.exr")" != failed ] && echo "err0 $name $(err_of "$out/mi.exr" "$name")" >> "$log"
 done
 echo "== ronray error per sample count $(date -u +%T) (its timings are single runs: not used)"
-"$ronray" bench --scenes "$refs" --ronray-scenes "$here/scenes" --spp "$spps" \
-    --sampler Independent,Sobol --threads "$threads" | tee "$out/bench"
+: > "$out/bench"
+for s in "${scenes[@]}"; do
+    name="${s%%:*}" twin="${s#*:}"
+    d="$(refdir_of "$name")"
+    # One scene at a time: a folder of references renders every twin it finds.
+    mkdir -p "$out/one_$name"
+    ln -s "$d/${name}_ref.exr" "$out/one_$name/${name}_ref.exr"
+    [ -f "$d/${name}_emitter_mask.png" ] && ln -s "$d/${name}_emitter_mask.png" "$out/one_$name/"
+    "$ronray" bench --scenes "$out/one_$name" --ronray-scenes "$(dirname "$twin")" --spp "$spps" \
+        --sampler Independent,Sobol --threads "$threads" | tee -a "$out/bench"
+done
 # The sample count at which ronray's defaults reach Mitsuba's error: log-log
 # interpolation between the bench's counts, rounded up.
 awk -F'|' '

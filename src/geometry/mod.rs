@@ -10,6 +10,7 @@
 
 pub mod instance;
 pub mod mesh;
+pub mod mesh_quad;
 pub mod mesh_triangle;
 pub mod obj;
 pub mod plane;
@@ -22,6 +23,7 @@ pub mod triangle;
 
 pub use instance::Instance;
 pub use mesh::{Mesh, MeshHit};
+pub use mesh_quad::MeshQuad;
 pub use mesh_triangle::MeshTriangle;
 pub use plane::Plane;
 pub use quad::Quad;
@@ -52,6 +54,9 @@ pub enum Shape {
     Plane(Plane),
     /// A triangle of a small mesh, flattened into the scene BVH.
     Triangle(MeshTriangle),
+    /// Two triangles of a small mesh that share an edge (an OBJ quad),
+    /// flattened into the scene BVH as one entry.
+    MeshQuad(MeshQuad),
 }
 
 /// Meshes and their placements, shared by every [`Shape::Instance`].
@@ -108,6 +113,7 @@ impl Shape {
                 .map(|h| h.t),
             Shape::Plane(p) => p.intersect(ray, t_max),
             Shape::Triangle(tr) => tr.intersect(&WatertightRay4::new(ray), t_max).map(|(t, _)| t),
+            Shape::MeshQuad(q) => q.intersect(&WatertightRay4::new(ray), t_max).map(|(t, _, _)| t),
         }
     }
 
@@ -148,6 +154,13 @@ impl Shape {
                     .map_or(Vec2::ZERO, |(_, bc)| bc);
                 tr.hit(ray, t, bc, geo)
             }
+            Shape::MeshQuad(q) => {
+                let wt = WatertightRay4::new(ray);
+                let (k, bc) = q
+                    .intersect(&wt, t * (1.0 + 1e-5) + f32::MIN_POSITIVE)
+                    .map_or((0, Vec2::ZERO), |(_, k, bc)| (k, bc));
+                q.hit(ray, t, k, bc, geo)
+            }
         }
     }
 
@@ -160,6 +173,7 @@ impl Shape {
             Shape::Instance(i) => Some(geo.instances[*i as usize].bounds(&geo.meshes)),
             Shape::Plane(_) => None,
             Shape::Triangle(tr) => Some(tr.bounds()),
+            Shape::MeshQuad(q) => Some(q.bounds()),
         }
     }
 }

@@ -266,6 +266,70 @@ impl WatertightRay4 {
         (t > 0.0 && t < t_max).then(|| (t, Vec2::new(uvw.y * inv, uvw.z * inv)))
     }
 
+    /// Two triangles sharing an edge, `(v0, v1, v2)` and `(v0, v2, v3)`,
+    /// whose corners are the lanes of `rows` (`rows[axis]` = that
+    /// coordinate of v0…v3): the nearest hit in `(0, t_max)`, which
+    /// triangle (0 or 1) and its barycentrics of its second and third
+    /// corners. Each lane computes exactly what [`WatertightRay::intersect`]
+    /// does for its triangle, so the result is the two scalar tests' bit
+    /// for bit (ties go to the first), and the shared edge `v0–v2` gets the
+    /// same edge value with opposite signs in both: watertight. The four
+    /// corners are moved and sheared once for both triangles — an OBJ quad
+    /// costs about one triangle's test (`mesh_quad.rs`).
+    #[inline(always)]
+    pub fn pair(&self, rows: &[Vec4; 3], t_max: f32) -> Option<(f32, u32, Vec2)> {
+        let [kx, ky, kz] = self.one.k;
+        // Corners relative to the origin, then sheared: lanes (v0, v1, v2, v3).
+        let z = rows[kz] - self.o[2];
+        let x = (rows[kx] - self.o[0]) - self.s[0] * z;
+        let y = (rows[ky] - self.o[1]) - self.s[1] * z;
+        // Lane 0 is (a, b, c) = (v0, v1, v2), lane 1 (v0, v2, v3).
+        let (ax, bx, cx) = (x.xxxx(), x.yzyz(), x.zwzw());
+        let (ay, by, cy) = (y.xxxx(), y.yzyz(), y.zwzw());
+        let (az, bz, cz) = (z.xxxx(), z.yzyz(), z.zwzw());
+        let u = cx * by - cy * bx;
+        let v = ax * cy - ay * cx;
+        let w = bx * ay - by * ax;
+        let zero = Vec4::ZERO;
+        if (u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero)).bitmask() & 3 != 0 {
+            return self.pair_exact(rows, t_max);
+        }
+        let inside =
+            (u.cmpge(zero) & v.cmpge(zero) & w.cmpge(zero)) | (u.cmple(zero) & v.cmple(zero) & w.cmple(zero));
+        let det = u + v + w;
+        let ok = det.cmpne(zero) & det.abs().cmplt(Vec4::INFINITY);
+        let tz = self.s[2] * (u * az + v * bz + w * cz);
+        let inv = Vec4::ONE / det;
+        let t = tz * inv;
+        let hit = t.cmpgt(zero) & t.cmplt(Vec4::splat(t_max));
+        let mask = (inside & ok & hit).bitmask() & 3;
+        let lane = match mask {
+            0 => return None,
+            1 => 0,
+            2 => 1,
+            _ => usize::from(t.y < t.x),
+        };
+        Some((
+            t[lane],
+            lane as u32,
+            Vec2::new(v[lane] * inv[lane], w[lane] * inv[lane]),
+        ))
+    }
+
+    /// [`WatertightRay4::pair`] through the scalar test (an edge value of
+    /// exactly zero: its f64 fallback).
+    #[cold]
+    fn pair_exact(&self, rows: &[Vec4; 3], t_max: f32) -> Option<(f32, u32, Vec2)> {
+        let p = [0, 1, 2, 3].map(|v| Vec3A::new(rows[0][v], rows[1][v], rows[2][v]));
+        let first = self.one.intersect(p[0], p[1], p[2], t_max);
+        let second = self.one.intersect(p[0], p[2], p[3], first.map_or(t_max, |h| h.0));
+        match (first, second) {
+            (_, Some((t, bc))) => Some((t, 1, bc)),
+            (Some((t, bc)), None) => Some((t, 0, bc)),
+            (None, None) => None,
+        }
+    }
+
     /// [`WatertightRay4::single`] through the scalar test, whose f64
     /// fallback handles an edge value of exactly zero.
     #[cold]
@@ -429,6 +493,52 @@ mod tests {
             hits += want.is_some() as u32;
         }
         assert!(hits > rounds / 10, "the rays exercise hits: {hits}/{rounds}");
+    }
+
+    /// The two-triangle test against two scalar tests, bit for bit, with
+    /// rays through the shared edge, the corners and the f64 fallback.
+    #[test]
+    fn pair_test_matches_two_scalar_tests_bit_for_bit() {
+        let mut rng = crate::math::Pcg32::new(13, 2);
+        let mut p = || Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0;
+        let (mut hits, mut second) = (0, 0);
+        let rounds = 20_000;
+        for round in 0..rounds {
+            let mut q = [p(), p(), p(), p()];
+            if round % 7 == 0 {
+                q = [Vec3A::ZERO, Vec3A::X, Vec3A::new(1.0, 1.0, 0.0), Vec3A::Y];
+            }
+            let o = p() * 3.0;
+            let target = match round % 7 {
+                0 => Vec3A::ZERO,
+                3 => (q[0] + q[2]) * 0.5,
+                5 => (q[0] + q[1] + q[2] + q[3]) * 0.25,
+                _ => p() * 0.5,
+            };
+            let ray = Ray::new(o, (target - o).normalize());
+            let wt = WatertightRay4::new(&ray);
+            let t_max = if round % 3 == 0 { 2.0 } else { f32::INFINITY };
+            let a = wt.one.intersect(q[0], q[1], q[2], t_max);
+            let b = wt.one.intersect(q[0], q[2], q[3], a.map_or(t_max, |h| h.0));
+            let want = match (a, b) {
+                (_, Some((t, bc))) => Some((t, 1, bc)),
+                (Some((t, bc)), None) => Some((t, 0, bc)),
+                (None, None) => None,
+            };
+            let rows = [0, 1, 2].map(|k| Vec4::new(q[0][k], q[1][k], q[2][k], q[3][k]));
+            let got = wt.pair(&rows, t_max);
+            assert_eq!(
+                got.map(|(t, i, bc)| (t.to_bits(), i, bc.x.to_bits(), bc.y.to_bits())),
+                want.map(|(t, i, bc)| (t.to_bits(), i, bc.x.to_bits(), bc.y.to_bits())),
+                "round {round}"
+            );
+            hits += want.is_some() as u32;
+            second += want.is_some_and(|h| h.1 == 1) as u32;
+        }
+        assert!(
+            hits > rounds / 10 && second > rounds / 40,
+            "hits {hits}, second {second}"
+        );
     }
 
     #[test]

@@ -41,6 +41,25 @@ pub struct EnvTable {
     corners: Vec<f32>,
     /// Chooses the cell, by the mean of its corners.
     cells: PiecewiseConstant2d,
+    /// `W·(H − 1) / Σ cell means`: the density at a point is its
+    /// interpolated corner weight times this (0 for a map without light,
+    /// which is sampled uniformly).
+    inv_mean: f32,
+}
+
+/// Where a point of the map falls between pixel centres: the four pixels
+/// around it (columns `i0`, `i1`, rows `j0`, `j1`) and its place between
+/// them. The same footprint serves the radiance lookup
+/// ([`EnvMap::bilerp`]) and the density ([`EnvTable::pdf_at`]): the cells
+/// are the lookup's grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Footprint {
+    /// Left and right columns (the right wraps across the seam).
+    pub i: [u32; 2],
+    /// Upper and lower rows.
+    pub j: [u32; 2],
+    /// Place between them, each in [0, 1].
+    pub f: Vec2,
 }
 
 /// `x` ∈ [0, 1) with density ∝ `(1 − x) a + x b` (pbrt-v4's `SampleLinear`).
@@ -66,6 +85,14 @@ fn bilinear_pdf(p: Vec2, w: [f32; 4]) -> f32 {
         + (1.0 - p.x) * p.y * w[2]
         + p.x * p.y * w[3])
         / sum
+}
+
+/// The bilinear patch of corners `w` ((0,0), (1,0), (0,1), (1,1)) at `p`.
+#[inline]
+fn bilerp(w: [f32; 4], p: Vec2) -> f32 {
+    let top = w[0] + (w[1] - w[0]) * p.x;
+    let bottom = w[2] + (w[3] - w[2]) * p.x;
+    top + (bottom - top) * p.y
 }
 
 impl EnvTable {
@@ -98,11 +125,32 @@ impl EnvTable {
                 *o = 0.25 * (corners[r0 + i] + corners[r0 + i1] + corners[r1 + i] + corners[r1 + i1]);
             }
         });
+        // Σ of the cell means, the integral of the interpolant over the
+        // cells (in cell units), in f64.
+        let sum: f64 = (0..rows)
+            .into_par_iter()
+            .map(|j| {
+                let (r0, r1) = (j * w, (j + 1).min(h - 1) * w);
+                (0..w)
+                    .map(|i| {
+                        let i1 = if i + 1 == w { 0 } else { i + 1 };
+                        0.25 * (corners[r0 + i] + corners[r0 + i1] + corners[r1 + i] + corners[r1 + i1])
+                            as f64
+                    })
+                    .sum::<f64>()
+            })
+            .sum();
+        let inv_mean = (w * rows) as f64 / sum;
         Self {
             width: w,
             height: h,
             corners,
             cells,
+            inv_mean: if inv_mean.is_finite() && sum > 0.0 {
+                inv_mean as f32
+            } else {
+                0.0
+            },
         }
     }
 
@@ -126,10 +174,11 @@ impl EnvTable {
         (self.height - 1).max(1)
     }
 
-    /// Image coordinates `(u, v)` ∈ [0, 1)² for `u` ∈ [0, 1)², and their
-    /// density with respect to area on [0, 1)².
+    /// Image coordinates `(u, v)` ∈ [0, 1)² for `u` ∈ [0, 1)², their
+    /// density with respect to area on [0, 1)², and their footprint (for
+    /// the radiance there without a second search).
     #[inline]
-    pub fn sample(&self, u: Vec2) -> (Vec2, f32) {
+    pub fn sample(&self, u: Vec2) -> (Vec2, f32, Footprint) {
         let (q, cell_pdf) = self.cells.sample(u);
         let (w, rows) = (self.width as f32, self.rows() as f32);
         // The cell, and where in it: uniform, as the inversion left it.
@@ -142,7 +191,12 @@ impl EnvTable {
         let c = self.corners_of(i, j);
         let by = sample_linear(fy, c[0] + c[1], c[2] + c[3]);
         let bx = sample_linear(fx, (1.0 - by) * c[0] + by * c[2], (1.0 - by) * c[1] + by * c[3]);
-        let pdf = cell_pdf * bilinear_pdf(Vec2::new(bx, by), c);
+        let f = Vec2::new(bx, by);
+        let pdf = if self.inv_mean > 0.0 {
+            bilerp(c, f) * self.inv_mean
+        } else {
+            cell_pdf * bilinear_pdf(f, c)
+        };
         // Cells start half a pixel in; the last wraps across the seam.
         let mut uu = (i as f32 + 0.5 + bx) / w;
         if uu >= 1.0 {
@@ -150,10 +204,36 @@ impl EnvTable {
         }
         // (A map of one row is constant in v: its one cell row spans it all.)
         let vv = (j as f32 + by) / rows;
+        let at = Footprint {
+            i: [i as u32, if i + 1 == self.width { 0 } else { i as u32 + 1 }],
+            j: [j as u32, (j + 1).min(self.height - 1) as u32],
+            f,
+        };
         (
             Vec2::new(uu.clamp(0.0, 1.0 - f32::EPSILON), vv.clamp(0.0, 1.0)),
             pdf,
+            at,
         )
+    }
+
+    /// Density of [`Self::sample`] at the point of `at` (the footprint
+    /// [`EnvMap::footprint`] gives for its image coordinates).
+    #[inline]
+    pub fn pdf_at(&self, at: &Footprint) -> f32 {
+        let w = self.width;
+        let (r0, r1) = (at.j[0] as usize * w, at.j[1] as usize * w);
+        let (i0, i1) = (at.i[0] as usize, at.i[1] as usize);
+        let c = [
+            self.corners[r0 + i0],
+            self.corners[r0 + i1],
+            self.corners[r1 + i0],
+            self.corners[r1 + i1],
+        ];
+        if self.inv_mean > 0.0 {
+            bilerp(c, at.f) * self.inv_mean
+        } else {
+            1.0
+        }
     }
 
     /// Density of [`Self::sample`] at image coordinates `uv`.
@@ -169,8 +249,12 @@ impl EnvTable {
         let y = (uv.y * rows).clamp(0.0, rows);
         let j = (y as usize).min(self.rows() - 1);
         let fy = (y - j as f32).clamp(0.0, 1.0);
+        let c = self.corners_of(i, j);
+        if self.inv_mean > 0.0 {
+            return bilerp(c, Vec2::new(fx, fy)) * self.inv_mean;
+        }
         let cell = Vec2::new((i as f32 + 0.5) / w, (j as f32 + 0.5) / rows);
-        self.cells.pdf(cell) * bilinear_pdf(Vec2::new(fx, fy), self.corners_of(i, j))
+        self.cells.pdf(cell) * bilinear_pdf(Vec2::new(fx, fy), c)
     }
 
     /// Heap bytes of the tables.
@@ -224,7 +308,7 @@ mod tests {
         });
         let t = EnvTable::new(&m);
         for _ in 0..20_000 {
-            let (uv, pdf) = t.sample(rng.next_vec2());
+            let (uv, pdf, _) = t.sample(rng.next_vec2());
             assert!(pdf > 0.0);
             let again = t.pdf(uv);
             assert!((again - pdf).abs() <= 2e-3 * pdf, "{uv}: {pdf} vs {again}");
@@ -252,7 +336,7 @@ mod tests {
             );
             let (mut lo, mut hi) = (1.0f32, 0.0f32);
             for _ in 0..2000 {
-                let (uv, pdf) = t.sample(rng.next_vec2());
+                let (uv, pdf, _) = t.sample(rng.next_vec2());
                 assert!((t.pdf(uv) - pdf).abs() <= 2e-3 * pdf, "{w}×{h} at {uv}");
                 lo = lo.min(uv.y);
                 hi = hi.max(uv.y);
@@ -275,7 +359,7 @@ mod tests {
         let mut rng = Pcg32::new(1, 1);
         let (mut lo, mut hi) = (f32::INFINITY, 0.0f32);
         for _ in 0..10_000 {
-            let (uv, pdf) = t.sample(rng.next_vec2());
+            let (uv, pdf, _) = t.sample(rng.next_vec2());
             let l = m.lookup(uv).x;
             let weight = l * (PI * uv.y).sin() / pdf;
             lo = lo.min(weight);

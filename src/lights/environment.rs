@@ -33,7 +33,7 @@
 //! sphere uniformly: half its shadow rays from a floor go into the floor.
 
 use super::LightSample;
-use super::env_table::EnvTable;
+use super::env_table::{EnvTable, Footprint};
 use super::irradiance::{ShSum, SkyIrradiance};
 use crate::math::Frame;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
@@ -63,6 +63,13 @@ impl EnvMap {
     /// checks were a third of its ~150 instructions (callgrind).
     #[inline]
     pub fn lookup(&self, uv: Vec2) -> Rgb {
+        self.bilerp(&self.footprint(uv))
+    }
+
+    /// The four pixels around image coordinates `uv` and the place
+    /// between them (see [`EnvMap::lookup`] for the grid).
+    #[inline]
+    pub fn footprint(&self, uv: Vec2) -> Footprint {
         let (w, h) = (self.width as usize, self.height as usize);
         // Columns wrap: left of the first centre blends the last column in.
         let x = (uv.x * w as f32 - 0.5).clamp(-1.0, w as f32 - 0.5);
@@ -77,17 +84,27 @@ impl EnvMap {
         let j0 = (y as i32) as usize;
         let j1 = (j0 + 1).min(h - 1);
         let fy = y - j0 as f32;
-        let (row0, row1) = (self.row(j0), self.row(j1));
-        let px = |row: &[f32], i: usize| {
-            let p = &row[3 * i..3 * i + 3];
+        Footprint {
+            i: [i0 as u32, i1 as u32],
+            j: [j0 as u32, j1 as u32],
+            f: Vec2::new(fx, fy),
+        }
+    }
+
+    /// The image interpolated over footprint `at`.
+    #[inline]
+    pub fn bilerp(&self, at: &Footprint) -> Rgb {
+        let (row0, row1) = (self.row(at.j[0] as usize), self.row(at.j[1] as usize));
+        let px = |row: &[f32], i: u32| {
+            let p = &row[3 * i as usize..3 * i as usize + 3];
             Rgb::new(p[0], p[1], p[2])
         };
-        let top = px(row0, i0) * (1.0 - fx) + px(row0, i1) * fx;
-        let bottom = px(row1, i0) * (1.0 - fx) + px(row1, i1) * fx;
+        let (fx, fy) = (at.f.x, at.f.y);
+        let top = px(row0, at.i[0]) * (1.0 - fx) + px(row0, at.i[1]) * fx;
+        let bottom = px(row1, at.i[0]) * (1.0 - fx) + px(row1, at.i[1]) * fx;
         top * (1.0 - fy) + bottom * fy
     }
 
-    /// Row `j`'s `3·width` floats.
     #[inline]
     fn row(&self, j: usize) -> &[f32] {
         let n = 3 * self.width as usize;
@@ -241,7 +258,7 @@ impl EnvironmentLight {
     pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2) -> Option<LightSample> {
         let (wi, pdf, li) = match (&self.distribution, self.sampling) {
             (Some(dist), EnvSampling::Importance) => {
-                let (uv, uv_pdf) = dist.sample(u);
+                let (uv, uv_pdf, at) = dist.sample(u);
                 // θ = π v is half a turn of v, φ = 2π u a turn of u.
                 let (sin_t, cos_t) = sin_cos_turns(0.5 * uv.y);
                 if sin_t <= 0.0 || uv_pdf <= 0.0 {
@@ -249,8 +266,9 @@ impl EnvironmentLight {
                 }
                 let (sin_p, cos_p) = sin_cos_turns(uv.x);
                 let d = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
-                // The image at the sampled point: no atan2/acos round trip.
-                let li = self.scale * self.map.as_ref().map_or(Rgb::ONE, |m| m.lookup(uv));
+                // The image at the sampled point: no atan2/acos round trip,
+                // and the pixels the sample was drawn between.
+                let li = self.scale * self.map.as_ref().map_or(Rgb::ONE, |m| m.bilerp(&at));
                 (self.to_world(d), uv_pdf / (2.0 * PI * PI * sin_t), li)
             }
             (None, EnvSampling::Importance) if n != Vec3A::ZERO => {
@@ -288,7 +306,13 @@ impl EnvironmentLight {
                 if sin_t <= 0.0 {
                     return 0.0;
                 }
-                dist.pdf(Self::uv(e)) / (2.0 * PI * PI * sin_t)
+                // Through the lookup's footprint, as `le_and_pdf` (bit for bit).
+                let uv = Self::uv(e);
+                let pdf = match &self.map {
+                    Some(m) => dist.pdf_at(&m.footprint(uv)),
+                    None => dist.pdf(uv),
+                };
+                pdf / (2.0 * PI * PI * sin_t)
             }
             (None, EnvSampling::Importance) if n != Vec3A::ZERO => {
                 n.dot(d).max(0.0) * std::f32::consts::FRAC_1_PI
@@ -308,15 +332,16 @@ impl EnvironmentLight {
             return (self.scale, self.pdf(d, n));
         };
         let e = self.to_env(d);
-        let uv = Self::uv(e);
-        let le = self.scale * m.lookup(uv);
+        let at = m.footprint(Self::uv(e));
+        let le = self.scale * m.bilerp(&at);
         let pdf = match (&self.distribution, self.sampling) {
             (Some(dist), EnvSampling::Importance) => {
                 let sin_t = (e.x * e.x + e.z * e.z).sqrt();
                 if sin_t <= 0.0 {
                     return (le, 0.0);
                 }
-                dist.pdf(uv) / (2.0 * PI * PI * sin_t)
+                // The lookup's footprint is the table's cell.
+                dist.pdf_at(&at) / (2.0 * PI * PI * sin_t)
             }
             _ => UNIFORM_SPHERE_PDF,
         };

@@ -10,12 +10,15 @@ use std::f32::consts::PI;
 
 /// Triangles emitting uniform radiance from their front (the side their
 /// counter-clockwise winding faces), or both sides when `two_sided`; in world
-/// space, copied from the placed mesh (36 bytes per triangle, plus 12 for the
-/// alias table).
+/// space, copied from the placed mesh (48 bytes per triangle for its corners,
+/// 16 for its normal and 12 for the alias table).
 #[derive(Clone, Debug)]
 pub struct MeshLight {
     /// World-space corners, wound so that `(b − a) × (c − a)` is the emitting side.
     tris: Vec<[Vec3A; 3]>,
+    /// Unit normal of each triangle's emitting side (zero when degenerate),
+    /// kept rather than made from the corners at every sample.
+    normals: Vec<Vec3A>,
     /// Picks a triangle in proportion to its area.
     alias: AliasTable,
     /// Total area in m².
@@ -38,6 +41,10 @@ impl MeshLight {
         let area: f32 = areas.iter().map(|&a| a as f64).sum::<f64>() as f32;
         (area > 0.0).then(|| Self {
             alias: AliasTable::new(&areas),
+            normals: tris
+                .iter()
+                .map(|[a, b, c]| (*b - *a).cross(*c - *a).normalize_or_zero())
+                .collect(),
             tris,
             area,
             radiance,
@@ -61,7 +68,7 @@ impl MeshLight {
         let su = ux.sqrt();
         let (b1, b2) = (1.0 - su, u.y * su);
         let q = a * b1 + b * b2 + c * (1.0 - b1 - b2);
-        let n = (b - a).cross(c - a).normalize_or_zero();
+        let n = self.normals[k];
         let d = q - p;
         let dist2 = d.length_squared();
         let dist = dist2.sqrt();

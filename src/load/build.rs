@@ -186,6 +186,11 @@ pub fn build_in(
             .instances
             .get(t.instance as usize)
             .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
+        Shape::MeshQuad(q) => ctx
+            .geometry
+            .instances
+            .get(q.instance as usize)
+            .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
     });
     let caustics = CausticEmitters::new(&ctx.lights, targets);
     let mut scene = Scene {

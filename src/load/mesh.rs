@@ -21,9 +21,10 @@ use super::mesh_state::LoadedMesh;
 use super::validate::Checker;
 use crate::desc::{MeshDesc, ObjectDesc};
 use crate::diagnostic::{Problem, suggest};
+use crate::geometry::mesh_quad::pairing;
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::ObjData;
-use crate::geometry::{Instance, MeshTriangle, NO_LIGHT, Shape};
+use crate::geometry::{Instance, MeshQuad, MeshTriangle, NO_LIGHT, Shape};
 use crate::lights::{Light, MeshLight};
 use crate::materials::{ColorTex, Material};
 use crate::math::Rgb;
@@ -84,10 +85,35 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     let mesh = &ctx.geometry.meshes[loaded.mesh as usize];
     ctx.triangles += mesh.triangle_count();
     if flatten {
-        ctx.shapes.extend((0..mesh.triangle_count() as u32).map(|tri| {
+        // Triangles that make a quad go in as one entry (`mesh_quad.rs`),
+        // the others one by one. Greedy over all pairs: the mesh's BVH
+        // build has reordered the triangles, and flattened meshes are
+        // small (at most FLATTEN_MAX triangles).
+        let n = mesh.triangle_count() as u32;
+        let corners = |tri: u32| {
             let (a, b, c) = mesh.corners(tri);
-            Shape::Triangle(MeshTriangle::new([a, b, c], id, tri))
-        }));
+            [a, b, c]
+        };
+        let mut taken = vec![false; n as usize];
+        for tri in 0..n {
+            if taken[tri as usize] {
+                continue;
+            }
+            taken[tri as usize] = true;
+            let pair = (tri + 1..n).filter(|&o| !taken[o as usize]).find_map(|o| {
+                let (v, rot) = pairing(corners(tri), corners(o))?;
+                Some((o, MeshQuad::new(v, id, [tri, o], rot)?))
+            });
+            match pair {
+                Some((o, q)) => {
+                    taken[o as usize] = true;
+                    ctx.shapes.push(Shape::MeshQuad(q));
+                }
+                None => ctx
+                    .shapes
+                    .push(Shape::Triangle(MeshTriangle::new(corners(tri), id, tri))),
+            }
+        }
     } else {
         ctx.shapes.push(Shape::Instance(id));
     }

@@ -1,0 +1,191 @@
+//! Two triangles of a small baked mesh that share an edge, as one entry of
+//! the scene BVH: an OBJ quad, split in two by the loader.
+//!
+//! The two halves of a planar quad usually have the same box (always for a
+//! rectangle along the axes: each half holds a diagonal), so as separate
+//! entries a ray that meets the box tests both, each with its own setup,
+//! and the tree has twice the leaves. As one entry the four corners are
+//! moved and sheared once and both edge-function sets come out of one
+//! vector product ([`WatertightRay4::pair`]), bit for bit what the two
+//! triangle tests give. On the reference Cornell box as one OBJ (36
+//! triangles, `bench/cornell_mesh`) the flattened triangles became 18
+//! pairs; the instruction counts are in `docs/benchmarks.md`.
+//!
+//! The loader pairs triangles that are nearly coplanar, share an edge, are
+//! wound alike and whose joint box is no larger in surface area than their
+//! two boxes together — the condition under which one entry cannot cost
+//! more traversal than two.
+
+use super::triangle::WatertightRay4;
+use super::{Geometry, Hit, MeshHit};
+use crate::accel::Aabb;
+use crate::math::Ray;
+use glam::{Vec2, Vec3A, Vec4};
+
+/// Bits of [`MeshQuad::tris`] that hold the triangle index; the top two
+/// hold the rotation between the mesh's corner order and the pair's.
+const INDEX: u32 = (1 << 30) - 1;
+
+/// Two triangles `(v0, v1, v2)` and `(v0, v2, v3)` of one placed mesh.
+#[derive(Clone, Copy, Debug)]
+pub struct MeshQuad {
+    /// World-space corners v0…v3, one row per axis: the layout of
+    /// [`WatertightRay4::pair`].
+    rows: [Vec4; 3],
+    /// The instance that shades it.
+    pub instance: u32,
+    /// The mesh's index of each triangle (low 30 bits) and the rotation
+    /// `r` of its corners (top 2 bits): the mesh's corner `(k + r) mod 3`
+    /// is the pair's `k`-th corner of that triangle.
+    tris: [u32; 2],
+}
+
+impl MeshQuad {
+    /// The pair whose first triangle is mesh triangle `tris[0]` with its
+    /// corners rotated by `rot[0]` to `(v0, v1, v2)`, the second `tris[1]`
+    /// rotated by `rot[1]` to `(v0, v2, v3)`. `None` when an index does not
+    /// fit in 30 bits (flattened meshes are small: never in practice).
+    pub fn new(v: [Vec3A; 4], instance: u32, tris: [u32; 2], rot: [u32; 2]) -> Option<Self> {
+        if tris.iter().any(|&t| t > INDEX) || rot.iter().any(|&r| r > 2) {
+            return None;
+        }
+        Some(Self {
+            rows: [0, 1, 2].map(|a| Vec4::new(v[0][a], v[1][a], v[2][a], v[3][a])),
+            instance,
+            tris: [tris[0] | rot[0] << 30, tris[1] | rot[1] << 30],
+        })
+    }
+
+    /// World-space corners v0…v3.
+    pub fn corners(&self) -> [Vec3A; 4] {
+        [0, 1, 2, 3].map(|v| Vec3A::new(self.rows[0][v], self.rows[1][v], self.rows[2][v]))
+    }
+
+    /// Mesh index of triangle `k` (0 or 1) of the pair.
+    pub fn tri(&self, k: usize) -> u32 {
+        self.tris[k] & INDEX
+    }
+
+    /// Watertight intersection in `(0, t_max)`: distance, which triangle,
+    /// and the barycentrics of its second and third corners in the pair's
+    /// order.
+    #[inline(always)]
+    pub fn intersect(&self, wt: &WatertightRay4, t_max: f32) -> Option<(f32, u32, Vec2)> {
+        wt.pair(&self.rows, t_max)
+    }
+
+    /// Shading record for a hit of triangle `k` found by
+    /// [`MeshQuad::intersect`]: the barycentrics are turned back to the
+    /// mesh's corner order, so normals and UVs interpolate as for a
+    /// triangle hit on its own.
+    pub fn hit(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry) -> Hit {
+        let packed = self.tris[k as usize & 1];
+        let h = MeshHit {
+            t,
+            tri: packed & INDEX,
+            bc: to_mesh_order(packed >> 30, bc),
+        };
+        geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
+    }
+
+    /// World-space bounds of the four corners.
+    pub fn bounds(&self) -> Aabb {
+        Aabb::from_points(&self.corners())
+    }
+}
+
+/// Barycentrics `(b1, b2)` of a triangle's corners `k = 1, 2` in the
+/// pair's order, as those of the mesh's corners 1 and 2 when the mesh's
+/// corner `(k + r) mod 3` is the pair's `k`-th.
+#[inline]
+fn to_mesh_order(r: u32, bc: Vec2) -> Vec2 {
+    let b = [1.0 - bc.x - bc.y, bc.x, bc.y];
+    // Mesh corner m is the pair's corner (m − r) mod 3.
+    let at = |m: u32| b[((m + 3 - r) % 3) as usize];
+    match r {
+        0 => bc,
+        _ => Vec2::new(at(1), at(2)),
+    }
+}
+
+/// How to pair triangles `a` and `b` (corners in the mesh's order) as
+/// `(v0, v1, v2)` and `(v0, v2, v3)`: the four corners and each
+/// triangle's rotation, when they are nearly coplanar, share an edge wound
+/// in opposite directions (so their fronts agree) and their joint box is
+/// no larger in surface area than their two boxes together.
+pub fn pairing(a: [Vec3A; 3], b: [Vec3A; 3]) -> Option<([Vec3A; 4], [u32; 2])> {
+    // Nearly coplanar (within ~8°): halves of one face, not a fold of two
+    // faces, whose joint box would hold the space between them.
+    let normal = |t: &[Vec3A; 3]| (t[1] - t[0]).cross(t[2] - t[0]).normalize_or_zero();
+    // (NaN normals of degenerate triangles fail the test too.)
+    if normal(&a).dot(normal(&b)).partial_cmp(&0.99) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let area = |t: &[Vec3A]| Aabb::from_points(t).surface_area();
+    let joint = [a[0], a[1], a[2], b[0], b[1], b[2]];
+    if area(&joint).partial_cmp(&(area(&a) + area(&b))) == Some(std::cmp::Ordering::Greater)
+        || !area(&joint).is_finite()
+    {
+        return None;
+    }
+    // Rotate `a` so that its edge v2 → v0 is the shared one; `b` must
+    // run it v0 → v2.
+    for ra in 0..3u32 {
+        let v = |k: u32| a[((k + ra) % 3) as usize];
+        let (v0, v1, v2) = (v(0), v(1), v(2));
+        for rb in 0..3u32 {
+            let w = |k: u32| b[((k + rb) % 3) as usize];
+            if w(0) == v0 && w(1) == v2 && w(2) != v1 {
+                return Some(([v0, v1, v2, w(2)], [ra, rb]));
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn barycentrics_return_to_the_meshs_corner_order() {
+        let m = [Vec3A::ZERO, Vec3A::X, Vec3A::Y];
+        let p = |bc: Vec2, t: [Vec3A; 3]| t[0] * (1.0 - bc.x - bc.y) + t[1] * bc.x + t[2] * bc.y;
+        for r in 0..3u32 {
+            // The pair's corner k is the mesh's (k + r) mod 3.
+            let pair_order = [0, 1, 2].map(|k| m[((k + r) % 3) as usize]);
+            let bc = Vec2::new(0.2, 0.3);
+            let at = p(bc, pair_order);
+            let back = to_mesh_order(r, bc);
+            assert!((p(back, m) - at).length() < 1e-6, "rotation {r}");
+        }
+    }
+
+    #[test]
+    fn a_fanned_quad_pairs_and_a_fold_or_a_flip_does_not() {
+        let q = [Vec3A::ZERO, Vec3A::X, Vec3A::new(1.0, 1.0, 0.0), Vec3A::Y];
+        // The fan (0, 1, 2), (0, 2, 3) as an OBJ loader writes it, rotated.
+        let a = [q[1], q[2], q[0]];
+        let b = [q[2], q[3], q[0]];
+        let (v, [ra, rb]) = pairing(a, b).expect("a quad");
+        assert_eq!((v[0], v[2]), (q[0], q[2]));
+        let corner = |t: [Vec3A; 3], r: u32, k: u32| t[((k + r) % 3) as usize];
+        assert_eq!(
+            [corner(a, ra, 0), corner(a, ra, 1), corner(a, ra, 2)],
+            [v[0], v[1], v[2]]
+        );
+        assert_eq!(
+            [corner(b, rb, 0), corner(b, rb, 1), corner(b, rb, 2)],
+            [v[0], v[2], v[3]]
+        );
+        // The second triangle wound the other way: their fronts disagree.
+        assert!(pairing(a, [q[0], q[3], q[2]]).is_none());
+        // Folded along the shared edge: two faces of a box.
+        assert!(pairing(a, [q[2], Vec3A::new(0.0, 1.0, 1.0), q[0]]).is_none());
+        // No shared edge.
+        assert!(pairing(a, [q[3], Vec3A::new(5.0, 5.0, 0.0), Vec3A::new(0.0, 5.0, 0.0)]).is_none());
+        // A long sliver beside a small triangle: the joint box is larger.
+        let far = [q[0], q[2], Vec3A::new(-9.0, 9.0, 9.0)];
+        assert!(pairing(a, far).is_none());
+    }
+}
