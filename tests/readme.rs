@@ -158,7 +158,11 @@ fn every_variant_sites(name: &str, variants: &[String]) -> Vec<String> {
     while let Some(dir) = stack.pop() {
         for e in std::fs::read_dir(&dir).expect("read src").flatten() {
             let p = e.path();
-            let rel = p.strip_prefix(&src).expect("under src").to_string_lossy().replace('\\', "/");
+            let rel = p
+                .strip_prefix(&src)
+                .expect("under src")
+                .to_string_lossy()
+                .replace('\\', "/");
             if p.is_dir() {
                 if !rel.ends_with("tests") {
                     stack.push(p);
@@ -195,11 +199,22 @@ fn every_variant_sites(name: &str, variants: &[String]) -> Vec<String> {
 fn readme_change_checklists_name_every_file_a_new_variant_touches() {
     let readme = readme();
     let checklists = [
-        ("Adding a material touches", &[("src/desc/material.rs", "MaterialDesc"), ("src/materials/mod.rs", "Material")]),
-        ("A light kind touches", &[("src/desc/light.rs", "LightDesc"), ("src/lights/mod.rs", "Light")]),
+        (
+            "Adding a material touches",
+            &[
+                ("src/desc/material.rs", "MaterialDesc"),
+                ("src/materials/mod.rs", "Material"),
+            ],
+        ),
+        (
+            "A light kind touches",
+            &[("src/desc/light.rs", "LightDesc"), ("src/lights/mod.rs", "Light")],
+        ),
     ];
     for (opening, enums) in checklists {
-        let at = readme.find(opening).unwrap_or_else(|| panic!("the README has no `{opening}`"));
+        let at = readme
+            .find(opening)
+            .unwrap_or_else(|| panic!("the README has no `{opening}`"));
         let paragraph = readme[at..].split("\n\n").next().unwrap_or("");
         let named: Vec<&str> = paragraph.split('`').skip(1).step_by(2).collect();
         for n in &named {
@@ -214,7 +229,10 @@ fn readme_change_checklists_name_every_file_a_new_variant_touches() {
         };
         for (file, name) in enums {
             for site in every_variant_sites(name, &variants(file, name)) {
-                assert!(covers(&site), "`{opening}` leaves out src/{site}, which lists every {name}");
+                assert!(
+                    covers(&site),
+                    "`{opening}` leaves out src/{site}, which lists every {name}"
+                );
             }
         }
     }
