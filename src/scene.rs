@@ -9,15 +9,24 @@ use crate::geometry::MeshHit;
 use crate::geometry::triangle::WatertightRay4;
 use crate::geometry::{Geometry, Hit, Shape};
 use crate::lights::{CausticEmitters, EnvironmentLight, Light, LightPicker};
+use crate::materials::surface::{self, Surface};
 use crate::materials::{Material, Texture};
-use crate::math::Ray;
-use glam::Vec2;
+use crate::math::float_error::offset_along_normal;
+use crate::math::{Frame, Ray};
+use glam::{Vec2, Vec3A};
 
 /// The runtime scene: everything rays query, in world space, indexed by `u32`.
 pub struct Scene {
     /// Runtime materials, indexed by [`Hit::material`].
     pub materials: Vec<Material>,
-    /// Decoded image textures, indexed by [`crate::materials::ColorTex::Image`].
+    /// What each material does to the surface (normal maps, cut-outs),
+    /// indexed like `materials`; shorter (often empty) when the rest do
+    /// nothing.
+    pub surfaces: Vec<Surface>,
+    /// A black material: what a hit shades with when its perturbed normal
+    /// faces away from the ray (`materials::surface`).
+    pub black: u32,
+    /// Decoded image textures, indexed by [`crate::materials::ImageLookup::index`].
     pub textures: Vec<Texture>,
     /// Light sources, indexed by [`Hit::light`]; area lights and emissive
     /// shapes are also surfaces in `shapes`.
@@ -91,6 +100,64 @@ impl Scene {
     /// index it drops.
     #[inline(always)]
     fn closest(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
+        let (hit, shape) = self.closest_surface(ray, t_max)?;
+        if self.surfaces.is_empty() {
+            return Some((hit, shape));
+        }
+        self.apply_surface(ray, t_max, hit, shape)
+    }
+
+    /// The material's effect on the surface at `hit` (shape index `shape`)
+    /// on `ray`: past a cut-out the ray goes on (up to 64 of them), and a
+    /// normal or bump map replaces the shading normal — or makes the hit
+    /// black when the new normal faces away from the ray
+    /// (`materials::surface`).
+    #[inline(never)]
+    fn apply_surface(&self, ray: &Ray, t_max: f32, mut hit: Hit, mut shape: u32) -> Option<(Hit, u32)> {
+        let (mut r, mut traveled) = (*ray, 0.0);
+        for _ in 0..64 {
+            let Some(s) = self.surfaces.get(hit.material as usize) else {
+                break;
+            };
+            if let Some(c) = &s.cutout
+                && !c.present(hit.uv, &self.textures, cutout_number(&r, hit.t, shape))
+            {
+                // Go on from just beyond the surface, along the same line.
+                traveled += hit.t;
+                r = Ray::new(offset_along_normal(hit.p, hit.ng, hit.p_error, r.d), r.d);
+                (hit, shape) = self.closest_surface(&r, t_max - traveled)?;
+                continue;
+            }
+            if let Some(p) = &s.normal {
+                let (dpdu, dpdv) = self.derivatives(&hit, shape);
+                let ns = p.normal(hit.ns, dpdu, dpdv, hit.uv, &self.textures);
+                if !surface::valid_for(ray.d, hit.ns, ns) {
+                    hit.material = self.black;
+                }
+                hit.ns = ns;
+            }
+            break;
+        }
+        hit.t += traveled;
+        Some((hit, shape))
+    }
+
+    /// ∂p/∂u and ∂p/∂v of the shape hit: analytic on quads and spheres; on
+    /// other shapes an arbitrary tangent frame.
+    fn derivatives(&self, hit: &Hit, shape: u32) -> (Vec3A, Vec3A) {
+        match self.shapes.get(shape as usize) {
+            Some(Shape::Quad(q)) => (q.u, q.v),
+            Some(Shape::Sphere(s)) => s.derivatives(hit.ng),
+            _ => {
+                let f = Frame::from_normal(hit.ns);
+                (f.s, f.t)
+            }
+        }
+    }
+
+    /// Closest hit of any surface, cut-out or not.
+    #[inline(always)]
+    fn closest_surface(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
         let geo = &self.geometry;
         let shapes = &self.shapes;
         // Kept with the nearest hit so the hit record needs no second trace
@@ -172,7 +239,13 @@ impl Scene {
                 s => (s.hit(ray, t_best, geo), i),
             },
             Nearest::Shape(i) => match &shapes[i as usize] {
-                Shape::Sphere(sp) if !self.materials[sp.material as usize].is_textured() => {
+                Shape::Sphere(sp)
+                    if !self.materials[sp.material as usize].is_textured()
+                        && self
+                            .surfaces
+                            .get(sp.material as usize)
+                            .is_none_or(Surface::is_plain) =>
+                {
                     (sp.hit_without_uv(ray.at(t_best), t_best), i)
                 }
                 s => (s.hit(ray, t_best, geo), i),
@@ -180,8 +253,12 @@ impl Scene {
         })
     }
 
-    /// Whether anything blocks `ray` before `t_max` (shadow rays).
+    /// Whether anything blocks `ray` before `t_max` (shadow rays). Cut-outs
+    /// let it through where they are transparent.
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        if self.surfaces.iter().any(|s| s.cutout.is_some()) {
+            return self.closest(ray, t_max).is_some();
+        }
         let geo = &self.geometry;
         let shapes = &self.shapes;
         if (self.bounded..self.shapes.len() as u32).any(|i| shapes[i as usize].occludes(ray, t_max, geo)) {
@@ -210,4 +287,18 @@ impl Scene {
                 })
         })
     }
+}
+
+/// The uniform number in [0, 1) a stochastic cut-out compares its opacity
+/// with: a hash of the ray and the hit, so it is the same for the same ray
+/// whatever thread traces it, and independent between rays and surfaces.
+fn cutout_number(r: &Ray, t: f32, shape: u32) -> f32 {
+    let mut h: u32 = shape.wrapping_mul(0x9e37_79b9);
+    for x in [r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, t] {
+        h = (h ^ x.to_bits()).wrapping_mul(0x85eb_ca6b);
+        h ^= h >> 15;
+    }
+    h = h.wrapping_mul(0xc2b2_ae35);
+    h ^= h >> 16;
+    (h >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }

@@ -860,3 +860,35 @@ fn unknown_tonemap_suggests_the_closest_and_perspective_needs_a_field_of_view() 
         list(&d)
     );
 }
+
+#[test]
+fn texture_mistakes_are_located_with_a_fix() {
+    let (d, text) = diagnostics("texture_mistakes.ron");
+    let has = |path: &str, words: &str| {
+        let m = at(&d, path);
+        assert!(
+            m.message.contains(words) || m.help.as_deref().is_some_and(|h| h.contains(words)),
+            "`{path}`: expected “{words}” in {m}\nall:\n{text}"
+        );
+        assert!(m.line > 0, "`{path}` is not located: {m}");
+    };
+    has("materials.gold.roughness.b", "roughness 1.5 is outside [0, 1]");
+    has("materials.floor.map.colorspace", "normal map read as sRGB");
+    has("materials.leaf.mode", "cut-off 0 is outside");
+    has("materials.coat.roughness", "must be a number");
+    has("materials.lost.albedo.file", "no_such_texture.png");
+    has("materials.lost.albedo.uv.scale", "UV scale of 0");
+}
+
+#[test]
+fn colour_image_fed_to_a_number_needs_a_channel() {
+    let (d, text) = diagnostics("texture_channels.ron");
+    let rough = at(&d, "materials.metal.roughness");
+    assert!(
+        rough.message.contains("colour image")
+            && rough.help.as_deref().is_some_and(|h| h.contains("channel: G")),
+        "{rough}\nall:\n{text}"
+    );
+    let metal = at(&d, "materials.metal.metalness.channel");
+    assert!(metal.message.contains("greyscale"), "{metal}\nall:\n{text}");
+}

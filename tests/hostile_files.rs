@@ -143,3 +143,123 @@ fn one_texture_spelled_two_ways_is_decoded_once() {
         .unwrap_or_else(|e| panic!("{}", common::message(&e)));
     assert_eq!(l.scene.textures.len(), 1, "one texture for three spellings");
 }
+
+/// Issue 39: a sky map whose EXR header lies about its size. The decoder
+/// sized its buffers from the header, so a few hundred bytes claiming
+/// 100,000² pixels aborted the process (SIGABRT) and 16,000² took 3 GB.
+/// Both are refused, located, before anything is allocated.
+#[test]
+fn a_sky_map_whose_header_lies_about_its_size_is_refused_before_allocating() {
+    use exr::prelude::*;
+    let dir = tempfile::tempdir().expect("tmp");
+    let small = dir.path().join("small.exr");
+    // One 4×2 tile: a header that also claims one N×N tile keeps the
+    // offset table (one chunk) consistent with the file.
+    let encoding = Encoding {
+        compression: Compression::Uncompressed,
+        blocks: Blocks::Tiles(Vec2(4, 2)),
+        line_order: LineOrder::Increasing,
+    };
+    Image::from_encoded_channels(
+        (4, 2),
+        encoding,
+        SpecificChannels::rgb(|_p: Vec2<usize>| (0.5f32, 0.5f32, 0.5f32)),
+    )
+    .write()
+    .to_file(&small)
+    .expect("a small EXR");
+    let bytes = std::fs::read(&small).expect("read");
+    // Both windows (`<name>\0box2i\0`, size 16, xMin yMin xMax yMax as
+    // i32 LE) and the tile size (`tiles\0tiledesc\0`, size 9, x y as u32).
+    let find = |b: &[u8], name: &[u8]| {
+        b.windows(name.len())
+            .position(|w| w == name)
+            .expect("the attribute")
+            + name.len()
+            + 4
+    };
+    let patch = |side: i32| {
+        let mut b = bytes.clone();
+        for name in [&b"dataWindow\0box2i\0"[..], &b"displayWindow\0box2i\0"[..]] {
+            let at = find(&b, name);
+            b[at + 8..at + 12].copy_from_slice(&(side - 1).to_le_bytes());
+            b[at + 12..at + 16].copy_from_slice(&(side - 1).to_le_bytes());
+        }
+        let at = find(&b, b"tiles\0tiledesc\0");
+        b[at..at + 4].copy_from_slice(&side.to_le_bytes());
+        b[at + 4..at + 8].copy_from_slice(&side.to_le_bytes());
+        b
+    };
+    for (side, expect) in [(100_000, "above the limit"), (16_000, "truncated or corrupt")] {
+        let lying = dir.path().join(format!("lying{side}.exr"));
+        std::fs::write(&lying, patch(side)).expect("write");
+        assert!(std::fs::metadata(&lying).expect("meta").len() < 2000);
+        let text = format!(
+            "Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40), \
+             film: (width: 8, height: 8, spp: 1), lights: [Environment(map: \"{}\")], objects: [])",
+            lying.file_name().and_then(|n| n.to_str()).expect("name")
+        );
+        let e = load_str(&dir.path().join("s.ron"), &text, &Overrides::default()).err();
+        let shown = e.as_ref().map(common::message).unwrap_or_default();
+        assert!(shown.contains(expect), "{side}²: {shown}");
+    }
+}
+
+/// Issue 39: one NaN texel in a sky map darkened the whole image by 11%
+/// (it reached the importance tables and the irradiance), and negative or
+/// infinite texels gave wrong images, all without a word. They are read
+/// as 0 with a note that names the map and what was wrong.
+#[test]
+fn broken_texels_in_a_sky_map_are_repaired_with_a_note() {
+    use exr::prelude::*;
+    let dir = tempfile::tempdir().expect("tmp");
+    let write = |name: &str, bad: [f32; 3]| {
+        write_rgb_file(dir.path().join(name), 16, 8, |x, y| {
+            if (x, y) == (5, 2) {
+                (bad[0], bad[1], bad[2])
+            } else {
+                (1.0f32, 0.9f32, 0.8f32)
+            }
+        })
+        .expect("an EXR");
+    };
+    write("clean.exr", [1.0, 0.9, 0.8]);
+    write("nan.exr", [f32::NAN, 0.9, 0.8]);
+    write("broken.exr", [f32::INFINITY, -3.0, f32::NAN]);
+    let scene = |map: &str| {
+        format!(
+            "Scene(camera: (eye: (0, 1, 3), target: (0, 0, 0), fov_y_degrees: 50), \
+             film: (width: 16, height: 16, spp: 16), \
+             materials: {{ \"m\": Lambert(albedo: (0.5, 0.5, 0.5)) }}, \
+             lights: [Environment(map: \"{map}\")], \
+             objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"m\")])"
+        )
+    };
+    let mean = |map: &str| {
+        let l = common::load_in(dir.path(), &scene(map), &Overrides::default());
+        let img = common::render_loaded(&l);
+        let notes: Vec<String> = l.warnings.diagnostics.iter().map(|d| d.message.clone()).collect();
+        let m = img.pixels.iter().map(common::sum).sum::<f64>() / img.pixels.len() as f64;
+        (m, notes.join("\n"))
+    };
+    let (clean, quiet) = mean("clean.exr");
+    assert!(!quiet.contains("read as 0"), "{quiet}");
+    let (nan, said) = mean("nan.exr");
+    assert!(
+        said.contains("lights[0].map: nan.exr has 1 NaN channel value, read as 0"),
+        "{said}"
+    );
+    assert!(
+        (nan / clean - 1.0).abs() < 0.02,
+        "NaN texel: mean {nan} against {clean}"
+    );
+    let (broken, said) = mean("broken.exr");
+    assert!(
+        said.contains("1 NaN channel value, 1 infinite channel value, 1 negative channel value"),
+        "{said}"
+    );
+    assert!(
+        broken.is_finite() && (broken / clean - 1.0).abs() < 0.02,
+        "mean {broken} against {clean}"
+    );
+}

@@ -45,7 +45,7 @@ mod tests {
         let p = Material::Phong {
             kd: ColorTex::Const(Rgb::splat(0.7)),
             ks: ColorTex::Const(Rgb::splat(0.6)),
-            exponent: 10.0,
+            exponent: crate::materials::Tex::Const(10.0),
         };
         assert_eq!(first_hit_albedo(&p, Vec2::ZERO, &[]), Rgb::ONE);
         assert_eq!(first_hit_albedo(&Material::Emitter, Vec2::ZERO, &[]), Rgb::ZERO);

@@ -2,11 +2,13 @@
 //!
 //! Written as `(r, g, b)`, a single number for grey, `"file.png"` for an
 //! image texture (sRGB-decoded, repeated, bilinear), `Image(file: "…")`, or
-//! `Checker(a: (r, g, b), b: (r, g, b), scale: s)`.
+//! `Checker(a: (r, g, b), b: (r, g, b), scale: s)`, or a `Pattern(…)`; every
+//! texture form is in [`super::texture`].
 //!
 //! RON hands a named struct to self-describing deserialisers without its name,
 //! so the texture kind is recognised by its fields, not by `Image`/`Checker`.
 
+use super::texture::{ImageDesc, TexDesc, tex_schemas, visit_tex_map};
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::fmt;
@@ -19,17 +21,9 @@ use std::fmt;
 pub enum ColorDesc {
     /// A constant linear RGB colour; a bare number `g` is read as `(g, g, g)`.
     Rgb([f32; 3]),
-    /// Image file, relative to the scene file.
-    Image(String),
-    /// Alternating squares of `a` and `b`, `scale` squares per UV unit.
-    Checker {
-        /// Colour of the squares where ⌊u·scale⌋ + ⌊v·scale⌋ is even, linear RGB.
-        a: [f32; 3],
-        /// Colour of the other squares, linear RGB.
-        b: [f32; 3],
-        /// Squares per UV unit (default 1), > 0.
-        scale: f32,
-    },
+    /// A texture: an image, a checker or a procedural pattern
+    /// (see [`super::texture`]).
+    Texture(TexDesc<[f32; 3]>),
 }
 
 impl From<[f32; 3]> for ColorDesc {
@@ -38,7 +32,22 @@ impl From<[f32; 3]> for ColorDesc {
     }
 }
 
-const EXPECTED: &str = "a colour `(r, g, b)`, a grey level, an image `\"file.png\"`, `Image(file: \"…\")` or `Checker(a: (…), b: (…), scale: …)`";
+impl ColorDesc {
+    /// A plain image texture of `file` (every other field at its default).
+    pub fn image(file: &str) -> Self {
+        ColorDesc::Texture(TexDesc::Image(ImageDesc::plain(file.to_string())))
+    }
+
+    /// The image file, if this is an image texture.
+    pub fn file_mut(&mut self) -> Option<&mut String> {
+        match self {
+            ColorDesc::Rgb(_) => None,
+            ColorDesc::Texture(t) => t.file_mut(),
+        }
+    }
+}
+
+const EXPECTED: &str = "a colour `(r, g, b)`, a grey level, an image `\"file.png\"`, `Image(file: \"…\")`, `Checker(a: (…), b: (…), scale: …)` or `Pattern(pattern: …, a: (…), b: (…))`";
 
 impl<'de> Deserialize<'de> for ColorDesc {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
@@ -70,30 +79,10 @@ impl<'de> Deserialize<'de> for ColorDesc {
                 Ok(ColorDesc::Rgb([x as f32; 3]))
             }
             fn visit_str<E: de::Error>(self, s: &str) -> Result<ColorDesc, E> {
-                Ok(ColorDesc::Image(s.to_string()))
+                Ok(ColorDesc::image(s))
             }
-            fn visit_map<A: MapAccess<'de>>(self, mut m: A) -> Result<ColorDesc, A::Error> {
-                // Read the fields by hand: `Option` fields would need `Some(…)`.
-                const FIELDS: &[&str] = &["file", "a", "b", "scale"];
-                let (mut file, mut a, mut b, mut scale) = (None, None, None, None);
-                while let Some(key) = m.next_key::<String>()? {
-                    match key.as_str() {
-                        "file" => file = Some(m.next_value::<String>()?),
-                        "a" => a = Some(m.next_value::<[f32; 3]>()?),
-                        "b" => b = Some(m.next_value::<[f32; 3]>()?),
-                        "scale" => scale = Some(m.next_value::<f32>()?),
-                        other => return Err(de::Error::unknown_field(other, FIELDS)),
-                    }
-                }
-                match (file, a, b, scale) {
-                    (Some(file), None, None, None) => Ok(ColorDesc::Image(file)),
-                    (None, Some(a), Some(b), scale) => Ok(ColorDesc::Checker {
-                        a,
-                        b,
-                        scale: scale.unwrap_or(1.0),
-                    }),
-                    _ => Err(de::Error::custom(format!("expected {EXPECTED}"))),
-                }
+            fn visit_map<A: MapAccess<'de>>(self, m: A) -> Result<ColorDesc, A::Error> {
+                visit_tex_map(m).map(ColorDesc::Texture)
             }
         }
         d.deserialize_any(V)
@@ -102,17 +91,9 @@ impl<'de> Deserialize<'de> for ColorDesc {
 
 impl Serialize for ColorDesc {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        use serde::ser::SerializeStruct;
         match self {
             ColorDesc::Rgb(c) => c.serialize(s),
-            ColorDesc::Image(f) => f.serialize(s),
-            ColorDesc::Checker { a, b, scale } => {
-                let mut st = s.serialize_struct("Checker", 3)?;
-                st.serialize_field("a", a)?;
-                st.serialize_field("b", b)?;
-                st.serialize_field("scale", scale)?;
-                st.end()
-            }
+            ColorDesc::Texture(t) => t.serialize_tex(s),
         }
     }
 }
@@ -122,25 +103,18 @@ impl schemars::JsonSchema for ColorDesc {
         "Color".into()
     }
 
-    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    fn json_schema(g: &mut schemars::SchemaGenerator) -> schemars::Schema {
         let rgb = schemars::json_schema!({
             "type": "array", "items": { "type": "number", "minimum": 0 }, "minItems": 3, "maxItems": 3
         });
+        let mut any = vec![
+            rgb.clone(),
+            schemars::json_schema!({ "type": "number", "minimum": 0 }),
+        ];
+        any.extend(tex_schemas(g, rgb));
         schemars::json_schema!({
-            "description": "A linear RGB colour `(r, g, b)`, a grey level, an image file (sRGB, relative to the scene file), `Image(file: ...)` or `Checker(a: (r, g, b), b: (r, g, b), scale: squares per UV unit)`.",
-            "anyOf": [
-                rgb,
-                { "type": "number", "minimum": 0 },
-                { "type": "string", "description": "image file" },
-                {
-                    "type": "object", "additionalProperties": false, "required": ["file"],
-                    "properties": { "file": { "type": "string" } }
-                },
-                {
-                    "type": "object", "additionalProperties": false, "required": ["a", "b"],
-                    "properties": { "a": rgb, "b": rgb, "scale": { "type": "number", "exclusiveMinimum": 0 } }
-                }
-            ]
+            "description": "A linear RGB colour `(r, g, b)`, a grey level, an image file (sRGB unless `colorspace: Linear`, relative to the scene file), `Image(file: ...)`, `Checker(a: (r, g, b), b: (r, g, b), scale: squares per UV unit)` or `Pattern(pattern: ..., a: (r, g, b), b: (r, g, b))`; docs/textures.md.",
+            "anyOf": any
         })
     }
 }
@@ -162,21 +136,19 @@ mod tests {
     fn color_desc_accepts_every_form() {
         assert_eq!(parse("(0.5, 1, 0)").ok(), Some(ColorDesc::Rgb([0.5, 1.0, 0.0])));
         assert_eq!(parse("0.25").ok(), Some(ColorDesc::Rgb([0.25; 3])));
-        assert_eq!(
-            parse("\"wood.png\"").ok(),
-            Some(ColorDesc::Image("wood.png".into()))
-        );
+        assert_eq!(parse("\"wood.png\"").ok(), Some(ColorDesc::image("wood.png")));
         assert_eq!(
             parse("Image(file: \"wood.png\")").ok(),
-            Some(ColorDesc::Image("wood.png".into()))
+            Some(ColorDesc::image("wood.png"))
         );
         assert_eq!(
             parse("Checker(a: (1, 1, 1), b: (0, 0, 0), scale: 4)").ok(),
-            Some(ColorDesc::Checker {
+            Some(ColorDesc::Texture(super::super::texture::TexDesc::Checker {
                 a: [1.0; 3],
                 b: [0.0; 3],
-                scale: 4.0
-            })
+                scale: 4.0,
+                uv: Default::default(),
+            }))
         );
         assert!(parse("(1, 2)").is_err() && parse("(1, 2, 3, 4)").is_err());
         assert!(

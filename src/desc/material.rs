@@ -1,8 +1,11 @@
 //! Materials, referred to by name from objects.
 //!
-//! Colour parameters accept constants or textures (see [`ColorDesc`]).
+//! Colour parameters accept constants or textures (see [`ColorDesc`]), and so do
+//! number parameters ([`ScalarDesc`]); `NormalMap`, `Bump` and `Cutout` wrap
+//! any material.
 
 use super::color::ColorDesc;
+use super::texture::ScalarDesc;
 use serde::{Deserialize, Serialize};
 
 /// A surface's reflection model, stored under a name in `materials` and referred to
@@ -23,8 +26,7 @@ pub enum MaterialDesc {
         /// Diffuse reflectance per channel, in [0, 1].
         albedo: ColorDesc,
         /// Surface roughness, unitless, in [0, 2] (0 = Lambert, 1 = very rough).
-        #[schemars(range(min = 0, max = 2))]
-        sigma: f32,
+        sigma: ScalarDesc,
     },
     /// Energy-normalised (modified) Phong: diffuse/π + specular·(n+2)/(2π)·cosⁿα.
     Phong {
@@ -35,7 +37,7 @@ pub enum MaterialDesc {
         specular: ColorDesc,
         /// Sharpness of the highlight n, in [0, 100000]: 1 is broad, 1000 nearly a
         /// mirror.
-        exponent: f32,
+        exponent: ScalarDesc,
     },
     /// Energy-normalised Blinn–Phong: diffuse/π + specular·(n+2)/(8π)·cosⁿθh.
     BlinnPhong {
@@ -46,7 +48,7 @@ pub enum MaterialDesc {
         specular: ColorDesc,
         /// Sharpness of the highlight n, in [0, 100000]. Blinn–Phong needs about 4×
         /// the Phong exponent for a similar highlight.
-        exponent: f32,
+        exponent: ScalarDesc,
     },
     /// Microfacet reflection (Smith height-correlated masking-shadowing).
     /// `roughness` ∈ [0, 1], α = roughness².
@@ -55,9 +57,13 @@ pub enum MaterialDesc {
         #[serde(default)]
         distribution: DistributionDesc,
         /// Perceptual roughness in [0, 1]: 0 is polished, 1 very rough; the
-        /// distribution's α is roughness².
-        #[schemars(range(min = 0, max = 1))]
-        roughness: f32,
+        /// distribution's α is roughness² (see `roughness_unit`).
+        roughness: ScalarDesc,
+        /// What `roughness` holds (default `Perceptual`: α = roughness²; `Alpha`:
+        /// the distribution's α itself, Mitsuba's `alpha`).
+        #[serde(default, skip_serializing_if = "RoughnessUnitDesc::is_perceptual")]
+        roughness_unit: RoughnessUnitDesc,
+
         /// Reflectance of the metal: a named `Metal(...)`, its complex IOR, or
         /// Schlick's `f0`.
         fresnel: FresnelDesc,
@@ -68,12 +74,15 @@ pub enum MaterialDesc {
         /// Diffuse colour of a plastic (metalness 0), reflectance at normal incidence
         /// of a metal (metalness 1), per channel in [0, 1].
         base_color: ColorDesc,
-        /// Perceptual roughness in [0, 1]; GGX α = roughness².
-        #[schemars(range(min = 0, max = 1))]
-        roughness: f32,
+        /// Perceptual roughness in [0, 1]; GGX α = roughness² (see `roughness_unit`).
+        roughness: ScalarDesc,
+        /// What `roughness` holds (default `Perceptual`: α = roughness²; `Alpha`:
+        /// the distribution's α itself, Mitsuba's `alpha`).
+        #[serde(default, skip_serializing_if = "RoughnessUnitDesc::is_perceptual")]
+        roughness_unit: RoughnessUnitDesc,
         /// 0 is plastic (diffuse base, 4% specular coat), 1 is metal (coloured
         /// specular, no diffuse); values between blend the two.
-        metalness: f32,
+        metalness: ScalarDesc,
     },
     /// Perfect specular reflection.
     Mirror {
@@ -87,7 +96,7 @@ pub enum MaterialDesc {
         /// Index of refraction η(inside)/η(outside), in (0, 10] (default 1.5: glass;
         /// water 1.33, diamond 2.42).
         #[serde(default = "glass_ior")]
-        ior: f32,
+        ior: ScalarDesc,
         /// Colour of transmitted light, applied once per refraction, per channel in
         /// [0, 1] (default white); reflections stay white.
         #[serde(default = "white")]
@@ -112,13 +121,18 @@ pub enum MaterialDesc {
         /// Microfacet normal distribution of the coat (default `Ggx`).
         #[serde(default)]
         distribution: DistributionDesc,
-        /// Perceptual roughness of the coat in [0, 1]; α = roughness².
-        #[schemars(range(min = 0, max = 1))]
-        roughness: f32,
+        /// Perceptual roughness of the coat in [0, 1]; α = roughness² (see
+        /// `roughness_unit`). A constant: the coat's tables are integrated per
+        /// α at load.
+        roughness: ScalarDesc,
+        /// What `roughness` holds (default `Perceptual`: α = roughness²; `Alpha`:
+        /// the distribution's α itself, Mitsuba's `alpha`).
+        #[serde(default, skip_serializing_if = "RoughnessUnitDesc::is_perceptual")]
+        roughness_unit: RoughnessUnitDesc,
         /// Index of refraction of the coat over the outside, in (0, 10]
-        /// (default 1.5; Mitsuba's `int_ior/ext_ior`).
+        /// (default 1.5; Mitsuba's `int_ior/ext_ior`); a constant, as `roughness`.
         #[serde(default = "glass_ior")]
-        ior: f32,
+        ior: ScalarDesc,
     },
     /// Rough dielectric (Walter et al. 2007): frosted glass. `ior` = η inside /
     /// η outside (≠ 1), `tint` colours transmitted light, `roughness` ∈ [0, 1]
@@ -127,7 +141,7 @@ pub enum MaterialDesc {
         /// Index of refraction η(inside)/η(outside), in (0, 10] and ≠ 1
         /// (default 1.5).
         #[serde(default = "glass_ior")]
-        ior: f32,
+        ior: ScalarDesc,
         /// Colour of transmitted light, applied once per refraction, per
         /// channel in [0, 1] (default white); reflections stay white.
         #[serde(default = "white")]
@@ -135,18 +149,89 @@ pub enum MaterialDesc {
         /// Microfacet normal distribution (default `Ggx`).
         #[serde(default)]
         distribution: DistributionDesc,
-        /// Perceptual roughness in [0, 1]; α = roughness².
-        #[schemars(range(min = 0, max = 1))]
-        roughness: f32,
+        /// Perceptual roughness in [0, 1]; α = roughness² (see `roughness_unit`).
+        roughness: ScalarDesc,
+        /// What `roughness` holds (default `Perceptual`: α = roughness²; `Alpha`:
+        /// the distribution's α itself, Mitsuba's `alpha`).
+        #[serde(default, skip_serializing_if = "RoughnessUnitDesc::is_perceptual")]
+        roughness_unit: RoughnessUnitDesc,
     },
+    /// A tangent-space normal map over `material`: the map's texels (linear
+    /// unless `colorspace` says otherwise) give the shading normal
+    /// `normalize(2c − 1)` in the frame (tangent along +u, bitangent, normal).
+    NormalMap {
+        /// The normal map (usually `Image(file: "…")`).
+        map: ColorDesc,
+        /// Factor on the map's tilt, ≥ 0 (default 1; 0 is the unmapped surface).
+        #[serde(default = "one")]
+        strength: f32,
+        /// Negate the green channel: for DirectX-style maps (default false).
+        #[serde(default)]
+        flip_green: bool,
+        /// The material whose shading normal is mapped.
+        material: Box<MaterialDesc>,
+    },
+    /// A bump map over `material`: the surface is displaced along its normal
+    /// by `height × scale` (scene units) for shading only.
+    Bump {
+        /// Height, usually a greyscale image or a pattern.
+        height: ScalarDesc,
+        /// Scene units per unit of `height` (default 1).
+        #[serde(default = "one")]
+        scale: f32,
+        /// The material whose shading normal is bumped.
+        material: Box<MaterialDesc>,
+    },
+    /// An alpha cut-out: where `opacity` is 0 the surface is not there for
+    /// any ray (camera, bounce or shadow).
+    Cutout {
+        /// Opacity in [0, 1], usually a greyscale image or an image's `A` channel.
+        opacity: ScalarDesc,
+        /// How partial opacity is resolved (default `Stochastic`).
+        #[serde(default)]
+        mode: CutoutModeDesc,
+        /// The material where the surface is present.
+        material: Box<MaterialDesc>,
+    },
+}
+
+fn one() -> f32 {
+    1.0
+}
+
+/// What a material's `roughness` number or texture holds.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
+pub enum RoughnessUnitDesc {
+    /// Perceptual roughness r in [0, 1] (glTF, Substance, Blender): α = r².
+    #[default]
+    Perceptual,
+    /// The microfacet distribution's α itself (Mitsuba's `alpha`).
+    Alpha,
+}
+
+impl RoughnessUnitDesc {
+    fn is_perceptual(&self) -> bool {
+        *self == RoughnessUnitDesc::Perceptual
+    }
+}
+
+/// How a `Cutout` resolves an opacity between 0 and 1.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
+pub enum CutoutModeDesc {
+    /// The surface is there with probability `opacity` per ray (Mitsuba's
+    /// `mask`): soft edges average out.
+    #[default]
+    Stochastic,
+    /// The surface is there where `opacity` ≥ the given cut-off, in (0, 1].
+    Threshold(f32),
 }
 
 fn white() -> ColorDesc {
     ColorDesc::Rgb([1.0; 3])
 }
 
-fn glass_ior() -> f32 {
-    1.5
+fn glass_ior() -> ScalarDesc {
+    ScalarDesc::Value(1.5)
 }
 
 /// Microfacet normal distribution of a `CookTorrance` surface.
@@ -225,6 +310,59 @@ impl MaterialDesc {
                 diffuse, specular, ..
             } => vec![diffuse, specular],
             MaterialDesc::RoughGlass { tint, .. } => vec![tint],
+            MaterialDesc::NormalMap { map, material, .. } => {
+                let mut v = vec![map];
+                v.extend(material.color_params_mut());
+                v
+            }
+            MaterialDesc::Bump { material, .. } | MaterialDesc::Cutout { material, .. } => {
+                material.color_params_mut()
+            }
+        }
+    }
+
+    /// Every number parameter that may be a texture, nested materials
+    /// included (as [`MaterialDesc::color_params_mut`]).
+    pub fn scalar_params_mut(&mut self) -> Vec<&mut ScalarDesc> {
+        match self {
+            MaterialDesc::Lambert { .. } | MaterialDesc::Mirror { .. } => Vec::new(),
+            MaterialDesc::OrenNayar { sigma, .. } => vec![sigma],
+            MaterialDesc::Phong { exponent, .. } | MaterialDesc::BlinnPhong { exponent, .. } => {
+                vec![exponent]
+            }
+            MaterialDesc::CookTorrance { roughness, .. } => vec![roughness],
+            MaterialDesc::MetalPlastic {
+                roughness, metalness, ..
+            } => vec![roughness, metalness],
+            MaterialDesc::Glass { ior, .. } => vec![ior],
+            MaterialDesc::RoughPlastic { roughness, ior, .. }
+            | MaterialDesc::RoughGlass { roughness, ior, .. } => {
+                vec![roughness, ior]
+            }
+            MaterialDesc::NormalMap { material, .. } => material.scalar_params_mut(),
+            MaterialDesc::Bump { height, material, .. } => {
+                let mut v = vec![height];
+                v.extend(material.scalar_params_mut());
+                v
+            }
+            MaterialDesc::Cutout {
+                opacity, material, ..
+            } => {
+                let mut v = vec![opacity];
+                v.extend(material.scalar_params_mut());
+                v
+            }
+        }
+    }
+
+    /// Calls `f` on every texture file the material names (to resolve them
+    /// against an included file's folder).
+    pub fn for_each_file(&mut self, f: &mut impl FnMut(&mut String)) {
+        for c in self.color_params_mut() {
+            c.file_mut().map(&mut *f);
+        }
+        for c in self.scalar_params_mut() {
+            c.file_mut().map(&mut *f);
         }
     }
 }

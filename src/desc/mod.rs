@@ -32,6 +32,7 @@ mod light;
 mod material;
 mod object;
 mod sdf;
+mod texture;
 mod transform;
 
 pub use aov::AovDesc;
@@ -42,9 +43,15 @@ pub use emission::EmissionDesc;
 pub use film::{AllocationDesc, FilmDesc, SamplerDesc};
 pub use integrator::{CausticsDesc, IntegratorDesc, LightSelectionDesc};
 pub use light::LightDesc;
-pub use material::{DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
-pub use object::{MeshDesc, ObjectDesc};
+pub use material::{
+    CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc,
+    RoughnessUnitDesc,
+};
+pub use object::{MeshDesc, ObjectDesc, SphereUvDesc};
 pub use sdf::{MarchDesc, RotationDesc, SdfDesc};
+pub use texture::{
+    ChannelDesc, ColorspaceDesc, ImageDesc, OriginDesc, PatternDesc, ScalarDesc, TexDesc, UvDesc,
+};
 pub use transform::TransformDesc;
 
 use serde::{Deserialize, Serialize};

@@ -103,6 +103,9 @@ pub enum ObjectDesc {
         /// Light the surface emits (default none); see `EmissionDesc`.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         emission: Option<super::EmissionDesc>,
+        /// How textures wrap the sphere (default `YUp`).
+        #[serde(default, skip_serializing_if = "SphereUvDesc::is_default")]
+        uv: SphereUvDesc,
         /// Placement steps applied in the order written (default none); they must
         /// keep the sphere round (equal scale factors; use a `Mesh` for an
         /// ellipsoid).
@@ -265,5 +268,23 @@ impl ObjectDesc {
             | ObjectDesc::Mesh { transform, .. }
             | ObjectDesc::Instance { transform, .. } => transform,
         }
+    }
+}
+
+/// Texture coordinates of a `Sphere`.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq, Eq)]
+pub enum SphereUvDesc {
+    /// Poles on the y axis, v = 1 at the top (+y), u = ½ + atan2(z, x)/2π:
+    /// an equirectangular image with its top row at the north pole.
+    #[default]
+    YUp,
+    /// Mitsuba's `sphere`: poles on the z axis, v = 0 at +z, u = atan2(y, x)/2π
+    /// in [0, 1); for twins of Mitsuba scenes (with `origin: TopLeft` images).
+    MitsubaZUp,
+}
+
+impl SphereUvDesc {
+    fn is_default(&self) -> bool {
+        *self == SphereUvDesc::YUp
     }
 }

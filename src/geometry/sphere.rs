@@ -18,6 +18,9 @@ pub struct Sphere {
     pub material: u32,
     /// Index of the light this sphere is (an emissive sphere), or [`NO_LIGHT`](super::NO_LIGHT).
     pub light: u32,
+    /// UVs as Mitsuba's `sphere` ([`Sphere::uv_mitsuba`]) rather than
+    /// [`Sphere::uv`].
+    pub mitsuba_uv: bool,
 }
 
 impl Sphere {
@@ -60,7 +63,11 @@ impl Sphere {
     /// UVs of [`Sphere::uv`].
     pub fn hit(&self, p: Vec3A, t: f32) -> Hit {
         let mut h = self.hit_without_uv(p, t);
-        h.uv = Self::uv(h.ng);
+        h.uv = if self.mitsuba_uv {
+            Self::uv_mitsuba(h.ng)
+        } else {
+            Self::uv(h.ng)
+        };
         h
     }
 
@@ -94,6 +101,48 @@ impl Sphere {
         let u = 0.5 + n.z.atan2(n.x) / (2.0 * PI);
         let v = n.y.clamp(-1.0, 1.0).acos() / PI;
         Vec2::new(u, 1.0 - v)
+    }
+
+    /// Mitsuba's spherical coordinates of unit normal `n`: the poles on the
+    /// z axis (v = 0 at +z), u = atan2(y, x)/2π in [0, 1) (0 along +x, ¼
+    /// along +y).
+    pub fn uv_mitsuba(n: Vec3A) -> Vec2 {
+        let mut u = n.y.atan2(n.x) / (2.0 * PI);
+        if u < 0.0 {
+            u += 1.0;
+        }
+        Vec2::new(u, n.z.clamp(-1.0, 1.0).acos() / PI)
+    }
+
+    /// ∂p/∂u and ∂p/∂v at unit normal `n`, for the UVs this sphere uses.
+    pub fn derivatives(&self, n: Vec3A) -> (Vec3A, Vec3A) {
+        let r = self.radius;
+        if self.mitsuba_uv {
+            // φ = atan2(y, x), θ = acos(z): ∂p/∂u = 2πr(−y, x, 0),
+            // ∂p/∂v = πr(z cos φ, z sin φ, −sin θ).
+            let rho = (n.x * n.x + n.y * n.y).sqrt();
+            let (cos_phi, sin_phi) = if rho > 0.0 {
+                (n.x / rho, n.y / rho)
+            } else {
+                (1.0, 0.0)
+            };
+            (
+                2.0 * PI * r * Vec3A::new(-n.y, n.x, 0.0),
+                PI * r * Vec3A::new(n.z * cos_phi, n.z * sin_phi, -rho),
+            )
+        } else {
+            // φ = atan2(z, x), θ' = acos(y), u = ½ + φ/2π, v = 1 − θ'/π.
+            let rho = (n.x * n.x + n.z * n.z).sqrt();
+            let (cos_phi, sin_phi) = if rho > 0.0 {
+                (n.x / rho, n.z / rho)
+            } else {
+                (1.0, 0.0)
+            };
+            (
+                2.0 * PI * r * Vec3A::new(-n.z, 0.0, n.x),
+                -PI * r * Vec3A::new(n.y * cos_phi, -rho, n.y * sin_phi),
+            )
+        }
     }
 
     /// World-space bounding box.

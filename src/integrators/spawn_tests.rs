@@ -62,6 +62,7 @@ fn shapes(b: Vec3A) -> (Vec<(&'static str, Shape)>, Geometry) {
                 radius: 0.7,
                 material: 0,
                 light: NO_LIGHT,
+                mitsuba_uv: false,
             }),
         ),
         (

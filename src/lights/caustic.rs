@@ -251,6 +251,7 @@ mod tests {
                 radius: 0.5,
                 material: 0,
                 light: NO_LIGHT,
+                mitsuba_uv: false,
             })
         };
         let geo = Geometry::default();

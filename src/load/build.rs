@@ -78,6 +78,7 @@ pub fn build_in(
     let t0 = Instant::now();
     let super::material::Materials {
         mut materials,
+        mut surfaces,
         mut textures,
         index,
         files: texture_files,
@@ -120,6 +121,9 @@ pub fn build_in(
     if !ctx.problems.is_empty() {
         return Err(ctx.problems);
     }
+    // The emitter's surface, then the MTL materials' (cut-outs from `map_d`).
+    surfaces.push(crate::materials::Surface::default());
+    surfaces.extend(std::mem::take(&mut ctx.mtl.surfaces));
     materials.extend(std::mem::take(&mut ctx.mtl.materials));
     textures.extend(std::mem::take(&mut ctx.mtl.textures));
     let load_time = t0.elapsed();
@@ -193,10 +197,16 @@ pub fn build_in(
             .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
     });
     let caustics = CausticEmitters::new(&ctx.lights, targets);
+    // Only scenes with a normal map, bump map or cut-out pay for them.
+    if surfaces.iter().all(crate::materials::Surface::is_plain) {
+        surfaces.clear();
+    }
     let mut scene = Scene {
         caustics,
         light_picker: LightPicker::new(&ctx.lights, selection),
         materials,
+        surfaces,
+        black: emitter,
         textures,
         lights: ctx.lights,
         environment: ctx.environment,

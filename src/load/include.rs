@@ -15,7 +15,7 @@
 use super::document::Gaps;
 use super::source;
 use super::spans::Spans;
-use crate::desc::{ColorDesc, IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
+use crate::desc::{IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::{Diagnostic, Problem, Report};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -252,11 +252,7 @@ impl Composer {
             }
         };
         for (name, mut m) in std::mem::take(&mut inc_desc.materials) {
-            for c in m.color_params_mut() {
-                if let ColorDesc::Image(file) = c {
-                    fix(file);
-                }
-            }
+            m.for_each_file(&mut |f| fix(f));
             self.merge_material(file, &full, &text, name, m);
         }
         for l in &mut inc_desc.lights {

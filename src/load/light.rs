@@ -9,6 +9,7 @@ use super::validate::Checker;
 use crate::desc::LightDesc;
 use crate::diagnostic::{Problem, suggest};
 use crate::geometry::{Quad, Shape};
+use crate::imageio::read::MAX_IMAGE_SIDE;
 use crate::lights::{EnvMap, EnvironmentLight, Light, PointLight, QuadLight, SpotLight};
 use crate::math::Rgb;
 use glam::Vec3A;
@@ -247,7 +248,13 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             }
             let env = match (radiance, map) {
                 (_, Some(file)) => match read_map(&ctx.base.join(file)) {
-                    Ok(m) => {
+                    Ok(mut m) => {
+                        if let Some(what) = repair_texels(&mut m) {
+                            ctx.notes.push(format!(
+                                "lights[{i}].map: {file} has {what}, read as 0 (one NaN texel \
+                                 darkened a whole image by 11%); fix the map to silence this"
+                            ));
+                        }
                         let t1 = std::time::Instant::now();
                         let env = EnvironmentLight::from_map(m, *strength, *rotation_degrees);
                         ctx.env_times = (t1 - t0, t1.elapsed());
@@ -272,6 +279,36 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
     }
 }
 
+/// Sets texels that are not radiance (NaN, infinite or negative) to 0:
+/// one NaN spreads through the sky's importance tables and irradiance
+/// into every pixel. Says what it found, `None` when the map was clean.
+fn repair_texels(m: &mut EnvMap) -> Option<String> {
+    let (mut nan, mut inf, mut neg) = (0usize, 0usize, 0usize);
+    for x in m.rgb.iter_mut() {
+        let bad = if x.is_nan() {
+            nan += 1;
+            true
+        } else if x.is_infinite() {
+            inf += 1;
+            true
+        } else if *x < 0.0 {
+            neg += 1;
+            true
+        } else {
+            false
+        };
+        if bad {
+            *x = 0.0;
+        }
+    }
+    let parts: Vec<String> = [(nan, "NaN"), (inf, "infinite"), (neg, "negative")]
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what} channel value{}", if *n == 1 { "" } else { "s" }))
+        .collect();
+    (!parts.is_empty()).then(|| parts.join(", "))
+}
+
 /// Reads an environment map into linear RGB floats: `.exr` through the `exr`
 /// crate (blocks decompressed on all cores, pixels written straight into the
 /// map), `.hdr` through `image`.
@@ -285,8 +322,52 @@ pub fn read_map(path: &Path) -> Result<EnvMap, String> {
     Ok(map)
 }
 
+/// What a sky map's header may claim: each side at most
+/// [`MAX_IMAGE_SIDE`], and its pixels as f32 RGB within the memory
+/// available and no more than [`MAX_EXR_RATIO`] times the file's own size.
+/// Checked before anything is allocated: the decoder sizes its buffers
+/// from the header, and a few hundred bytes claiming 100,000² pixels
+/// aborted the process.
+fn check_exr_header(path: &Path) -> Result<(), String> {
+    let file_len = std::fs::metadata(path).map_err(|e| e.to_string())?.len();
+    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| e.to_string())?;
+    for h in meta.headers.iter() {
+        let (w, ht) = (h.layer_size.width(), h.layer_size.height());
+        if w.max(ht) > MAX_IMAGE_SIDE as usize {
+            return Err(format!(
+                "its header claims {w}×{ht} pixels, above the limit of {MAX_IMAGE_SIDE} a side"
+            ));
+        }
+        let bytes = 12 * w as u64 * ht as u64;
+        if let Some(free) = crate::memory::available()
+            && bytes > free
+        {
+            return Err(format!(
+                "its {w}×{ht} pixels need {} MB, more than the {} MB of memory available",
+                bytes >> 20,
+                free >> 20
+            ));
+        }
+        if bytes > MAX_EXR_RATIO * file_len.max(1) {
+            return Err(format!(
+                "its header claims {w}×{ht} pixels ({} MB as floats) but the file holds {file_len} bytes: \
+                 truncated or corrupt",
+                bytes >> 20
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// How many times its file size a sky map's pixels may take as f32 RGB
+/// (see [`check_exr_header`]): ZIP and PIZ compress a real sky 2–5×;
+/// deflate cannot pass ~1,032× (a flat half-float map as ZIP: ~2,000× as
+/// f32 RGB), so only a corrupt header or a flat lossy map reaches this.
+const MAX_EXR_RATIO: u64 = 16_384;
+
 fn read_exr(path: &Path) -> Result<EnvMap, String> {
     use exr::prelude::{ReadChannels, ReadLayers};
+    check_exr_header(path)?;
     let image = exr::prelude::read()
         .no_deep_data()
         .largest_resolution_level()

@@ -4,24 +4,65 @@
 //! materials is read once). The models themselves live in `materials/`.
 
 use super::validate::Checker;
-use crate::desc::{ColorDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc};
+use crate::desc::{
+    ChannelDesc, ColorDesc, ColorspaceDesc, CutoutModeDesc, DielectricFresnelDesc, DistributionDesc,
+    FresnelDesc, ImageDesc, MaterialDesc, MetalDesc, OriginDesc, PatternDesc, RoughnessUnitDesc, ScalarDesc,
+    TexDesc,
+};
 use crate::diagnostic::Problem;
-use crate::materials::{ColorTex, DielectricFresnel, Distribution, Fresnel, Material, Metal, Texture};
+use crate::materials::{
+    Channel, ColorTex, Cutout, DielectricFresnel, Distribution, Fresnel, ImageLookup, Material, Metal,
+    Pattern, Perturb, Roughness, ScalarTex, Surface, Tex, Texture, UvTransform,
+};
 use crate::materials::{Microfacet, RoughCoat};
+use crate::math::Rgb;
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 impl Checker {
-    /// A colour parameter: constants are range-checked; an image texture
-    /// must name an existing file (it is decoded by the build step).
+    /// A colour parameter: constants are range-checked; a texture's
+    /// constants, transform and file too (its channels are checked when the
+    /// build step decodes it).
     pub(super) fn color_param(&mut self, path: &str, c: &ColorDesc, upper: Option<f32>) {
         match c {
             ColorDesc::Rgb(c) => self.color(path, c, upper),
-            ColorDesc::Image(f) => self.file(path, f, "texture"),
-            ColorDesc::Checker { a, b, scale } => {
-                self.color(&format!("{path}.a"), a, upper);
-                self.color(&format!("{path}.b"), b, upper);
+            ColorDesc::Texture(t) => self.texture(path, t, &mut |ck, p, v: &[f32; 3]| ck.color(p, v, upper)),
+        }
+    }
+
+    /// A number parameter in [lo, hi] (`what` names it in messages, `help`
+    /// says what the values mean).
+    pub(super) fn scalar_param(
+        &mut self,
+        path: &str,
+        x: &ScalarDesc,
+        (lo, hi): (f32, f32),
+        what: &str,
+        help: &str,
+    ) {
+        match x {
+            ScalarDesc::Value(x) => self.range(path, *x, lo, hi, what, help),
+            ScalarDesc::Texture(t) => {
+                self.texture(path, t, &mut |ck, p, v: &f32| ck.range(p, *v, lo, hi, what, help))
+            }
+        }
+    }
+
+    /// The parts of a texture every kind shares: constants through `value`,
+    /// the image file and scale, the pattern's numbers, the UV transform.
+    fn texture<V>(&mut self, path: &str, t: &TexDesc<V>, value: &mut dyn FnMut(&mut Self, &str, &V)) {
+        let uv = match t {
+            TexDesc::Image(i) => {
+                self.file(&format!("{path}.file"), &i.file, "texture");
+                if !(i.scale.is_finite() && i.offset.is_finite()) {
+                    self.push(path, "non-finite texture scale or offset", "use finite numbers");
+                }
+                &i.uv
+            }
+            TexDesc::Checker { a, b, scale, uv } => {
+                value(self, &format!("{path}.a"), a);
+                value(self, &format!("{path}.b"), b);
                 if !(*scale > 0.0 && scale.is_finite()) {
                     self.push(
                         &format!("{path}.scale"),
@@ -29,7 +70,72 @@ impl Checker {
                         "it is the number of squares per UV unit",
                     );
                 }
+                uv
             }
+            TexDesc::Pattern {
+                pattern, a, b, uv, ..
+            } => {
+                value(self, &format!("{path}.a"), a);
+                value(self, &format!("{path}.b"), b);
+                self.pattern(&format!("{path}.pattern"), pattern);
+                uv
+            }
+        };
+        if !(uv.scale.iter().chain(&uv.offset).all(|x| x.is_finite()) && uv.rotation_degrees.is_finite()) {
+            self.push(
+                &format!("{path}.uv"),
+                "non-finite UV transform",
+                "use finite numbers",
+            );
+        } else if uv.scale.contains(&0.0) {
+            self.push(
+                &format!("{path}.uv.scale"),
+                "a UV scale of 0 collapses the texture to one texel",
+                "use a non-zero scale: 2 repeats the texture twice, -1 mirrors it",
+            );
+        }
+    }
+
+    fn pattern(&mut self, path: &str, p: &PatternDesc) {
+        match *p {
+            PatternDesc::Fbm {
+                octaves,
+                lacunarity,
+                gain,
+            } => {
+                if !(1..=16).contains(&octaves) {
+                    self.push(
+                        &format!("{path}.octaves"),
+                        format!("{octaves} octaves is outside [1, 16]"),
+                        "5 is a usual choice; each octave adds finer detail",
+                    );
+                }
+                self.range(
+                    &format!("{path}.lacunarity"),
+                    lacunarity,
+                    1.0,
+                    16.0,
+                    "lacunarity",
+                    "the frequency factor between octaves, usually 2",
+                );
+                self.range(
+                    &format!("{path}.gain"),
+                    gain,
+                    0.0,
+                    1.0,
+                    "gain",
+                    "the amplitude factor between octaves, usually 0.5",
+                );
+            }
+            PatternDesc::Stripes { duty } => self.range(
+                &format!("{path}.duty"),
+                duty,
+                0.0,
+                1.0,
+                "duty",
+                "the fraction of each stripe period that is `b`",
+            ),
+            PatternDesc::ValueNoise | PatternDesc::GradientNoise | PatternDesc::Cellular => {}
         }
     }
 
@@ -39,11 +145,10 @@ impl Checker {
             MaterialDesc::Lambert { albedo } => self.color_param(&p("albedo"), albedo, Some(1.0)),
             MaterialDesc::OrenNayar { albedo, sigma } => {
                 self.color_param(&p("albedo"), albedo, Some(1.0));
-                self.range(
+                self.scalar_param(
                     &p("sigma"),
-                    *sigma,
-                    0.0,
-                    2.0,
+                    sigma,
+                    (0.0, 2.0),
                     "sigma",
                     "sigma is a unitless roughness: 0 is Lambert, 1 is very rough",
                 );
@@ -57,39 +162,28 @@ impl Checker {
                 diffuse,
                 specular,
                 exponent,
-            } => self.phong_lobes(path, diffuse, specular, *exponent),
+            } => self.phong_lobes(path, diffuse, specular, exponent),
             MaterialDesc::CookTorrance {
-                roughness, fresnel, ..
+                roughness,
+                roughness_unit,
+                fresnel,
+                ..
             } => {
-                self.range(
-                    &p("roughness"),
-                    *roughness,
-                    0.0,
-                    1.0,
-                    "roughness",
-                    "0 is polished, 1 is very rough (α = roughness²)",
-                );
+                self.microfacet_roughness(&p("roughness"), roughness, *roughness_unit);
                 self.fresnel(&p("fresnel"), fresnel);
             }
             MaterialDesc::MetalPlastic {
                 base_color,
                 roughness,
+                roughness_unit,
                 metalness,
             } => {
                 self.color_param(&p("base_color"), base_color, Some(1.0));
-                self.range(
-                    &p("roughness"),
-                    *roughness,
-                    0.0,
-                    1.0,
-                    "roughness",
-                    "0 is polished, 1 is very rough",
-                );
-                self.range(
+                self.microfacet_roughness(&p("roughness"), roughness, *roughness_unit);
+                self.scalar_param(
                     &p("metalness"),
-                    *metalness,
-                    0.0,
-                    1.0,
+                    metalness,
+                    (0.0, 1.0),
                     "metalness",
                     "0 is plastic, 1 is metal",
                 );
@@ -97,24 +191,102 @@ impl Checker {
             MaterialDesc::Mirror { tint } => self.color_param(&p("tint"), tint, Some(1.0)),
             MaterialDesc::Glass { ior, tint, .. } => {
                 self.color_param(&p("tint"), tint, Some(1.0));
-                if !(*ior > 0.0 && ior.is_finite() && *ior <= 10.0) {
-                    self.push(
-                        &p("ior"),
-                        format!("index of refraction {ior} is outside (0, 10]"),
-                        "glass is about 1.5, water 1.33, diamond 2.42",
-                    );
-                }
+                self.coat_ior(&p("ior"), ior, "glass is about 1.5, water 1.33, diamond 2.42");
             }
             MaterialDesc::RoughPlastic {
                 diffuse,
                 specular,
                 roughness,
+                roughness_unit,
                 ior,
                 ..
-            } => self.rough_plastic(path, diffuse, specular, *roughness, *ior),
+            } => self.rough_plastic(path, diffuse, specular, (roughness, *roughness_unit), ior),
             MaterialDesc::RoughGlass {
-                ior, tint, roughness, ..
-            } => self.rough_glass(path, *ior, tint, *roughness),
+                ior,
+                tint,
+                roughness,
+                roughness_unit,
+                ..
+            } => self.rough_glass(path, ior, tint, (roughness, *roughness_unit)),
+            MaterialDesc::NormalMap {
+                map,
+                strength,
+                material,
+                ..
+            } => {
+                self.color_param(&p("map"), map, Some(1.0));
+                if let ColorDesc::Texture(TexDesc::Image(ImageDesc {
+                    colorspace: Some(ColorspaceDesc::Srgb),
+                    ..
+                })) = map
+                {
+                    self.push(
+                        &p("map.colorspace"),
+                        "a normal map read as sRGB bends every normal",
+                        "normal maps store directions, not colours: remove `colorspace: Srgb` (they are read as Linear)",
+                    );
+                }
+                self.range(
+                    &p("strength"),
+                    *strength,
+                    0.0,
+                    100.0,
+                    "strength",
+                    "1 is the map as authored, 0 the unmapped surface",
+                );
+                self.material(&p("material"), material);
+            }
+            MaterialDesc::Bump {
+                height,
+                scale,
+                material,
+            } => {
+                self.scalar_param(
+                    &p("height"),
+                    height,
+                    (f32::MIN, f32::MAX),
+                    "height",
+                    "heights are any finite numbers, times `scale`",
+                );
+                if !scale.is_finite() {
+                    self.push(
+                        &p("scale"),
+                        "non-finite bump scale",
+                        "scene units per unit of height, e.g. 0.01",
+                    );
+                }
+                self.material(&p("material"), material);
+            }
+            MaterialDesc::Cutout {
+                opacity,
+                mode,
+                material,
+            } => {
+                self.scalar_param(
+                    &p("opacity"),
+                    opacity,
+                    (0.0, 1.0),
+                    "opacity",
+                    "0 is a hole, 1 is solid",
+                );
+                if let CutoutModeDesc::Threshold(c) = mode
+                    && !(*c > 0.0 && *c <= 1.0)
+                {
+                    self.push(
+                        &p("mode"),
+                        format!("cut-off {c} is outside (0, 1]"),
+                        "the surface is kept where opacity ≥ the cut-off: 0.5 is usual",
+                    );
+                }
+                if matches!(**material, MaterialDesc::Cutout { .. }) {
+                    self.push(
+                        &p("material"),
+                        "a cut-out inside a cut-out",
+                        "combine the two opacities into one texture",
+                    );
+                }
+                self.material(&p("material"), material);
+            }
         }
     }
 
@@ -124,12 +296,21 @@ impl Checker {
         path: &str,
         diffuse: &ColorDesc,
         specular: &ColorDesc,
-        roughness: f32,
-        ior: f32,
+        (roughness, unit): (&ScalarDesc, RoughnessUnitDesc),
+        ior: &ScalarDesc,
     ) {
         self.color_param(&format!("{path}.diffuse"), diffuse, Some(1.0));
         self.color_param(&format!("{path}.specular"), specular, Some(1.0));
-        self.microfacet_roughness(&format!("{path}.roughness"), roughness);
+        self.microfacet_roughness(&format!("{path}.roughness"), roughness, unit);
+        for (field, x) in [("roughness", roughness), ("ior", ior)] {
+            if x.constant().is_none() {
+                self.push(
+                    &format!("{path}.{field}"),
+                    format!("a RoughPlastic's {field} must be a number"),
+                    "its coat's tables are integrated once per roughness and index at load; use CookTorrance or MetalPlastic for a textured roughness",
+                );
+            }
+        }
         self.coat_ior(
             &format!("{path}.ior"),
             ior,
@@ -139,15 +320,21 @@ impl Checker {
 
     /// `RoughGlass`: tint, roughness, and an index that differs from 1 (a
     /// rough boundary between equal indices would be a delta lobe).
-    fn rough_glass(&mut self, path: &str, ior: f32, tint: &ColorDesc, roughness: f32) {
+    fn rough_glass(
+        &mut self,
+        path: &str,
+        ior: &ScalarDesc,
+        tint: &ColorDesc,
+        (roughness, unit): (&ScalarDesc, RoughnessUnitDesc),
+    ) {
         self.color_param(&format!("{path}.tint"), tint, Some(1.0));
-        self.microfacet_roughness(&format!("{path}.roughness"), roughness);
+        self.microfacet_roughness(&format!("{path}.roughness"), roughness, unit);
         self.coat_ior(
             &format!("{path}.ior"),
             ior,
             "glass is about 1.5, water 1.33, diamond 2.42",
         );
-        if ior == 1.0 {
+        if ior.constant() == Some(1.0) {
             self.push(
                 &format!("{path}.ior"),
                 "a rough boundary with index of refraction 1 does not scatter",
@@ -156,33 +343,48 @@ impl Checker {
         }
     }
 
-    /// Roughness in [0, 1], α = roughness², as for `CookTorrance`.
-    fn microfacet_roughness(&mut self, path: &str, roughness: f32) {
-        let help = "0 is polished, 1 is very rough (α = roughness²: Mitsuba's alpha a is roughness √a)";
-        self.range(path, roughness, 0.0, 1.0, "roughness", help);
+    /// Roughness in [0, 1] (α = roughness²), or α in [0, 4] with
+    /// `roughness_unit: Alpha`.
+    fn microfacet_roughness(&mut self, path: &str, roughness: &ScalarDesc, unit: RoughnessUnitDesc) {
+        match unit {
+            RoughnessUnitDesc::Perceptual => {
+                let help = "0 is polished, 1 is very rough (α = roughness²: Mitsuba's alpha a is roughness √a, or say `roughness_unit: Alpha`)";
+                self.scalar_param(path, roughness, (0.0, 1.0), "roughness", help);
+            }
+            RoughnessUnitDesc::Alpha => {
+                let help = "with `roughness_unit: Alpha` the value is the distribution's α: 0.01 is polished, 1 very rough";
+                self.scalar_param(path, roughness, (0.0, 4.0), "α", help);
+            }
+        }
     }
 
     /// A dielectric's relative index of refraction, in (0, 10].
-    fn coat_ior(&mut self, path: &str, ior: f32, help: &str) {
-        if !(ior > 0.0 && ior.is_finite() && ior <= 10.0) {
-            self.push(
-                path,
-                format!("index of refraction {ior} is outside (0, 10]"),
-                help,
-            );
+    fn coat_ior(&mut self, path: &str, ior: &ScalarDesc, help: &str) {
+        match ior {
+            ScalarDesc::Value(ior) => {
+                if !(*ior > 0.0 && ior.is_finite() && *ior <= 10.0) {
+                    self.push(
+                        path,
+                        format!("index of refraction {ior} is outside (0, 10]"),
+                        help,
+                    );
+                }
+            }
+            ScalarDesc::Texture(_) => {
+                self.scalar_param(path, ior, (f32::MIN_POSITIVE, 10.0), "index of refraction", help)
+            }
         }
     }
 
     /// The diffuse and specular lobes shared by `Phong` and `BlinnPhong`.
-    fn phong_lobes(&mut self, path: &str, diffuse: &ColorDesc, specular: &ColorDesc, exponent: f32) {
+    fn phong_lobes(&mut self, path: &str, diffuse: &ColorDesc, specular: &ColorDesc, exponent: &ScalarDesc) {
         let p = |f: &str| format!("{path}.{f}");
         self.color_param(&p("diffuse"), diffuse, Some(1.0));
         self.color_param(&p("specular"), specular, Some(1.0));
-        self.range(
+        self.scalar_param(
             &p("exponent"),
             exponent,
-            0.0,
-            100_000.0,
+            (0.0, 100_000.0),
             "exponent",
             "the lobe sharpness: 1 is broad, 1000 is nearly a mirror",
         );
@@ -222,7 +424,10 @@ impl Checker {
 pub struct Materials {
     /// The runtime materials, in the name order of the scene's `materials`.
     pub materials: Vec<Material>,
-    /// Decoded image textures, indexed by [`ColorTex::Image`].
+    /// What each material does to the surface (normal maps, cut-outs), in
+    /// the same order.
+    pub surfaces: Vec<Surface>,
+    /// Decoded image textures, indexed by [`ImageLookup::index`].
     pub textures: Vec<Texture>,
     /// Index in `materials` of each scene material name.
     pub index: HashMap<String, u32>,
@@ -231,8 +436,8 @@ pub struct Materials {
 }
 
 /// Builds every entry of the scene's `materials`, resolving texture files against
-/// `base` (the scene file's folder) and decoding each file once. All texture problems
-/// come back together.
+/// `base` (the scene file's folder) and decoding each file once per colour
+/// space. All texture problems come back together.
 pub fn build_materials(
     descs: &BTreeMap<String, MaterialDesc>,
     base: &Path,
@@ -245,63 +450,68 @@ pub fn build_materials(
         coats: Vec::new(),
     };
     let mut materials = Vec::new();
+    let mut surfaces = Vec::new();
     let mut index = HashMap::new();
     for (name, m) in descs {
         index.insert(name.clone(), materials.len() as u32);
-        let mat = build_material(&mut b, name, m);
+        let mut surface = Surface::default();
+        let mat = build_material(&mut b, &format!("materials.{name}"), m, &mut surface);
         materials.push(mat);
+        surfaces.push(surface);
     }
     if !b.problems.is_empty() {
         return Err(b.problems);
     }
-    let files = b.by_path.keys().cloned().collect();
+    let mut files: Vec<PathBuf> = b.by_path.keys().map(|(p, _)| p.clone()).collect();
+    files.sort();
+    files.dedup();
     Ok(Materials {
         materials,
+        surfaces,
         textures: b.textures,
         index,
         files,
     })
 }
 
-/// The runtime material of entry `name`; its textures are read through `b`.
-fn build_material(b: &mut Builder, name: &str, m: &MaterialDesc) -> Material {
-    let p = |field: &str| format!("materials.{name}.{field}");
+/// The runtime material at scene path `path`; its textures are read through
+/// `b`, and wrappers (`NormalMap`, `Bump`, `Cutout`) fill `surface`.
+fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut Surface) -> Material {
+    let p = |field: &str| format!("{path}.{field}");
     match m {
         MaterialDesc::Lambert { albedo } => Material::Lambert {
-            albedo: b.color(albedo, &p("albedo")),
+            albedo: b.color(albedo, &p("albedo"), true),
         },
         MaterialDesc::OrenNayar { albedo, sigma } => Material::OrenNayar {
-            albedo: b.color(albedo, &p("albedo")),
-            sigma: *sigma,
+            albedo: b.color(albedo, &p("albedo"), true),
+            sigma: b.scalar(sigma, &p("sigma")),
         },
         MaterialDesc::Phong {
             diffuse,
             specular,
             exponent,
         } => Material::Phong {
-            kd: b.color(diffuse, &p("diffuse")),
-            ks: b.color(specular, &p("specular")),
-            exponent: *exponent,
+            kd: b.color(diffuse, &p("diffuse"), true),
+            ks: b.color(specular, &p("specular"), true),
+            exponent: b.scalar(exponent, &p("exponent")),
         },
         MaterialDesc::BlinnPhong {
             diffuse,
             specular,
             exponent,
         } => Material::BlinnPhong {
-            kd: b.color(diffuse, &p("diffuse")),
-            ks: b.color(specular, &p("specular")),
-            exponent: *exponent,
+            kd: b.color(diffuse, &p("diffuse"), true),
+            ks: b.color(specular, &p("specular"), true),
+            exponent: b.scalar(exponent, &p("exponent")),
         },
         MaterialDesc::CookTorrance {
             distribution,
             roughness,
+            roughness_unit,
             fresnel,
         } => Material::CookTorrance {
-            distribution: match distribution {
-                DistributionDesc::Ggx => Distribution::Ggx,
-                DistributionDesc::Beckmann => Distribution::Beckmann,
-            },
-            roughness: *roughness,
+            distribution: distribution_of(*distribution),
+            roughness: b.roughness(roughness, *roughness_unit, &p("roughness")),
             fresnel: match fresnel {
                 FresnelDesc::Conductor { eta, k } => Fresnel::Conductor {
                     eta: (*eta).into(),
@@ -314,18 +524,19 @@ fn build_material(b: &mut Builder, name: &str, m: &MaterialDesc) -> Material {
         MaterialDesc::MetalPlastic {
             base_color,
             roughness,
+            roughness_unit,
             metalness,
         } => Material::MetalPlastic {
-            base_color: b.color(base_color, &p("base_color")),
-            roughness: *roughness,
-            metalness: *metalness,
+            base_color: b.color(base_color, &p("base_color"), true),
+            roughness: b.roughness(roughness, *roughness_unit, &p("roughness")),
+            metalness: b.scalar(metalness, &p("metalness")),
         },
         MaterialDesc::Mirror { tint } => Material::Mirror {
-            tint: b.color(tint, &p("tint")),
+            tint: b.color(tint, &p("tint"), true),
         },
         MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass {
-            ior: *ior,
-            tint: b.color(tint, &p("tint")),
+            ior: b.scalar(ior, &p("ior")),
+            tint: b.color(tint, &p("tint"), true),
             fresnel: match fresnel {
                 DielectricFresnelDesc::Exact => DielectricFresnel::Exact,
                 DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
@@ -336,26 +547,73 @@ fn build_material(b: &mut Builder, name: &str, m: &MaterialDesc) -> Material {
             specular,
             distribution,
             roughness,
+            roughness_unit,
             ior,
-        } => Material::RoughPlastic {
-            diffuse: b.color(diffuse, &p("diffuse")),
-            specular: b.color(specular, &p("specular")),
-            coat: b.coat(
-                Microfacet::from_roughness(distribution_of(*distribution), *roughness),
-                *ior,
-            ),
-        },
+        } => {
+            // Constants: the checks refuse textures here.
+            let r = roughness.constant().unwrap_or(0.0);
+            let microfacet = match roughness_unit {
+                RoughnessUnitDesc::Perceptual => {
+                    Microfacet::from_roughness(distribution_of(*distribution), r)
+                }
+                RoughnessUnitDesc::Alpha => Microfacet::from_alpha(distribution_of(*distribution), r),
+            };
+            Material::RoughPlastic {
+                diffuse: b.color(diffuse, &p("diffuse"), true),
+                specular: b.color(specular, &p("specular"), true),
+                coat: b.coat(microfacet, ior.constant().unwrap_or(1.5)),
+            }
+        }
         MaterialDesc::RoughGlass {
             ior,
             tint,
             distribution,
             roughness,
+            roughness_unit,
         } => Material::RoughGlass {
             distribution: distribution_of(*distribution),
-            roughness: *roughness,
-            ior: *ior,
-            tint: b.color(tint, &p("tint")),
+            roughness: b.roughness(roughness, *roughness_unit, &p("roughness")),
+            ior: b.scalar(ior, &p("ior")),
+            tint: b.color(tint, &p("tint"), true),
         },
+        MaterialDesc::NormalMap {
+            map,
+            strength,
+            flip_green,
+            material,
+        } => {
+            surface.normal = Some(Perturb::NormalMap {
+                map: b.color(map, &p("map"), false),
+                strength: *strength,
+                flip_green: *flip_green,
+            });
+            build_material(b, &p("material"), material, surface)
+        }
+        MaterialDesc::Bump {
+            height,
+            scale,
+            material,
+        } => {
+            surface.normal = Some(Perturb::Bump {
+                height: b.scalar(height, &p("height")),
+                scale: *scale,
+            });
+            build_material(b, &p("material"), material, surface)
+        }
+        MaterialDesc::Cutout {
+            opacity,
+            mode,
+            material,
+        } => {
+            surface.cutout = Some(Cutout {
+                opacity: b.scalar(opacity, &p("opacity")),
+                threshold: match mode {
+                    CutoutModeDesc::Stochastic => None,
+                    CutoutModeDesc::Threshold(c) => Some(*c),
+                },
+            });
+            build_material(b, &p("material"), material, surface)
+        }
     }
 }
 
@@ -376,10 +634,18 @@ pub fn metal(m: MetalDesc) -> Metal {
     }
 }
 
+/// A decoded image and what the checks need to know of its file.
+struct Decoded {
+    index: u32,
+    /// Channels in the file (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA).
+    channels: u8,
+}
+
 struct Builder<'a> {
     base: &'a Path,
     textures: Vec<Texture>,
-    by_path: HashMap<PathBuf, u32>,
+    /// Each file once per colour space (true = sRGB-decoded).
+    by_path: HashMap<(PathBuf, bool), Decoded>,
     problems: Vec<Problem>,
     /// Rough-plastic coats built so far: their tables cost ~0.1 s each, and
     /// materials differing only in colour share one.
@@ -402,37 +668,159 @@ impl Builder<'_> {
         c
     }
 
-    fn color(&mut self, c: &ColorDesc, path: &str) -> ColorTex {
+    /// A colour parameter; an image is sRGB-decoded unless `srgb` is false
+    /// (normal maps) or the scene says otherwise.
+    fn color(&mut self, c: &ColorDesc, path: &str, srgb: bool) -> ColorTex {
         match c {
-            ColorDesc::Rgb(c) => ColorTex::Const((*c).into()),
-            ColorDesc::Checker { a, b, scale } => ColorTex::Checker {
-                a: (*a).into(),
-                b: (*b).into(),
+            ColorDesc::Rgb(c) => Tex::Const((*c).into()),
+            ColorDesc::Texture(t) => self.tex(t, path, srgb, false, |v| Rgb::from(*v)),
+        }
+    }
+
+    /// A number parameter; images are linear unless the scene says otherwise.
+    fn scalar(&mut self, x: &ScalarDesc, path: &str) -> ScalarTex {
+        match x {
+            ScalarDesc::Value(x) => Tex::Const(*x),
+            ScalarDesc::Texture(t) => self.tex(t, path, false, true, |v| *v),
+        }
+    }
+
+    fn roughness(&mut self, x: &ScalarDesc, unit: RoughnessUnitDesc, path: &str) -> Roughness {
+        Roughness {
+            tex: self.scalar(x, path),
+            is_alpha: unit == RoughnessUnitDesc::Alpha,
+        }
+    }
+
+    /// The runtime texture of `t`; `scalar` parameters need one channel.
+    fn tex<V, T>(
+        &mut self,
+        t: &TexDesc<V>,
+        path: &str,
+        srgb: bool,
+        scalar: bool,
+        value: impl Fn(&V) -> T,
+    ) -> Tex<T> {
+        let uv =
+            |u: &crate::desc::UvDesc| UvTransform::new(u.scale.into(), u.rotation_degrees, u.offset.into());
+        match t {
+            TexDesc::Checker { a, b, scale, uv: u } => Tex::Checker {
+                a: value(a),
+                b: value(b),
                 scale: *scale,
+                uv: uv(u),
             },
-            ColorDesc::Image(file) => {
-                // Keyed by the file itself, not its spelling: `x.png` and
-                // `./x.png` are decoded once.
-                let full = self.base.join(file);
-                let full = std::fs::canonicalize(&full).unwrap_or(full);
-                if let Some(&i) = self.by_path.get(&full) {
-                    return ColorTex::Image(i);
+            TexDesc::Pattern {
+                pattern,
+                a,
+                b,
+                seed,
+                uv: u,
+            } => Tex::Pattern {
+                pattern: match *pattern {
+                    PatternDesc::ValueNoise => Pattern::Value { seed: *seed },
+                    PatternDesc::GradientNoise => Pattern::Gradient { seed: *seed },
+                    PatternDesc::Fbm {
+                        octaves,
+                        lacunarity,
+                        gain,
+                    } => Pattern::Fbm {
+                        seed: *seed,
+                        octaves,
+                        lacunarity,
+                        gain,
+                    },
+                    PatternDesc::Cellular => Pattern::Cellular { seed: *seed },
+                    PatternDesc::Stripes { duty } => Pattern::Stripes { duty },
+                },
+                a: value(a),
+                b: value(b),
+                uv: uv(u),
+            },
+            TexDesc::Image(i) => {
+                let srgb = match i.colorspace {
+                    Some(ColorspaceDesc::Srgb) => true,
+                    Some(ColorspaceDesc::Linear) => false,
+                    None => srgb,
+                };
+                let Some((index, channels)) = self.image(&i.file, srgb, path) else {
+                    return Tex::Image(ImageLookup {
+                        index: 0,
+                        channel: Channel::All,
+                        scale: 0.0,
+                        offset: 0.0,
+                        rows_down: false,
+                        uv: UvTransform::default(),
+                    });
+                };
+                let channel = match i.channel {
+                    None => Channel::All,
+                    Some(ChannelDesc::R) => Channel::R,
+                    Some(ChannelDesc::G) => Channel::G,
+                    Some(ChannelDesc::B) => Channel::B,
+                    Some(ChannelDesc::A) => Channel::A,
+                };
+                let grey = channels <= 2;
+                if scalar && channel == Channel::All && !grey {
+                    self.problems.push(
+                        Problem::new(path, format!("{} is a colour image but this parameter is a number", i.file))
+                            .help("say which channel to read, e.g. `Image(file: \"…\", channel: G)` (glTF packs roughness in G, metalness in B)"),
+                    );
                 }
-                match load_texture(&full) {
-                    Ok(t) => {
-                        let i = self.textures.len() as u32;
-                        self.textures.push(t);
-                        self.by_path.insert(full, i);
-                        ColorTex::Image(i)
-                    }
-                    Err(msg) => {
-                        self.problems.push(Problem::new(path, msg).help(format!(
-                            "the path resolves to {} (relative to the scene file's folder)",
-                            full.display()
-                        )));
-                        ColorTex::Const(crate::math::Rgb::ZERO)
-                    }
+                if grey && matches!(channel, Channel::G | Channel::B) {
+                    self.problems.push(
+                        Problem::new(
+                            format!("{path}.channel"),
+                            format!("{} is a greyscale image: it has no {:?} channel", i.file, channel),
+                        )
+                        .help("read it without `channel` (or `channel: R`)"),
+                    );
                 }
+                if channel == Channel::A && channels % 2 == 1 {
+                    self.problems.push(
+                        Problem::new(
+                            format!("{path}.channel"),
+                            format!("{} has no alpha channel", i.file),
+                        )
+                        .help("export the image with alpha, or read a colour channel"),
+                    );
+                }
+                Tex::Image(ImageLookup {
+                    index,
+                    channel,
+                    scale: i.scale,
+                    offset: i.offset,
+                    rows_down: i.origin == OriginDesc::TopLeft,
+                    uv: uv(&i.uv),
+                })
+            }
+        }
+    }
+
+    /// The index and channel count of image `file`, decoded once per colour
+    /// space; `None` after reporting a problem at `path`.
+    fn image(&mut self, file: &str, srgb: bool, path: &str) -> Option<(u32, u8)> {
+        // Keyed by the file itself, not its spelling: `x.png` and `./x.png`
+        // are decoded once.
+        let full = self.base.join(file);
+        let full = std::fs::canonicalize(&full).unwrap_or(full);
+        if let Some(d) = self.by_path.get(&(full.clone(), srgb)) {
+            return Some((d.index, d.channels));
+        }
+        match load_texture_as(&full, srgb) {
+            Ok((t, channels)) => {
+                let index = self.textures.len() as u32;
+                self.textures.push(t);
+                self.by_path.insert((full, srgb), Decoded { index, channels });
+                Some((index, channels))
+            }
+            Err(msg) => {
+                self.problems
+                    .push(Problem::new(format!("{path}.file"), msg).help(format!(
+                        "the path resolves to {} (relative to the scene file's folder)",
+                        full.display()
+                    )));
+                None
             }
         }
     }
@@ -440,10 +828,39 @@ impl Builder<'_> {
 
 /// Decodes an 8-bit image as sRGB-encoded colour.
 pub fn load_texture(path: &Path) -> Result<Texture, String> {
+    load_texture_as(path, true).map(|(t, _)| t)
+}
+
+/// Decodes an image, 8- and 16-bit texels through the sRGB curve when
+/// `srgb` (float images are linear), with its alpha when it has one; also
+/// returns the file's channel count.
+pub fn load_texture_as(path: &Path, srgb: bool) -> Result<(Texture, u8), String> {
     let img = crate::imageio::read::decode_texture(path).map_err(|e| format!("texture: {e}"))?;
-    let rgb = img.to_rgb8();
-    Texture::try_from_srgb8(rgb.width(), rgb.height(), rgb.as_raw())
-        .map_err(|e| format!("texture {}: {e}", path.display()))
+    let color = img.color();
+    let channels = color.channel_count();
+    let float = matches!(color, image::ColorType::Rgb32F | image::ColorType::Rgba32F);
+    let fail = |e: String| format!("texture {}: {e}", path.display());
+    let mut t = if srgb && !float {
+        let rgb = img.to_rgb8();
+        Texture::try_from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()).map_err(fail)?
+    } else {
+        let rgb = img.to_rgb32f();
+        let mut texels = Vec::new();
+        texels
+            .try_reserve_exact(rgb.len() / 3)
+            .map_err(|_| fail("not enough memory for its texels".into()))?;
+        texels.extend(rgb.as_raw().chunks_exact(3).map(|p| Rgb::new(p[0], p[1], p[2])));
+        Texture {
+            width: rgb.width(),
+            height: rgb.height(),
+            texels,
+            alpha: Vec::new(),
+        }
+    };
+    if color.has_alpha() {
+        t.alpha = img.to_rgba32f().as_raw().chunks_exact(4).map(|p| p[3]).collect();
+    }
+    Ok((t, channels))
 }
 
 #[cfg(test)]

@@ -9,12 +9,23 @@
 //! | `Ks` non-zero | `Phong(diffuse: Kd, specular: Ks, exponent: Ns)` |
 //! | otherwise | `Lambert(albedo: Kd)` (`map_Kd` → sRGB image texture) |
 //!
+//! Maps: `map_Kd` (sRGB) → the diffuse colour, `map_Ks` (sRGB) → a Phong
+//! specular colour, `map_Ns` (linear, times `Ns`) → the Phong exponent;
+//! `Pr`/`map_Pr` and `Pm`/`map_Pm` (the PBR extension, linear) make the
+//! material `MetalPlastic(base_color: Kd, roughness, metalness)`; `map_d`
+//! (linear; the alpha channel when the image has one) makes it a stochastic
+//! `Cutout`. `map_Bump`/`bump`/`norm` are not used yet — mesh hits carry no
+//! tangent frame from their UVs — and each gives a note naming the statement.
+//!
 //! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), not
 //! clamped) makes the groups that use the material emit from the
 //! counter-clockwise front of their triangles (see `mesh.rs`); the material
 //! itself is mapped as above, so the surface also reflects its `Kd`.
 
-use crate::materials::{ColorTex, DielectricFresnel, Material, Texture};
+use crate::materials::{
+    Channel, ColorTex, Cutout, DielectricFresnel, ImageLookup, Material, Roughness, ScalarTex, Surface, Tex,
+    Texture, UvTransform,
+};
 use crate::math::Rgb;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -29,8 +40,13 @@ pub struct MtlMaterials {
     names: Vec<Option<String>>,
     /// `Ke` of each material, when positive.
     emission: Vec<Option<Rgb>>,
+    /// What each material does to the surface (`map_d` cut-outs), in the
+    /// order of `materials`.
+    pub surfaces: Vec<Surface>,
     pub textures: Vec<Texture>,
     textures_by_path: HashMap<PathBuf, Option<u32>>,
+    /// Linear decodes (scalar maps), with the file's channel count.
+    linear_by_path: HashMap<PathBuf, Option<(u32, u8)>>,
     /// `--root`: textures outside it are not read.
     root: Option<PathBuf>,
     /// Textures refused by `--root` since the last look, one sentence each:
@@ -52,14 +68,17 @@ impl MtlMaterials {
             materials: Vec::new(),
             names: Vec::new(),
             emission: Vec::new(),
+            surfaces: Vec::new(),
             textures: Vec::new(),
             textures_by_path: HashMap::new(),
+            linear_by_path: HashMap::new(),
         }
     }
 
     /// Adds a material that has no MTL name; returns its scene index.
     pub fn push(&mut self, m: Material) -> u32 {
         self.materials.push(m);
+        self.surfaces.push(Surface::default());
         self.names.push(None);
         self.emission.push(None);
         self.first + self.materials.len() as u32 - 1
@@ -96,11 +115,68 @@ impl MtlMaterials {
             .and_then(crate::geometry::obj::texture_file)
         {
             Some(file) => match self.texture(&dir.join(file), notes) {
-                Some(t) => ColorTex::Image(t),
+                Some(t) => ColorTex::image(t),
                 None => ColorTex::Const(kd),
             },
             None => ColorTex::Const(kd),
         };
+        // The scalar maps: a linear image, times the statement's number.
+        let mut scalar =
+            |this: &mut Self, file: Option<&str>, times: f32, alpha: bool| -> Option<ScalarTex> {
+                let file = crate::geometry::obj::texture_file(file?)?;
+                let (index, channels) = this.linear_texture(&dir.join(file), notes)?;
+                Some(Tex::Image(ImageLookup {
+                    index,
+                    channel: if alpha && channels % 2 == 0 {
+                        Channel::A
+                    } else {
+                        Channel::R
+                    },
+                    scale: times,
+                    offset: 0.0,
+                    rows_down: false,
+                    uv: UvTransform::default(),
+                }))
+            };
+        let param = |k: &str| {
+            m.unknown_param
+                .get(k)
+                .and_then(|v| v.trim().parse::<f32>().ok())
+                .filter(|x| x.is_finite())
+        };
+        let (pr, pm) = (param("Pr"), param("Pm"));
+        let pr_map = scalar(
+            self,
+            m.unknown_param.get("map_Pr").map(String::as_str),
+            1.0,
+            false,
+        );
+        let pm_map = scalar(
+            self,
+            m.unknown_param.get("map_Pm").map(String::as_str),
+            1.0,
+            false,
+        );
+        let ns = m.shininess.filter(|n| n.is_finite() && *n > 0.0);
+        let ns_map = scalar(self, m.shininess_texture.as_deref(), ns.unwrap_or(1.0), false);
+        let opacity = scalar(self, m.dissolve_texture.as_deref(), 1.0, true);
+        let ks_map = m
+            .specular_texture
+            .as_deref()
+            .and_then(crate::geometry::obj::texture_file)
+            .and_then(|f| self.texture(&dir.join(f), notes))
+            .map(ColorTex::image);
+        for (key, value) in [
+            ("map_Bump", m.normal_texture.as_deref()),
+            ("norm", m.unknown_param.get("norm").map(String::as_str)),
+        ] {
+            if let Some(v) = value {
+                notes.push(format!(
+                    "MTL material `{}`: `{key} {v}` not used: mesh hits have no tangent frame from their UVs yet (docs/textures.md)",
+                    m.name
+                ));
+            }
+        }
         let material = if matches!(illum, 4 | 6 | 7) || transparent {
             let tint = m
                 .unknown_param
@@ -111,10 +187,11 @@ impl MtlMaterials {
                 })
                 .map_or(Rgb::ONE, |c| rgb(Some(c), 1.0));
             Material::Glass {
-                ior: m
-                    .optical_density
-                    .filter(|n| n.is_finite() && *n >= 1.0)
-                    .unwrap_or(1.5),
+                ior: Tex::Const(
+                    m.optical_density
+                        .filter(|n| n.is_finite() && *n >= 1.0)
+                        .unwrap_or(1.5),
+                ),
                 tint: ColorTex::Const(tint),
                 fresnel: DielectricFresnel::Exact,
             }
@@ -127,19 +204,65 @@ impl MtlMaterials {
             Material::Mirror {
                 tint: ColorTex::Const(tint),
             }
-        } else if ks.max_element() > 0.0 {
+        } else if pr.is_some() || pm.is_some() || pr_map.is_some() || pm_map.is_some() {
+            Material::MetalPlastic {
+                base_color: albedo,
+                roughness: Roughness {
+                    tex: pr_map.unwrap_or(Tex::Const(pr.unwrap_or(0.5).clamp(0.0, 1.0))),
+                    is_alpha: false,
+                },
+                metalness: pm_map.unwrap_or(Tex::Const(pm.unwrap_or(0.0).clamp(0.0, 1.0))),
+            }
+        } else if ks.max_element() > 0.0 || ks_map.is_some() {
             Material::Phong {
                 kd: albedo,
-                ks: ColorTex::Const(ks),
-                exponent: m.shininess.filter(|n| n.is_finite() && *n > 0.0).unwrap_or(10.0),
+                ks: ks_map.unwrap_or(ColorTex::Const(ks)),
+                exponent: ns_map.unwrap_or(Tex::Const(ns.unwrap_or(10.0))),
             }
         } else {
             Material::Lambert { albedo }
         };
         let i = self.push(material);
+        if let Some(opacity) = opacity {
+            *self.surfaces.last_mut().expect("just pushed") = Surface {
+                normal: None,
+                cutout: Some(Cutout {
+                    opacity,
+                    threshold: None,
+                }),
+            };
+        }
         *self.names.last_mut().expect("just pushed") = Some(m.name.clone());
         *self.emission.last_mut().expect("just pushed") = ke;
         i
+    }
+
+    /// Decodes a scalar map (linear) once per path: its index and channel
+    /// count, `None` (with a note) if unreadable.
+    fn linear_texture(&mut self, path: &Path, notes: &mut Vec<String>) -> Option<(u32, u8)> {
+        if let Some(t) = self.linear_by_path.get(path) {
+            return *t;
+        }
+        if let Some(why) = self
+            .root
+            .as_deref()
+            .and_then(|r| crate::files::outside_root(r, path))
+        {
+            self.refused.push(format!("MTL texture {why}"));
+            return None;
+        }
+        let t = match super::material::load_texture_as(path, false) {
+            Ok((t, channels)) => {
+                self.textures.push(t);
+                Some((self.first_texture + self.textures.len() as u32 - 1, channels))
+            }
+            Err(e) => {
+                notes.push(format!("texture {} not used: {e}", path.display()));
+                None
+            }
+        };
+        self.linear_by_path.insert(path.to_path_buf(), t);
+        t
     }
 
     /// Decodes an image once per path; `None` (with a note) if unreadable.

@@ -176,13 +176,16 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             }
             s
         }
-        ObjectDesc::Sphere { center, radius, .. } => {
+        ObjectDesc::Sphere {
+            center, radius, uv, ..
+        } => {
             let scale = m.transform_vector3(Vec3::X).length();
             let sphere = Sphere {
                 center: point(center),
                 radius: radius * scale,
                 material,
                 light,
+                mitsuba_uv: *uv == crate::desc::SphereUvDesc::MitsubaZUp,
             };
             if let Some(e) = emission {
                 ctx.lights.push(Light::Sphere(SphereLight {

@@ -126,14 +126,19 @@ pub fn specular_kind(m: &MaterialDesc) -> Option<&'static str> {
     match m {
         MaterialDesc::Mirror { .. } => Some("a perfect mirror"),
         MaterialDesc::Glass { .. } => Some("smooth glass"),
-        MaterialDesc::CookTorrance { roughness, .. } if *roughness <= 0.0 => {
+        MaterialDesc::CookTorrance { roughness, .. } if roughness.constant().is_some_and(|r| r <= 0.0) => {
             Some("a microfacet reflector at roughness 0 (a mirror in effect)")
         }
         MaterialDesc::MetalPlastic {
             roughness, metalness, ..
-        } if *roughness <= 0.0 && *metalness >= 1.0 => {
+        } if roughness.constant().is_some_and(|r| r <= 0.0)
+            && metalness.constant().is_some_and(|m| m >= 1.0) =>
+        {
             Some("a polished metal (roughness 0, metalness 1: a mirror in effect)")
         }
+        MaterialDesc::NormalMap { material, .. }
+        | MaterialDesc::Bump { material, .. }
+        | MaterialDesc::Cutout { material, .. } => specular_kind(material),
         // Listed, not `_`: a new material must say whether it is specular.
         MaterialDesc::CookTorrance { .. }
         | MaterialDesc::MetalPlastic { .. }

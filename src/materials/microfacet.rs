@@ -47,6 +47,15 @@ pub struct Microfacet {
 
 impl Microfacet {
     /// The distribution for a perceptual `roughness` ∈ [0, 1] (clamped):
+    /// The distribution of width `alpha` itself (Mitsuba's `alpha`), clamped
+    /// to [[`MIN_ALPHA`], 4].
+    pub fn from_alpha(distribution: Distribution, alpha: f32) -> Self {
+        Self {
+            distribution,
+            alpha: alpha.clamp(MIN_ALPHA, 4.0),
+        }
+    }
+
     /// `alpha = roughness²`, at least [`MIN_ALPHA`].
     pub fn from_roughness(distribution: Distribution, roughness: f32) -> Self {
         let r = roughness.clamp(0.0, 1.0);
@@ -194,5 +203,48 @@ mod tests {
                 );
             }
         }
+    }
+}
+
+/// A roughness parameter: a number or texture and the unit it is in.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Roughness {
+    /// The value at each point.
+    pub tex: super::ScalarTex,
+    /// True when the value is the distribution's α (Mitsuba's `alpha`), false
+    /// for perceptual roughness r (α = r²).
+    pub is_alpha: bool,
+}
+
+impl Roughness {
+    /// A constant perceptual roughness.
+    pub fn perceptual(r: f32) -> Self {
+        Self {
+            tex: super::Tex::Const(r),
+            is_alpha: false,
+        }
+    }
+
+    /// The distribution at texture coordinates `uv`.
+    #[inline]
+    pub fn microfacet(
+        &self,
+        distribution: Distribution,
+        uv: glam::Vec2,
+        textures: &[super::Texture],
+    ) -> Microfacet {
+        let r = self.tex.eval(uv, textures);
+        if self.is_alpha {
+            Microfacet::from_alpha(distribution, r)
+        } else {
+            Microfacet::from_roughness(distribution, r)
+        }
+    }
+
+    /// The perceptual roughness at `uv` (√α when the value is α).
+    #[inline]
+    pub fn perceptual_at(&self, uv: glam::Vec2, textures: &[super::Texture]) -> f32 {
+        let r = self.tex.eval(uv, textures);
+        if self.is_alpha { r.max(0.0).sqrt() } else { r }
     }
 }

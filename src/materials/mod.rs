@@ -37,10 +37,12 @@ pub mod metal_plastic;
 pub mod microfacet;
 pub mod mirror;
 pub mod oren_nayar;
+pub mod pattern;
 pub mod phong;
 pub mod rough_coat;
 pub mod rough_glass;
 pub mod rough_plastic;
+pub mod surface;
 pub mod texture;
 
 #[cfg(test)]
@@ -52,14 +54,16 @@ pub use fresnel::{DielectricFresnel, Fresnel, Metal};
 pub use glass::Glass;
 pub use lambert::Lambert;
 pub use metal_plastic::MetalPlastic;
-pub use microfacet::{Distribution, Microfacet};
+pub use microfacet::{Distribution, Microfacet, Roughness};
 pub use mirror::Mirror;
 pub use oren_nayar::OrenNayar;
+pub use pattern::Pattern;
 pub use phong::Phong;
 pub use rough_coat::RoughCoat;
 pub use rough_glass::RoughGlass;
 pub use rough_plastic::RoughPlastic;
-pub use texture::{ColorTex, Texture};
+pub use surface::{Cutout, Perturb, Surface};
+pub use texture::{Channel, ColorTex, ImageLookup, ScalarTex, Tex, Texture, UvTransform};
 
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
@@ -302,7 +306,7 @@ pub enum Material {
         /// Diffuse reflectance per channel, in [0, 1].
         albedo: ColorTex,
         /// Roughness, unitless, ≥ 0.
-        sigma: f32,
+        sigma: ScalarTex,
     },
     /// `kd + ks` is scaled down per channel to at most 1 (see [`Phong`]).
     Phong {
@@ -311,7 +315,7 @@ pub enum Material {
         /// Specular reflectance per channel.
         ks: ColorTex,
         /// Sharpness n of the `cosⁿα` lobe, ≥ 0.
-        exponent: f32,
+        exponent: ScalarTex,
     },
     /// Energy-normalised Blinn–Phong; `kd + ks` is capped per channel as for `Phong`.
     BlinnPhong {
@@ -320,14 +324,14 @@ pub enum Material {
         /// Specular reflectance per channel.
         ks: ColorTex,
         /// Sharpness n of the `cosⁿθh` lobe, ≥ 0.
-        exponent: f32,
+        exponent: ScalarTex,
     },
     /// Microfacet conductor (Smith height-correlated masking-shadowing).
     CookTorrance {
         /// Microfacet normal distribution.
         distribution: Distribution,
-        /// Perceptual roughness in [0, 1]; `alpha = roughness²`.
-        roughness: f32,
+        /// Perceptual roughness in [0, 1] (`alpha = roughness²`) or α.
+        roughness: Roughness,
         /// Reflectance of the conductor.
         fresnel: Fresnel,
     },
@@ -336,10 +340,10 @@ pub enum Material {
         /// Diffuse colour (plastic) or reflectance at normal incidence (metal), per
         /// channel in [0, 1].
         base_color: ColorTex,
-        /// Perceptual roughness in [0, 1]; GGX `alpha = roughness²`.
-        roughness: f32,
+        /// Perceptual roughness in [0, 1] (GGX `alpha = roughness²`) or α.
+        roughness: Roughness,
         /// 0 is plastic, 1 is metal, in [0, 1].
-        metalness: f32,
+        metalness: ScalarTex,
     },
     /// Perfect specular reflection.
     Mirror {
@@ -349,7 +353,7 @@ pub enum Material {
     /// Smooth dielectric boundary (glass, water).
     Glass {
         /// Index of refraction η(inside)/η(outside), > 0.
-        ior: f32,
+        ior: ScalarTex,
         /// Colour of transmitted light, applied once per refraction.
         tint: ColorTex,
         /// Which Fresnel formula chooses between reflection and refraction.
@@ -373,10 +377,10 @@ pub enum Material {
     RoughGlass {
         /// Microfacet normal distribution.
         distribution: Distribution,
-        /// Perceptual roughness in [0, 1]; `alpha = roughness²`.
-        roughness: f32,
+        /// Perceptual roughness in [0, 1] (`alpha = roughness²`) or α.
+        roughness: Roughness,
         /// Index of refraction η(inside)/η(outside), > 0 and ≠ 1.
-        ior: f32,
+        ior: ScalarTex,
         /// Colour of transmitted light, applied once per refraction.
         tint: ColorTex,
     },
@@ -385,17 +389,27 @@ pub enum Material {
 impl Material {
     /// Whether any parameter is a texture (so shading needs `uv`).
     pub fn is_textured(&self) -> bool {
-        let t = |c: &ColorTex| !matches!(c, ColorTex::Const(_));
         match self {
-            Material::Lambert { albedo } | Material::OrenNayar { albedo, .. } => t(albedo),
-            Material::Phong { kd, ks, .. } | Material::BlinnPhong { kd, ks, .. } => t(kd) || t(ks),
-            Material::MetalPlastic { base_color, .. } => t(base_color),
-            Material::Mirror { tint } | Material::Glass { tint, .. } => t(tint),
+            Material::Lambert { albedo } => albedo.is_textured(),
+            Material::OrenNayar { albedo, sigma } => albedo.is_textured() || sigma.is_textured(),
+            Material::Phong { kd, ks, exponent } | Material::BlinnPhong { kd, ks, exponent } => {
+                kd.is_textured() || ks.is_textured() || exponent.is_textured()
+            }
+            Material::CookTorrance { roughness, .. } => roughness.tex.is_textured(),
+            Material::MetalPlastic {
+                base_color,
+                roughness,
+                metalness,
+            } => base_color.is_textured() || roughness.tex.is_textured() || metalness.is_textured(),
+            Material::Mirror { tint } => tint.is_textured(),
+            Material::Glass { tint, ior, .. } => tint.is_textured() || ior.is_textured(),
             Material::RoughPlastic {
                 diffuse, specular, ..
-            } => t(diffuse) || t(specular),
-            Material::RoughGlass { tint, .. } => t(tint),
-            Material::CookTorrance { .. } | Material::Emitter => false,
+            } => diffuse.is_textured() || specular.is_textured(),
+            Material::RoughGlass {
+                tint, roughness, ior, ..
+            } => tint.is_textured() || roughness.tex.is_textured() || ior.is_textured(),
+            Material::Emitter => false,
         }
     }
 
@@ -415,29 +429,34 @@ impl Material {
     #[inline(never)]
     fn bsdf_other(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
         let tex = |c: &ColorTex| c.eval(uv, textures);
+        let num = |c: &ScalarTex| c.eval(uv, textures);
         match self {
             Material::Lambert { albedo } => Bsdf::Lambert(Lambert { albedo: tex(albedo) }),
-            Material::OrenNayar { albedo, sigma } => Bsdf::OrenNayar(OrenNayar::new(tex(albedo), *sigma)),
-            Material::Phong { kd, ks, exponent } => Bsdf::Phong(Phong::new(tex(kd), tex(ks), *exponent)),
+            Material::OrenNayar { albedo, sigma } => Bsdf::OrenNayar(OrenNayar::new(tex(albedo), num(sigma))),
+            Material::Phong { kd, ks, exponent } => Bsdf::Phong(Phong::new(tex(kd), tex(ks), num(exponent))),
             Material::BlinnPhong { kd, ks, exponent } => {
-                Bsdf::BlinnPhong(BlinnPhong::new(tex(kd), tex(ks), *exponent))
+                Bsdf::BlinnPhong(BlinnPhong::new(tex(kd), tex(ks), num(exponent)))
             }
             Material::CookTorrance {
                 distribution,
                 roughness,
                 fresnel,
             } => Bsdf::CookTorrance(CookTorrance {
-                distribution: Microfacet::from_roughness(*distribution, *roughness),
+                distribution: roughness.microfacet(*distribution, uv, textures),
                 fresnel: *fresnel,
             }),
             Material::MetalPlastic {
                 base_color,
                 roughness,
                 metalness,
-            } => Bsdf::MetalPlastic(MetalPlastic::new(tex(base_color), *roughness, *metalness)),
+            } => Bsdf::MetalPlastic(MetalPlastic::new(
+                tex(base_color),
+                roughness.perceptual_at(uv, textures),
+                num(metalness),
+            )),
             Material::Mirror { tint } => Bsdf::Mirror(Mirror { tint: tex(tint) }),
             Material::Glass { ior, tint, fresnel } => Bsdf::Glass(Glass {
-                ior: *ior,
+                ior: num(ior),
                 tint: tex(tint),
                 fresnel: *fresnel,
             }),
@@ -457,8 +476,8 @@ impl Material {
                 ior,
                 tint,
             } => Bsdf::RoughGlass(RoughGlass {
-                microfacet: Microfacet::from_roughness(*distribution, *roughness),
-                ior: *ior,
+                microfacet: roughness.microfacet(*distribution, uv, textures),
+                ior: num(ior),
                 tint: tex(tint),
             }),
         }
@@ -543,6 +562,7 @@ mod material_tests {
             a: Rgb::ONE,
             b: Rgb::ZERO,
             scale: 4.0,
+            uv: UvTransform::default(),
         };
         let plain = Material::Lambert {
             albedo: ColorTex::Const(Rgb::ONE),
@@ -557,14 +577,14 @@ mod material_tests {
         assert!(
             Material::Phong {
                 kd: ColorTex::Const(Rgb::ONE),
-                ks: ColorTex::Image(0),
-                exponent: 10.0
+                ks: ColorTex::image(0),
+                exponent: Tex::Const(10.0)
             }
             .is_textured()
         );
         assert!(
             Material::Glass {
-                ior: 1.5,
+                ior: Tex::Const(1.5),
                 tint: checker,
                 fresnel: DielectricFresnel::Exact
             }
@@ -578,45 +598,47 @@ mod material_tests {
             a: Rgb::ONE,
             b: Rgb::ZERO,
             scale: 2.0,
+            uv: UvTransform::default(),
         };
         let textures = [Texture {
             width: 1,
             height: 1,
             texels: vec![Rgb::splat(0.25)],
+            alpha: Vec::new(),
         }];
         let materials = [
             Material::Lambert {
                 albedo: checker.clone(),
             },
             Material::OrenNayar {
-                albedo: ColorTex::Image(0),
-                sigma: 0.3,
+                albedo: ColorTex::image(0),
+                sigma: Tex::Const(0.3),
             },
             Material::Phong {
                 kd: checker.clone(),
                 ks: ColorTex::Const(Rgb::ONE),
-                exponent: 10.0,
+                exponent: Tex::Const(10.0),
             },
             Material::BlinnPhong {
                 kd: checker.clone(),
                 ks: checker.clone(),
-                exponent: 10.0,
+                exponent: Tex::Const(10.0),
             },
             Material::CookTorrance {
                 distribution: Distribution::Ggx,
-                roughness: 0.5,
+                roughness: Roughness::perceptual(0.5),
                 fresnel: Metal::Gold.fresnel(),
             },
             Material::MetalPlastic {
                 base_color: checker.clone(),
-                roughness: 0.5,
-                metalness: 0.5,
+                roughness: Roughness::perceptual(0.5),
+                metalness: Tex::Const(0.5),
             },
             Material::Mirror {
-                tint: ColorTex::Image(0),
+                tint: ColorTex::image(0),
             },
             Material::Glass {
-                ior: 1.5,
+                ior: Tex::Const(1.5),
                 tint: checker,
                 fresnel: DielectricFresnel::Exact,
             },

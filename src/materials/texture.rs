@@ -1,54 +1,232 @@
-//! Colour parameters that vary over a surface.
+//! Parameters that vary over a surface: colours ([`ColorTex`]) and numbers
+//! ([`ScalarTex`]), both a [`Tex`] — a constant, an image, a checker or a
+//! procedural [`Pattern`] — with an optional [`UvTransform`].
 //!
-//! Images are stored decoded, in **linear** RGB: the scene loader reads the
-//! file and calls [`Texture::from_srgb8`], so this module does no file IO and
-//! the render path never converts colour spaces.
+//! Images are stored decoded, in **linear** RGB (plus alpha when the file
+//! has one): the scene loader reads the file and decodes each texel once
+//! (sRGB or linear, as the scene says), so this module does no file IO and
+//! the render path never converts colour spaces; bilinear filtering then
+//! interpolates decoded values (as Mitsuba does).
 //!
-//! Texture coordinates: `uv = (0, 0)` is the **bottom-left** corner of the
-//! image and `(1, 1)` the top-right (OpenGL/OBJ convention); texels are
-//! stored in file order, top row first. Lookups wrap (repeat) in both axes.
+//! Texture coordinates: with the default origin `uv = (0, 0)` is the
+//! **bottom-left** corner of the image and `(1, 1)` the top-right
+//! (OpenGL/OBJ convention); `rows_down` images put `(0, 0)` at the top-left
+//! (Mitsuba). Texels are stored in file order, top row first. Lookups wrap
+//! (repeat) in both axes.
 
+use super::pattern::Pattern;
 use crate::math::Rgb;
-use glam::Vec2;
+use glam::{Affine2, Vec2};
 
-/// A colour parameter: a constant or a lookup into the scene's textures.
-#[derive(Clone, Debug)]
-pub enum ColorTex {
-    /// The same linear RGB value everywhere.
-    Const(Rgb),
+/// What a texture yields: [`Rgb`] for colours, `f32` for numbers.
+pub trait TexValue: Copy + std::fmt::Debug {
+    /// The value of a decoded texel (linear RGB and alpha) read through `channel`.
+    fn from_texel(rgb: Rgb, alpha: f32, channel: Channel) -> Self;
+    /// `a + (b − a)·t`.
+    fn mix(a: Self, b: Self, t: f32) -> Self;
+    /// `self·scale + offset`.
+    fn scale_offset(self, scale: f32, offset: f32) -> Self;
+}
+
+impl TexValue for Rgb {
+    #[inline]
+    fn from_texel(rgb: Rgb, alpha: f32, channel: Channel) -> Self {
+        match channel {
+            Channel::All => rgb,
+            Channel::R => Rgb::splat(rgb.x),
+            Channel::G => Rgb::splat(rgb.y),
+            Channel::B => Rgb::splat(rgb.z),
+            Channel::A => Rgb::splat(alpha),
+        }
+    }
+    #[inline]
+    fn mix(a: Self, b: Self, t: f32) -> Self {
+        a + (b - a) * t
+    }
+    #[inline]
+    fn scale_offset(self, scale: f32, offset: f32) -> Self {
+        self * scale + Rgb::splat(offset)
+    }
+}
+
+impl TexValue for f32 {
+    #[inline]
+    fn from_texel(rgb: Rgb, alpha: f32, channel: Channel) -> Self {
+        match channel {
+            // A greyscale image (the loader refuses a colour one without a channel).
+            Channel::All | Channel::R => rgb.x,
+            Channel::G => rgb.y,
+            Channel::B => rgb.z,
+            Channel::A => alpha,
+        }
+    }
+    #[inline]
+    fn mix(a: Self, b: Self, t: f32) -> Self {
+        a + (b - a) * t
+    }
+    #[inline]
+    fn scale_offset(self, scale: f32, offset: f32) -> Self {
+        self * scale + offset
+    }
+}
+
+/// Which channel of an image a texture reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Channel {
+    /// RGB for a colour; the (grey) value for a number.
+    All,
+    /// Red.
+    R,
+    /// Green.
+    G,
+    /// Blue.
+    B,
+    /// Alpha (1 where the image has none).
+    A,
+}
+
+/// `uv' = rotate(scale·uv) + offset`, or nothing: an identity transform is
+/// stored as `None` so untransformed lookups do exactly what they did before
+/// transforms existed.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UvTransform(pub Option<Affine2>);
+
+impl UvTransform {
+    /// The transform scaling by `scale`, rotating by `rotation_degrees`
+    /// counter-clockwise and then adding `offset`.
+    pub fn new(scale: Vec2, rotation_degrees: f32, offset: Vec2) -> Self {
+        if scale == Vec2::ONE && rotation_degrees == 0.0 && offset == Vec2::ZERO {
+            return Self(None);
+        }
+        Self(Some(Affine2::from_scale_angle_translation(
+            scale,
+            rotation_degrees.to_radians(),
+            offset,
+        )))
+    }
+
+    #[inline]
+    fn apply(&self, uv: Vec2) -> Vec2 {
+        match &self.0 {
+            Some(a) => a.transform_point2(uv),
+            None => uv,
+        }
+    }
+}
+
+/// How an image is looked up and its texels turned into a value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageLookup {
     /// Index into the scene's texture list (checked by the loader).
-    Image(u32),
+    pub index: u32,
+    /// The channel read.
+    pub channel: Channel,
+    /// Factor on the texel value.
+    pub scale: f32,
+    /// Added after `scale`.
+    pub offset: f32,
+    /// Whether uv (0, 0) is the top-left corner (Mitsuba) rather than the
+    /// bottom-left.
+    pub rows_down: bool,
+    /// Applied to the surface's UVs first.
+    pub uv: UvTransform,
+}
+
+/// A parameter that may vary over the surface: a closed set of kinds, all
+/// `Copy`-free plain data evaluated without allocation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Tex<T> {
+    /// The same value everywhere.
+    Const(T),
+    /// A bilinear, repeating image lookup.
+    Image(ImageLookup),
     /// Squares of side `1/scale` in uv space alternating `a` and `b`; the
     /// square containing uv (0, 0)+ is `a`.
     Checker {
-        /// Colour of the square at uv (0, 0) and every other square, linear RGB.
-        a: Rgb,
-        /// Colour of the remaining squares, linear RGB.
-        b: Rgb,
+        /// Value of the square at uv (0, 0) and every other square.
+        a: T,
+        /// Value of the remaining squares.
+        b: T,
         /// Squares per uv unit, > 0.
         scale: f32,
+        /// Applied to the surface's UVs first.
+        uv: UvTransform,
+    },
+    /// `a + (b − a)·pattern(uv)`.
+    Pattern {
+        /// The procedural pattern, values in [0, 1].
+        pattern: Pattern,
+        /// Value where the pattern is 0.
+        a: T,
+        /// Value where the pattern is 1.
+        b: T,
+        /// Applied to the surface's UVs first.
+        uv: UvTransform,
     },
 }
 
-impl ColorTex {
-    /// The colour at texture coordinates `uv`; images are filtered bilinearly and
-    /// repeat outside [0, 1]².
+/// A colour parameter.
+pub type ColorTex = Tex<Rgb>;
+/// A number parameter.
+pub type ScalarTex = Tex<f32>;
+
+impl<T: TexValue> Tex<T> {
+    /// The value at texture coordinates `uv`.
     #[inline]
-    pub fn eval(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+    pub fn eval(&self, uv: Vec2, textures: &[Texture]) -> T {
         match self {
-            ColorTex::Const(c) => *c,
-            ColorTex::Image(i) => match textures.get(*i as usize) {
-                Some(t) => t.bilinear(uv),
+            Tex::Const(c) => *c,
+            Tex::Image(l) => match textures.get(l.index as usize) {
+                Some(t) => {
+                    let uv = l.uv.apply(uv);
+                    let v = if l.channel == Channel::All {
+                        T::from_texel(t.bilinear_rows(uv, l.rows_down), 1.0, Channel::All)
+                    } else {
+                        let (rgb, alpha) = t.bilinear_rgba(uv, l.rows_down);
+                        T::from_texel(rgb, alpha, l.channel)
+                    };
+                    if l.scale == 1.0 && l.offset == 0.0 {
+                        v
+                    } else {
+                        v.scale_offset(l.scale, l.offset)
+                    }
+                }
                 None => {
-                    debug_assert!(false, "texture index {i} out of range");
-                    Rgb::ZERO
+                    debug_assert!(false, "texture index {} out of range", l.index);
+                    T::from_texel(Rgb::ZERO, 0.0, Channel::All)
                 }
             },
-            ColorTex::Checker { a, b, scale } => {
-                let p = (uv * *scale).floor();
+            Tex::Checker { a, b, scale, uv: tr } => {
+                let p = (tr.apply(uv) * *scale).floor();
                 if (p.x + p.y).rem_euclid(2.0) < 0.5 { *a } else { *b }
             }
+            Tex::Pattern {
+                pattern,
+                a,
+                b,
+                uv: tr,
+            } => T::mix(*a, *b, pattern.eval(tr.apply(uv))),
         }
+    }
+
+    /// Whether the value varies over the surface (so shading needs `uv`).
+    pub fn is_textured(&self) -> bool {
+        !matches!(self, Tex::Const(_))
+    }
+}
+
+impl ColorTex {
+    /// A colour image read whole, with no transform: what a plain file name
+    /// in a scene gives.
+    pub fn image(index: u32) -> Self {
+        Tex::Image(ImageLookup {
+            index,
+            channel: Channel::All,
+            scale: 1.0,
+            offset: 0.0,
+            rows_down: false,
+            uv: UvTransform::default(),
+        })
     }
 }
 
@@ -62,6 +240,9 @@ pub struct Texture {
     /// Linear RGB texels, row-major, top row first: texel `(x, y)` is
     /// `texels[y·width + x]`.
     pub texels: Vec<Rgb>,
+    /// Alpha per texel in the same order, or empty when the image has none
+    /// (alpha 1).
+    pub alpha: Vec<f32>,
 }
 
 /// The sRGB transfer function lives with the other image conversions.
@@ -88,6 +269,7 @@ impl Texture {
             width,
             height,
             texels,
+            alpha: Vec::new(),
         })
     }
 
@@ -105,6 +287,7 @@ impl Texture {
             width,
             height,
             texels,
+            alpha: Vec::new(),
         }
     }
 
@@ -115,21 +298,52 @@ impl Texture {
         self.texels[y * self.width as usize + x]
     }
 
-    /// Bilinear lookup with repeat wrapping; texel centres sit at half-integer
-    /// positions, so a 1×1 image is constant.
+    /// Bilinear lookup with repeat wrapping, v = 0 at the bottom row; texel
+    /// centres sit at half-integer positions, so a 1×1 image is constant.
     pub fn bilinear(&self, uv: Vec2) -> Rgb {
+        self.bilinear_rows(uv, false)
+    }
+
+    /// [`Texture::bilinear`] with v = 0 at the top row when `rows_down`
+    /// (Mitsuba's convention: no flip).
+    #[inline]
+    pub fn bilinear_rows(&self, uv: Vec2, rows_down: bool) -> Rgb {
         if self.texels.is_empty() {
             return Rgb::ZERO;
         }
-        // Continuous texel coordinates, v flipped so v = 0 is the bottom row.
-        let x = uv.x * self.width as f32 - 0.5;
-        let y = (1.0 - uv.y) * self.height as f32 - 0.5;
-        let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let (x0, y0) = (x0 as i64, y0 as i64);
+        let (x0, y0, fx, fy) = self.footprint(uv, rows_down);
         let top = self.texel(x0, y0).lerp(self.texel(x0 + 1, y0), fx);
         let bottom = self.texel(x0, y0 + 1).lerp(self.texel(x0 + 1, y0 + 1), fx);
         top.lerp(bottom, fy)
+    }
+
+    /// Bilinear RGB and alpha (1 where the image has none).
+    pub fn bilinear_rgba(&self, uv: Vec2, rows_down: bool) -> (Rgb, f32) {
+        let rgb = self.bilinear_rows(uv, rows_down);
+        if self.alpha.is_empty() {
+            return (rgb, 1.0);
+        }
+        let (x0, y0, fx, fy) = self.footprint(uv, rows_down);
+        let a = |x: i64, y: i64| {
+            let x = x.rem_euclid(self.width as i64) as usize;
+            let y = y.rem_euclid(self.height as i64) as usize;
+            self.alpha[y * self.width as usize + x]
+        };
+        let top = a(x0, y0) + (a(x0 + 1, y0) - a(x0, y0)) * fx;
+        let bottom = a(x0, y0 + 1) + (a(x0 + 1, y0 + 1) - a(x0, y0 + 1)) * fx;
+        (rgb, top + (bottom - top) * fy)
+    }
+
+    /// The top-left texel of the 2×2 block around `uv` and the weights.
+    #[inline]
+    fn footprint(&self, uv: Vec2, rows_down: bool) -> (i64, i64, f32, f32) {
+        // Continuous texel coordinates, v flipped unless rows run down.
+        let x = uv.x * self.width as f32 - 0.5;
+        let v = if rows_down { uv.y } else { 1.0 - uv.y };
+        let y = v * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        (x0 as i64, y0 as i64, fx, fy)
     }
 }
 
@@ -157,6 +371,7 @@ mod tests {
             a: Rgb::ONE,
             b: Rgb::ZERO,
             scale: 4.0,
+            uv: UvTransform::default(),
         };
         let at = |u: f32, v: f32| c.eval(Vec2::new(u, v), &[]).x;
         assert_eq!(at(0.1, 0.1), 1.0);
@@ -173,6 +388,7 @@ mod tests {
             width: 2,
             height: 1,
             texels: vec![Rgb::ZERO, Rgb::ONE],
+            alpha: Vec::new(),
         };
         let at = |u: f32| t.bilinear(Vec2::new(u, 0.5)).x;
         assert!((at(0.25) - 0.0).abs() < 1e-6, "left texel centre: {}", at(0.25));
@@ -187,6 +403,7 @@ mod tests {
             width: 1,
             height: 2,
             texels: vec![Rgb::ONE, Rgb::ZERO],
+            alpha: Vec::new(),
         };
         assert!(
             t.bilinear(Vec2::new(0.5, 0.75)).x > 0.99,

@@ -44,7 +44,10 @@ fn rough_materials_load_with_defaults_share_coats_and_render() {
             Material::RoughGlass {
                 distribution, ior, ..
             } => {
-                assert_eq!((*distribution, *ior), (Distribution::Ggx, 1.5));
+                assert_eq!(
+                    (*distribution, ior),
+                    (Distribution::Ggx, &crate::materials::Tex::Const(1.5))
+                );
                 None
             }
             _ => None,

@@ -1,0 +1,224 @@
+//! What a material does to the surface itself rather than to light: a
+//! shading normal from a normal or bump map, and alpha cut-outs. The scene
+//! applies these at intersection time (`Scene::intersect`), so every
+//! integrator, shadow ray and AOV sees the same surface; the BSDFs never
+//! know.
+//!
+//! # Normal maps (Mitsuba's `normalmap`, pbrt-v4's `NormalMap`)
+//! The texel c (linear) gives `n_t = normalize(2c − 1)` in the tangent frame
+//! `(s, t, n)`: `s` is ∂p/∂u made perpendicular to `n`, `t = n × s` (so
+//! green runs along +v), `n` the unperturbed normal. `strength` k scales the
+//! tilt: `(k·x, k·y, z)`. A map whose tilt is exactly 0 (the flat colour
+//! (0.5, 0.5, 1)) returns `n` bit for bit.
+//!
+//! # Bump maps (pbrt-v4 `BumpMap`, without the ∂n/∂u term)
+//! The surface is displaced by `h(u, v)·scale` along `n`:
+//! `∂p'/∂u ≈ ∂p/∂u + (∂h/∂u)·n`, likewise for v, and
+//! `n' = normalize(∂p'/∂u × ∂p'/∂v)` on `n`'s side. Derivatives are central
+//! differences over 1/1024 of a UV unit.
+//!
+//! # Light leaks
+//! A perturbed normal can face away from a viewer who sees the front of the
+//! geometric surface. As Mitsuba (with `flip_invalid_normals = false`), the
+//! surface is then black for that ray: the scene swaps in a black material
+//! ([`Surface::valid_for`]); no flipping, no shadowing term. Light arriving
+//! from below the geometric surface but above the perturbed one is
+//! reflected, as in Mitsuba; transmission through opaque models cannot
+//! happen because their BSDFs are zero across the perturbed surface.
+
+use super::{ColorTex, ScalarTex, Texture};
+use glam::{Vec2, Vec3A};
+
+/// A material's effect on the surface (none for most).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Surface {
+    /// Replaces the shading normal.
+    pub normal: Option<Perturb>,
+    /// Removes the surface where it is transparent.
+    pub cutout: Option<Cutout>,
+}
+
+/// How a shading normal is perturbed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Perturb {
+    /// Tangent-space normal map.
+    NormalMap {
+        /// Linear texels, `normalize(2c − 1)` in (s, t, n).
+        map: ColorTex,
+        /// Factor on the tilt.
+        strength: f32,
+        /// Negate green (DirectX-style maps).
+        flip_green: bool,
+    },
+    /// Bump (height) map.
+    Bump {
+        /// Height, in units of `scale`.
+        height: ScalarTex,
+        /// Scene units per unit of height.
+        scale: f32,
+    },
+}
+
+/// An alpha cut-out.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cutout {
+    /// Opacity in [0, 1].
+    pub opacity: ScalarTex,
+    /// `None`: stochastic (present with probability = opacity); `Some(c)`:
+    /// present where opacity ≥ c.
+    pub threshold: Option<f32>,
+}
+
+impl Surface {
+    /// True when the material leaves the surface as it is.
+    pub fn is_plain(&self) -> bool {
+        self.normal.is_none() && self.cutout.is_none()
+    }
+}
+
+impl Cutout {
+    /// Whether the surface is there at `uv` for a ray whose own uniform
+    /// number is `u` ∈ [0, 1).
+    #[inline]
+    pub fn present(&self, uv: Vec2, textures: &[Texture], u: f32) -> bool {
+        let a = self.opacity.eval(uv, textures);
+        match self.threshold {
+            Some(c) => a >= c,
+            None => u < a,
+        }
+    }
+}
+
+impl Perturb {
+    /// The perturbed unit normal at `uv`, on `n`'s side for bump maps; `dpdu`,
+    /// `dpdv` are the surface's derivatives (only their directions matter to
+    /// normal maps).
+    #[inline]
+    pub fn normal(&self, n: Vec3A, dpdu: Vec3A, dpdv: Vec3A, uv: Vec2, textures: &[Texture]) -> Vec3A {
+        match self {
+            Perturb::NormalMap {
+                map,
+                strength,
+                flip_green,
+            } => {
+                let c = map.eval(uv, textures);
+                let mut t = 2.0 * c - crate::math::Rgb::ONE;
+                if *flip_green {
+                    t.y = -t.y;
+                }
+                t.x *= strength;
+                t.y *= strength;
+                if t.x == 0.0 && t.y == 0.0 {
+                    return n;
+                }
+                let Some(nt) = t.try_normalize() else {
+                    return n;
+                };
+                let (s, t) = tangent_frame(n, dpdu);
+                (nt.x * s + nt.y * t + nt.z * n).try_normalize().unwrap_or(n)
+            }
+            Perturb::Bump { height, scale } => {
+                const DU: f32 = 1.0 / 1024.0;
+                let h = |d: Vec2| height.eval(uv + d, textures) * scale;
+                let dhdu = (h(Vec2::new(DU, 0.0)) - h(Vec2::new(-DU, 0.0))) / (2.0 * DU);
+                let dhdv = (h(Vec2::new(0.0, DU)) - h(Vec2::new(0.0, -DU))) / (2.0 * DU);
+                if dhdu == 0.0 && dhdv == 0.0 {
+                    return n;
+                }
+                let (s, t) = tangent_frame(n, dpdu);
+                // Keep the parametrisation's lengths: a bump of given height
+                // tilts less on a larger surface.
+                let (lu, lv) = (dpdu.length().max(1e-12), dpdv.length().max(1e-12));
+                let pu = s * lu + dhdu * n;
+                let pv = t * lv + dhdv * n;
+                let np = pu.cross(pv).try_normalize().unwrap_or(n);
+                if np.dot(n) < 0.0 { -np } else { np }
+            }
+        }
+    }
+}
+
+/// The unit tangent `s` (∂p/∂u made perpendicular to `n`) and `t = n × s`;
+/// any perpendicular pair where ∂p/∂u is parallel to `n` or zero (a pole).
+#[inline]
+pub fn tangent_frame(n: Vec3A, dpdu: Vec3A) -> (Vec3A, Vec3A) {
+    let s = match (dpdu - n * n.dot(dpdu)).try_normalize() {
+        Some(s) => s,
+        None => crate::math::Frame::from_normal(n).s,
+    };
+    (s, n.cross(s))
+}
+
+/// Whether a ray arriving along `d` may shade with normal `ns` on a surface of
+/// geometric normal `ng`: `-d` must lie on the same side of both (see the
+/// module docs on light leaks).
+#[inline]
+pub fn valid_for(d: Vec3A, ng: Vec3A, ns: Vec3A) -> bool {
+    d.dot(ng) * d.dot(ns) > 0.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::materials::Tex;
+    use crate::math::Rgb;
+
+    #[test]
+    fn flat_normal_map_keeps_the_normal_bit_for_bit() {
+        let flat = Perturb::NormalMap {
+            map: Tex::Const(Rgb::new(0.5, 0.5, 1.0)),
+            strength: 1.0,
+            flip_green: false,
+        };
+        let n = Vec3A::new(0.3, 0.4, 0.5).normalize();
+        let got = flat.normal(n, Vec3A::X, Vec3A::Y, Vec2::ZERO, &[]);
+        assert_eq!(got.to_array().map(f32::to_bits), n.to_array().map(f32::to_bits));
+    }
+
+    #[test]
+    fn normal_map_tilts_toward_the_tangents() {
+        // Red > 0.5 tilts toward +u (s), green > 0.5 toward +v (t = n × s).
+        let n = Vec3A::Y;
+        let (dpdu, dpdv) = (Vec3A::X, Vec3A::NEG_Z);
+        let map = |c: Rgb, flip_green| Perturb::NormalMap {
+            map: Tex::Const(c),
+            strength: 1.0,
+            flip_green,
+        };
+        let r = map(Rgb::new(1.0, 0.5, 1.0), false).normal(n, dpdu, dpdv, Vec2::ZERO, &[]);
+        assert!(r.x > 0.6 && r.y > 0.6, "red tilts to +x: {r}");
+        let g = map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, Vec2::ZERO, &[]);
+        assert!(g.z < -0.6, "green tilts to +v = −z: {g}");
+        let g = map(Rgb::new(0.5, 1.0, 1.0), true).normal(n, dpdu, dpdv, Vec2::ZERO, &[]);
+        assert!(g.z > 0.6, "flipped green tilts to +z: {g}");
+    }
+
+    #[test]
+    fn bump_of_a_constant_height_keeps_the_normal() {
+        let bump = Perturb::Bump {
+            height: Tex::Pattern {
+                pattern: crate::materials::Pattern::Stripes { duty: 2.0 },
+                a: 0.0,
+                b: 0.0,
+                uv: Default::default(),
+            },
+            scale: 1.0,
+        };
+        let n = Vec3A::Y;
+        assert_eq!(bump.normal(n, Vec3A::X, Vec3A::NEG_Z, Vec2::splat(0.5), &[]), n);
+    }
+
+    #[test]
+    fn cutout_threshold_and_stochastic() {
+        let c = Cutout {
+            opacity: Tex::Const(0.3),
+            threshold: Some(0.5),
+        };
+        assert!(!c.present(Vec2::ZERO, &[], 0.0));
+        let c = Cutout {
+            opacity: Tex::Const(0.3),
+            threshold: None,
+        };
+        assert!(c.present(Vec2::ZERO, &[], 0.29) && !c.present(Vec2::ZERO, &[], 0.31));
+    }
+}

@@ -1,0 +1,135 @@
+//! Textures, normal maps and cut-outs in whole renders: a flat normal map
+//! changes nothing, a cut-out's shadow is its mask's, and the reference
+//! comparison catches an sRGB map read as linear.
+
+mod common;
+
+use common::root;
+use ronray::imageio::{Image, blocks, compare, read_image};
+use ronray::load::{Overrides, load_str};
+use ronray::render::render;
+
+/// Renders scene `text` (as if it were a file in `scenes/`) at 64×64.
+fn render_text(text: &str, spp: u32, seed: u64) -> Image {
+    let o = Overrides {
+        spp: Some(spp),
+        size: Some((64, 64)),
+        seed: Some(seed),
+        ..Default::default()
+    };
+    let loaded = load_str(&root().join("scenes/test.ron"), text, &o)
+        .unwrap_or_else(|e| panic!("scene loads: {e}\n{text}"));
+    render(&loaded.scene, &loaded.view, &Default::default()).0
+}
+
+fn scene(materials: &str, objects: &str) -> String {
+    format!(
+        "Scene(
+            camera: (eye: (0, 3, 4), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: Path(max_depth: 4),
+            materials: {{ {materials} }},
+            lights: [Rect(center: (0, 3, 0), half_u: (0.5, 0, 0), half_v: (0, 0, 0.5), radiance: (20, 20, 20))],
+            objects: [{objects}],
+        )"
+    )
+}
+
+#[test]
+fn flat_normal_map_renders_byte_identical_to_no_map() {
+    let objects = r#"Rect(center: (0, 0, 0), half_u: (3, 0, 0), half_v: (0, 0, -3), material: "m"),
+                     Sphere(center: (0, 0.5, 0), radius: 0.5, material: "m")"#;
+    let plain = render_text(&scene(r#""m": Lambert(albedo: 0.6)"#, objects), 4, 1);
+    let mapped = render_text(
+        &scene(
+            r#""m": NormalMap(map: (0.5, 0.5, 1), material: Lambert(albedo: 0.6))"#,
+            objects,
+        ),
+        4,
+        1,
+    );
+    let bits =
+        |i: &Image| -> Vec<[u32; 3]> { i.pixels.iter().map(|p| p.to_array().map(f32::to_bits)).collect() };
+    assert!(
+        bits(&plain) == bits(&mapped),
+        "a flat normal map changed the image"
+    );
+}
+
+#[test]
+fn cutout_quad_shadow_matches_its_mask() {
+    // A quad with a 2 × 2 checker opacity between the light and the floor,
+    // against the same two opaque squares as plain geometry.
+    let materials = r#""floor": Lambert(albedo: 0.7),
+        "solid": Lambert(albedo: 0.3),
+        "cut": Cutout(opacity: Checker(a: 1, b: 0, scale: 2), mode: Threshold(0.5), material: Lambert(albedo: 0.3))"#;
+    let floor = r#"Rect(center: (0, 0, 0), half_u: (3, 0, 0), half_v: (0, 0, -3), material: "floor")"#;
+    let cut_scene = scene(
+        materials,
+        &format!(
+            r#"{floor}, Quad(corner: (-1, 1, 1), edge_u: (2, 0, 0), edge_v: (0, 0, -2), material: "cut")"#
+        ),
+    );
+    let squares = render_text(
+        &scene(
+            materials,
+            &format!(
+                r#"{floor}, Quad(corner: (-1, 1, 1), edge_u: (1, 0, 0), edge_v: (0, 0, -1), material: "solid"),
+                Quad(corner: (0, 1, 0), edge_u: (1, 0, 0), edge_v: (0, 0, -1), material: "solid")"#
+            ),
+        ),
+        16,
+        1,
+    );
+    let (a, b) = (render_text(&cut_scene, 16, 2), render_text(&cut_scene, 16, 3));
+    let noise = blocks(&a, &b, 8).expect("same size");
+    let mut bad = Vec::new();
+    for (r, n) in blocks(&a, &squares, 8).expect("same size").iter().zip(&noise) {
+        for ch in 0..3 {
+            // σ of a block mean of one render: E[(a − b)²]/2 per pixel.
+            let sigma = (n.sum_sq_diff[ch] / 2.0).sqrt() / r.pixels as f64;
+            let tol = 5.0 * sigma * 2f64.sqrt() + 0.02 * r.mean_b[ch] + 0.001;
+            if (r.mean_a[ch] - r.mean_b[ch]).abs() > tol {
+                bad.push(format!(
+                    "block ({}, {}) channel {ch}: {:.4} vs {:.4} (tolerance {tol:.4})",
+                    r.x, r.y, r.mean_a[ch], r.mean_b[ch]
+                ));
+            }
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "cut-out shadow differs from the opaque squares':\n{}",
+        bad.join("\n")
+    );
+    // And the holes are really open: without the cut-out the shadow is whole.
+    let solid = render_text(&cut_scene.replace("Checker(a: 1, b: 0, scale: 2)", "1"), 16, 2);
+    let open = compare(&a, &solid, None).expect("same size");
+    assert!(
+        open.mean_a[0] > 1.05 * open.mean_b[0],
+        "holes let no light through: {:?}",
+        open.mean_a
+    );
+}
+
+#[test]
+fn srgb_map_read_as_linear_is_caught_by_the_reference() {
+    let text = std::fs::read_to_string(root().join("scenes/textured_spheres.ron")).expect("scene");
+    let wrong = text.replace(
+        r#"albedo: Image(file: "../assets/textures/ts_floor_albedo.png", origin: TopLeft"#,
+        r#"albedo: Image(file: "../assets/textures/ts_floor_albedo.png", colorspace: Linear, origin: TopLeft"#,
+    );
+    assert_ne!(wrong, text, "the floor albedo is where the test expects it");
+    let reference = read_image(&root().join("tests/fixtures/refs/textured_spheres_64.pfm")).expect("fixture");
+    let mean_error = |t: &str| {
+        let c = compare(&render_text(t, 16, 1), &reference, None).expect("same size");
+        (0..3)
+            .map(|ch| ((c.mean_a[ch] - c.mean_b[ch]) / c.mean_b[ch]).abs())
+            .fold(0.0, f64::max)
+    };
+    let (right, wrong) = (mean_error(&text), mean_error(&wrong));
+    assert!(right < 0.01, "as authored: mean off by {right:.4}");
+    assert!(
+        wrong > 0.05,
+        "an sRGB albedo read as linear moved the mean by only {wrong:.4}"
+    );
+}
