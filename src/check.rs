@@ -17,9 +17,9 @@ pub mod metric;
 pub mod report;
 
 use crate::desc::TestDesc;
+use crate::frame::{RenderOptions, render_whole};
 use crate::imageio::{Image, metrics, read_image, srgb_decode, srgb8, write_image};
 use crate::load::{LoadError, Overrides, load_with};
-use crate::render::{RenderOptions, render};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -263,7 +263,7 @@ fn test_overrides(
 /// `scene` loaded with `o`, rendered and 8-bit quantised.
 fn render_with(scene: &Path, o: &Overrides, threads: Option<usize>) -> Result<Image, LoadError> {
     let loaded = load_with(scene, o)?;
-    let (img, _) = render(
+    let (img, _) = render_whole(
         &loaded.scene,
         &loaded.view,
         &RenderOptions {

@@ -2,7 +2,7 @@
 //! ronray: a physically based renderer driven by hand-written RON scene files.
 //!
 //! The pipeline is read → parse ([`desc`]) → check → build ([`load`]) →
-//! render ([`render`]). The loader returns the runtime [`scene::Scene`] (what
+//! render ([`frame`]: plan, tiles, write). The loader returns the runtime [`scene::Scene`] (what
 //! rays query) and the [`view::View`] beside it (camera, film, integrator);
 //! the renderer sees only those two. [`farm`] cuts a frame into pieces that
 //! render farms run on many machines, and assembles them bit for bit.
@@ -19,6 +19,7 @@ pub mod diagnostic;
 pub mod farm;
 pub mod files;
 pub mod film;
+pub mod frame;
 pub mod fuzzing;
 pub mod geometry;
 pub mod huge_pages;
@@ -30,7 +31,7 @@ pub mod lsp;
 pub mod materials;
 pub mod math;
 pub mod memory;
-pub mod render;
+
 pub mod sampler;
 pub mod scene;
 pub mod schema;

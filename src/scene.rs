@@ -74,7 +74,12 @@ impl Scene {
         let i = self.environment?;
         match &self.lights[i as usize] {
             Light::Environment(e) => Some((i, e)),
-            _ => None,
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Quad(_)
+            | Light::Sphere(_)
+            | Light::Mesh(_)
+            | Light::Sdf(_) => None,
         }
     }
 

@@ -1,4 +1,4 @@
-//! What [`crate::render::render`] needs beside the [`crate::scene::Scene`]:
+//! What [`crate::frame::render`] needs beside the [`crate::scene::Scene`]:
 //! the camera, the film, the integrator and where the image goes. Kept apart
 //! from the scene so that integrators, geometry and lights see only what rays
 //! query, and one scene can be rendered through several views.
@@ -9,7 +9,7 @@ use crate::imageio::Display;
 use crate::integrators::Integrator;
 use crate::math::Ray;
 use crate::sampler::{Sampler, SamplerKind};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Image size and sampling.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,22 +76,6 @@ impl View {
         let (offset, weight) = self.filter.sample(sampler.next_vec2());
         let film_pos = glam::Vec2::new((x as f32 + offset.x) / w, (y as f32 + offset.y) / h);
         (self.camera.ray(film_pos, w / h, sampler.next_vec2()), weight)
-    }
-
-    /// Where a render of the scene at `scene_path` goes: `cli` (`-o`), else
-    /// the scene's `film.output`, else `<scene stem>.png` in the current
-    /// folder.
-    pub fn output_path(&self, scene_path: &Path, cli: Option<PathBuf>) -> PathBuf {
-        cli.or_else(|| (!self.output.as_os_str().is_empty()).then(|| self.output.clone()))
-            .unwrap_or_else(|| {
-                PathBuf::from(format!(
-                    "{}.png",
-                    scene_path
-                        .file_stem()
-                        .and_then(|s| s.to_str())
-                        .unwrap_or("render")
-                ))
-            })
     }
 }
 

@@ -5,8 +5,8 @@
 mod common;
 
 use common::{load_text, report};
+use ronray::frame::{Plan, RenderOptions, Request, render_whole};
 use ronray::math::Rgb;
-use ronray::render::{RenderOptions, render, render_sums};
 use std::sync::atomic::AtomicBool;
 
 /// A diffuse box lit by a small area light: noisy where the light is seen
@@ -51,7 +51,7 @@ fn a_flat_image_stops_at_min_spp_and_stays_exact() {
             lights: [Rect(center: (0, 0, 0), half_u: (10, 0, 0), half_v: (0, 10, 0), radiance: (0.5, 0.5, 0.5))],
         )",
     );
-    let (img, stats) = render(&l.scene, &l.view, &opts(2));
+    let (img, stats) = render_whole(&l.scene, &l.view, &opts(2));
     assert_eq!(stats.samples, 24 * 16 * 16, "every pixel converged at min_spp");
     assert!(img.pixels.iter().all(|p| *p == Rgb::splat(0.5)));
 }
@@ -62,8 +62,8 @@ fn noisy_pixels_take_more_samples_than_smooth_ones_within_spp() {
     let l = load_text(&box_scene(&format!(
         "width: {w}, height: {h}, spp: {spp}, sampler: Independent, noise_threshold: 0.02, min_spp: {min}"
     )));
-    let (one, s1) = render(&l.scene, &l.view, &opts(1));
-    let (two, s2) = render(&l.scene, &l.view, &opts(2));
+    let (one, s1) = render_whole(&l.scene, &l.view, &opts(1));
+    let (two, s2) = render_whole(&l.scene, &l.view, &opts(2));
     assert_eq!(
         one.pixels, two.pixels,
         "adaptive images depend on the thread count"
@@ -83,7 +83,7 @@ fn noisy_pixels_take_more_samples_than_smooth_ones_within_spp() {
     let full = load_text(&box_scene(&format!(
         "width: {w}, height: {h}, spp: {spp}, sampler: Independent, allocation: Even"
     )));
-    let (reference, sf) = render(&full.scene, &full.view, &opts(2));
+    let (reference, sf) = render_whole(&full.scene, &full.view, &opts(2));
     assert_eq!(sf.samples, w * h * spp);
     let mean = |px: &[Rgb]| px.iter().map(|p| f64::from(p.x + p.y + p.z)).sum::<f64>() / px.len() as f64;
     let (a, b) = (mean(&one.pixels), mean(&reference.pixels));
@@ -103,8 +103,8 @@ fn a_threshold_nothing_meets_gives_the_plain_render_exactly() {
         camera,
         &format!("{base}, noise_threshold: 0.0000001, min_spp: 8"),
     ));
-    let (a, sa) = render(&plain.scene, &plain.view, &opts(2));
-    let (b, sb) = render(&strict.scene, &strict.view, &opts(2));
+    let (a, sa) = render_whole(&plain.scene, &plain.view, &opts(2));
+    let (b, sb) = render_whole(&strict.scene, &strict.view, &opts(2));
     assert_eq!(sa.samples, sb.samples);
     assert_eq!(a.pixels, b.pixels);
 }
@@ -115,15 +115,22 @@ fn sample_ranges_take_every_sample() {
     let l = load_text(&box_scene(
         "width: 8, height: 8, spp: 64, noise_threshold: 0.5, min_spp: 4",
     ));
-    let o = RenderOptions {
-        threads: Some(2),
-        sample_range: Some((0, 64)),
-        ..Default::default()
-    };
     let rect = ronray::imageio::PixelRect::full(8, 8);
-    let (_, stats) = render_sums(&l.scene, &l.view, &o, rect, &AtomicBool::new(false), &|_| {});
+    let piece = Request::Piece {
+        rect,
+        samples: (0, 64),
+    };
+    let plan = Plan::new(&l.scene, &l.view, piece, false).expect("a piece of the frame");
+    let (_, stats) = ronray::frame::render(
+        &l.scene,
+        &l.view,
+        &plan,
+        &opts(2),
+        &AtomicBool::new(false),
+        &|_| {},
+    );
     assert_eq!(stats.samples, 8 * 8 * 64);
-    let (_, adaptive) = render(&l.scene, &l.view, &opts(2));
+    let (_, adaptive) = render_whole(&l.scene, &l.view, &opts(2));
     assert!(adaptive.samples < 8 * 8 * 64);
 }
 

@@ -5,8 +5,8 @@
 mod common;
 
 use common::{load_text, report, ronray, root};
+use ronray::frame::{Plan, RenderOptions, Request, render_whole};
 use ronray::math::Rgb;
-use ronray::render::{RenderOptions, render, render_sums};
 use std::sync::atomic::AtomicBool;
 
 /// A diffuse box with a glass sphere under a small light: smooth walls,
@@ -54,8 +54,8 @@ fn rmse(a: &[Rgb], b: &[Rgb]) -> f64 {
 fn spread_renders_take_the_budget_and_do_not_depend_on_threads() {
     let (w, h, spp) = (32u64, 32u64, 64u64);
     let l = load_text(&scene(&format!("width: {w}, height: {h}, spp: {spp}")));
-    let (one, s1) = render(&l.scene, &l.view, &threads(1));
-    let (two, s2) = render(&l.scene, &l.view, &threads(2));
+    let (one, s1) = render_whole(&l.scene, &l.view, &threads(1));
+    let (two, s2) = render_whole(&l.scene, &l.view, &threads(2));
     assert_eq!(one.pixels, two.pixels, "the image depends on the thread count");
     assert_eq!(s1.samples, s2.samples);
     // Counts are rounded to multiples of 8: within 4 a pixel of the budget.
@@ -75,13 +75,13 @@ fn spreading_by_noise_lowers_the_error_and_keeps_the_mean() {
         format!("width: {w}, height: {h}, spp: {spp}, allocation: {allocation}, seed: {seed}")
     };
     let reference = load_text(&scene(&film(2048, "Even", 7)));
-    let (truth, _) = render(&reference.scene, &reference.view, &threads(2));
+    let (truth, _) = render_whole(&reference.scene, &reference.view, &threads(2));
     let mut errors = [0.0f64; 2];
     let mut means = [0.0f64; 2];
     for (k, allocation) in ["Even", "ByNoise"].into_iter().enumerate() {
         for seed in 1..=2 {
             let l = load_text(&scene(&film(64, allocation, seed)));
-            let (img, stats) = render(&l.scene, &l.view, &threads(2));
+            let (img, stats) = render_whole(&l.scene, &l.view, &threads(2));
             assert!(stats.samples.abs_diff(64 * w * h) <= 4 * w * h);
             errors[k] += rmse(&img.pixels, &truth.pixels) / 2.0;
             means[k] +=
@@ -115,20 +115,27 @@ fn pieces_small_and_stratified_renders_spread_evenly() {
     // Farm pieces add exact sums of fixed counts; below 32 spp there is
     // nothing to spread.
     let l = load_text(&scene("width: 8, height: 8, spp: 64"));
-    let o = RenderOptions {
-        threads: Some(2),
-        sample_range: Some((0, 32)),
-        ..Default::default()
-    };
     let full = ronray::imageio::PixelRect::full(8, 8);
-    let (_, stats) = render_sums(&l.scene, &l.view, &o, full, &AtomicBool::new(false), &|_| {});
+    let piece = Request::Piece {
+        rect: full,
+        samples: (0, 32),
+    };
+    let plan = Plan::new(&l.scene, &l.view, piece, false).expect("a piece of the frame");
+    let (_, stats) = ronray::frame::render(
+        &l.scene,
+        &l.view,
+        &plan,
+        &threads(2),
+        &AtomicBool::new(false),
+        &|_| {},
+    );
     assert_eq!(stats.samples, 8 * 8 * 32);
     let small = load_text(&scene("width: 8, height: 8, spp: 24"));
-    let (_, stats) = render(&small.scene, &small.view, &threads(2));
+    let (_, stats) = render_whole(&small.scene, &small.view, &threads(2));
     assert_eq!(stats.samples, 8 * 8 * 24);
     // A stratified pixel's strata are laid out for exactly `spp` samples.
     let strata = load_text(&scene("width: 8, height: 8, spp: 64, sampler: Stratified"));
-    let (_, stats) = render(&strata.scene, &strata.view, &threads(2));
+    let (_, stats) = render_whole(&strata.scene, &strata.view, &threads(2));
     assert_eq!(stats.samples, 8 * 8 * 64);
 }
 

@@ -24,7 +24,7 @@ fn direct_point_light_on_lambert_plane_matches_closed_form() {
     )"#,
     );
     // The pixel at the image centre sees the origin, straight below the light.
-    let (img, _) = ronray::render::render(&s.scene, &s.view, &Default::default());
+    let (img, _) = ronray::frame::render_whole(&s.scene, &s.view, &Default::default());
     let got = img.get(16, 16);
     let expected = 0.5 / PI * 10.0 * 1.0 / 4.0;
     for c in 0..3 {
@@ -186,7 +186,7 @@ fn whitted_equals_direct_without_specular_surfaces() {
             ..Default::default()
         };
         let l = load_str(&path, &t, &o).expect("scene loads");
-        ronray::render::render(&l.scene, &l.view, &Default::default()).0
+        ronray::frame::render_whole(&l.scene, &l.view, &Default::default()).0
     };
     let direct = render("integrator: Direct(light_samples: 2)");
     let whitted = render("integrator: Whitted(max_depth: 5, light_samples: 2)");

@@ -6,7 +6,7 @@
 mod common;
 
 use common::{blocks, load_text, report};
-use ronray::render::{RenderOptions, light_trace_plan, render};
+use ronray::frame::{Plan, RenderOptions, Request, render_whole};
 
 /// A box lit by a small rectangle, with a mirror sphere and a glass sphere
 /// whose caustics land on the floor and walls; `extra` goes into the
@@ -72,11 +72,11 @@ fn keeps_the_image(extra: &str) {
     let film =
         |spp: u32, seed: u32| format!("width: {w}, height: {w}, spp: {spp}, seed: {seed}, allocation: Even");
     let alone = load_text(&glass_scene(&film(2048, 3), "caustics: PathOnly"));
-    assert!(light_trace_plan(&alone.scene, &alone.view, &threads(2)).is_none());
-    let (truth, _) = render(&alone.scene, &alone.view, &threads(2));
+    assert!(Plan::whole(&alone.scene, &alone.view).light_trace.is_none());
+    let (truth, _) = render_whole(&alone.scene, &alone.view, &threads(2));
     let split = load_text(&glass_scene(&film(1024, 4), extra));
-    assert!(light_trace_plan(&split.scene, &split.view, &threads(2)).is_some());
-    let (img, _) = render(&split.scene, &split.view, &threads(2));
+    assert!(Plan::whole(&split.scene, &split.view).light_trace.is_some());
+    let (img, _) = render_whole(&split.scene, &split.view, &threads(2));
     let (a, b) = (blocks(&truth.pixels, w, w), blocks(&img.pixels, w, w));
     report(&format!(
         "caustic box 24x24 ({extra}): mean path tracer alone {:.5}, split {:.5}",
@@ -126,7 +126,7 @@ fn light_traced_caustics_lower_the_noise() {
                     &format!("integrator: Path(max_depth: 16, rr_depth: 5, caustics: {caustics}, splits: 1)"),
                 );
             let l = load_text(&t);
-            render(&l.scene, &l.view, &threads(2)).0.pixels
+            render_whole(&l.scene, &l.view, &threads(2)).0.pixels
         };
         let (a, b) = (render_seed(1), render_seed(2));
         let se: f64 = a
@@ -149,9 +149,9 @@ fn light_traced_caustics_lower_the_noise() {
 #[test]
 fn light_traced_caustics_do_not_depend_on_threads() {
     let l = load_text(&glass_scene("width: 24, height: 16, spp: 32", ""));
-    assert!(light_trace_plan(&l.scene, &l.view, &threads(1)).is_some());
-    let (one, _) = render(&l.scene, &l.view, &threads(1));
-    let (two, _) = render(&l.scene, &l.view, &threads(2));
+    assert!(Plan::whole(&l.scene, &l.view).light_trace.is_some());
+    let (one, _) = render_whole(&l.scene, &l.view, &threads(1));
+    let (two, _) = render_whole(&l.scene, &l.view, &threads(2));
     assert_eq!(one.pixels, two.pixels, "the image depends on the thread count");
     assert!(one.pixels.iter().all(|p| p.is_finite()));
 }
@@ -172,22 +172,29 @@ fn nothing_to_light_trace_renders_as_the_path_tracer_alone() {
     let (a, b) = (load_text(&rough("")), load_text(&rough("caustics: PathOnly")));
     assert!(a.scene.caustics.is_none());
     assert_eq!(
-        render(&a.scene, &a.view, &opts).0.pixels,
-        render(&b.scene, &b.view, &opts).0.pixels
+        render_whole(&a.scene, &a.view, &opts).0.pixels,
+        render_whole(&b.scene, &b.view, &opts).0.pixels
     );
     // Another filter, a thin lens, part of the samples: no light paths.
     let gaussian = load_text(&glass_scene(
         "width: 16, height: 16, spp: 16, filter: Gaussian()",
         "",
     ));
-    assert!(light_trace_plan(&gaussian.scene, &gaussian.view, &opts).is_none());
+    assert!(Plan::whole(&gaussian.scene, &gaussian.view).light_trace.is_none());
     let mut lens = load_text(&glass_scene("width: 16, height: 16, spp: 16", ""));
     lens.view.camera.aperture_radius = 0.05;
-    assert!(light_trace_plan(&lens.scene, &lens.view, &opts).is_none());
+    assert!(Plan::whole(&lens.scene, &lens.view).light_trace.is_none());
     let l = load_text(&glass_scene("width: 16, height: 16, spp: 16", ""));
-    let part = RenderOptions {
-        sample_range: Some((0, 8)),
-        ..threads(2)
-    };
-    assert!(light_trace_plan(&l.scene, &l.view, &part).is_none());
+    let rect = ronray::imageio::PixelRect::full(16, 16);
+    let part = Plan::new(
+        &l.scene,
+        &l.view,
+        Request::Piece {
+            rect,
+            samples: (0, 8),
+        },
+        false,
+    )
+    .expect("a piece");
+    assert!(part.light_trace.is_none());
 }

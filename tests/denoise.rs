@@ -11,9 +11,9 @@ mod common;
 mod with_oidn {
     use super::common::{report, root};
     use ronray::aov::{AovSet, render_aovs};
+    use ronray::frame::render_whole;
     use ronray::imageio::{Image, compare, read_image};
     use ronray::load::{Loaded, Overrides, load_with};
-    use ronray::render::render;
     use std::time::Instant;
 
     /// The shipped Cornell box (its own sampler) at the reference's 256×256.
@@ -25,7 +25,7 @@ mod with_oidn {
             ..Default::default()
         };
         let l = load_with(&root().join("scenes/cornell.ron"), &o).expect("cornell loads");
-        let img = render(&l.scene, &l.view, &Default::default()).0;
+        let img = render_whole(&l.scene, &l.view, &Default::default()).0;
         (l, img)
     }
 

@@ -16,9 +16,9 @@ mod common;
 
 use common::{load_in, report, root};
 use glam::DVec3;
+use ronray::frame::render_whole;
 use ronray::imageio::Image;
 use ronray::load::Overrides;
-use ronray::render::render;
 
 const SIZE: u32 = 64;
 const SPP: u32 = 64;
@@ -73,7 +73,7 @@ fn render_at(offset: f64, seed: u64) -> Image {
         ..Default::default()
     };
     let l = load_in(&root(), &scene(b), &o);
-    let img = render(&l.scene, &l.view, &Default::default()).0;
+    let img = render_whole(&l.scene, &l.view, &Default::default()).0;
     assert!(
         img.pixels.iter().all(|p| p.is_finite()),
         "non-finite pixels at {offset}"

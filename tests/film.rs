@@ -4,9 +4,9 @@
 mod common;
 
 use common::{load_text, render_loaded, report, ronray_in};
+use ronray::frame::{RenderOptions, render_whole};
 use ronray::imageio::{Display, Image, Tonemap, read_image, write_image, write_image_with};
 use ronray::math::Rgb;
-use ronray::render::{RenderOptions, render};
 
 /// A plane emitting 0.5 that fills the view, through `filter`.
 fn uniform_plane(filter: &str) -> String {
@@ -55,7 +55,7 @@ fn filtered_renders_do_not_depend_on_the_thread_count() {
         objects: [Sphere(center: (0, 0, 0), radius: 1, material: \"white\")],
     )";
     let l = load_text(text);
-    let one = render(
+    let one = render_whole(
         &l.scene,
         &l.view,
         &RenderOptions {
@@ -64,7 +64,7 @@ fn filtered_renders_do_not_depend_on_the_thread_count() {
         },
     )
     .0;
-    let two = render(
+    let two = render_whole(
         &l.scene,
         &l.view,
         &RenderOptions {

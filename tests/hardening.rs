@@ -5,9 +5,9 @@
 mod common;
 
 use common::root;
+use ronray::frame::{RenderOptions, render_whole};
 use ronray::load::{Loaded, Overrides, load_str};
 use ronray::math::Pcg32;
-use ronray::render::{RenderOptions, render};
 use std::path::Path;
 
 fn load_tiny(dir: &Path, text: &str) -> Option<Loaded> {
@@ -21,7 +21,7 @@ fn load_tiny(dir: &Path, text: &str) -> Option<Loaded> {
 
 /// Renders and asserts every pixel is finite.
 fn assert_finite(l: &Loaded, what: &str) {
-    let img = render(&l.scene, &l.view, &RenderOptions::default()).0;
+    let img = render_whole(&l.scene, &l.view, &RenderOptions::default()).0;
     if let Some(p) = img.pixels.iter().find(|p| !p.is_finite()) {
         panic!("{what}: a pixel is {p}");
     }

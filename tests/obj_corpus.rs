@@ -5,9 +5,9 @@
 mod common;
 
 use common::message;
+use ronray::frame::{RenderOptions, render_whole};
 use ronray::geometry::obj::load_obj_data;
 use ronray::load::{LoadError, Overrides, load_str};
-use ronray::render::{RenderOptions, render};
 use std::path::{Path, PathBuf};
 
 fn corpus() -> PathBuf {
@@ -71,7 +71,7 @@ fn obj_corpus_loads_and_renders() {
     assert_eq!(files.len(), 11, "corpus files found: {files:?}");
     for f in &files {
         let loaded = load(f, "").unwrap_or_else(|e| panic!("{} failed: {}", f.display(), message(&e)));
-        let (img, _) = render(&loaded.scene, &loaded.view, &RenderOptions::default());
+        let (img, _) = render_whole(&loaded.scene, &loaded.view, &RenderOptions::default());
         assert!(
             img.pixels.iter().all(|p| p.is_finite() && p.min_element() >= 0.0),
             "{}: non-finite or negative pixels",
@@ -79,7 +79,7 @@ fn obj_corpus_loads_and_renders() {
         );
         // MTL colours may be black (Kd 0); in red the mesh must show.
         let red = load(f, r#", material: "red""#).expect("loads with an override");
-        let (img, _) = render(&red.scene, &red.view, &RenderOptions::default());
+        let (img, _) = render_whole(&red.scene, &red.view, &RenderOptions::default());
         let lit = img.pixels.iter().filter(|p| p.max_element() > 0.0).count();
         assert!(lit > 0, "{}: the mesh is not visible in the image", f.display());
     }
@@ -179,7 +179,7 @@ fn obj_broken_files_fail_cleanly() {
         match load(&obj, "") {
             Ok(loaded) => {
                 // Whatever loads must render.
-                let (img, _) = render(&loaded.scene, &loaded.view, &RenderOptions::default());
+                let (img, _) = render_whole(&loaded.scene, &loaded.view, &RenderOptions::default());
                 assert!(
                     img.pixels.iter().all(|p| p.is_finite()),
                     "{name}: non-finite pixels"

@@ -6,9 +6,9 @@
 mod common;
 
 use common::{blocks, load_text};
+use ronray::frame::{RenderOptions, render_whole};
 use ronray::load::{LoadError, Overrides, load_str};
 use ronray::math::Rgb;
-use ronray::render::{RenderOptions, render};
 use std::path::Path;
 
 /// A white box lit by a small ceiling rectangle, a red wall, a mirror
@@ -44,7 +44,7 @@ fn render_with(text: &str, threads: usize) -> Vec<Rgb> {
         threads: Some(threads),
         ..Default::default()
     };
-    let img = render(&l.scene, &l.view, &opts).0;
+    let img = render_whole(&l.scene, &l.view, &opts).0;
     assert!(img.pixels.iter().all(|p| p.is_finite()));
     img.pixels
 }

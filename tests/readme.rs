@@ -126,3 +126,114 @@ fn readme_commands_need_nothing_outside_the_clone() {
         }
     }
 }
+
+/// The variants of `pub enum name` in `file` (lines of four spaces and a
+/// capital inside its braces).
+fn variants(file: &str, name: &str) -> Vec<String> {
+    let text = std::fs::read_to_string(root().join(file)).expect("enum file");
+    let start = text
+        .find(&format!("pub enum {name} "))
+        .unwrap_or_else(|| panic!("no `pub enum {name}` in {file}"));
+    let mut out = Vec::new();
+    for line in text[start..].lines().skip(1) {
+        if line.starts_with('}') {
+            break;
+        }
+        if let Some(rest) = line.strip_prefix("    ")
+            && rest.starts_with(|c: char| c.is_ascii_uppercase())
+        {
+            out.push(rest.chars().take_while(|c| c.is_alphanumeric()).collect());
+        }
+    }
+    assert!(out.len() > 2, "read too few variants of {name}: {out:?}");
+    out
+}
+
+/// Every source file (tests aside) that names every variant of `name`:
+/// where a new variant has to be added, paths relative to `src/`.
+fn every_variant_sites(name: &str, variants: &[String]) -> Vec<String> {
+    let src = root().join("src");
+    let mut found = Vec::new();
+    let mut stack = vec![src.clone()];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).expect("read src").flatten() {
+            let p = e.path();
+            let rel = p
+                .strip_prefix(&src)
+                .expect("under src")
+                .to_string_lossy()
+                .replace('\\', "/");
+            if p.is_dir() {
+                if !rel.ends_with("tests") {
+                    stack.push(p);
+                }
+                continue;
+            }
+            if !rel.ends_with(".rs") || rel.ends_with("tests.rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&p).expect("source");
+            let names = |v: &String| {
+                let pat = format!("{name}::{v}");
+                text.match_indices(&pat).any(|(i, _)| {
+                    let before = text[..i].chars().next_back();
+                    let after = text[i + pat.len()..].chars().next();
+                    !before.is_some_and(|c| c.is_alphanumeric() || c == '_')
+                        && !after.is_some_and(|c| c.is_alphanumeric() || c == '_')
+                })
+            };
+            if variants.iter().all(names) {
+                found.push(rel);
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// The README's change checklists ("Adding a material touches …") cannot
+/// go stale: each names every file that spells out all the variants of the
+/// kind's enums (so a new variant must be added there), and every file it
+/// names exists (`<model>` stands for any file of that folder).
+#[test]
+fn readme_change_checklists_name_every_file_a_new_variant_touches() {
+    let readme = readme();
+    let checklists = [
+        (
+            "Adding a material touches",
+            &[
+                ("src/desc/material.rs", "MaterialDesc"),
+                ("src/materials/mod.rs", "Material"),
+            ],
+        ),
+        (
+            "A light kind touches",
+            &[("src/desc/light.rs", "LightDesc"), ("src/lights/mod.rs", "Light")],
+        ),
+    ];
+    for (opening, enums) in checklists {
+        let at = readme
+            .find(opening)
+            .unwrap_or_else(|| panic!("the README has no `{opening}`"));
+        let paragraph = readme[at..].split("\n\n").next().unwrap_or("");
+        let named: Vec<&str> = paragraph.split('`').skip(1).step_by(2).collect();
+        for n in &named {
+            let path = root().join("src").join(n.split('<').next().unwrap_or(n));
+            assert!(path.exists(), "`{opening}` names `{n}`, which does not exist");
+        }
+        let covers = |site: &String| {
+            named.iter().any(|n| match n.split_once('<') {
+                Some((folder, _)) => site.starts_with(folder) && !site[folder.len()..].contains('/'),
+                None => site == n,
+            })
+        };
+        for (file, name) in enums {
+            for site in every_variant_sites(name, &variants(file, name)) {
+                assert!(
+                    covers(&site),
+                    "`{opening}` leaves out src/{site}, which lists every {name}"
+                );
+            }
+        }
+    }
+}

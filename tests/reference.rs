@@ -14,9 +14,9 @@
 mod common;
 
 use common::root;
+use ronray::frame::render_whole;
 use ronray::imageio::{Image, blocks, compare, read_image};
 use ronray::load::{Overrides, load_with};
-use ronray::render::render;
 
 fn render_at(scene: &str, spp: u32, seed: u64) -> Image {
     let o = Overrides {
@@ -26,7 +26,7 @@ fn render_at(scene: &str, spp: u32, seed: u64) -> Image {
         ..Default::default()
     };
     let loaded = load_with(&root().join("scenes").join(scene), &o).unwrap_or_else(|e| panic!("{scene}: {e}"));
-    render(&loaded.scene, &loaded.view, &Default::default()).0
+    render_whole(&loaded.scene, &loaded.view, &Default::default()).0
 }
 
 fn check(scene: &str, reference: &str, spp: u32) {
@@ -177,7 +177,7 @@ fn environment_importance_sampling_beats_uniform_on_env_spheres() {
             panic!("light {i} is the environment");
         };
         env.sampling = sampling;
-        let img = render(&loaded.scene, &loaded.view, &Default::default()).0;
+        let img = render_whole(&loaded.scene, &loaded.view, &Default::default()).0;
         compare(&img, &reference_img, None).expect("same size").rmse
     };
     let (importance, uniform) = (rmse(EnvSampling::Importance), rmse(EnvSampling::Uniform));
@@ -218,7 +218,7 @@ fn sobol_beats_independent_on_cornell() {
         )
         .expect("scene loads");
         compare(
-            &render(&loaded.scene, &loaded.view, &Default::default()).0,
+            &render_whole(&loaded.scene, &loaded.view, &Default::default()).0,
             &reference_img,
             None,
         )

@@ -4,8 +4,8 @@
 mod common;
 
 use common::{ronray, root};
+use ronray::frame::render_whole;
 use ronray::load::{LoadError, Overrides, load_with};
-use ronray::render::render;
 use std::path::PathBuf;
 
 fn scenes() -> Vec<PathBuf> {
@@ -68,8 +68,8 @@ fn json_scene_renders_the_same_image_as_its_ron_twin() {
     let ron = load_with(&root().join("scenes/cornell.ron"), &o).expect("RON loads");
     let json = load_with(&root().join("tests/fixtures/cornell.json"), &o).expect("JSON loads");
     assert_eq!(
-        render(&ron.scene, &ron.view, &Default::default()).0,
-        render(&json.scene, &json.view, &Default::default()).0
+        render_whole(&ron.scene, &ron.view, &Default::default()).0,
+        render_whole(&json.scene, &json.view, &Default::default()).0
     );
 }
 

@@ -5,9 +5,9 @@
 mod common;
 
 use common::root;
+use ronray::frame::render_whole;
 use ronray::imageio::{Image, blocks, compare, read_image};
 use ronray::load::{Overrides, load_str};
-use ronray::render::render;
 
 /// Renders scene `text` (as if it were a file in `scenes/`) at 64×64.
 fn render_text(text: &str, spp: u32, seed: u64) -> Image {
@@ -19,7 +19,7 @@ fn render_text(text: &str, spp: u32, seed: u64) -> Image {
     };
     let loaded = load_str(&root().join("scenes/test.ron"), text, &o)
         .unwrap_or_else(|e| panic!("scene loads: {e}\n{text}"));
-    render(&loaded.scene, &loaded.view, &Default::default()).0
+    render_whole(&loaded.scene, &loaded.view, &Default::default()).0
 }
 
 fn scene(materials: &str, objects: &str) -> String {

@@ -2,7 +2,8 @@
 //! folder, edited the ways editors save, read through the lines it prints.
 //! Every wait has a deadline and the process dies with its guard.
 
-use ronray::render::{RenderOptions, SampleSums, render, render_accumulate};
+use ronray::frame::{Pixels, Plan, RenderOptions, Request, render_whole};
+use ronray::imageio::SampleSums;
 use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -390,26 +391,29 @@ fn watch_ignores_its_own_output() {
 }
 
 #[test]
-fn render_accumulate_matches_render_bit_for_bit() {
+fn watch_passes_add_up_to_render_bit_for_bit() {
     let dir = tempfile::tempdir().expect("temp dir");
     std::fs::write(dir.path().join("tri.obj"), TRIANGLE).expect("obj");
     let path: &Path = &dir.path().join("s.ron");
     let loaded = ronray::load::load_str(path, &scene("0.8, 0.2, 0.2", 0.4, "tri.obj"), &Default::default())
         .expect("scene loads");
-    let (full, _) = render(&loaded.scene, &loaded.view, &RenderOptions::default());
+    let (full, _) = render_whole(&loaded.scene, &loaded.view, &RenderOptions::default());
     let mut sums = SampleSums::new(ronray::imageio::PixelRect::full(48, 48));
-    for (first, n) in [(0, 1), (1, 1), (2, 2), (4, 4)] {
-        let opts = RenderOptions {
-            sample_range: Some((first, n)),
-            ..Default::default()
-        };
-        render_accumulate(
+    for k in 0..4 {
+        let plan = Plan::new(&loaded.scene, &loaded.view, Request::Pass { k }, false).expect("pass k of 4");
+        let opts = RenderOptions::default();
+        let (pass, _) = ronray::frame::render(
             &loaded.scene,
             &loaded.view,
+            &plan,
             &opts,
             &AtomicBool::new(false),
-            &mut sums,
+            &|_| {},
         );
+        match pass {
+            Pixels::Sums(pass) => sums.add(&pass),
+            Pixels::Means(_) => panic!("a watch pass keeps exact sums"),
+        }
     }
     assert!(
         sums.mean(8) == full,

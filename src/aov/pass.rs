@@ -23,9 +23,9 @@ struct Pixel {
 
 /// Traces the camera rays of every (pixel, sample) of `view`'s film to their
 /// first hit and reduces them per pixel; `written` is recorded as the layers
-/// to write. The camera sample is drawn exactly as [`crate::render`] draws it
+/// to write. The camera sample is drawn exactly as the tile loop (`crate::frame`) draws it
 /// (same sampler stream, same two dimensions), so the layers see what the
-/// beauty pass sees. `threads` as in [`crate::render::RenderOptions`]; the
+/// beauty pass sees. `threads` as in [`crate::frame::RenderOptions`]; the
 /// result does not depend on it.
 pub fn render_aovs(scene: &Scene, view: &View, written: AovSet, threads: Option<usize>) -> AovLayers {
     let film = view.film;

@@ -15,9 +15,9 @@
 //! `tests/reference.rs`.
 
 use super::RenderSettings;
+use crate::frame::{RenderOptions, render_whole};
 use crate::imageio::{Image, compare, read_image};
 use crate::load::{Overrides, load_with};
-use crate::render::{RenderOptions, render};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -109,7 +109,7 @@ pub fn run(b: &SceneBench) -> Result<(), String> {
                     ..Default::default()
                 };
                 let (wall, cpu) = (Instant::now(), super::bench::cpu_seconds());
-                let (img, stats) = render(&loaded.scene, &loaded.view, &opts);
+                let (img, stats) = render_whole(&loaded.scene, &loaded.view, &opts);
                 let (secs, cpu_s) = (wall.elapsed().as_secs_f64(), super::bench::cpu_seconds() - cpu);
                 let err = |skip: Option<&[bool]>| compare(&img, &case.reference, skip).map(|c| c.rmse);
                 let whole = err(None)?;

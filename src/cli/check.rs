@@ -1,9 +1,9 @@
 //! `ronray check` (golden-image regressions) and `ronray gallery`.
 use super::{print_load_error, print_out};
 use crate::check::CheckOptions;
+use crate::frame::{RenderOptions, render_whole};
 use crate::imageio::write_image;
 use crate::load::{Overrides, load_with};
-use crate::render::{RenderOptions, render};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -142,7 +142,7 @@ pub(super) fn cmd_gallery(
         }
         let stem = scene.file_stem().and_then(|s| s.to_str()).unwrap_or("scene");
         let target = out.join(format!("{stem}.png"));
-        let (img, stats) = render(
+        let (img, stats) = render_whole(
             &loaded.scene,
             &loaded.view,
             &RenderOptions {

@@ -53,12 +53,12 @@ fn fmt_one(p: &Path, o: FmtOptions, failed: &mut bool) -> Result<(), String> {
         };
         // The target's own format: `fmt --canonical scene.json` stays JSON.
         let t = if is_json(&target) {
-            crate::load::format::to_json(&desc)
+            crate::load::canonical::to_json(&desc)
         } else {
-            crate::load::format::to_ron(&desc)
+            crate::load::canonical::to_ron(&desc)
         }?;
         let keeps_comments = is_json(&target) && !is_json(p);
-        if crate::load::format::has_comments(&text)
+        if crate::load::canonical::has_comments(&text)
             && !keeps_comments
             && !o.drop_comments
             && !o.stdout

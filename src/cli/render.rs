@@ -1,11 +1,11 @@
-//! `ronray render`: load, render the whole frame or a piece of it, write
-//! atomically, summarise.
+//! `ronray render`: arguments in; load, plan, check the output, render,
+//! write (all library calls: `crate::frame`); the summary out.
 use super::{RenderSettings, USAGE, print_load_error, print_warnings};
 use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
-use crate::farm::{Existing, PieceSpec, Region, TileIndex, existing_piece, piece_meta, write_piece};
+use crate::farm::{Existing, PieceMeta, Region, TileIndex, existing_piece, piece_meta};
+use crate::frame::{Output, Plan, RenderOptions, RenderStats, Request, TileDone, WriteOptions};
 use crate::imageio::PixelRect;
 use crate::load::{Loaded, load_with};
-use crate::render::{RenderOptions, RenderStats, TileDone, render_image, render_sums};
 use clap::Args;
 use serde_json::json;
 use std::io::IsTerminal;
@@ -81,18 +81,9 @@ pub(super) fn cmd_render(
     show_stats: bool,
     limits: &Limits,
 ) -> ExitCode {
-    let Limits { root, max_memory } = *limits;
-    if layer_args.denoise && !crate::denoise::AVAILABLE {
-        eprintln!(
-            "error: --denoise: {}; {}; nothing was written",
-            crate::denoise::NOT_BUILT,
-            crate::denoise::HOW_TO_ENABLE
-        );
-        return USAGE.into();
-    }
     let json = piece.progress.as_deref() == Some("json");
     let overrides = crate::load::Overrides {
-        root: root.map(Path::to_path_buf),
+        root: limits.root.map(Path::to_path_buf),
         ..settings.overrides()
     };
     let loaded = match load_with(path, &overrides) {
@@ -104,202 +95,129 @@ pub(super) fn cmd_render(
     };
     // Warnings are printed, not fatal: the scene renders as written.
     print_warnings(&loaded.warnings);
-    let f = loaded.view.film;
-    let env = |k: &str| std::env::var(k).ok();
-    let spec = if piece.is_piece() {
-        match crate::farm::resolve(piece.region(), piece.samples, (f.width, f.height, f.spp), &env) {
-            Ok(s) => Some(s),
-            Err(e) => {
-                eprintln!("error: {e}; nothing was written");
-                return USAGE.into();
-            }
-        }
-    } else {
-        if piece.resume {
-            eprintln!(
-                "error: --resume skips pieces already written; give --crop, --pixels, --tile or --samples"
-            );
-            return USAGE.into();
-        }
-        None
-    };
-    let mut out = loaded.view.output_path(path, output);
-    if let Some((i, _)) = spec.and_then(|s| s.tile) {
-        out = PathBuf::from(out.to_string_lossy().replace("{tile}", &i.to_string()));
-    }
-    let ext = out
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    if spec.is_some() && ext != "exr" {
-        eprintln!(
-            "error: a piece of a frame is written as EXR, and {} is not .exr: PNG pieces are 8-bit and cannot be merged exactly (assemble the EXR pieces into a PNG instead); nothing was written",
-            out.display()
-        );
-        return USAGE.into();
-    }
-    if !crate::imageio::WRITTEN_EXTENSIONS.contains(&ext.as_str()) {
-        eprintln!(
-            "error: output {} must end in .png, .exr, .pfm or .hdr; nothing was written",
-            out.display()
-        );
-        return ExitCode::FAILURE;
-    }
-    if let Some(input) = loaded.input_at(&out) {
-        eprintln!(
-            "error: output {} is {}, which the scene reads; nothing was written",
-            out.display(),
-            input.display()
-        );
-        return ExitCode::FAILURE;
-    }
-    let denoise = layer_args.denoise || f.denoise;
-    if spec.is_some() && (denoise || !f.aovs.is_empty()) {
-        eprintln!(
-            "error: AOV layers and denoising need the whole frame (pieces carry only the beauty pass's sums); render without --crop, --pixels, --tile and --samples; nothing was written"
-        );
-        return USAGE.into();
-    }
-    if !f.aovs.is_empty() && ext != "exr" {
-        eprintln!(
-            "error: `film.aovs` adds layers to EXR files, and {} is not .exr; pass `-o NAME.exr` or remove `aovs`; nothing was written",
-            out.display()
-        );
-        return USAGE.into();
-    }
-    let spec = spec.unwrap_or(PieceSpec {
-        rect: PixelRect::full(f.width, f.height),
-        samples: (0, f.spp),
-        tile: None,
-    });
-    let is_piece = piece.is_piece();
-    // Refused before anything is allocated: a piece keeps exact sums per
-    // pixel, like a progressive render.
-    let (rw, rh) = (spec.rect.x1 - spec.rect.x0, spec.rect.y1 - spec.rect.y0);
-    if let Err(e) = crate::memory::check_film(rw, rh, is_piece, max_memory) {
-        eprintln!("error: {e}; nothing was written");
-        return ExitCode::FAILURE;
-    }
-    if is_piece && loaded.view.film.adaptive.is_some() {
-        eprintln!(
-            "note: film.noise_threshold is ignored for pieces: their exact sums add up across machines only when every pixel takes every sample"
-        );
-    }
-    let meta = match is_piece.then(|| piece_meta(&loaded, &spec)).transpose() {
-        Ok(m) => m,
-        Err(e) => {
-            eprintln!("error: {e}; nothing was written");
-            return ExitCode::FAILURE;
+    let (plan, out, meta) = match prepare(path, output, &loaded, piece, layer_args.denoise, limits) {
+        Ok(Some(job)) => job,
+        Ok(None) => return ExitCode::SUCCESS,
+        Err((message, code)) => {
+            eprintln!("error: {message}; nothing was written");
+            return code;
         }
     };
-    if let (true, Some(m)) = (piece.resume, &meta) {
-        match existing_piece(&out, m) {
-            Existing::Done => {
-                eprintln!(
-                    "skipped {}: it already holds this piece of scene {}",
-                    out.display(),
-                    m.scene
-                );
-                if json {
-                    json_line(json!({"event": "skipped", "output": out, "scene": m.scene}));
-                }
-                return ExitCode::SUCCESS;
-            }
-            Existing::Different(why) => eprintln!("re-rendering {}: {why}", out.display()),
-            Existing::Absent => {}
-        }
-    }
+    let (scene, view) = (&loaded.scene, &loaded.view);
     let opts = RenderOptions {
         threads: settings.threads,
         progress: !json && piece.progress.as_deref() != Some("none") && std::io::stderr().is_terminal(),
-        sample_range: Some((spec.samples.0, spec.samples.1 - spec.samples.0)),
     };
-    if json {
-        json_line(json!({
-            "event": "start",
-            "output": out,
-            "scene": meta.as_ref().map(|m| m.scene.clone()),
-            "pixels": [spec.rect.x0, spec.rect.y0, spec.rect.x1, spec.rect.y1],
-            "samples": [spec.samples.0, spec.samples.1],
-            "tile": spec.tile.map(|(i, n)| format!("{i}/{n}")),
-        }));
-    }
+    let r = plan.rect;
+    json.then(|| {
+        json_line(
+            json!({"event": "start", "output": out.path, "scene": meta.as_ref().map(|m| m.scene.clone()),
+        "pixels": [r.x0, r.y0, r.x1, r.y1], "samples": [plan.samples.0, plan.samples.1],
+        "tile": meta.as_ref().and_then(|m| m.tile).map(|(i, n)| format!("{i}/{n}"))}),
+        )
+    });
     let report = |t: &TileDone| {
-        if json {
-            json_line(json!({
-                "event": "tile",
-                "done": t.done,
-                "total": t.total,
-                "pixels": [t.rect.x0, t.rect.y0, t.rect.x1, t.rect.y1],
-                "elapsed_s": t.elapsed.as_secs_f64(),
-            }));
+        json.then(|| {
+            json_line(json!({"event": "tile", "done": t.done, "total": t.total,
+            "pixels": [t.rect.x0, t.rect.y0, t.rect.x1, t.rect.y1], "elapsed_s": t.elapsed.as_secs_f64()}))
+        });
+    };
+    let (pixels, stats) = crate::frame::render(scene, view, &plan, &opts, &AtomicBool::new(false), &report);
+    let write = WriteOptions {
+        threads: settings.threads,
+        keep_noisy: layer_args.keep_noisy,
+        piece: meta.as_ref(),
+    };
+    let extra = match crate::frame::write(scene, view, &plan, &out, &pixels, &write) {
+        Ok(extra) => extra,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
         }
     };
-    let cancel = AtomicBool::new(false);
-    let mut extra = String::new();
-    let (written, stats) = match &meta {
-        Some(m) => {
-            let (sums, stats) = render_sums(&loaded.scene, &loaded.view, &opts, spec.rect, &cancel, &report);
-            (write_piece(&out, m, &sums).map_err(|e| e.to_string()), stats)
-        }
-        None => {
-            let (image, stats) = render_image(&loaded.scene, &loaded.view, &opts, &cancel, &report);
-            let written = super::layers::write_frame(
-                &loaded,
-                image,
-                &out,
-                opts.threads,
-                denoise,
-                layer_args.keep_noisy,
-            );
-            (written.map(|n| extra = n), stats)
-        }
-    };
-    if let Err(e) = written {
-        eprintln!("error: {e}");
-        return ExitCode::FAILURE;
-    }
-    let what = if is_piece {
-        format!(
-            "piece: pixels {}, samples {}..{} of a {}×{}, {} spp frame",
-            spec.rect, spec.samples.0, spec.samples.1, f.width, f.height, f.spp
+    let what = plan.describe(view, stats.samples);
+    eprintln!(
+        "wrote {} ({what}) in {}{extra}",
+        out.path.display(),
+        stats.summary()
+    );
+    json.then(|| {
+        json_line(
+            json!({"event": "done", "output": out.path, "elapsed_s": stats.elapsed.as_secs_f64(),
+        "samples": stats.samples, "rays": stats.rays}),
         )
-    } else if loaded.view.film.adaptive.is_some() {
-        let pixels = (u64::from(f.width) * u64::from(f.height)).max(1);
-        format!(
-            "{}×{}, adaptive: {:.1} spp on average, at most {}",
-            f.width,
-            f.height,
-            stats.samples as f64 / pixels as f64,
-            f.spp
-        )
-    } else if crate::render::spread_plan(&loaded.view, &opts).is_some() {
-        let pixels = (u64::from(f.width) * u64::from(f.height)).max(1);
-        format!(
-            "{}×{}, {} spp spread by noise: {:.1} on average",
-            f.width,
-            f.height,
-            f.spp,
-            stats.samples as f64 / pixels as f64
-        )
-    } else {
-        format!("{}×{}, {} spp", f.width, f.height, f.spp)
-    };
-    eprintln!("wrote {} ({what}) in {}{extra}", out.display(), stats.summary());
-    if json {
-        json_line(json!({
-            "event": "done",
-            "output": out,
-            "elapsed_s": stats.elapsed.as_secs_f64(),
-            "samples": stats.samples,
-            "rays": stats.rays,
-        }));
-    }
+    });
     if show_stats {
         print_stats(&loaded, &stats);
     }
     ExitCode::SUCCESS
+}
+
+/// A refusal to render: the message and the exit code.
+type Refusal = (String, ExitCode);
+
+/// The plan, the checked output and, for a piece, its metadata; `None` when
+/// `--resume` finds the piece already written.
+fn prepare(
+    path: &Path,
+    output: Option<PathBuf>,
+    loaded: &Loaded,
+    piece: &PieceArgs,
+    denoise: bool,
+    limits: &Limits,
+) -> Result<Option<(Plan, Output, Option<PieceMeta>)>, Refusal> {
+    let usage = |e: &dyn std::fmt::Display| (e.to_string(), USAGE.into());
+    let failure = |e: &dyn std::fmt::Display| (e.to_string(), ExitCode::FAILURE);
+    let f = loaded.view.film;
+    let env = |k: &str| std::env::var(k).ok();
+    let spec = match piece.is_piece() {
+        true => Some(
+            crate::farm::resolve(piece.region(), piece.samples, (f.width, f.height, f.spp), &env)
+                .map_err(|e| usage(&e))?,
+        ),
+        false if piece.resume => {
+            return Err(usage(
+                &"--resume skips pieces already written; give --crop, --pixels, --tile or --samples",
+            ));
+        }
+        false => None,
+    };
+    let request = spec.map_or(Request::Whole, |s| Request::Piece {
+        rect: s.rect,
+        samples: s.samples,
+    });
+    let plan = Plan::new(&loaded.scene, &loaded.view, request, denoise).map_err(|e| usage(&e))?;
+    let tile = spec.and_then(|s| s.tile).map(|(i, _)| i);
+    let out = Output::path(&loaded.view, path, output, tile);
+    let out = Output::new(out, &plan, &loaded.files, limits.max_memory)
+        .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?;
+    if plan.adaptive_ignored {
+        eprintln!(
+            "note: film.noise_threshold is ignored for pieces: their exact sums add up across machines only when every pixel takes every sample"
+        );
+    }
+    let meta = spec
+        .map(|s| piece_meta(loaded, &s))
+        .transpose()
+        .map_err(|e| failure(&e))?;
+    if let (true, Some(m)) = (piece.resume, &meta) {
+        match existing_piece(&out.path, m) {
+            Existing::Done => {
+                eprintln!(
+                    "skipped {}: it already holds this piece of scene {}",
+                    out.path.display(),
+                    m.scene
+                );
+                if piece.progress.as_deref() == Some("json") {
+                    json_line(json!({"event": "skipped", "output": out.path, "scene": m.scene}));
+                }
+                return Ok(None);
+            }
+            Existing::Different(why) => eprintln!("re-rendering {}: {why}", out.path.display()),
+            Existing::Absent => {}
+        }
+    }
+    Ok(Some((plan, out, meta)))
 }
 
 /// `--stats`: build, traversal and SDF statistics.

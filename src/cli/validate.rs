@@ -116,7 +116,7 @@ fn files_of(scene: &Path, loaded: &crate::load::Loaded) -> String {
     for (obj, parts) in &loaded.stats.obj_parts {
         out += &format!("  OBJ    {}: {parts}\n", crate::files::resolved(obj).display());
     }
-    let target = loaded.view.output_path(scene, None);
+    let target = crate::frame::Output::path(&loaded.view, scene, None, None);
     out += &format!("  writes {}\n", crate::files::resolved(&target).display());
     out
 }

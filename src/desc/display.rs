@@ -16,9 +16,11 @@ pub enum FilterDesc {
     Gaussian {
         /// Half-width in pixels, in (0, 8] (default 1.5).
         #[serde(default = "gaussian_radius")]
+        #[schemars(range(min = 0, max = 8))]
         radius: f32,
-        /// Standard deviation in pixels, > 0 (default 0.5).
+        /// Standard deviation in pixels, in [0.05, 8] (default 0.5).
         #[serde(default = "gaussian_sigma")]
+        #[schemars(range(min = 0.05, max = 8))]
         sigma: f32,
     },
     /// Mitchell–Netravali cubic; sharper than the Gaussian, with small negative
@@ -26,12 +28,15 @@ pub enum FilterDesc {
     Mitchell {
         /// Half-width in pixels, in (0, 8] (default 2).
         #[serde(default = "mitchell_radius")]
+        #[schemars(range(min = 0, max = 8))]
         radius: f32,
         /// Blur parameter B, in [0, 1] (default ⅓).
         #[serde(default = "third")]
+        #[schemars(range(min = 0, max = 1))]
         b: f32,
         /// Ringing parameter C, in [0, 1] (default ⅓).
         #[serde(default = "third")]
+        #[schemars(range(min = 0, max = 1))]
         c: f32,
     },
 }

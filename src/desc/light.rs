@@ -143,7 +143,10 @@ impl LightDesc {
     pub fn file_mut(&mut self) -> Option<&mut String> {
         match self {
             LightDesc::Environment { map, .. } => map.as_mut(),
-            _ => None,
+            LightDesc::Point { .. }
+            | LightDesc::Spot { .. }
+            | LightDesc::Quad { .. }
+            | LightDesc::Rect { .. } => None,
         }
     }
 }

@@ -26,6 +26,8 @@ mod camera;
 mod color;
 mod display;
 mod emission;
+mod film;
+mod integrator;
 mod light;
 mod material;
 mod object;
@@ -34,13 +36,12 @@ mod texture;
 mod transform;
 
 pub use aov::AovDesc;
-pub use camera::{
-    AllocationDesc, CameraDesc, CausticsDesc, FilmDesc, IntegratorDesc, LightSelectionDesc, ProjectionDesc,
-    SamplerDesc,
-};
+pub use camera::{CameraDesc, ProjectionDesc};
 pub use color::ColorDesc;
 pub use display::{FilterDesc, TonemapDesc};
 pub use emission::EmissionDesc;
+pub use film::{AllocationDesc, FilmDesc, SamplerDesc};
+pub use integrator::{CausticsDesc, IntegratorDesc, LightSelectionDesc};
 pub use light::LightDesc;
 pub use material::{
     CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc,

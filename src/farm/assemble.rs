@@ -10,8 +10,8 @@
 //! (gaps, with the missing tile when the pieces came from `--tile`).
 
 use super::piece::{Piece, PieceMeta, read_piece};
+use crate::imageio::SampleSums;
 use crate::imageio::{Image, PixelRect};
-use crate::render::SampleSums;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 

@@ -15,7 +15,7 @@ use std::path::PathBuf;
 /// from (`Loaded::files`); scene files (`.ron`, `.json`) are already in
 /// `desc` and are skipped.
 pub fn scene_hash(desc: &SceneDesc, files: &[PathBuf]) -> Result<String, String> {
-    let text = crate::load::format::to_ron(desc)?;
+    let text = crate::load::canonical::to_ron(desc)?;
     let mut assets = Vec::new();
     for f in files {
         let ext = f.extension().and_then(|e| e.to_str()).unwrap_or("");

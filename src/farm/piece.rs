@@ -16,9 +16,9 @@
 //!   from run to run, and a single one keeps piece files byte-reproducible.
 
 use super::PieceError;
+use crate::imageio::SampleSums;
 use crate::imageio::{PixelRect, write_atomic};
 use crate::math::ExactSum;
-use crate::render::SampleSums;
 use exr::prelude::{self as x, AttributeValue, ReadChannels, ReadLayers, Text, WritableImage};
 use std::path::Path;
 

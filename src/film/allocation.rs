@@ -49,7 +49,7 @@ const STEP: u32 = 8;
 
 /// The two passes of a render spread by noise.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Plan {
+pub struct Spread {
     /// Samples every pixel takes in the first pass: half of `spp`,
     /// rounded down to a multiple of 8.
     pub first: u32,
@@ -59,11 +59,11 @@ pub struct Plan {
     pub cap: u32,
 }
 
-impl Plan {
+impl Spread {
     /// The plan for `spp` samples per pixel, or `None` when they are too few
     /// to spread (below [`MIN_SPP`]).
-    pub fn new(spp: u32) -> Option<Plan> {
-        (spp >= MIN_SPP).then(|| Plan {
+    pub fn new(spp: u32) -> Option<Spread> {
+        (spp >= MIN_SPP).then(|| Spread {
             first: (spp / 2) / STEP * STEP,
             spp,
             cap: spp.saturating_mul(MAX_FACTOR),
@@ -167,15 +167,15 @@ mod tests {
 
     #[test]
     fn too_few_samples_are_not_spread() {
-        assert_eq!(Plan::new(16), None);
-        let p = Plan::new(128).unwrap();
+        assert_eq!(Spread::new(16), None);
+        let p = Spread::new(128).unwrap();
         assert_eq!((p.first, p.spp, p.cap), (64, 128, 1024));
-        assert_eq!(Plan::new(47).unwrap().first, 16);
+        assert_eq!(Spread::new(47).unwrap().first, 16);
     }
 
     #[test]
     fn a_noiseless_first_pass_spreads_evenly() {
-        let p = Plan::new(64).unwrap();
+        let p = Spread::new(64).unwrap();
         assert_eq!(p.counts(4, 3, &[0.0; 12]), vec![64; 12]);
         assert_eq!(p.counts(2, 2, &[f32::NAN; 4]), vec![64; 4]);
     }
@@ -187,7 +187,7 @@ mod tests {
         let var: Vec<f32> = (0..w * h)
             .map(|i| if i % w < w / 2 { 1.0 } else { 256.0 })
             .collect();
-        let p = Plan::new(256).unwrap();
+        let p = Spread::new(256).unwrap();
         let n = p.counts(w, h, &var);
         let mean = n.iter().map(|&k| k as f64).sum::<f64>() / n.len() as f64;
         assert!((mean - 256.0).abs() < 4.0, "mean {mean}");
@@ -206,7 +206,7 @@ mod tests {
     fn a_pixel_count_ignores_its_own_variance() {
         let (w, h) = (12, 12);
         let mut var = vec![1.0f32; w * h];
-        let p = Plan::new(64).unwrap();
+        let p = Spread::new(64).unwrap();
         let before = p.counts(w, h, &var);
         var[5 * w + 5] = 1000.0;
         let after = p.counts(w, h, &var);
@@ -228,7 +228,7 @@ mod tests {
                 _ => 1e-30,
             })
             .collect();
-        let p = Plan::new(64).unwrap();
+        let p = Spread::new(64).unwrap();
         let n = p.counts(w, h, &var);
         assert!(n.iter().all(|&k| (p.first..=p.cap).contains(&k)));
         let mean = n.iter().map(|&k| k as f64).sum::<f64>() / n.len() as f64;
@@ -240,7 +240,7 @@ mod tests {
         let (w, h) = (64, 64);
         let mut var = vec![0.0f32; w * h];
         var[10 * w + 10] = 1.0;
-        let p = Plan::new(32).unwrap();
+        let p = Spread::new(32).unwrap();
         let n = p.counts(w, h, &var);
         assert!(n.iter().all(|&k| k <= p.cap));
         assert_eq!(n[10 * w + 11], p.cap);

@@ -8,5 +8,5 @@ pub mod allocation;
 pub mod filter;
 
 pub use adaptive::{Adaptive, PixelNoise};
-pub use allocation::Plan;
+pub use allocation::Spread;
 pub use filter::{Filter, FilterKind};

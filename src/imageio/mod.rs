@@ -5,6 +5,7 @@
 //! [`SampleSums`] holds its exact per-pixel sample sums.
 
 pub mod encode;
+pub mod format;
 pub mod metrics;
 pub mod read;
 pub mod rect;
@@ -12,6 +13,7 @@ pub mod sample_sums;
 pub mod tonemap;
 pub mod write;
 
+pub use format::OutputFormat;
 pub use metrics::{Block, Comparison, blocks, compare};
 pub use read::read_image;
 pub use rect::PixelRect;
@@ -20,9 +22,6 @@ pub use tonemap::{Display, Tonemap};
 pub use write::{write_atomic, write_image, write_image_with};
 
 use crate::math::Rgb;
-
-/// Extensions [`write_image`] writes (and [`read_image`] reads), lower case.
-pub const WRITTEN_EXTENSIONS: [&str; 4] = ["png", "exr", "pfm", "hdr"];
 
 /// Linear RGB pixels, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]
@@ -126,7 +125,7 @@ pub enum ImageError {
         reason: String,
     },
     /// The file name's extension is not an image format ronray handles.
-    #[error("unsupported image extension for {path} (use .png, .exr, .pfm or .hdr)")]
+    #[error("unsupported image extension for {} (use {})", path.display(), OutputFormat::choices())]
     Extension {
         /// The image file.
         path: std::path::PathBuf,

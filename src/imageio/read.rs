@@ -22,7 +22,7 @@ pub fn read_image(path: &Path) -> Result<Image, ImageError> {
         path: path.to_path_buf(),
         reason,
     };
-    if !matches!(ext.as_str(), "pfm" | "png" | "exr" | "hdr") {
+    if super::OutputFormat::from_extension(&ext).is_none() {
         return Err(ImageError::Extension {
             path: path.to_path_buf(),
             reading: true,
@@ -37,8 +37,11 @@ pub fn read_image(path: &Path) -> Result<Image, ImageError> {
 /// before pixels are allocated. What [`read_image`] and the fuzz target
 /// call.
 pub fn decode_image(bytes: &[u8], ext: &str) -> Result<Image, String> {
-    let format = match ext {
-        "pfm" => {
+    let Some(format) = super::OutputFormat::from_extension(ext) else {
+        return Err(format!("unsupported image format `{ext}`"));
+    };
+    let format = match format {
+        super::OutputFormat::Pfm => {
             let img = read_pfm(bytes)?;
             if img.width.max(img.height) > MAX_IMAGE_SIDE {
                 return Err(format!(
@@ -48,10 +51,9 @@ pub fn decode_image(bytes: &[u8], ext: &str) -> Result<Image, String> {
             }
             return Ok(img);
         }
-        "png" => image::ImageFormat::Png,
-        "exr" => image::ImageFormat::OpenExr,
-        "hdr" => image::ImageFormat::Hdr,
-        other => return Err(format!("unsupported image format `{other}`")),
+        super::OutputFormat::Png => image::ImageFormat::Png,
+        super::OutputFormat::Exr => image::ImageFormat::OpenExr,
+        super::OutputFormat::Hdr => image::ImageFormat::Hdr,
     };
     let img = decode_limited(bytes, Some(format), u64::from(MAX_IMAGE_SIDE).pow(2))?;
     let (width, height) = (img.width(), img.height());

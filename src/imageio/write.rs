@@ -3,7 +3,7 @@
 //! and a failed write leaves the previous file untouched.
 
 use super::tonemap::Display;
-use super::{Image, ImageError, encode};
+use super::{Image, ImageError, OutputFormat, encode};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
@@ -16,29 +16,26 @@ pub fn write_image(img: &Image, path: &Path) -> Result<(), ImageError> {
 /// As [`write_image`], with `display` (exposure, tone map, bit depth)
 /// applied to PNG outputs; EXR, PFM and HDR outputs stay linear.
 pub fn write_image_with(img: &Image, path: &Path, display: &Display) -> Result<(), ImageError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
     let err = |reason: String| ImageError::Write {
         path: path.to_path_buf(),
         reason,
     };
-    match ext.as_str() {
-        "png" => write_atomic(path, |w| encode::png(img, display, w)),
-        "pfm" => write_atomic(path, |w| encode::pfm(img, w)),
-        "hdr" => write_atomic(path, |w| encode::hdr(img, w)),
-        "exr" => {
+    let Some(format) = OutputFormat::of_path(path) else {
+        return Err(ImageError::Extension {
+            path: path.to_path_buf(),
+            reading: false,
+        });
+    };
+    match format {
+        OutputFormat::Png => write_atomic(path, |w| encode::png(img, display, w)),
+        OutputFormat::Pfm => write_atomic(path, |w| encode::pfm(img, w)),
+        OutputFormat::Hdr => write_atomic(path, |w| encode::hdr(img, w)),
+        OutputFormat::Exr => {
             if img.pixels.len() != img.width as usize * img.height as usize {
                 return Err(err("size mismatch".into()));
             }
             write_atomic(path, |w| write_exr(img, w))
         }
-        _ => Err(ImageError::Extension {
-            path: path.to_path_buf(),
-            reading: false,
-        }),
     }
 }
 

@@ -13,7 +13,7 @@
 //! the glass sphere (specular–diffuse–specular paths, which no connection
 //! of a light path can sample better) 39%.
 //!
-//! So a whole-frame render also traces light paths (`render::light_trace`;
+//! So a whole-frame render also traces light paths (`frame::caustics`;
 //! pbrt-v4's `LightPathIntegrator` and Mitsuba's `ptracer`, kept to the
 //! paths a camera ray finds badly): a light chosen by power, a point on it uniformly,
 //! a direction toward the bounding spheres of the perfect-specular objects

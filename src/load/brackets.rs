@@ -10,7 +10,7 @@
 //! a string or comment that runs to the end of the file is reported at its
 //! opening.
 
-use super::source::Slip;
+use super::slip::Slip;
 use super::tokens::{Tok, tokenize};
 use crate::diagnostic::line_col;
 

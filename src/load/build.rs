@@ -5,7 +5,8 @@
 //! order and assembles the [`Scene`]. Problems found here (an OBJ that does
 //! not parse) are reported like validation problems.
 
-use super::mesh::MeshState;
+use super::build_context::BuildContext;
+use super::mesh_state::MeshState;
 use super::mtl::MtlMaterials;
 use super::validate::MAX_COORD;
 use crate::accel::{Aabb, Leaves, WideBvh};
@@ -19,7 +20,6 @@ use crate::materials::Bxdf as _;
 use crate::materials::Material;
 use crate::scene::Scene;
 use crate::view::View;
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -56,48 +56,6 @@ pub struct BuildStats {
     /// What the build repaired or defaulted (an OBJ group without a
     /// material, an MTL feature not supported), for the commands to show.
     pub notes: Vec<String>,
-}
-
-/// Everything the build steps share: the description, where its files are,
-/// and the runtime parts built so far. One value instead of long argument
-/// lists, so a new kind of thing adds a build function, not a parameter.
-pub(super) struct BuildContext<'a> {
-    pub desc: &'a SceneDesc,
-    /// The scene file's folder; relative file names resolve against it.
-    pub base: &'a Path,
-    /// Reads an OBJ file (watch mode passes a cache of unchanged files).
-    pub load_obj: &'a dyn Fn(&Path) -> Result<ObjData, String>,
-    /// Scene material index by name.
-    pub material_index: HashMap<String, u32>,
-    /// The black material of area-light surfaces that name none.
-    pub emitter: u32,
-    /// Materials and textures created for MTL files, appended after the
-    /// scene's own.
-    pub mtl: MtlMaterials,
-    pub lights: Vec<Light>,
-    /// Index in `lights` of the environment, once built.
-    pub environment: Option<u32>,
-    /// Bounded shapes (they go in the BVH), in the order built.
-    pub shapes: Vec<Shape>,
-    /// Unbounded shapes (planes, unbounded SDFs): every ray tests them.
-    pub unbounded: Vec<Shape>,
-    /// The object id ([`Scene::objects`]) of each of `shapes`, then of each
-    /// of `unbounded`, filled in once the entry that made them is built.
-    pub object_ids: (Vec<u32>, Vec<u32>),
-    pub geometry: Geometry,
-    pub mesh_state: MeshState,
-    /// Triangles over all placed meshes.
-    pub triangles: usize,
-    pub problems: Vec<Problem>,
-    pub notes: Vec<String>,
-    /// Environment map read and table build times, for the stats.
-    pub env_times: (Duration, Duration),
-    /// Image files lights read (an environment map), watched like textures.
-    pub light_files: Vec<PathBuf>,
-    /// MTL files the OBJ files named.
-    pub mtl_files: Vec<PathBuf>,
-    /// Each OBJ read and its parts, for the stats.
-    pub obj_parts: Vec<(PathBuf, String)>,
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is

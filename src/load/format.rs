@@ -1,88 +1,92 @@
-//! Canonical text of a scene (`ronray fmt`) in RON or JSON.
-//!
-//! ron does not keep comments through parse → serialise, so formatting a
-//! file that has comments would silently drop them; `fmt` refuses unless
-//! told to drop them.
+//! How a scene file is written, RON (with the extensions its header
+//! enables) or JSON, and how a slice of it is deserialised with its
+//! mistake located in the whole file.
 
-use crate::desc::SceneDesc;
+use super::slip::{Slip, widen};
+use super::tokens::{Tok, tokenize};
+use super::words;
+use crate::diagnostic::offset_of;
+use serde::de::DeserializeOwned;
+use std::ops::Range;
+use std::path::Path;
 
-/// Canonical RON: fields in declaration order, four-space indentation, small
-/// values (vectors, colours, list elements) kept on one line.
-pub fn to_ron(desc: &SceneDesc) -> Result<String, String> {
-    let cfg = ron::ser::PrettyConfig::new()
-        .depth_limit(3)
-        .indentor("    ")
-        .struct_names(false)
-        .extensions(ron::extensions::Extensions::IMPLICIT_SOME);
-    let body = ron::ser::to_string_pretty(desc, cfg).map_err(|e| e.to_string())?;
-    // The attribute is implied by ronray's parser; keep files free of it.
-    let body = body.trim_start_matches("#![enable(implicit_some)]").trim_start();
-    Ok(format!("Scene{body}\n"))
+/// How a file is written: RON (with the extensions it enables) or JSON.
+pub enum Format {
+    /// RON, with the options (extensions) the file enables.
+    Ron(ron::Options),
+    /// JSON (chosen by the `.json` extension).
+    Json,
 }
 
-/// Canonical JSON (`ronray fmt --json`): pretty-printed, fields in declaration
-/// order, newline-terminated; ronray reads it as it reads RON.
-pub fn to_json(desc: &SceneDesc) -> Result<String, String> {
-    serde_json::to_string_pretty(desc)
-        .map(|s| s + "\n")
-        .map_err(|e| e.to_string())
-}
-
-/// Whether RON/JSON text has comments (outside strings).
-pub fn has_comments(text: &str) -> bool {
-    let b = text.as_bytes();
-    let mut i = 0;
-    let mut in_str = false;
-    while i < b.len() {
-        match b[i] {
-            b'\\' if in_str => i += 1,
-            b'"' => in_str = !in_str,
-            b'/' if !in_str && matches!(b.get(i + 1), Some(b'/') | Some(b'*')) => return true,
-            _ => {}
+impl Format {
+    /// JSON for `.json` files, else RON with `implicit_some` (optional
+    /// fields written bare: `focus_distance: 3.5`) and whatever the file's
+    /// `#![enable(…)]` header adds, so that a slice read alone gets them too.
+    pub fn of(path: &Path, text: &str) -> Self {
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
+            return Format::Json;
         }
-        i += 1;
-    }
-    false
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// parse → serialise → parse gives the same scene, for every shipped one.
-    #[test]
-    fn scene_desc_round_trips_through_ron_and_json() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
-        let mut n = 0;
-        for e in std::fs::read_dir(dir).expect("scenes/").flatten() {
-            let p = e.path();
-            if p.extension().is_none_or(|x| x != "ron") {
-                continue;
+        let mut ext = ron::extensions::Extensions::IMPLICIT_SOME;
+        let mut rest = text.trim_start();
+        while let Some(attr) = rest.strip_prefix("#![enable(") {
+            let Some((names, after)) = attr.split_once(")]") else {
+                break;
+            };
+            for name in names.split(',') {
+                ext |= ron::extensions::Extensions::from_ident(name.trim()).unwrap_or_default();
             }
-            let text = std::fs::read_to_string(&p).expect("read");
-            let opts =
-                ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-            let a: crate::desc::SceneDesc = opts
-                .from_str(&text)
-                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            let ron_text = to_ron(&a).expect("serialise");
-            let b: crate::desc::SceneDesc = opts
-                .from_str(&ron_text)
-                .unwrap_or_else(|e| panic!("{}: {e}\n{ron_text}", p.display()));
-            assert_eq!(a, b, "{} changed through RON", p.display());
-            let json = to_json(&a).expect("json");
-            let c: crate::desc::SceneDesc =
-                serde_json::from_str(&json).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
-            assert_eq!(a, c, "{} changed through JSON", p.display());
-            n += 1;
+            rest = after.trim_start();
         }
-        assert!(n >= 4);
+        Format::Ron(ron::Options::default().with_default_extension(ext))
     }
 
-    #[test]
-    fn comments_are_detected_outside_strings_only() {
-        assert!(has_comments("Scene( // x\n)"));
-        assert!(has_comments("Scene( /* x */ )"));
-        assert!(!has_comments(r#"Scene(output: "a//b.png")"#));
+    /// Deserialises `text[range]` on its own; an error is located in `text`.
+    pub(super) fn read<T: DeserializeOwned>(&self, text: &str, range: Range<usize>) -> Result<T, Slip> {
+        let slice = text.get(range.clone()).unwrap_or("");
+        let (span, (message, help)) = match self {
+            Format::Ron(opts) => {
+                let e = match opts.from_str::<T>(slice) {
+                    Ok(v) => return Ok(v),
+                    Err(e) => e,
+                };
+                let mut start = offset_of(slice, e.span.start.line, e.span.start.col);
+                let end = offset_of(slice, e.span.end.line, e.span.end.col).max(start);
+                // ron points past the sign of a negative number it rejects.
+                if e.code == ron::Error::IntegerOutOfBounds && slice[..start].ends_with('-') {
+                    start -= 1;
+                }
+                (start..end, words::ron_error(&e.code, &slice[start..]))
+            }
+            Format::Json => {
+                let e = match serde_json::from_str::<T>(slice) {
+                    Ok(v) => return Ok(v),
+                    Err(e) => e,
+                };
+                let at = json_offset(slice, e.line(), e.column());
+                (token_at(slice, at), words::serde_message(&e.to_string()))
+            }
+        };
+        let span = widen(text, span.start + range.start..span.end + range.start);
+        let help = words::odd_character(&text[span.start..]).or(help);
+        Err(Slip::new(span, message, help))
     }
+}
+
+/// Byte offset of serde_json's 1-based line and byte column (the last byte
+/// it read).
+fn json_offset(text: &str, line: usize, col: usize) -> usize {
+    let start: usize = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum();
+    (start + col.saturating_sub(1)).min(text.len())
+}
+
+/// The token holding byte `at`, or the character there.
+fn token_at(text: &str, at: usize) -> Range<usize> {
+    tokenize(text)
+        .into_iter()
+        .find(|(t, r)| r.contains(&at) && !matches!(t, Tok::Unclosed(_)))
+        .map_or(at..at, |(_, r)| r)
 }

@@ -4,7 +4,7 @@
 //! environment reads its map here (`.exr` or `.hdr` through the `image`
 //! crate) and builds its sampling tables.
 
-use super::build::BuildContext;
+use super::build_context::BuildContext;
 use super::validate::Checker;
 use crate::desc::LightDesc;
 use crate::diagnostic::{Problem, suggest};

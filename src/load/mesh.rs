@@ -16,44 +16,27 @@
 //! parsing the file is the build's work, and its problems are reported at
 //! the object or `meshes` entry that names it.
 
-use super::build::BuildContext;
+use super::build_context::BuildContext;
 use super::mesh_keys::{Key, key_problem, parts_list, twice_defined};
+use super::mesh_state::LoadedMesh;
 use super::validate::Checker;
 use crate::desc::{MeshDesc, ObjectDesc};
 use crate::diagnostic::Problem;
 use crate::geometry::mesh_quad::pairing;
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
-use crate::geometry::obj::{ObjData, ObjGroup};
+use crate::geometry::obj::ObjData;
 use crate::geometry::{Instance, MeshQuad, MeshTriangle, NO_LIGHT, Shape};
 use crate::lights::{Light, MeshLight};
 use crate::materials::{ColorTex, Material};
 use crate::math::Rgb;
 use glam::{Affine3A, Mat4, Vec3};
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 impl Checker {
     /// An entry of the scene's `meshes` section.
     pub(super) fn mesh_entry(&mut self, path: &str, m: &MeshDesc) {
         self.file(&format!("{path}.file"), &m.file, "OBJ");
     }
-}
-
-/// A mesh in `Geometry::meshes` with what material resolution needs.
-#[derive(Clone)]
-struct LoadedMesh {
-    mesh: u32,
-    groups: Vec<ObjGroup>,
-    /// Scene material of each MTL material of the file.
-    mtl: Vec<u32>,
-}
-
-/// What the mesh build step keeps from one object to the next.
-#[derive(Default)]
-pub(super) struct MeshState {
-    /// `meshes` entries already loaded, by name (`None`: it failed).
-    shared: HashMap<String, Option<LoadedMesh>>,
-    /// The grey default material, created on first use.
-    grey: Option<u32>,
 }
 
 /// Adds object `i` (a `Mesh` or an `Instance`) as one [`Shape::Instance`],

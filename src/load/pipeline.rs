@@ -33,21 +33,6 @@ pub struct Loaded {
     pub warnings: Report,
 }
 
-impl Loaded {
-    /// The input of this scene (the scene file, an include, an OBJ, a
-    /// texture) that writing an image to `out` would overwrite, if any. An
-    /// output must never replace what the scene reads: in watch mode that
-    /// would also re-trigger a render for ever.
-    pub fn input_at(&self, out: &Path) -> Option<&Path> {
-        let key = |p: &Path| {
-            std::fs::canonicalize(p)
-                .unwrap_or_else(|_| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()))
-        };
-        let out = key(out);
-        self.files.iter().map(PathBuf::as_path).find(|f| key(f) == out)
-    }
-}
-
 /// Why a scene did not load.
 #[derive(Debug, thiserror::Error)]
 pub enum LoadError {

@@ -10,8 +10,9 @@
 //! document is never built: the file's own errors fail the load.
 
 use super::document::{Document, Gaps, Sections, stand_in_material, stand_in_mesh};
+use super::format::Format;
 use super::outline::{Entry, Outline};
-use super::source::{Format, Slip};
+use super::slip::Slip;
 use crate::desc::TestDesc;
 use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;

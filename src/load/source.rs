@@ -10,37 +10,16 @@
 
 use super::brackets;
 use super::document::{Document, Gaps};
+pub use super::format::Format;
 use super::outline::Outline;
 use super::sections;
 use super::set::SetProblem;
+pub use super::slip::Slip;
 use super::spans::Spans;
-use super::tokens::{Tok, tokenize};
-use super::words;
 use crate::desc::SceneDesc;
-use crate::diagnostic::{Diagnostic, Problem, Report, offset_of};
-use serde::de::DeserializeOwned;
+use crate::diagnostic::{Diagnostic, Problem, Report};
 use std::borrow::Cow;
-use std::ops::Range;
 use std::path::Path;
-
-/// How a file is written: RON (with the extensions it enables) or JSON.
-pub enum Format {
-    /// RON, with the options (extensions) the file enables.
-    Ron(ron::Options),
-    /// JSON (chosen by the `.json` extension).
-    Json,
-}
-
-/// A parse mistake located in the file's text.
-#[derive(Clone, Debug)]
-pub struct Slip {
-    /// Byte range of the mistake in the file.
-    pub span: Range<usize>,
-    /// What is wrong.
-    pub message: String,
-    /// The likely fix.
-    pub help: Option<String>,
-}
 
 /// A file read as far as it could be: a (possibly partial) description,
 /// what was left out of it, and the mistakes found on the way. A partial
@@ -53,108 +32,6 @@ pub struct Parsed<T> {
     pub gaps: Gaps,
     /// The parse mistakes found.
     pub diagnostics: Vec<Diagnostic>,
-}
-
-impl Format {
-    /// JSON for `.json` files, else RON with `implicit_some` (optional
-    /// fields written bare: `focus_distance: 3.5`) and whatever the file's
-    /// `#![enable(…)]` header adds, so that a slice read alone gets them too.
-    pub fn of(path: &Path, text: &str) -> Self {
-        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("json")) {
-            return Format::Json;
-        }
-        let mut ext = ron::extensions::Extensions::IMPLICIT_SOME;
-        let mut rest = text.trim_start();
-        while let Some(attr) = rest.strip_prefix("#![enable(") {
-            let Some((names, after)) = attr.split_once(")]") else {
-                break;
-            };
-            for name in names.split(',') {
-                ext |= ron::extensions::Extensions::from_ident(name.trim()).unwrap_or_default();
-            }
-            rest = after.trim_start();
-        }
-        Format::Ron(ron::Options::default().with_default_extension(ext))
-    }
-
-    /// Deserialises `text[range]` on its own; an error is located in `text`.
-    pub(super) fn read<T: DeserializeOwned>(&self, text: &str, range: Range<usize>) -> Result<T, Slip> {
-        let slice = text.get(range.clone()).unwrap_or("");
-        let (span, (message, help)) = match self {
-            Format::Ron(opts) => {
-                let e = match opts.from_str::<T>(slice) {
-                    Ok(v) => return Ok(v),
-                    Err(e) => e,
-                };
-                let mut start = offset_of(slice, e.span.start.line, e.span.start.col);
-                let end = offset_of(slice, e.span.end.line, e.span.end.col).max(start);
-                // ron points past the sign of a negative number it rejects.
-                if e.code == ron::Error::IntegerOutOfBounds && slice[..start].ends_with('-') {
-                    start -= 1;
-                }
-                (start..end, words::ron_error(&e.code, &slice[start..]))
-            }
-            Format::Json => {
-                let e = match serde_json::from_str::<T>(slice) {
-                    Ok(v) => return Ok(v),
-                    Err(e) => e,
-                };
-                let at = json_offset(slice, e.line(), e.column());
-                (token_at(slice, at), words::serde_message(&e.to_string()))
-            }
-        };
-        let span = widen(text, span.start + range.start..span.end + range.start);
-        let help = words::odd_character(&text[span.start..]).or(help);
-        Err(Slip::new(span, message, help))
-    }
-}
-
-/// Byte offset of serde_json's 1-based line and byte column (the last byte
-/// it read).
-fn json_offset(text: &str, line: usize, col: usize) -> usize {
-    let start: usize = text
-        .split_inclusive('\n')
-        .take(line.saturating_sub(1))
-        .map(str::len)
-        .sum();
-    (start + col.saturating_sub(1)).min(text.len())
-}
-
-/// The token holding byte `at`, or the character there.
-fn token_at(text: &str, at: usize) -> Range<usize> {
-    tokenize(text)
-        .into_iter()
-        .find(|(t, r)| r.contains(&at) && !matches!(t, Tok::Unclosed(_)))
-        .map_or(at..at, |(_, r)| r)
-}
-
-/// `span` on character boundaries of `text`, at least one character wide
-/// (ariadne needs something to underline).
-fn widen(text: &str, span: Range<usize>) -> Range<usize> {
-    let start = text.floor_char_boundary(span.start.min(text.len()));
-    let mut end = text.ceil_char_boundary(span.end.clamp(start, text.len()));
-    if end == start {
-        end = text[start..]
-            .chars()
-            .next()
-            .map_or(start, |c| start + c.len_utf8());
-    }
-    start..end
-}
-
-impl Slip {
-    /// A mistake at `span`.
-    pub fn new(span: Range<usize>, message: String, help: Option<String>) -> Self {
-        Self { span, message, help }
-    }
-
-    /// The located diagnostic, with the scene path of the value it is in.
-    fn diagnostic(self, file: &Path, text: &str, spans: &Spans) -> Diagnostic {
-        let mut d = Diagnostic::new(file, text, Some(widen(text, self.span)), self.message);
-        d.path = spans.path_at(d.span.as_ref().map_or(0, |s| s.start));
-        d.help = self.help;
-        d
-    }
 }
 
 /// A UTF-8 byte-order mark is not a mistake: it reads as spaces, which

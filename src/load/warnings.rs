@@ -171,7 +171,15 @@ pub fn specular_kind(m: &MaterialDesc) -> Option<&'static str> {
         MaterialDesc::NormalMap { material, .. }
         | MaterialDesc::Bump { material, .. }
         | MaterialDesc::Cutout { material, .. } => specular_kind(material),
-        _ => None,
+        // Listed, not `_`: a new material must say whether it is specular.
+        MaterialDesc::CookTorrance { .. }
+        | MaterialDesc::MetalPlastic { .. }
+        | MaterialDesc::Lambert { .. }
+        | MaterialDesc::OrenNayar { .. }
+        | MaterialDesc::Phong { .. }
+        | MaterialDesc::BlinnPhong { .. }
+        | MaterialDesc::RoughPlastic { .. }
+        | MaterialDesc::RoughGlass { .. } => None,
     }
 }
 
@@ -184,7 +192,7 @@ fn specular_under_direct(desc: &SceneDesc) -> Vec<Problem> {
     }
     let lights = desc.lights.iter().filter_map(|l| match l {
         LightDesc::Quad { material, .. } | LightDesc::Rect { material, .. } => material.as_deref(),
-        _ => None,
+        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Environment { .. } => None,
     });
     let overrides = desc.objects.iter().flat_map(|o| {
         o.material_overrides()

@@ -18,6 +18,7 @@ mod status;
 mod watched;
 
 use crate::desc::ObjectDesc;
+use crate::frame::{Output, OutputError, Plan, Request};
 use crate::load::pipeline::{load_str_with_meshes, read};
 use crate::load::{LoadError, Overrides};
 use debounce::Debounce;
@@ -249,33 +250,23 @@ impl Session {
         let (load_time, reused) = (t0.elapsed(), self.cache.take_hits());
         self.cache.retain(&loaded.files);
         self.rearm(WatchSet::new(&loaded.files));
-        let output = loaded.view.output_path(&self.scene, self.output.clone());
-        let ext = output
-            .extension()
-            .and_then(|e| e.to_str())
-            .unwrap_or("")
-            .to_ascii_lowercase();
-        if !crate::imageio::WRITTEN_EXTENSIONS.contains(&ext.as_str()) {
-            let msg = format!(
-                "error: output {} must end in .png, .exr, .pfm or .hdr",
-                output.display()
-            );
-            return self.reporter.problem(generation, &msg);
-        }
-        if let Some(input) = loaded.input_at(&output) {
-            // Writing it would overwrite an input and trigger this reload
-            // again, for ever.
-            let msg = format!(
-                "error: output {} is {}, which the scene reads; keeping the last good image",
-                output.display(),
-                input.display()
-            );
-            return self.reporter.problem(generation, &msg);
-        }
-        let film = loaded.view.film;
-        if let Err(e) = crate::memory::check_film(film.width, film.height, true, self.max_memory) {
-            return self.reporter.problem(generation, &format!("error: {e}"));
-        }
+        // The first pass's plan answers for every pass: same pixels, same
+        // output rule (format, not an input, fits in memory).
+        let output = Plan::new(&loaded.scene, &loaded.view, Request::Pass { k: 0 }, false)
+            .map_err(|e| e.to_string())
+            .and_then(|plan| {
+                let path = Output::path(&loaded.view, &self.scene, self.output.clone(), None);
+                Output::new(path, &plan, &loaded.files, self.max_memory).map_err(|e| match e {
+                    // Writing it would overwrite an input and trigger this
+                    // reload again, for ever.
+                    OutputError::IsInput { .. } => format!("{e}; keeping the last good image"),
+                    _ => e.to_string(),
+                })
+            });
+        let output = match output {
+            Ok(o) => o,
+            Err(msg) => return self.reporter.problem(generation, &format!("error: {msg}")),
+        };
         self.reporter.warnings(&loaded.warnings);
         let name = self.scene.display().to_string();
         let watched = self.set.file_count();

@@ -1,7 +1,7 @@
 //! The render worker: a quick 1-sample pass first, then passes that double
 //! the sample count up to the scene's, each written atomically.
 //!
-//! Passes add samples to running per-pixel sums (`render_accumulate`), so no
+//! Passes add samples to running per-pixel sums (plans of `Request::Pass`), so no
 //! sample is rendered twice and the last pass is byte-identical to what
 //! `ronray render` writes for the same scene. A pass stops within a tile of
 //! its job being cancelled; a cancelled job writes nothing more, so an
@@ -9,11 +9,10 @@
 
 use super::hub::Frame;
 use super::status::{PassInfo, Reporter};
-use crate::imageio::{Display, Image, PixelRect, write_image_with};
-use crate::render::{RenderOptions, SampleSums, render_accumulate};
+use crate::frame::{Output, Pixels, Plan, RenderOptions, Request, WriteOptions, pass_targets};
+use crate::imageio::{Display, Image, PixelRect, SampleSums};
 use crate::scene::Scene;
 use crate::view::View;
-use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::Receiver;
 use std::sync::{Arc, OnceLock};
@@ -50,20 +49,11 @@ impl Cancel {
 pub struct Job {
     pub scene: Scene,
     pub view: View,
-    pub output: PathBuf,
+    pub output: Output,
     pub cancel: Arc<Cancel>,
     pub generation: u64,
     /// The first filesystem event of the edit that produced this job.
     pub changed_at: Instant,
-}
-
-/// Cumulative sample counts after each pass: 1, 2, 4, … and finally `spp`.
-pub fn schedule(spp: u32) -> Vec<u32> {
-    let mut targets: Vec<u32> = std::iter::successors(Some(1u32), |&n| n.checked_mul(2))
-        .take_while(|&n| n < spp)
-        .collect();
-    targets.push(spp.max(1));
-    targets
 }
 
 /// Renders jobs as they come, always skipping to the newest queued one.
@@ -82,50 +72,59 @@ pub fn spawn(jobs: Receiver<Job>, reporter: Arc<Reporter>, threads: Option<usize
 
 fn run(job: &Job, reporter: &Reporter, threads: Option<usize>) {
     let film = job.view.film;
-    let targets = schedule(film.spp);
-    let passes = targets.len();
+    let (scene, view) = (&job.scene, &job.view);
+    let passes = pass_targets(film.spp).len();
     let mut sums = SampleSums::new(PixelRect::full(film.width, film.height));
-    let mut done = 0;
-    for (k, &target) in targets.iter().enumerate() {
+    for k in 0..passes {
         let pass = k + 1;
         let stopped = || job.cancel.at.get().map(|t| t.elapsed());
         if job.cancel.is_set() {
             reporter.cancelled(pass, passes, stopped());
             return;
         }
+        let plan = match Plan::new(scene, view, Request::Pass { k }, false) {
+            Ok(plan) => plan,
+            Err(e) => return reporter.failed(&format!("{e}; watching for the next change")),
+        };
+        let (done, target) = plan.samples;
         reporter.pass_started(pass, passes, done, target, film.spp);
         let opts = RenderOptions {
             threads,
             progress: false,
-            sample_range: Some((done, target - done)),
         };
-        let stats = render_accumulate(&job.scene, &job.view, &opts, &job.cancel.flag, &mut sums);
+        let (pixels, stats) = crate::frame::render(scene, view, &plan, &opts, &job.cancel.flag, &|_| {});
         // Checked again after the pass: a superseded scene writes nothing.
         if stats.cancelled || job.cancel.is_set() {
             reporter.cancelled(pass, passes, stopped());
             return;
         }
-        done = target;
+        if let Pixels::Sums(pass_sums) = &pixels {
+            sums.add(pass_sums);
+        }
         // The same division `render` does, on the same sums.
-        let image = sums.mean(done);
-        if let Err(e) = write_image_with(&image, &job.output, &job.view.display) {
+        let pixels = Pixels::Means(sums.mean(target));
+        let written = crate::frame::write(scene, view, &plan, &job.output, &pixels, &WriteOptions::default());
+        if let Err(e) = written {
             reporter.failed(&format!("{e}; watching for the next change"));
             return;
         }
-        let frame = reporter.serving().then(|| Frame {
-            png: encode_png(&image, &job.view.display),
-            image,
-            display: job.view.display,
-        });
+        let frame = match pixels {
+            Pixels::Means(image) if reporter.serving() => Some(Frame {
+                png: encode_png(&image, &job.view.display),
+                image,
+                display: job.view.display,
+            }),
+            Pixels::Means(_) | Pixels::Sums(_) => None,
+        };
         let info = PassInfo {
             generation: job.generation,
             pass,
             passes,
-            spp: done,
+            spp: target,
             spp_total: film.spp,
             elapsed: stats.elapsed,
             since_change: job.changed_at.elapsed(),
-            output: job.output.clone(),
+            output: job.output.path.clone(),
             size: (film.width, film.height),
         };
         reporter.pass_written(&info, frame);
@@ -150,18 +149,4 @@ pub fn encode_png(img: &Image, display: &Display) -> Vec<u8> {
         png.clear();
     }
     png
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn schedule_doubles_up_to_the_scene_spp() {
-        assert_eq!(schedule(1), vec![1]);
-        assert_eq!(schedule(8), vec![1, 2, 4, 8]);
-        assert_eq!(schedule(64), vec![1, 2, 4, 8, 16, 32, 64]);
-        assert_eq!(schedule(100), vec![1, 2, 4, 8, 16, 32, 64, 100]);
-        assert_eq!(schedule(u32::MAX).last(), Some(&u32::MAX));
-    }
 }

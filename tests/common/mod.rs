@@ -4,11 +4,11 @@
 #![allow(dead_code)]
 
 use glam::Vec3A;
+use ronray::frame::{RenderOptions, render_whole};
 use ronray::imageio::Image;
 use ronray::integrators::Counters;
 use ronray::load::{LoadError, Loaded, Overrides, load_str};
 use ronray::math::{Ray, SampleRng};
-use ronray::render::{RenderOptions, render};
 use ronray::sampler::Sampler;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -51,7 +51,7 @@ pub fn load_text(text: &str) -> Loaded {
 
 /// Renders a loaded scene with default options; every pixel must be finite.
 pub fn render_loaded(l: &Loaded) -> Image {
-    let img = render(&l.scene, &l.view, &RenderOptions::default()).0;
+    let img = render_whole(&l.scene, &l.view, &RenderOptions::default()).0;
     assert!(
         img.pixels.iter().all(|p| p.is_finite()),
         "a render has NaN or infinite pixels"

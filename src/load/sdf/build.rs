@@ -8,7 +8,7 @@ use crate::desc::{MarchDesc, ProjectionDesc, SceneDesc, SdfDesc};
 use crate::geometry::Shape;
 use crate::geometry::sdf::{MarchParams, Sdf, SdfNode};
 use crate::geometry::sdf_object::{MIN_EPS, SdfObject};
-use crate::load::build::BuildContext;
+use crate::load::build_context::BuildContext;
 use glam::{Mat3, Mat4, Quat, Vec3, Vec3A};
 
 /// Builds one validated SDF object into `ctx`'s geometry and returns its

@@ -9,7 +9,7 @@
 //! unbounded SDF would spend every one of its `max_steps` finding out, and a
 //! floor is better served by the analytic `Plane` object.
 
-use super::super::object::{compose, is_similarity};
+use super::super::transform::{compose, is_similarity};
 use super::build::{leaf, operator};
 use crate::desc::{MarchDesc, SdfDesc, TransformDesc};
 use crate::diagnostic::Problem;

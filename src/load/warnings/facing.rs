@@ -13,7 +13,7 @@
 use crate::accel::Aabb;
 use crate::desc::{LightDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::Problem;
-use crate::load::object::compose;
+use crate::load::transform::compose;
 use crate::scene::Scene;
 use glam::Vec3;
 

@@ -9,7 +9,7 @@ fn scene(body: &str) -> SceneDesc {
         r#"Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
         materials: {{ "w": Lambert(albedo: 0.5) }}, {body})"#
     );
-    crate::load::pipeline::parse(Path::new("t.ron"), &text).unwrap_or_else(|r| panic!("{r}\n{text}"))
+    crate::load::source::parse(Path::new("t.ron"), &text).unwrap_or_else(|r| panic!("{r}\n{text}"))
 }
 
 fn paths(desc: &SceneDesc) -> Vec<String> {

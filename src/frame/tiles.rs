@@ -1,322 +1,31 @@
-//! Renders a runtime scene to a linear image, in parallel over tiles.
+//! The one tile loop: renders the pixels of a [`Plan`]'s rect under the
+//! sampling policy it chose ([`Sampling`]), in parallel over tiles.
 //!
-//! Every camera sample draws from its own random stream (`SampleRng`) seeded by (pixel,
-//! sample index, scene seed), and each pixel sums its samples exactly
-//! ([`ExactSum`]: fixed point, so the grouping of the additions does not
-//! matter). The image is therefore bit-identical whatever the thread count or
-//! tile scheduling, and any rectangle of pixels ([`render_sums`]) or range of
-//! samples rendered on its own holds exactly what the whole render holds
-//! there when every pixel takes every sample (`allocation: Even`): pieces
-//! rendered on many machines reassemble bit for bit (`crate::farm`). A
-//! whole-frame render spread by noise (`crate::film::allocation`) renders
-//! in two passes, the second's counts decided from the first's frame.
+//! Every camera sample draws from its own random stream (`SampleRng`)
+//! seeded by (pixel, sample index, scene seed), and each pixel sums its
+//! samples exactly ([`ExactSum`]: fixed point, so the grouping of the
+//! additions does not matter). The image is therefore bit-identical whatever
+//! the thread count or tile scheduling, and any rectangle of pixels or range
+//! of samples rendered on its own holds exactly what the whole render holds
+//! there when every pixel takes every sample: pieces rendered on many
+//! machines reassemble bit for bit (`crate::farm`). The loop reads the
+//! plan's integrator and never changes it.
 
-pub use crate::imageio::SampleSums;
-
-use crate::camera::Projection;
-use crate::film::FilterKind;
-use crate::film::{Adaptive, PixelNoise, Plan};
-use crate::imageio::{Image, PixelRect};
-use crate::integrators::{Counters, Integrator, caustic};
-use crate::math::rng::mix64;
-use crate::math::{ExactSum, Rgb, SampleRng};
-use crate::sampler::{PixelSampler, Sampler, SamplerKind};
+use super::options::RenderOptions;
+use super::plan::{Plan, Sampling};
+use super::stats::{RenderStats, TileDone};
+use crate::film::{Adaptive, PixelNoise, Spread};
+use crate::imageio::PixelRect;
+use crate::integrators::{Counters, Integrator};
+use crate::math::{ExactSum, Rgb};
+use crate::sampler::PixelSampler;
 use crate::scene::Scene;
-use crate::view::{Allocation, View};
+use crate::view::View;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 const TILE: u32 = 16;
-
-/// How to render; the scene says what.
-#[derive(Clone, Debug, Default)]
-pub struct RenderOptions {
-    /// Worker threads; `None` uses every core.
-    pub threads: Option<usize>,
-    /// Draw a progress bar on stderr (only shown on a terminal).
-    pub progress: bool,
-    /// Render only samples `first_sample..first_sample + spp`, for
-    /// progressive refinement and sample splits; `None` renders all of the
-    /// scene's samples.
-    pub sample_range: Option<(u32, u32)>,
-}
-
-/// What a render cost, for the summary line and benchmarks.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct RenderStats {
-    /// Wall-clock time of the render.
-    pub elapsed: Duration,
-    /// Camera samples taken (pixels × samples per pixel, fewer if cancelled).
-    pub samples: u64,
-    /// Rays traced, camera, bounce and shadow rays together.
-    pub rays: u64,
-    /// True if the render stopped early because it was cancelled.
-    pub cancelled: bool,
-}
-
-impl RenderStats {
-    /// One line for the terminal: seconds, millions of samples and of rays per
-    /// second.
-    pub fn summary(&self) -> String {
-        let s = self.elapsed.as_secs_f64().max(1e-9);
-        format!(
-            "{:.2} s, {:.2} M samples/s, {:.2} M rays/s",
-            s,
-            self.samples as f64 / s / 1e6,
-            self.rays as f64 / s / 1e6
-        )
-    }
-}
-
-/// A tile finished by [`render_sums`], for progress reports.
-#[derive(Clone, Copy, Debug)]
-pub struct TileDone {
-    /// The tile's pixels.
-    pub rect: PixelRect,
-    /// Tiles finished so far, this one included.
-    pub done: usize,
-    /// Tiles in the render.
-    pub total: usize,
-    /// Since the render started.
-    pub elapsed: Duration,
-}
-
-/// Renders the whole image; the returned pixels are the mean over the
-/// rendered samples.
-pub fn render(scene: &Scene, view: &View, opts: &RenderOptions) -> (Image, RenderStats) {
-    render_cancellable(scene, view, opts, &AtomicBool::new(false))
-}
-
-/// As [`render`], but gives up early (returning `cancelled: true`) once
-/// `cancel` is set; tiles already started finish first.
-pub fn render_cancellable(
-    scene: &Scene,
-    view: &View,
-    opts: &RenderOptions,
-    cancel: &AtomicBool,
-) -> (Image, RenderStats) {
-    render_image(scene, view, opts, cancel, &|_| {})
-}
-
-/// As [`render_cancellable`], calling `on_tile` as each tile finishes (from
-/// worker threads). Each tile's sums become means as soon as it finishes, so
-/// the whole frame's exact sums are never held at once.
-pub fn render_image(
-    scene: &Scene,
-    view: &View,
-    opts: &RenderOptions,
-    cancel: &AtomicBool,
-    on_tile: &(dyn Fn(&TileDone) + Sync),
-) -> (Image, RenderStats) {
-    let (w, h) = (view.film.width, view.film.height);
-    // A part of the samples is added to other parts' exact sums, which
-    // needs fixed counts: only a render of all of them is adaptive or
-    // spread by noise.
-    let whole = opts.sample_range.is_none_or(|r| r == (0, view.film.spp));
-    let adaptive = view.film.adaptive.filter(|_| whole);
-    let work = Work::new(
-        scene,
-        view,
-        opts,
-        PixelRect::full(w, h),
-        cancel,
-        on_tile,
-        adaptive,
-    );
-    let caustic_paths = light_trace_plan(scene, view, opts);
-    let mut work = work;
-    if caustic_paths.is_some()
-        && let Integrator::Path(p) = &mut work.integrator
-    {
-        p.split_caustics = true;
-    }
-    let (mut pixels, mut stats) = match spread_plan(view, opts) {
-        Some(plan) => work.spread(plan),
-        None => work.run(Rgb::ZERO, |p| p.sum.mean(p.taken)),
-    };
-    if let Some((paths, max_chain)) = caustic_paths
-        && !stats.cancelled
-    {
-        let start = Instant::now();
-        let mut trace = || light_trace(scene, view, paths, max_chain, cancel, &mut pixels);
-        let traced = match rayon::ThreadPoolBuilder::new()
-            .num_threads(opts.threads.unwrap_or(0))
-            .build()
-        {
-            Ok(pool) => pool.install(trace),
-            Err(_) => trace(),
-        };
-        match traced {
-            Some(counters) => stats.rays += counters.rays,
-            None => stats.cancelled = true,
-        }
-        stats.elapsed += start.elapsed();
-    }
-    (
-        Image {
-            width: w,
-            height: h,
-            pixels,
-        },
-        stats,
-    )
-}
-
-/// Light paths per camera sample the caustic light tracer takes
-/// ([`light_trace`]). Its own noise is small: on `cornell_specular`
-/// (256², 128 spp, two seeds) the noise off the light is 0.0387 without it
-/// and 0.0309, 0.0307, 0.0306, 0.0306 with 1/32, 1/16, 1/8, 1/4 light paths
-/// a sample; 1/16 costs 4% more instructions (callgrind, 64², 64 spp: 1.393
-/// against 1.336 G), 3% more rays.
-pub const LIGHT_PATHS_PER_SAMPLE: f64 = 0.0625;
-
-/// How many light paths [`render_image`] traces for caustics seen directly
-/// (`integrator: Path(caustics: LightTracing)`, the default), and the
-/// longest specular chain they follow; `None` when it traces none: the scene
-/// has no perfect mirror or smooth glass lit by a rectangle or sphere light,
-/// the camera is not a pinhole, the filter is not `Box`, the render is part
-/// of the samples (the splats land anywhere in the frame, so pieces and
-/// passes could not add up), or it would take 2³² light paths or more.
-pub fn light_trace_plan(scene: &Scene, view: &View, opts: &RenderOptions) -> Option<(u64, u32)> {
-    let whole = opts.sample_range.is_none_or(|r| r == (0, view.film.spp));
-    let Integrator::Path(p) = view.integrator else {
-        return None;
-    };
-    let pinhole = view.camera.projection == Projection::Perspective && view.camera.aperture_radius <= 0.0;
-    if !(whole
-        && p.light_trace_caustics
-        && scene.caustics.is_some()
-        && pinhole
-        && view.filter.kind == FilterKind::Box)
-    {
-        return None;
-    }
-    let samples = view.film.width as f64 * view.film.height as f64 * view.film.spp as f64;
-    let paths = (samples * LIGHT_PATHS_PER_SAMPLE).ceil();
-    // `ExactSum::mean` divides by a u32.
-    (paths >= 1.0 && paths <= u32::MAX as f64).then_some((paths as u64, caustic::max_chain(p.max_depth)))
-}
-
-/// Light paths a chunk of [`light_trace`] traces: its unit of parallel work
-/// and of random streams (chunk `k` draws from stream `k` of `SampleRng`), so the
-/// image does not depend on the thread count.
-const CHUNK: u64 = 4096;
-
-/// Chunks traced between merges into the image: bounds the splats held at
-/// once (at most `CHUNK` each).
-const BATCH: u64 = 64;
-
-/// The caustic light tracer ([`caustic`]): traces `paths` light paths of a
-/// pinhole `view`'s scene and adds to each of `pixels` (row-major, the whole
-/// film) the sum of its splats over `paths`; `None`, with `pixels`
-/// untouched, when cancelled. Splats are summed exactly ([`ExactSum`]), so
-/// the image is the same whatever the thread count. Memory: 48 bytes a
-/// pixel for the sums beside the film's 16, below a render's peak
-/// (`crate::memory`), and at most `BATCH · CHUNK` splats.
-pub fn light_trace(
-    scene: &Scene,
-    view: &View,
-    paths: u64,
-    max_chain: u32,
-    cancel: &AtomicBool,
-    pixels: &mut [Rgb],
-) -> Option<Counters> {
-    let em = scene.caustics.as_ref()?;
-    let (w, h) = (view.film.width, view.film.height);
-    let mut sums = vec![ExactSum::ZERO; w as usize * h as usize];
-    let mut counters = Counters::default();
-    let chunks = paths.div_ceil(CHUNK);
-    let seed = mix64(view.film.seed ^ 0x6c69_6768_745f_7472);
-    let mut k0 = 0;
-    while k0 < chunks {
-        if cancel.load(Ordering::Relaxed) {
-            return None;
-        }
-        let k1 = (k0 + BATCH).min(chunks);
-        let batch: Vec<(Vec<(u32, Rgb)>, Counters)> = (k0..k1)
-            .into_par_iter()
-            .map(|k| {
-                let mut sampler = Sampler::independent(SampleRng::new(seed, k));
-                let mut c = Counters::default();
-                let n = CHUNK.min(paths - k * CHUNK);
-                let splats = (0..n)
-                    .filter_map(|_| {
-                        let y = caustic::trace(scene, em, max_chain, &mut sampler, &mut c)?;
-                        caustic::splat(scene, &view.camera, w, h, &y, &mut c)
-                    })
-                    .collect();
-                (splats, c)
-            })
-            .collect();
-        for (splats, c) in batch {
-            counters.rays += c.rays;
-            for (i, v) in splats {
-                sums[i as usize].add_sample(v);
-            }
-        }
-        k0 = k1;
-    }
-    let n = u32::try_from(paths).ok()?;
-    for (p, s) in pixels.iter_mut().zip(&sums) {
-        *p += s.mean(n);
-    }
-    Some(counters)
-}
-
-/// The plan of [`render_image`]'s two passes when it spreads the samples by
-/// noise (`film.allocation: ByNoise`), `None` when every pixel takes `spp`:
-/// below 32 spp, with adaptive sampling, with the `Stratified` sampler
-/// (whose strata are laid out for exactly `spp`), or for part of the
-/// samples.
-pub fn spread_plan(view: &View, opts: &RenderOptions) -> Option<Plan> {
-    let whole = opts.sample_range.is_none_or(|r| r == (0, view.film.spp));
-    match view.film.allocation {
-        Allocation::ByNoise
-            if whole && view.film.adaptive.is_none() && view.film.sampler != SamplerKind::Stratified =>
-        {
-            Plan::new(view.film.spp)
-        }
-        _ => None,
-    }
-}
-
-/// Progressive refinement without rounding drift: `sums` holds per-pixel
-/// sample sums over `[0, first)` where `opts.sample_range` is `(first, n)`,
-/// and on return the sums over `[0, first + n)`. The sums are exact, so
-/// `sums.mean(first + n)` is exactly [`render`]'s image at that sample
-/// count. A cancelled pass leaves `sums` untouched.
-pub fn render_accumulate(
-    scene: &Scene,
-    view: &View,
-    opts: &RenderOptions,
-    cancel: &AtomicBool,
-    sums: &mut SampleSums,
-) -> RenderStats {
-    let (pass, stats) = render_sums(scene, view, opts, sums.rect, cancel, &|_| {});
-    if !stats.cancelled {
-        sums.add(&pass);
-    }
-    stats
-}
-
-/// Per-pixel sample sums of the pixels in `rect` (which must lie inside the
-/// film) over `opts.sample_range`: exactly the sums the whole render has
-/// there. `on_tile` is called as each tile finishes, from worker threads.
-pub fn render_sums(
-    scene: &Scene,
-    view: &View,
-    opts: &RenderOptions,
-    rect: PixelRect,
-    cancel: &AtomicBool,
-    on_tile: &(dyn Fn(&TileDone) + Sync),
-) -> (SampleSums, RenderStats) {
-    debug_assert!(PixelRect::full(view.film.width, view.film.height).contains(&rect));
-    // The sums of pieces and passes must add up: every sample is taken.
-    let work = Work::new(scene, view, opts, rect, cancel, on_tile, None);
-    let (sums, stats) = work.run(ExactSum::ZERO, |p| p.sum);
-    (SampleSums { rect, sums }, stats)
-}
 
 /// The tiles of `rect`, `TILE` pixels square, in reading order.
 fn tiles_of(rect: PixelRect) -> Vec<PixelRect> {
@@ -365,7 +74,7 @@ fn heaviest_first(mut tiles: Vec<PixelRect>, rect: PixelRect, from: u32, upto: &
 }
 
 /// One render of the pixels in `rect`.
-struct Work<'a> {
+pub(super) struct Work<'a> {
     scene: &'a Scene,
     view: &'a View,
     opts: &'a RenderOptions,
@@ -383,7 +92,7 @@ struct Work<'a> {
     squares: bool,
     /// This is pass `.0` of `.1`, for progress reports.
     pass: (usize, usize),
-    /// The view's integrator, told when a light tracer takes its caustics.
+    /// The plan's integrator (told whether a light tracer takes its caustics).
     integrator: Integrator,
 }
 
@@ -422,36 +131,83 @@ impl PixelSums {
 }
 
 impl<'a> Work<'a> {
-    /// A render of the samples `opts.sample_range` (all by default) of the pixels in `rect`.
+    /// The render of `plan`'s pixels with an even count per pixel, or
+    /// adaptive when the plan says so (see [`Work::render`] for all three).
     fn new(
         scene: &'a Scene,
         view: &'a View,
+        plan: &Plan,
         opts: &'a RenderOptions,
-        rect: PixelRect,
         cancel: &'a AtomicBool,
         on_tile: &'a (dyn Fn(&TileDone) + Sync),
-        adaptive: Option<Adaptive>,
     ) -> Self {
-        let (first, count) = opts.sample_range.unwrap_or((0, view.film.spp));
+        let (samples, adaptive) = match plan.sampling {
+            Sampling::Even { first, count } => (Samples::Every { first, count }, None),
+            Sampling::Adaptive(a) => (
+                Samples::Every {
+                    first: 0,
+                    count: view.film.spp,
+                },
+                Some(a),
+            ),
+            // Set up by `spread` itself.
+            Sampling::Spread(_) => (
+                Samples::Every {
+                    first: 0,
+                    count: view.film.spp,
+                },
+                None,
+            ),
+        };
         Work {
             scene,
             view,
             opts,
-            rect,
+            rect: plan.rect,
             cancel,
             on_tile,
             adaptive,
-            samples: Samples::Every { first, count },
+            samples,
             sampler_spp: view.film.spp,
             squares: false,
             pass: (0, 1),
-            integrator: view.integrator,
+            integrator: plan.integrator,
+        }
+    }
+
+    /// Each pixel's exact sum (a piece or a pass: even counts).
+    pub(super) fn sums(
+        scene: &'a Scene,
+        view: &'a View,
+        plan: &Plan,
+        opts: &'a RenderOptions,
+        cancel: &'a AtomicBool,
+        on_tile: &'a (dyn Fn(&TileDone) + Sync),
+    ) -> (Vec<ExactSum>, RenderStats) {
+        debug_assert!(matches!(plan.sampling, Sampling::Even { .. }));
+        Self::new(scene, view, plan, opts, cancel, on_tile).run(ExactSum::ZERO, |p| p.sum)
+    }
+
+    /// Each pixel's mean under the plan's sampling policy, row-major over
+    /// the plan's rect.
+    pub(super) fn means(
+        scene: &'a Scene,
+        view: &'a View,
+        plan: &Plan,
+        opts: &'a RenderOptions,
+        cancel: &'a AtomicBool,
+        on_tile: &'a (dyn Fn(&TileDone) + Sync),
+    ) -> (Vec<Rgb>, RenderStats) {
+        let work = Self::new(scene, view, plan, opts, cancel, on_tile);
+        match plan.sampling {
+            Sampling::Spread(s) => work.spread(s),
+            Sampling::Even { .. } | Sampling::Adaptive(_) => work.run(Rgb::ZERO, |p| p.sum.mean(p.taken)),
         }
     }
 
     /// A render spread by noise (`crate::film::allocation`): `plan.first`
     /// samples everywhere, then each pixel up to its count; the pixels' means.
-    fn spread(mut self, plan: Plan) -> (Vec<Rgb>, RenderStats) {
+    fn spread(mut self, plan: Spread) -> (Vec<Rgb>, RenderStats) {
         let start = Instant::now();
         self.sampler_spp = plan.cap;
         self.samples = Samples::Every {
