@@ -10,7 +10,8 @@
 //! repaired fields are returned so that the checks say nothing about their
 //! stand-in values: their parse error was reported already.
 
-use super::source::{Format, Slip};
+use super::format::Format;
+use super::slip::Slip;
 use super::spans::Spans;
 use serde::de::DeserializeOwned;
 use std::ops::Range;
