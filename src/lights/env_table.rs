@@ -24,7 +24,7 @@
 //! (away from the poles' measure-zero rows) has a non-zero density. Memory:
 //! the corner weights (4 bytes a pixel) beside the CDF tables (~5).
 
-use super::environment::EnvMap;
+use super::env_map::{EnvMap, Footprint};
 use crate::math::piecewise::PiecewiseConstant2d;
 use crate::math::{Rgb, luminance};
 use glam::Vec2;
@@ -45,21 +45,6 @@ pub struct EnvTable {
     /// interpolated corner weight times this (0 for a map without light,
     /// which is sampled uniformly).
     inv_mean: f32,
-}
-
-/// Where a point of the map falls between pixel centres: the four pixels
-/// around it (columns `i0`, `i1`, rows `j0`, `j1`) and its place between
-/// them. The same footprint serves the radiance lookup
-/// ([`EnvMap::bilerp`]) and the density ([`EnvTable::pdf_at`]): the cells
-/// are the lookup's grid.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Footprint {
-    /// Left and right columns (the right wraps across the seam).
-    pub i: [u32; 2],
-    /// Upper and lower rows.
-    pub j: [u32; 2],
-    /// Place between them, each in [0, 1].
-    pub f: Vec2,
 }
 
 /// `x` ∈ [0, 1) with density ∝ `(1 − x) a + x b` (pbrt-v4's `SampleLinear`).

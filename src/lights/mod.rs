@@ -21,6 +21,7 @@
 
 pub mod alias;
 pub mod caustic;
+pub mod env_map;
 pub mod env_table;
 pub mod environment;
 pub mod irradiance;
@@ -38,7 +39,8 @@ pub mod tree;
 mod tests;
 
 pub use caustic::CausticEmitters;
-pub use environment::{EnvMap, EnvSampling, EnvironmentLight};
+pub use env_map::EnvMap;
+pub use environment::{EnvSampling, EnvironmentLight};
 pub use mesh::MeshLight;
 pub use point::PointLight;
 pub use power::{LightPicker, Selection};
