@@ -183,16 +183,32 @@ impl WatertightRay4 {
                 z,
             )
         };
-        let (ax, ay, az) = vert(0);
-        let (bx, by, bz) = vert(1);
-        let (cx, cy, cz) = vert(2);
+        let live = (1u32 << c) - 1;
+        self.edges(vert(0), vert(1), vert(2), live, t_max)
+            .unwrap_or_else(|| self.scalar(block, t_max))
+    }
+
+    /// The watertight test on four lanes of sheared corners `a`, `b`, `c`
+    /// (each `(x, y, z)`), the operations of [`WatertightRay::intersect`] in
+    /// its order on every lane; `live` masks the lanes that hold triangles.
+    /// `None` when a live lane's edge value is exactly zero: the caller
+    /// runs the scalar test, whose f64 fallback handles it.
+    #[inline(always)]
+    fn edges(
+        &self,
+        a: (Vec4, Vec4, Vec4),
+        b: (Vec4, Vec4, Vec4),
+        c: (Vec4, Vec4, Vec4),
+        live: u32,
+        t_max: f32,
+    ) -> Option<Lanes> {
+        let ((ax, ay, az), (bx, by, bz), (cx, cy, cz)) = (a, b, c);
         let u = cx * by - cy * bx;
         let v = ax * cy - ay * cx;
         let w = bx * ay - by * ax;
-        let live = (1u32 << c) - 1;
         let zero = Vec4::ZERO;
         if (u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero)).bitmask() & live != 0 {
-            return self.scalar(block, t_max);
+            return None;
         }
         let inside =
             (u.cmpge(zero) & v.cmpge(zero) & w.cmpge(zero)) | (u.cmple(zero) & v.cmple(zero) & w.cmple(zero));
@@ -202,12 +218,12 @@ impl WatertightRay4 {
         let inv = Vec4::ONE / det;
         let t = tz * inv;
         let hit = t.cmpgt(zero) & t.cmplt(Vec4::splat(t_max));
-        Lanes {
+        Some(Lanes {
             mask: (inside & ok & hit).bitmask() & live,
             t,
             b1: v * inv,
             b2: w * inv,
-        }
+        })
     }
 
     /// The same result lane by lane through the scalar test.
@@ -284,36 +300,19 @@ impl WatertightRay4 {
         let x = (rows[kx] - self.o[0]) - self.s[0] * z;
         let y = (rows[ky] - self.o[1]) - self.s[1] * z;
         // Lane 0 is (a, b, c) = (v0, v1, v2), lane 1 (v0, v2, v3).
-        let (ax, bx, cx) = (x.xxxx(), x.yzyz(), x.zwzw());
-        let (ay, by, cy) = (y.xxxx(), y.yzyz(), y.zwzw());
-        let (az, bz, cz) = (z.xxxx(), z.yzyz(), z.zwzw());
-        let u = cx * by - cy * bx;
-        let v = ax * cy - ay * cx;
-        let w = bx * ay - by * ax;
-        let zero = Vec4::ZERO;
-        if (u.cmpeq(zero) | v.cmpeq(zero) | w.cmpeq(zero)).bitmask() & 3 != 0 {
+        let a = (x.xxxx(), y.xxxx(), z.xxxx());
+        let b = (x.yzyz(), y.yzyz(), z.yzyz());
+        let c = (x.zwzw(), y.zwzw(), z.zwzw());
+        let Some(l) = self.edges(a, b, c, 3, t_max) else {
             return self.pair_exact(rows, t_max);
-        }
-        let inside =
-            (u.cmpge(zero) & v.cmpge(zero) & w.cmpge(zero)) | (u.cmple(zero) & v.cmple(zero) & w.cmple(zero));
-        let det = u + v + w;
-        let ok = det.cmpne(zero) & det.abs().cmplt(Vec4::INFINITY);
-        let tz = self.s[2] * (u * az + v * bz + w * cz);
-        let inv = Vec4::ONE / det;
-        let t = tz * inv;
-        let hit = t.cmpgt(zero) & t.cmplt(Vec4::splat(t_max));
-        let mask = (inside & ok & hit).bitmask() & 3;
-        let lane = match mask {
+        };
+        let lane = match l.mask {
             0 => return None,
             1 => 0,
             2 => 1,
-            _ => usize::from(t.y < t.x),
+            _ => usize::from(l.t.y < l.t.x),
         };
-        Some((
-            t[lane],
-            lane as u32,
-            Vec2::new(v[lane] * inv[lane], w[lane] * inv[lane]),
-        ))
+        Some((l.t[lane], lane as u32, Vec2::new(l.b1[lane], l.b2[lane])))
     }
 
     /// [`WatertightRay4::pair`] through the scalar test (an edge value of
