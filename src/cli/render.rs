@@ -3,7 +3,7 @@
 use super::{RenderSettings, USAGE, print_load_error, print_warnings};
 use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::{Existing, PieceMeta, Region, TileIndex, existing_piece, piece_meta};
-use crate::frame::{Output, Plan, RenderOptions, RenderStats, Request, TileDone, WriteOptions};
+use crate::frame::{Output, Plan, RenderOptions, RenderStats, Request, Sampling, TileDone, WriteOptions};
 use crate::imageio::PixelRect;
 use crate::load::{Loaded, load_with};
 use clap::Args;
@@ -191,13 +191,15 @@ fn prepare(
     let out = Output::path(&loaded.view, path, output, tile);
     let out = Output::new(out, &plan, &loaded.files, limits.max_memory)
         .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?;
-    if plan.adaptive_ignored {
-        eprintln!(
-            "note: film.noise_threshold is ignored for pieces: their exact sums add up across machines only when every pixel takes every sample"
-        );
+    for note in plan.piece_notes(&loaded.view) {
+        eprintln!("note: {note}");
     }
+    let spread = match plan.sampling {
+        Sampling::Spread(s) => Some(s.first),
+        Sampling::Even { .. } | Sampling::Adaptive(_) => None,
+    };
     let meta = spec
-        .map(|s| piece_meta(loaded, &s))
+        .map(|s| piece_meta(loaded, &s, spread))
         .transpose()
         .map_err(|e| failure(&e))?;
     if let (true, Some(m)) = (piece.resume, &meta) {

@@ -1,7 +1,9 @@
 //! Putting pieces back together: crops and tiles are placed, sample splits
 //! are added (exact sums, so the order does not matter), and the result is
 //! divided by the frame's samples per pixel — the same division the whole
-//! render does on the same sums, hence the same bytes.
+//! render does on the same sums, hence the same bytes. Pieces of a frame
+//! spread by noise carry each pixel's count and their two passes' sums
+//! apart; the division is then the whole render's two-pass mean.
 //!
 //! Every problem is found before anything is written, and each names the
 //! pieces and the pixels concerned: pieces from different scenes, ronray
@@ -52,7 +54,11 @@ pub fn assemble(pieces: &[(String, Piece)]) -> Result<(Image, PieceMeta), Assemb
     }
     let first = &pieces[0].1.meta;
     let (w, h) = first.frame;
-    let mut total = SampleSums::new(PixelRect::full(w, h));
+    let full = PixelRect::full(w, h);
+    let mut total = match first.spread {
+        Some(f) => SampleSums::new_spread(full, f),
+        None => SampleSums::new(full),
+    };
     for (_, p) in pieces {
         total.add(&p.sums);
     }
@@ -76,6 +82,10 @@ pub fn check(pieces: &[(&str, &PieceMeta)]) -> Vec<String> {
         format!("{} spp", m.spp)
     });
     disagree(&mut problems, pieces, "seeds", |m| format!("seed {}", m.seed));
+    disagree(&mut problems, pieces, "sample allocations", |m| match m.spread {
+        Some(f) => format!("samples spread by noise after a first pass of {f}"),
+        None => "samples spread evenly".into(),
+    });
     if !problems.is_empty() {
         // Overlaps and gaps between different frames would only be noise.
         return problems;
@@ -283,6 +293,7 @@ mod tests {
             tile: None,
             frame: (8, 4),
             rect,
+            spread: None,
         }
     }
 

@@ -39,8 +39,9 @@ pub struct PieceError {
     pub reason: String,
 }
 
-/// The metadata of the piece `spec` of a loaded scene.
-pub fn piece_meta(loaded: &Loaded, spec: &PieceSpec) -> Result<PieceMeta, String> {
+/// The metadata of the piece `spec` of a loaded scene; `spread` is the
+/// first pass's samples per pixel when the plan spreads samples by noise.
+pub fn piece_meta(loaded: &Loaded, spec: &PieceSpec, spread: Option<u32>) -> Result<PieceMeta, String> {
     let f = loaded.view.film;
     Ok(PieceMeta {
         version: env!("CARGO_PKG_VERSION").to_string(),
@@ -51,6 +52,7 @@ pub fn piece_meta(loaded: &Loaded, spec: &PieceSpec) -> Result<PieceMeta, String
         tile: spec.tile,
         frame: (f.width, f.height),
         rect: spec.rect,
+        spread,
     })
 }
 

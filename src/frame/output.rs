@@ -123,12 +123,12 @@ impl Output {
         }
         // Refused before anything is allocated: pieces and passes keep exact
         // sums per pixel.
-        crate::memory::check_film(
-            plan.rect.width(),
-            plan.rect.height(),
-            plan.keeps_sums(),
-            max_memory,
-        )?;
+        // A piece spread by noise renders the whole frame's first pass.
+        let rect = match plan.sampling {
+            super::Sampling::Spread(_) => plan.frame,
+            super::Sampling::Even { .. } | super::Sampling::Adaptive(_) => plan.rect,
+        };
+        crate::memory::check_film(rect.width(), rect.height(), plan.keeps_sums(), max_memory)?;
         Ok(Output { path, format })
     }
 }
