@@ -188,9 +188,12 @@ fn prepare(
     });
     let plan = Plan::new(&loaded.scene, &loaded.view, request, denoise).map_err(|e| usage(&e))?;
     let tile = spec.and_then(|s| s.tile).map(|(i, _)| i);
+    let cli_given = output.is_some();
     let out = Output::path(&loaded.view, path, output, tile);
     let out = Output::new(out, &plan, &loaded.files, limits.max_memory)
-        .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?;
+        .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?
+        .confine_scene_output(&loaded.view, path, cli_given, limits.root)
+        .map_err(|e| failure(&e))?;
     for note in plan.piece_notes(&loaded.view) {
         eprintln!("note: {note}");
     }

@@ -15,7 +15,7 @@ use super::piece::{Piece, PieceMeta, read_piece};
 use crate::imageio::SampleSums;
 use crate::imageio::{Image, PixelRect};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Why pieces were not assembled: every problem found, one per line.
 #[derive(Debug, thiserror::Error)]
@@ -27,6 +27,14 @@ pub struct AssembleError {
 
 /// At most this many overlaps or gaps are described one by one.
 const SHOWN: usize = 8;
+
+/// The piece that writing the assembled frame to `out` would replace (links
+/// followed on both sides), if any: `assemble -o` must never destroy its
+/// own input.
+pub fn output_replaces_piece<'a>(pieces: &'a [PathBuf], out: &Path) -> Option<&'a PathBuf> {
+    let target = crate::files::write_target(out);
+    pieces.iter().find(|p| crate::files::resolved(p) == target)
+}
 
 /// Reads the piece files and assembles them.
 pub fn assemble_files(paths: &[PathBuf]) -> Result<(Image, PieceMeta), AssembleError> {

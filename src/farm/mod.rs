@@ -21,7 +21,7 @@ pub mod hash;
 pub mod piece;
 pub mod split;
 
-pub use assemble::{AssembleError, assemble, assemble_files};
+pub use assemble::{AssembleError, assemble, assemble_files, output_replaces_piece};
 pub use hash::scene_hash;
 pub use piece::{Piece, PieceMeta, read_piece, read_piece_meta, write_piece};
 pub use split::{PieceSpec, Region, TileIndex, resolve};
