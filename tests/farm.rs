@@ -420,3 +420,31 @@ fn tile_auto_reads_the_schedulers_index_or_says_which_variables_it_reads() {
     assert_eq!(none.status.code(), Some(2));
     assert!(stderr(&none).contains("SLURM_ARRAY_TASK_ID"), "{}", stderr(&none));
 }
+
+/// `--resume` reads the whole piece: a truncated one is rendered again, not
+/// reported done; a FIFO named as a piece or as `--resume`'s output does
+/// not hang (issue 39).
+#[test]
+fn resume_redoes_a_truncated_piece_and_fifos_do_not_hang() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    render(dir.path(), &["--tile", "0/2", "-o", "t.exr"]);
+    let good = read(dir.path().join("t.exr"));
+    std::fs::write(dir.path().join("t.exr"), &good[..good.len() / 2]).expect("truncate");
+    let o = render(dir.path(), &["--tile", "0/2", "-o", "t.exr", "--resume"]);
+    assert!(!stderr(&o).contains("skipped"), "{}", stderr(&o));
+    assert!(
+        read(dir.path().join("t.exr")) == good,
+        "the truncated piece was not repaired"
+    );
+    let fifo = dir.path().join("pipe.exr");
+    let ok = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo");
+    assert!(ok.success());
+    let o = assemble(dir.path(), &["t.exr".into(), "pipe.exr".into()], "frame.exr");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("not a regular file"), "{}", stderr(&o));
+    let o = render(dir.path(), &["--tile", "1/2", "-o", "pipe.exr", "--resume"]);
+    assert!(stderr(&o).contains("re-rendering"), "{}", stderr(&o));
+}

@@ -72,7 +72,9 @@ pub fn existing_piece(path: &Path, meta: &PieceMeta) -> Existing {
     if !path.exists() {
         return Existing::Absent;
     }
-    match read_piece_meta(path) {
+    // The whole piece is read, not only its header: a truncated or corrupt
+    // piece (a job killed mid-copy) is rendered again, not skipped.
+    match read_piece(path).map(|p| p.meta) {
         Ok(m) if m.same_work(meta) => Existing::Done,
         Ok(m) if m.scene != meta.scene => Existing::Different(format!(
             "it holds scene {}, and this scene is {}",

@@ -252,12 +252,23 @@ fn describe(
     PieceMeta::from_lines(&lines, frame, rect)
 }
 
-/// Reads only a piece's header (for `--resume`).
+/// A FIFO or a device named as a piece would block or never end: only
+/// regular files are read (`metadata` does not open the file).
+fn regular(path: &Path) -> Result<(), String> {
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => Ok(()),
+        Ok(_) => Err("not a regular file (a piece is an .exr file)".into()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// Reads only a piece's header.
 pub fn read_piece_meta(path: &Path) -> Result<PieceMeta, PieceError> {
     let err = |reason: String| PieceError {
         path: path.to_path_buf(),
         reason,
     };
+    regular(path).map_err(err)?;
     let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| err(e.to_string()))?;
     let h = meta.headers.first().ok_or_else(|| err("no layer".into()))?;
     describe(
@@ -280,6 +291,7 @@ pub fn read_piece(path: &Path) -> Result<Piece, PieceError> {
             "pieces are .exr files written by `ronray render`; PNG pieces cannot be merged exactly".into(),
         ));
     }
+    regular(path).map_err(err)?;
     let image = x::read()
         .no_deep_data()
         .largest_resolution_level()
