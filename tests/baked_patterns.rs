@@ -141,12 +141,10 @@ fn procedural_pattern_is_identical_on_any_thread_count() {
         "Pattern(pattern: Cellular, a: (0.1, 0.2, 0.3), b: (0.9, 0.8, 0.5), seed: 3, uv: (scale: (6, 6)))",
     );
     let one = render(dir.path(), &text, 5, 1);
-    let bits = |i: &Image| -> Vec<[u32; 3]> { i.pixels.iter().map(|p| p.to_array().map(f32::to_bits)).collect() };
+    let bits =
+        |i: &Image| -> Vec<[u32; 3]> { i.pixels.iter().map(|p| p.to_array().map(f32::to_bits)).collect() };
     for threads in [2, 3] {
         let many = render(dir.path(), &text, 5, threads);
-        assert!(
-            bits(&one) == bits(&many),
-            "{threads} threads changed the image"
-        );
+        assert!(bits(&one) == bits(&many), "{threads} threads changed the image");
     }
 }

@@ -114,7 +114,7 @@ pub(super) fn unified_diff(path: &Path, old: &str, new: &str) -> String {
 /// with the target's permissions, renamed over the target: a reader sees the
 /// old file or the new one, never half of one, and a symbolic link at the
 /// target is replaced, not written through.
-fn write_safely(target: &Path, text: &str) -> std::io::Result<()> {
+pub(super) fn write_safely(target: &Path, text: &str) -> std::io::Result<()> {
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
