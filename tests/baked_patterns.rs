@@ -41,7 +41,7 @@ fn scene(albedo: &str) -> String {
 /// The procedural albedo: fBm from 0.15 to 0.85, `CELLS` cells per UV unit.
 fn procedural(seed: u32) -> String {
     scene(&format!(
-        "Pattern(pattern: Fbm(octaves: 4), a: 0.15, b: 0.85, seed: {seed}, uv: (scale: ({CELLS}, {CELLS})))"
+        "Pattern(pattern: Fbm(octaves: 4), a: (0.15, 0.15, 0.15), b: (0.85, 0.85, 0.85), seed: {seed}, uv: (scale: ({CELLS}, {CELLS})))"
     ))
 }
 
