@@ -14,7 +14,8 @@ use ronray::syntax::lex::tokenize;
 use std::path::{Path, PathBuf};
 
 /// Every scene the repository ships: `scenes/` (each with its golden image
-/// in `scenes/golden/`), the bench twin in RON and JSON, the JSON fixture.
+/// in `scenes/golden/`), the bench scene and the JSON fixture. (The bench
+/// folder's `.json` is its Mitsuba twin, not a ronray scene.)
 fn shipped() -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("scenes"))
         .expect("scenes/")
@@ -26,7 +27,6 @@ fn shipped() -> Vec<PathBuf> {
     files.extend(
         [
             "bench/cornell_mesh/cornell_mesh.ron",
-            "bench/cornell_mesh/cornell_mesh.json",
             "tests/fixtures/cornell.json",
         ]
         .map(|f| root().join(f)),
