@@ -31,6 +31,7 @@ pub mod lsp;
 pub mod materials;
 pub mod math;
 pub mod memory;
+pub mod migrate;
 
 pub mod sampler;
 pub mod scene;

@@ -999,3 +999,33 @@ fn colour_image_fed_to_a_number_needs_a_channel() {
     let metal = at(&d, "materials.metal.metalness.channel");
     assert!(metal.message.contains("greyscale"), "{metal}\nall:\n{text}");
 }
+
+#[test]
+fn emission_texture_mistakes_are_located_with_a_fix() {
+    let (d, text) = diagnostics("emission_textures.ron");
+    let has = |path: &str, words: &str| {
+        let m = at(&d, path);
+        assert!(
+            m.message.contains(words) || m.help.as_deref().is_some_and(|h| h.contains(words)),
+            "`{path}`: expected “{words}” in {m}\nall:\n{text}"
+        );
+        assert!(
+            m.line > 0 && m.help.is_some(),
+            "`{path}` is not located or has no fix: {m}"
+        );
+    };
+    has("lights[0].radiance.b", "-1");
+    has("objects[0].emission.radiance", "SDF has no UVs");
+    has("objects[1].emission.radiance.file", "no_such_glow.png");
+    // Channels are checked when the build step decodes the image.
+    let alpha = diagnostics_of(
+        "alpha.ron",
+        r#"Scene(
+            camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+            lights: [Rect(center: (0, 2, 0), half_u: (1, 0, 0), half_v: (0, 0, 1),
+                          radiance: Image(file: "assets/textures/ts_floor_albedo.png", channel: A))],
+        )"#,
+    );
+    let a = at(&alpha, "lights[0].radiance.channel");
+    assert!(a.message.contains("no alpha channel") && a.help.is_some(), "{a}");
+}

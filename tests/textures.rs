@@ -133,3 +133,118 @@ fn srgb_map_read_as_linear_is_caught_by_the_reference() {
         "an sRGB albedo read as linear moved the mean by only {wrong:.4}"
     );
 }
+
+/// A floor lit by `lights`, seen from below the lights' plane (y = 1), so
+/// camera rays see their undersides too.
+fn lit_floor(lights: &str) -> String {
+    format!(
+        "Scene(
+            camera: (eye: (0, 0.9, 4), target: (0, 0.3, 0), fov_y_degrees: 60),
+            integrator: Path(max_depth: 3),
+            materials: {{ \"floor\": Lambert(albedo: 0.7) }},
+            lights: [{lights}],
+            objects: [Rect(center: (0, 0, 0), half_u: (3, 0, 0), half_v: (0, 0, -3), material: \"floor\")],
+        )"
+    )
+}
+
+/// Block-by-block means of `a` (and a second seed `a2` of it, for the
+/// noise) against `b`: the blocks further apart than 5σ.
+fn blocks_apart(a: &Image, a2: &Image, b: &Image) -> Vec<String> {
+    let noise = blocks(a, a2, 8).expect("same size");
+    let mut bad = Vec::new();
+    for (r, n) in blocks(a, b, 8).expect("same size").iter().zip(&noise) {
+        for ch in 0..3 {
+            let sigma = (n.sum_sq_diff[ch] / 2.0).sqrt() / r.pixels as f64;
+            let tol = 5.0 * sigma * 2f64.sqrt() + 0.02 * r.mean_b[ch] + 0.001;
+            if (r.mean_a[ch] - r.mean_b[ch]).abs() > tol {
+                bad.push(format!(
+                    "block ({}, {}) channel {ch}: {:.4} vs {:.4} (tolerance {tol:.4})",
+                    r.x, r.y, r.mean_a[ch], r.mean_b[ch]
+                ));
+            }
+        }
+    }
+    bad
+}
+
+#[test]
+fn checker_emission_lights_the_floor_as_its_lit_squares_do() {
+    // A 2 × 2 checker of radiance 10 and 0 on a light 1 above the floor
+    // (near enough for its solid-angle sampling), against the two lit
+    // squares as constant lights.
+    let textured = lit_floor(
+        "Rect(center: (0, 1, 0), half_u: (1, 0, 0), half_v: (0, 0, 1),
+              radiance: Checker(a: (10, 10, 10), b: (0, 0, 0), scale: 2))",
+    );
+    let squares = lit_floor(
+        "Rect(center: (-0.5, 1, -0.5), half_u: (0.5, 0, 0), half_v: (0, 0, 0.5), radiance: (10, 10, 10)),
+         Rect(center: (0.5, 1, 0.5), half_u: (0.5, 0, 0), half_v: (0, 0, 0.5), radiance: (10, 10, 10))",
+    );
+    let (a, a2) = (render_text(&textured, 16, 2), render_text(&textured, 16, 3));
+    let b = render_text(&squares, 16, 1);
+    let bad = blocks_apart(&a, &a2, &b);
+    assert!(
+        bad.is_empty(),
+        "textured light differs from its squares:\n{}",
+        bad.join("\n")
+    );
+    // The pattern shows: the floor under a lit square is brighter than under a dark one.
+    let c = compare(
+        &a,
+        &render_text(&textured.replace("b: (0, 0, 0)", "b: (10, 10, 10)"), 16, 2),
+        None,
+    )
+    .expect("same size");
+    assert!(
+        c.mean_a[0] < 0.8 * c.mean_b[0],
+        "half the light dark, yet the floor is as bright: {:?} vs {:?}",
+        c.mean_a,
+        c.mean_b
+    );
+}
+
+#[test]
+fn image_emission_on_a_small_far_quad_lights_as_its_average() {
+    // A small emitter far above the floor lights it as a constant of the
+    // texture's average would (every floor point sees the whole flat quad
+    // under nearly one angle); the image is a 2 × 1 white-and-black PNG
+    // whose bilinear average is half its white. Spheres, whose texels each
+    // floor point sees a different half of, are tested against brute force
+    // in `lights/tests.rs`.
+    let dir = std::env::temp_dir().join(format!("ronray-emission-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let png = dir.join("half.png");
+    image::RgbImage::from_raw(2, 1, vec![255, 255, 255, 0, 0, 0])
+        .expect("2 × 1")
+        .save(&png)
+        .expect("write png");
+    let scene = |radiance: &str| {
+        format!(
+            "Scene(
+                camera: (eye: (0, 4, 3), target: (0, 0, 0), fov_y_degrees: 50),
+                integrator: Path(max_depth: 2),
+                materials: {{ \"floor\": Lambert(albedo: 0.7), \"black\": Lambert(albedo: 0) }},
+                objects: [
+                    Rect(center: (0, 0, 0), half_u: (3, 0, 0), half_v: (0, 0, -3), material: \"floor\"),
+                    Rect(center: (0, 6, 0), half_u: (0.05, 0, 0), half_v: (0, 0, 0.05), material: \"black\",
+                         emission: (radiance: {radiance}, two_sided: true)),
+                ],
+            )"
+        )
+    };
+    let file = png.to_str().expect("utf-8 temp path").replace('\\', "/");
+    let textured = scene(&format!(
+        "Image(file: \"{file}\", colorspace: Linear, scale: 3200)"
+    ));
+    let constant = scene("(1600, 1600, 1600)");
+    let (a, a2) = (render_text(&textured, 16, 2), render_text(&textured, 16, 3));
+    let b = render_text(&constant, 16, 1);
+    let _ = std::fs::remove_dir_all(&dir);
+    let bad = blocks_apart(&a, &a2, &b);
+    assert!(
+        bad.is_empty(),
+        "textured emitters differ from their average:\n{}",
+        bad.join("\n")
+    );
+}

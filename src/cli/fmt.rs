@@ -117,7 +117,7 @@ pub(super) fn unified_diff(path: &Path, old: &str, new: &str) -> String {
 /// there is followed) with the file's mode, renamed over it, so a reader
 /// sees the old file or the new one. A read-only file is refused: `fmt`
 /// does not change what its owner protected.
-fn write_safely(target: &Path, text: &str) -> std::io::Result<()> {
+pub(super) fn write_safely(target: &Path, text: &str) -> std::io::Result<()> {
     let real = crate::files::follow_links(target);
     let meta = std::fs::metadata(&real).ok();
     if let Some(m) = &meta {

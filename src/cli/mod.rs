@@ -9,6 +9,7 @@ mod diff;
 mod fmt;
 mod layers;
 mod lsp;
+mod migrate;
 mod new;
 mod render;
 mod validate;
@@ -161,6 +162,17 @@ pub enum Command {
         /// With `--canonical`, format files with comments anyway.
         #[arg(long)]
         drop_comments: bool,
+    },
+    /// Bring scene files to the current scene-format version, rewriting them
+    /// in place as a text edit: comments, spellings and layout are kept.
+    Migrate {
+        /// Scene files to migrate.
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Change nothing; print a unified diff of what would change (exit 1
+        /// if anything would).
+        #[arg(long)]
+        check: bool,
     },
     /// Print the JSON Schema of the scene format.
     Schema,
@@ -469,6 +481,7 @@ pub fn run(cli: Cli) -> ExitCode {
             spp,
         } => cmd_gallery(paths, &out, width, spp, root.as_deref(), cli.max_memory),
         Command::Lsp => lsp::cmd_lsp(),
+        Command::Migrate { scenes, check } => migrate::cmd_migrate(&scenes, check),
         Command::New { name, force } => new::cmd_new(&name, force),
         Command::Schema => {
             print_out(&crate::schema::schema_json());

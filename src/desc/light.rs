@@ -16,7 +16,7 @@
 //! assert_eq!(scene.lights.len(), 1);
 //! ```
 
-use super::{Color, V3};
+use super::{Color, ColorDesc, V3};
 use serde::{Deserialize, Serialize};
 
 fn one() -> f32 {
@@ -78,9 +78,10 @@ pub enum LightDesc {
         edge_u: V3,
         /// Second edge from `corner`; not parallel to `edge_u`.
         edge_v: V3,
-        /// Emitted radiance in W/(m²·sr) per channel, the same over the whole surface
-        /// and every direction on the emitting side.
-        radiance: Color,
+        /// Emitted radiance in W/(m²·sr) per channel, the same in every
+        /// direction on the emitting side: a colour, or a texture over uv =
+        /// (s, t) (docs/textures.md, "Emission textures").
+        radiance: ColorDesc,
         /// The light surface's own material (a name); default: black, so the
         /// light reflects nothing.
         #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -95,8 +96,9 @@ pub enum LightDesc {
         half_u: V3,
         /// Half of the second edge: the light spans `center ± half_v`.
         half_v: V3,
-        /// Emitted radiance in W/(m²·sr) per channel, as for `Quad`.
-        radiance: Color,
+        /// Emitted radiance in W/(m²·sr) per channel, as for `Quad` (a
+        /// texture's uv (0, 0) is at `center − half_u − half_v`).
+        radiance: ColorDesc,
         /// The light surface's own material (a name); default: black, so the light
         /// reflects nothing.
         #[serde(default, skip_serializing_if = "Option::is_none")]

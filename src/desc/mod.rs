@@ -66,6 +66,12 @@ pub type Color = [f32; 3];
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(rename = "Scene", deny_unknown_fields)]
 pub struct SceneDesc {
+    /// The scene-format version the file is written in (`ronray migrate`
+    /// brings a file to the current one, [`crate::migrate::CURRENT`]). A file
+    /// without one is version 1, the format before textures on every number;
+    /// version 2 only added forms, so version 1 files mean what they meant.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub version: Option<u32>,
     /// Files whose materials, lights and objects are added to this scene
     /// (relative to this file); this file's own materials override theirs.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

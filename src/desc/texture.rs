@@ -477,7 +477,7 @@ pub(super) fn tex_schemas(
     vec![
         schemars::json_schema!({ "type": "string", "description": "image file, relative to the scene file" }),
         schemars::json_schema!({
-            "type": "object", "additionalProperties": false, "required": ["file"],
+            "title": "Image", "type": "object", "additionalProperties": false, "required": ["file"],
             "description": "Image(file, channel, colorspace, scale, offset, origin, uv)",
             "properties": {
                 "file": { "type": "string" }, "channel": channel, "colorspace": colorspace,
@@ -485,12 +485,12 @@ pub(super) fn tex_schemas(
             }
         }),
         schemars::json_schema!({
-            "type": "object", "additionalProperties": false, "required": ["a", "b"],
+            "title": "Checker", "type": "object", "additionalProperties": false, "required": ["a", "b"],
             "description": "Checker(a, b, scale: squares per UV unit, uv)",
             "properties": { "a": value, "b": value, "scale": { "type": "number", "exclusiveMinimum": 0 }, "uv": uv }
         }),
         schemars::json_schema!({
-            "type": "object", "additionalProperties": false, "required": ["pattern", "a", "b"],
+            "title": "Pattern", "type": "object", "additionalProperties": false, "required": ["pattern", "a", "b"],
             "description": "Pattern(pattern, a, b, seed, uv): a + (b − a)·pattern(uv)",
             "properties": { "pattern": pattern, "a": value, "b": value, "seed": { "type": "integer", "minimum": 0 }, "uv": uv }
         }),

@@ -113,13 +113,13 @@ pub fn trace(
         Light::Quad(q) => (
             q.corner + u_point.x * q.u + u_point.y * q.v,
             q.n,
-            q.radiance * (q.area / pmf),
+            q.radiance_at(u_point) * (q.area / pmf),
             q.two_sided,
         ),
         Light::Sphere(s) => {
             let n = uniform_sphere(u_point);
             let area = 4.0 * PI * s.radius * s.radius;
-            (s.center + s.radius * n, n, s.radiance * (area / pmf), false)
+            (s.center + s.radius * n, n, s.radiance_at(n) * (area / pmf), false)
         }
         Light::Point(_) | Light::Spot(_) | Light::Mesh(_) | Light::Sdf(_) | Light::Environment(_) => {
             return None;

@@ -4,9 +4,11 @@
 
 use super::LightSample;
 use super::alias::AliasTable;
+use super::emission::{Emission, EmissionTexture};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 /// Triangles emitting uniform radiance from their front (the side their
 /// counter-clockwise winding faces), or both sides when `two_sided`; in world
@@ -23,8 +25,13 @@ pub struct MeshLight {
     alias: AliasTable,
     /// Total area in m².
     area: f32,
-    /// Emitted radiance, W/(m²·sr).
+    /// Emitted radiance, W/(m²·sr); a texture's average when `texture` is set.
     pub radiance: Rgb,
+    /// The radiance over the mesh's UVs, when it varies.
+    pub texture: Option<Arc<EmissionTexture>>,
+    /// Each triangle's corner UVs, in the order of `tris` (empty unless
+    /// `texture` is set).
+    uvs: Vec<[Vec2; 3]>,
     /// Whether the back of each triangle emits too.
     pub two_sided: bool,
 }
@@ -48,15 +55,42 @@ impl MeshLight {
             tris,
             area,
             radiance,
+            texture: None,
+            uvs: Vec::new(),
             two_sided,
         })
     }
 
+    /// This light emitting `e` over the corner UVs `uvs` (one triple per
+    /// triangle, in the order given to [`MeshLight::new`]); stays constant
+    /// when the counts differ.
+    pub fn with_emission(mut self, e: Emission, uvs: Vec<[Vec2; 3]>) -> Self {
+        if e.texture.is_some() && uvs.len() != self.tris.len() {
+            debug_assert!(
+                false,
+                "{} UV triples for {} triangles",
+                uvs.len(),
+                self.tris.len()
+            );
+            return self;
+        }
+        self.radiance = e.radiance;
+        self.texture = e.texture;
+        self.uvs = uvs;
+        self
+    }
+
     /// Radiance leaving a point of geometric normal `n` (the triangle's front)
-    /// toward `w`.
+    /// and texture coordinates `uv` toward `w`.
     #[inline]
-    pub fn emitted(&self, n: Vec3A, w: Vec3A) -> Rgb {
-        super::sided(self.radiance, self.two_sided, n, w)
+    pub fn emitted(&self, n: Vec3A, uv: Vec2, w: Vec3A) -> Rgb {
+        if !(self.two_sided || n.dot(w) > 0.0) {
+            return Rgb::ZERO;
+        }
+        match &self.texture {
+            None => self.radiance,
+            Some(t) => t.eval(uv),
+        }
     }
 
     /// Uniform by area over all triangles, converted to solid angle:
@@ -86,7 +120,13 @@ impl MeshLight {
             dist,
             p: q,
             n,
-            li: self.radiance,
+            li: match &self.texture {
+                None => self.radiance,
+                Some(t) => {
+                    let [ua, ub, uc] = self.uvs[k];
+                    t.eval(ua * b1 + ub * b2 + uc * (1.0 - b1 - b2))
+                }
+            },
             pdf: dist2 / (cos_l * self.area),
             delta: false,
         })

@@ -21,6 +21,7 @@
 
 pub mod alias;
 pub mod caustic;
+pub mod emission;
 pub mod env_map;
 pub mod env_table;
 pub mod environment;
@@ -39,6 +40,7 @@ pub mod tree;
 mod tests;
 
 pub use caustic::CausticEmitters;
+pub use emission::Emission;
 pub use env_map::EnvMap;
 pub use environment::{EnvSampling, EnvironmentLight};
 pub use mesh::MeshLight;
@@ -124,9 +126,9 @@ impl Light {
     #[inline]
     pub fn emitted(&self, hit: &Hit, w: Vec3A) -> Rgb {
         match self {
-            Light::Quad(l) => l.emitted(w),
+            Light::Quad(l) => l.emitted(hit.uv, w),
             Light::Sphere(l) => l.emitted(hit.ng, w),
-            Light::Mesh(l) => l.emitted(hit.ng, w),
+            Light::Mesh(l) => l.emitted(hit.ng, hit.uv, w),
             Light::Sdf(l) => l.emitted(hit.ng, w),
             Light::Point(_) | Light::Spot(_) | Light::Environment(_) => Rgb::ZERO,
         }
@@ -170,7 +172,8 @@ impl Light {
 
 /// `radiance` leaving a surface of normal `n` toward `w`: from the side `n`
 /// points to, or from both sides when `two_sided`. The rule every emitting
-/// shape (sphere, mesh, SDF) follows.
+/// shape follows (SDFs call it; quads, spheres and meshes, which may carry an
+/// emission texture, test the side themselves).
 #[inline]
 pub(crate) fn sided(radiance: Rgb, two_sided: bool, n: Vec3A, w: Vec3A) -> Rgb {
     if two_sided || n.dot(w) > 0.0 {

@@ -8,10 +8,12 @@
 //! weighs each direction with the density that drew it.
 
 use super::LightSample;
+use super::emission::{Emission, EmissionTexture};
 use super::spherical_rect::SphericalRect;
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 /// Distance from a rectangle light's centre, in units of √area, beyond which
 /// it is sampled by area. Measured on the Cornell boxes (64², 32 spp, six
@@ -24,7 +26,7 @@ const NEAR: f32 = 1.0;
 
 /// One-sided parallelogram `corner + s·u + t·v`, s,t ∈ [0, 1], emitting uniform
 /// radiance from the side `u × v` points to.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct QuadLight {
     /// One corner, in world space.
     pub corner: Vec3A,
@@ -36,8 +38,10 @@ pub struct QuadLight {
     pub n: Vec3A,
     /// Area in m² (square scene units), `|u × v|`.
     pub area: f32,
-    /// Emitted radiance, W/(m²·sr).
+    /// Emitted radiance, W/(m²·sr); a texture's average when `texture` is set.
     pub radiance: Rgb,
+    /// The radiance over uv = (s, t) of `corner + s·u + t·v`, when it varies.
+    pub texture: Option<Arc<EmissionTexture>>,
     /// Whether the back (against `n`) emits too.
     pub two_sided: bool,
     /// Unit edges and their lengths when the edges are perpendicular (a
@@ -61,9 +65,36 @@ impl QuadLight {
             n: c.normalize(),
             area: c.length(),
             radiance,
+            texture: None,
             two_sided: false,
             rect,
         }
+    }
+
+    /// This light emitting `e` (a texture over uv = (s, t)).
+    pub fn with_emission(mut self, e: Emission) -> Self {
+        self.radiance = e.radiance;
+        self.texture = e.texture;
+        self
+    }
+
+    /// Radiance at uv = (s, t).
+    #[inline]
+    pub fn radiance_at(&self, uv: Vec2) -> Rgb {
+        match &self.texture {
+            None => self.radiance,
+            Some(t) => t.eval(uv),
+        }
+    }
+
+    /// The (s, t) of a point `q` of the rectangle (perpendicular edges).
+    #[inline]
+    fn st(&self, q: Vec3A) -> Vec2 {
+        let d = q - self.corner;
+        Vec2::new(
+            d.dot(self.u) / self.u.length_squared(),
+            d.dot(self.v) / self.v.length_squared(),
+        )
     }
 
     /// The light's rectangle seen from `p`, when it is one and solid-angle
@@ -78,11 +109,12 @@ impl QuadLight {
         SphericalRect::new(p, self.corner, ex, ey, self.n, len).filter(SphericalRect::worth_it)
     }
 
-    /// Radiance leaving the light toward direction `w` (from the light).
+    /// Radiance leaving the light at uv = (s, t) toward direction `w` (from
+    /// the light).
     #[inline]
-    pub fn emitted(&self, w: Vec3A) -> Rgb {
+    pub fn emitted(&self, uv: Vec2, w: Vec3A) -> Rgb {
         if self.two_sided || self.n.dot(w) > 0.0 {
-            self.radiance
+            self.radiance_at(uv)
         } else {
             Rgb::ZERO
         }
@@ -116,7 +148,11 @@ impl QuadLight {
             dist,
             p: q,
             n: self.n,
-            li: self.radiance,
+            li: match &self.texture {
+                None => self.radiance,
+                // A spherical sample's (s, t) is found from its point.
+                Some(t) => t.eval(if sph.is_some() { self.st(q) } else { u }),
+            },
             pdf: match sph {
                 Some(s) => 1.0 / s.solid_angle,
                 None => dist2 / (cos_l * self.area),

@@ -1,31 +1,74 @@
 //! An emissive sphere, sampled by the cone of directions it subtends.
 
 use super::LightSample;
+use super::emission::{Emission, EmissionTexture};
+use crate::geometry::Sphere;
 use crate::math::trig::sin_cos_turns;
 use crate::math::{Frame, Rgb};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
+use std::sync::Arc;
 
 /// A sphere emitting uniform radiance outward from its surface (and inward too
 /// when `two_sided`); its surface is also a [`crate::geometry::Sphere`] in the
 /// scene BVH.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct SphereLight {
     /// Centre, in world space.
     pub center: Vec3A,
     /// Radius in scene units, > 0.
     pub radius: f32,
-    /// Emitted radiance, W/(m²·sr).
+    /// Emitted radiance, W/(m²·sr); a texture's average when `texture` is set.
     pub radiance: Rgb,
+    /// The radiance over the sphere's UVs, when it varies.
+    pub texture: Option<Arc<EmissionTexture>>,
+    /// The sphere's UVs are Mitsuba's ([`Sphere::uv_mitsuba`]) rather than
+    /// [`Sphere::uv`]: what `texture` is looked up with.
+    pub mitsuba_uv: bool,
     /// Whether the inside emits too.
     pub two_sided: bool,
 }
 
 impl SphereLight {
+    /// A one-sided sphere of constant `radiance`, y-up UVs.
+    pub fn new(center: Vec3A, radius: f32, radiance: Rgb) -> Self {
+        Self {
+            center,
+            radius,
+            radiance,
+            texture: None,
+            mitsuba_uv: false,
+            two_sided: false,
+        }
+    }
+
+    /// This light emitting `e` over its UVs.
+    pub fn with_emission(mut self, e: Emission) -> Self {
+        self.radiance = e.radiance;
+        self.texture = e.texture;
+        self
+    }
+
+    /// Radiance at the point of outward unit normal `n`: its texture's value
+    /// at that point's UVs (computed here, since hits on spheres of untextured
+    /// materials skip them).
+    #[inline]
+    pub fn radiance_at(&self, n: Vec3A) -> Rgb {
+        match &self.texture {
+            None => self.radiance,
+            Some(t) if self.mitsuba_uv => t.eval(Sphere::uv_mitsuba(n)),
+            Some(t) => t.eval(Sphere::uv(n)),
+        }
+    }
+
     /// Radiance leaving a point of outward normal `n` toward `w`.
     #[inline]
     pub fn emitted(&self, n: Vec3A, w: Vec3A) -> Rgb {
-        super::sided(self.radiance, self.two_sided, n, w)
+        if self.two_sided || n.dot(w) > 0.0 {
+            self.radiance_at(n)
+        } else {
+            Rgb::ZERO
+        }
     }
 
     /// `sin²θmax` and `1 − cos θmax` of the cone the sphere subtends from `p`,
@@ -72,7 +115,7 @@ impl SphereLight {
             dist,
             p: q,
             n,
-            li: self.radiance,
+            li: self.radiance_at(n),
             pdf: 1.0 / (2.0 * PI * one_minus_cos),
             delta: false,
         })
@@ -97,7 +140,7 @@ impl SphereLight {
             dist,
             p: q,
             n,
-            li: self.radiance,
+            li: self.radiance_at(n),
             pdf: dist2 / (cos_l * self.area()),
             delta: false,
         })

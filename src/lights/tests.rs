@@ -51,6 +51,8 @@ fn sphere_light_irradiance_is_point_like() {
     // A uniform sphere fully above the horizon lights like a point of intensity
     // L·πr²: E = π L r² cos θ / d².
     let light = Light::Sphere(SphereLight {
+        texture: None,
+        mitsuba_uv: false,
         center: Vec3A::new(0.3, 2.0, -0.2),
         radius: 0.5,
         radiance: Rgb::splat(3.0),
@@ -68,6 +70,8 @@ fn sphere_light_irradiance_is_point_like() {
     }
     // Far away, the cone is tiny (the series branch).
     let far = Light::Sphere(SphereLight {
+        texture: None,
+        mitsuba_uv: false,
         center: Vec3A::new(0.0, 100.0, 0.0),
         radius: 0.5,
         radiance: Rgb::ONE,
@@ -85,6 +89,8 @@ fn sphere_light_irradiance_is_point_like() {
 fn two_sided_sphere_lights_its_inside() {
     // Inside a two-sided sphere of radiance L, every direction sees L: E = π L.
     let light = Light::Sphere(SphereLight {
+        texture: None,
+        mitsuba_uv: false,
         center: Vec3A::ZERO,
         radius: 2.0,
         radiance: Rgb::splat(0.5),
@@ -93,6 +99,8 @@ fn two_sided_sphere_lights_its_inside() {
     let got = irradiance(&light, Vec3A::new(0.4, -0.3, 0.2), Vec3A::Y, 200_000);
     assert!((got - 0.5 * PI as f64).abs() < 0.01 * PI as f64, "{got}");
     let one_sided = Light::Sphere(SphereLight {
+        texture: None,
+        mitsuba_uv: false,
         two_sided: false,
         center: Vec3A::ZERO,
         radius: 2.0,
@@ -152,7 +160,7 @@ fn two_sided_quad_emits_and_is_sampled_from_behind() {
     // u × v = z × x = +y: the front faces up, the point below sees the back.
     assert!(q.n.y > 0.0);
     let below = Vec3A::ZERO;
-    assert_eq!(irradiance(&Light::Quad(q), below, Vec3A::Y, 100), 0.0);
+    assert_eq!(irradiance(&Light::Quad(q.clone()), below, Vec3A::Y, 100), 0.0);
     q.two_sided = true;
     let verts = [
         Vec3A::new(-0.5, 1.0, -0.5),
@@ -161,7 +169,7 @@ fn two_sided_quad_emits_and_is_sampled_from_behind() {
         Vec3A::new(0.5, 1.0, -0.5),
     ];
     let want = polygon_irradiance(below, Vec3A::Y, &verts, 1.0);
-    let got = irradiance(&Light::Quad(q), below, Vec3A::Y, 100_000);
+    let got = irradiance(&Light::Quad(q.clone()), below, Vec3A::Y, 100_000);
     assert!(
         ((got - want as f64) / want as f64).abs() < 0.01,
         "{got} vs {want}"
@@ -206,7 +214,7 @@ fn rect_light_irradiance_matches_polygon_formula_near_and_far() {
         (Vec3A::new(0.0, -60.0, 0.0), Vec3A::Y),
     ] {
         let want = polygon_irradiance(p, n, &verts, 1.0);
-        let got = irradiance(&Light::Quad(q), p, n, 100_000);
+        let got = irradiance(&Light::Quad(q.clone()), p, n, 100_000);
         assert!(
             ((got - want as f64) / want as f64).abs() < 0.01,
             "at {p}: {got} vs {want}"
@@ -475,5 +483,87 @@ fn environment_le_and_pdf_are_le_and_pdf_bit_for_bit() {
                 );
             }
         }
+    }
+}
+
+/// Irradiance at `p` (normal `n`) from `light` by brute force: uniform
+/// directions over the sphere, each traced against `shape` and weighted by
+/// what the light emits at the hit.
+fn irradiance_by_tracing(
+    light: &Light,
+    shape: &crate::geometry::Shape,
+    p: Vec3A,
+    n: Vec3A,
+    count: u32,
+) -> f64 {
+    let geo = Geometry::default();
+    let mut rng = Pcg32::new(5, 9);
+    let mut sum = 0.0f64;
+    for _ in 0..count {
+        let w = uniform_sphere(rng.next_vec2());
+        let ray = crate::math::Ray::new(p, w);
+        let Some(t) = shape.intersect_t(&ray, f32::INFINITY, &geo) else {
+            continue;
+        };
+        let hit = shape.hit(&ray, t, &geo);
+        sum += (light.emitted(&hit, -w).x * w.dot(n).max(0.0) / UNIFORM_SPHERE_PDF) as f64;
+    }
+    sum / count as f64
+}
+
+#[test]
+fn textured_emitters_sample_what_they_emit() {
+    use crate::geometry::{Quad, Shape, Sphere};
+    use crate::materials::texture::{Tex, UvTransform};
+    let checker = Emission::new(
+        &Tex::Checker {
+            a: Rgb::splat(3.0),
+            b: Rgb::splat(0.2),
+            scale: 3.0,
+            uv: UvTransform::default(),
+        },
+        &[],
+    );
+    let p = Vec3A::new(0.1, 0.0, 0.2);
+    let n = Vec3A::new(0.3, 1.0, -0.2).normalize();
+    let mut cases = Vec::new();
+    for mitsuba_uv in [false, true] {
+        let (center, radius) = (Vec3A::new(0.2, 1.2, -0.1), 0.6);
+        let mut l = SphereLight::new(center, radius, Rgb::ZERO).with_emission(checker.clone());
+        l.mitsuba_uv = mitsuba_uv;
+        let s = Sphere {
+            center,
+            radius,
+            material: 0,
+            light: 0,
+            mitsuba_uv,
+        };
+        cases.push((
+            format!("sphere (Mitsuba UVs {mitsuba_uv})"),
+            Light::Sphere(l),
+            Shape::Sphere(s),
+        ));
+    }
+    // Near: solid-angle sampling of the rectangle; far: by area.
+    for (name, y) in [("near quad", 0.6), ("far quad", 3.0)] {
+        let (c, u, v) = (
+            Vec3A::new(-0.6, y, -0.5),
+            Vec3A::new(1.2, 0.0, 0.0),
+            Vec3A::new(0.0, 0.0, 1.3),
+        );
+        let q = QuadLight::new(c, u, v, Rgb::ZERO).with_emission(checker.clone());
+        cases.push((
+            name.to_string(),
+            Light::Quad(q),
+            Shape::Quad(Quad::new(c, u, v, 0, 0)),
+        ));
+    }
+    for (name, light, shape) in cases {
+        let sampled = irradiance(&light, p, n, 200_000);
+        let traced = irradiance_by_tracing(&light, &shape, p, n, 2_000_000);
+        assert!(
+            ((sampled - traced) / traced).abs() < 0.02,
+            "{name}: sampled {sampled:.4}, traced {traced:.4}"
+        );
     }
 }

@@ -611,6 +611,8 @@ mod tests {
                     intensity: Rgb::splat(rng.next_f32()),
                 }),
                 _ => Light::Sphere(SphereLight {
+                    texture: None,
+                    mitsuba_uv: false,
                     center: at,
                     radius: 0.3,
                     radiance: Rgb::splat(2.0),
@@ -757,6 +759,8 @@ mod tests {
             .collect();
         lights.push(quad(Vec3A::new(-1e6, 5.0, -1e6), true, 1e-3));
         lights.push(Light::Sphere(SphereLight {
+            texture: None,
+            mitsuba_uv: false,
             center: Vec3A::ZERO,
             radius: 1e-6,
             radiance: Rgb::splat(1e6),

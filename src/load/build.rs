@@ -10,12 +10,12 @@ use super::mesh_state::MeshState;
 use super::mtl::MtlMaterials;
 use super::validate::MAX_COORD;
 use crate::accel::{Aabb, Leaves, WideBvh};
-use crate::desc::{IntegratorDesc, LightSelectionDesc, SceneDesc};
+use crate::desc::{ColorDesc, IntegratorDesc, LightDesc, LightSelectionDesc, SceneDesc};
 use crate::diagnostic::Problem;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{Geometry, Shape};
 use crate::lights::caustic::{self, CausticEmitters};
-use crate::lights::{Light, LightPicker, Selection};
+use crate::lights::{Emission, Light, LightPicker, Selection};
 use crate::materials::Bxdf as _;
 use crate::materials::Material;
 use crate::scene::Scene;
@@ -89,7 +89,12 @@ pub fn build_in(
         mut textures,
         index,
         files: texture_files,
-    } = super::material::build_materials(&desc.materials, base)?;
+        emissions,
+    } = super::material::build_materials(&desc.materials, &textured_emissions(desc), base)?;
+    let emissions = emissions
+        .into_iter()
+        .map(|(path, tex)| (path, Emission::new(&tex, &textures)))
+        .collect();
     let emitter = materials.len() as u32;
     materials.push(Material::Emitter);
     let mut ctx = BuildContext {
@@ -97,6 +102,7 @@ pub fn build_in(
         base,
         load_obj,
         material_index: index,
+        emissions,
         emitter,
         mtl: MtlMaterials::new(materials.len() as u32, textures.len() as u32, root),
         lights: Vec::new(),
@@ -289,4 +295,24 @@ fn bvh_and_leaf_order(
     ordered.extend(unbounded);
     objects.extend(unbounded_ids);
     (ordered, objects, bounded, bvh)
+}
+
+/// The textured `radiance` of every light and emitting object, by scene path
+/// (`lights[i].radiance`, `objects[i].emission.radiance`): built with the
+/// materials' textures.
+fn textured_emissions(desc: &SceneDesc) -> Vec<(String, &ColorDesc)> {
+    let lights = desc.lights.iter().enumerate().filter_map(|(i, l)| match l {
+        LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => {
+            Some((format!("lights[{i}].radiance"), radiance))
+        }
+        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Environment { .. } => None,
+    });
+    let objects = desc.objects.iter().enumerate().filter_map(|(i, o)| {
+        o.emission()
+            .map(|e| (format!("objects[{i}].emission.radiance"), &e.radiance))
+    });
+    lights
+        .chain(objects)
+        .filter(|(_, c)| matches!(c, ColorDesc::Texture(_)))
+        .collect()
 }

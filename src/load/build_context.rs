@@ -4,11 +4,12 @@
 
 use super::mesh_state::MeshState;
 use super::mtl::MtlMaterials;
+use crate::desc::ColorDesc;
 use crate::desc::SceneDesc;
 use crate::diagnostic::Problem;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{Geometry, Shape};
-use crate::lights::Light;
+use crate::lights::{Emission, Light};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -24,6 +25,9 @@ pub(super) struct BuildContext<'a> {
     pub load_obj: &'a dyn Fn(&Path) -> Result<ObjData, String>,
     /// Scene material index by name.
     pub material_index: HashMap<String, u32>,
+    /// Textured emissions by the scene path of their `radiance`
+    /// ([`BuildContext::emission`]).
+    pub emissions: HashMap<String, Emission>,
     /// The black material of area-light surfaces that name none.
     pub emitter: u32,
     /// Materials and textures created for MTL files, appended after the
@@ -53,4 +57,19 @@ pub(super) struct BuildContext<'a> {
     pub mtl_files: Vec<PathBuf>,
     /// Each OBJ read and its parts, for the stats.
     pub obj_parts: Vec<(PathBuf, String)>,
+}
+
+impl BuildContext<'_> {
+    /// The emission `c` written at scene path `path`: a constant, or the
+    /// texture built there with the materials.
+    pub fn emission(&self, path: &str, c: &ColorDesc) -> Emission {
+        match c {
+            ColorDesc::Rgb(c) => Emission::constant((*c).into()),
+            ColorDesc::Texture(_) => self
+                .emissions
+                .get(path)
+                .cloned()
+                .unwrap_or(Emission::constant(crate::math::Rgb::ZERO)),
+        }
+    }
 }

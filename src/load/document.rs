@@ -88,6 +88,8 @@ impl Gaps {
 /// its own; `None` when absent or broken.
 #[derive(Default)]
 pub struct Sections {
+    /// `version: N`.
+    pub version: Option<u32>,
     /// `include: [...]`.
     pub include: Option<Vec<String>>,
     /// `camera: (...)`.
@@ -120,6 +122,7 @@ pub trait Document: DeserializeOwned {
 
 impl Document for SceneDesc {
     const FIELDS: &'static [&'static str] = &[
+        "version",
         "include",
         "camera",
         "film",
@@ -133,6 +136,7 @@ impl Document for SceneDesc {
     const REQUIRED: &'static [&'static str] = &["camera"];
     fn assemble(s: Sections) -> Self {
         SceneDesc {
+            version: s.version,
             include: s.include.unwrap_or_default(),
             camera: s.camera.unwrap_or_else(stand_in_camera),
             film: s.film.unwrap_or_default(),

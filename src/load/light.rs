@@ -69,7 +69,7 @@ impl Checker {
             } => {
                 self.finite(&p("corner"), corner);
                 self.parallelogram(path, "edge_u", edge_u, "edge_v", edge_v);
-                self.color(&p("radiance"), radiance, None);
+                self.color_param(&p("radiance"), radiance, None);
                 surface(self, material);
             }
             LightDesc::Rect {
@@ -81,7 +81,7 @@ impl Checker {
             } => {
                 self.finite(&p("center"), center);
                 self.parallelogram(path, "half_u", half_u, "half_v", half_v);
-                self.color(&p("radiance"), radiance, None);
+                self.color_param(&p("radiance"), radiance, None);
                 surface(self, material);
             }
             LightDesc::Environment {
@@ -213,12 +213,9 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             radiance,
             material,
         } => {
-            let q = QuadLight::new(
-                (*corner).into(),
-                (*edge_u).into(),
-                (*edge_v).into(),
-                (*radiance).into(),
-            );
+            let e = ctx.emission(&format!("lights[{i}].radiance"), radiance);
+            let q = QuadLight::new((*corner).into(), (*edge_u).into(), (*edge_v).into(), e.radiance)
+                .with_emission(e);
             let m = surface(ctx, material);
             push_quad_light(ctx, m, q);
         }
@@ -230,7 +227,8 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             material,
         } => {
             let (c, u, v) = (Vec3A::from(*center), Vec3A::from(*half_u), Vec3A::from(*half_v));
-            let q = QuadLight::new(c - u - v, 2.0 * u, 2.0 * v, (*radiance).into());
+            let e = ctx.emission(&format!("lights[{i}].radiance"), radiance);
+            let q = QuadLight::new(c - u - v, 2.0 * u, 2.0 * v, e.radiance).with_emission(e);
             let m = surface(ctx, material);
             push_quad_light(ctx, m, q);
         }

@@ -433,13 +433,20 @@ pub struct Materials {
     pub index: HashMap<String, u32>,
     /// Image files read, for watch mode.
     pub files: Vec<PathBuf>,
+    /// The emission textures, by the scene path of their `radiance`.
+    pub emissions: HashMap<String, ColorTex>,
 }
 
 /// Builds every entry of the scene's `materials`, resolving texture files against
 /// `base` (the scene file's folder) and decoding each file once per colour
 /// space. All texture problems come back together.
+///
+/// `emissions` are the textured radiances of lights and emitting objects, by
+/// scene path: their images are read here too, so a file an emitter and a
+/// material share is decoded once.
 pub fn build_materials(
     descs: &BTreeMap<String, MaterialDesc>,
+    emissions: &[(String, &ColorDesc)],
     base: &Path,
 ) -> Result<Materials, Vec<Problem>> {
     let mut b = Builder {
@@ -459,6 +466,10 @@ pub fn build_materials(
         materials.push(mat);
         surfaces.push(surface);
     }
+    let emissions = emissions
+        .iter()
+        .map(|(path, c)| (path.clone(), b.color(c, path, true)))
+        .collect();
     if !b.problems.is_empty() {
         return Err(b.problems);
     }
@@ -471,6 +482,7 @@ pub fn build_materials(
         textures: b.textures,
         index,
         files,
+        emissions,
     })
 }
 

@@ -26,10 +26,10 @@ use crate::geometry::mesh_quad::pairing;
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{Instance, MeshQuad, MeshTriangle, NO_LIGHT, Shape};
-use crate::lights::{Light, MeshLight};
+use crate::lights::{Emission, Light, MeshLight};
 use crate::materials::{ColorTex, Material};
 use crate::math::Rgb;
-use glam::{Affine3A, Mat4, Vec3};
+use glam::{Affine3A, Mat4, Vec2, Vec3};
 use std::collections::BTreeMap;
 
 impl Checker {
@@ -68,7 +68,7 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     };
     let overrides = o.material_overrides().cloned().unwrap_or_default();
     let materials = resolve(ctx, &path, &loaded, o.material(), &overrides);
-    let emission = slot_emission(ctx, o, &loaded, &materials);
+    let emission = slot_emission(ctx, o, &path, &loaded, &materials);
     let id = ctx.geometry.instances.len() as u32;
     let mut instance = Instance::new(loaded.mesh, transform, materials.into_boxed_slice());
     if emission.iter().any(Option::is_some) {
@@ -76,8 +76,8 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
             .iter()
             .enumerate()
             .map(|(slot, e)| {
-                e.map_or(NO_LIGHT, |(radiance, two_sided)| {
-                    mesh_light(ctx, &instance, slot, radiance, two_sided)
+                e.clone().map_or(NO_LIGHT, |(emission, two_sided)| {
+                    mesh_light(ctx, &instance, slot, emission, two_sided)
                 })
             })
             .collect();
@@ -126,18 +126,20 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
 fn slot_emission(
     ctx: &BuildContext,
     o: &ObjectDesc,
+    path: &str,
     l: &LoadedMesh,
     materials: &[u32],
-) -> Vec<Option<(Rgb, bool)>> {
+) -> Vec<Option<(Emission, bool)>> {
     if let Some(e) = o.emission() {
-        return vec![Some((Rgb::from(e.radiance), e.two_sided)); materials.len()];
+        let emission = ctx.emission(&format!("{path}.emission.radiance"), &e.radiance);
+        return vec![Some((emission, e.two_sided)); materials.len()];
     }
     l.groups
         .iter()
         .zip(materials)
         .map(|(g, &m)| {
             let mtl = g.material.map(|k| l.mtl[k]).filter(|&k| k == m)?;
-            ctx.mtl.emission(mtl).map(|ke| (ke, false))
+            ctx.mtl.emission(mtl).map(|ke| (ke.clone(), false))
         })
         .collect()
 }
@@ -148,15 +150,33 @@ fn mesh_light(
     ctx: &mut BuildContext,
     instance: &Instance,
     slot: usize,
-    radiance: Rgb,
+    emission: Emission,
     two_sided: bool,
 ) -> u32 {
     let mesh = &ctx.geometry.meshes[instance.mesh as usize];
-    let tris: Vec<_> = (0..mesh.triangle_count() as u32)
-        .filter(|&t| mesh.slot(t) as usize == slot)
+    let in_slot = || (0..mesh.triangle_count() as u32).filter(|&t| mesh.slot(t) as usize == slot);
+    let tris: Vec<_> = in_slot()
         .map(|t| instance.world_triangle(t, &ctx.geometry.meshes))
         .collect();
-    match MeshLight::new(tris, radiance, two_sided) {
+    // Corner UVs as a hit interpolates them (`Mesh::hit`: barycentric
+    // (0, 0), (1, 0), (0, 1) without UVs), in `world_triangle`'s order,
+    // which swaps two corners under a mirroring transform.
+    let mirrored = instance.world_from_object.matrix3.determinant() < 0.0;
+    let uvs: Vec<[Vec2; 3]> = if emission.is_textured() {
+        in_slot()
+            .map(|t| {
+                let [a, b, c] = if mesh.uvs.is_empty() {
+                    [Vec2::ZERO, Vec2::X, Vec2::Y]
+                } else {
+                    mesh.indices[t as usize].map(|k| mesh.uvs[k as usize])
+                };
+                if mirrored { [a, c, b] } else { [a, b, c] }
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    match MeshLight::new(tris, emission.radiance, two_sided).map(|l| l.with_emission(emission, uvs)) {
         Some(light) => {
             ctx.lights.push(Light::Mesh(light));
             ctx.lights.len() as u32 - 1

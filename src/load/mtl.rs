@@ -19,9 +19,12 @@
 //!
 //! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), not
 //! clamped) makes the groups that use the material emit from the
-//! counter-clockwise front of their triangles (see `mesh.rs`); the material
-//! itself is mapped as above, so the surface also reflects its `Kd`.
+//! counter-clockwise front of their triangles (see `mesh.rs`); `map_Ke` (sRGB)
+//! is an emission texture, times `Ke` when both are given, alone when `Ke` is
+//! not. The material itself is mapped as above, so the surface also reflects
+//! its `Kd`.
 
+use crate::lights::Emission;
 use crate::materials::{
     Channel, ColorTex, Cutout, DielectricFresnel, ImageLookup, Material, Roughness, ScalarTex, Surface, Tex,
     Texture, UvTransform,
@@ -38,8 +41,8 @@ pub struct MtlMaterials {
     first_texture: u32,
     pub materials: Vec<Material>,
     names: Vec<Option<String>>,
-    /// `Ke` of each material, when positive.
-    emission: Vec<Option<Rgb>>,
+    /// `Ke` (times `map_Ke`) of each material, when positive.
+    emission: Vec<Option<Emission>>,
     /// What each material does to the surface (`map_d` cut-outs), in the
     /// order of `materials`.
     pub surfaces: Vec<Surface>,
@@ -86,8 +89,8 @@ impl MtlMaterials {
 
     /// The `Ke` of scene material `i`, if it came from an MTL file that gives a
     /// positive one.
-    pub fn emission(&self, i: u32) -> Option<Rgb> {
-        *self.emission.get(i.checked_sub(self.first)? as usize)?
+    pub fn emission(&self, i: u32) -> Option<&Emission> {
+        self.emission.get(i.checked_sub(self.first)? as usize)?.as_ref()
     }
 
     /// The MTL name of scene material `i`, if it came from an MTL file.
@@ -105,10 +108,21 @@ impl MtlMaterials {
             .get("Tr")
             .and_then(|t| t.trim().parse::<f32>().ok());
         let transparent = m.dissolve.is_some_and(|d| d < 1.0) || tr.is_some_and(|t| t > 0.0);
+        let ke_map = m
+            .unknown_param
+            .get("map_Ke")
+            .and_then(|f| crate::geometry::obj::texture_file(f))
+            .and_then(|f| self.texture(&dir.join(f), notes));
+        // `map_Ke` alone glows at the map's value; with `Ke` it is scaled by it.
         let ke = m
             .emissive
             .map(|e| Rgb::from(e).max(Rgb::ZERO))
-            .filter(|e| e.is_finite() && e.max_element() > 0.0);
+            .or(ke_map.map(|_| Rgb::ONE))
+            .filter(|e| e.is_finite() && e.max_element() > 0.0)
+            .map(|ke| match ke_map {
+                Some(t) => self.emission_map(t, ke),
+                None => Emission::constant(ke),
+            });
         let albedo = match m
             .diffuse_texture
             .as_deref()
@@ -235,6 +249,12 @@ impl MtlMaterials {
         *self.names.last_mut().expect("just pushed") = Some(m.name.clone());
         *self.emission.last_mut().expect("just pushed") = ke;
         i
+    }
+
+    /// The emission of image `t` (a scene texture index) times `ke`.
+    fn emission_map(&self, t: u32, ke: Rgb) -> Emission {
+        let local = ColorTex::image(t - self.first_texture);
+        Emission::new(&local, &self.textures).scaled(ke)
     }
 
     /// Decodes a scalar map (linear) once per path: its index and channel

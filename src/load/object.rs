@@ -7,7 +7,7 @@
 use super::build_context::BuildContext;
 use super::transform::{compose, is_similarity, matrix};
 use super::validate::Checker;
-use crate::desc::{EmissionDesc, ObjectDesc, SceneDesc, TransformDesc};
+use crate::desc::{ColorDesc, EmissionDesc, ObjectDesc, SceneDesc, TransformDesc};
 use crate::diagnostic::Problem;
 use crate::geometry::{NO_LIGHT, Plane, Quad, Shape, Sphere};
 use crate::lights::{Light, QuadLight, SdfLight, SphereLight};
@@ -36,7 +36,15 @@ impl Checker {
             );
             return;
         }
-        self.color(&format!("{path}.radiance"), &e.radiance, None);
+        let at = format!("{path}.radiance");
+        self.color_param(&at, &e.radiance, None);
+        if let (ObjectDesc::Sdf { .. }, ColorDesc::Texture(_)) = (o, &e.radiance) {
+            self.push(
+                &at,
+                "an SDF has no UVs to look an emission texture up with",
+                "give the SDF a constant radiance, or emit from a sphere, quad or mesh",
+            );
+        }
     }
 
     fn object_refs(&mut self, path: &str, o: &ObjectDesc, scene: &SceneDesc) {
@@ -188,12 +196,11 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
                 mitsuba_uv: *uv == crate::desc::SphereUvDesc::MitsubaZUp,
             };
             if let Some(e) = emission {
-                ctx.lights.push(Light::Sphere(SphereLight {
-                    center: sphere.center,
-                    radius: sphere.radius,
-                    radiance: Rgb::from(e.radiance),
-                    two_sided: e.two_sided,
-                }));
+                let mut l = SphereLight::new(sphere.center, sphere.radius, Rgb::ZERO)
+                    .with_emission(ctx.emission(&format!("objects[{i}].emission.radiance"), &e.radiance));
+                l.two_sided = e.two_sided;
+                l.mitsuba_uv = sphere.mitsuba_uv;
+                ctx.lights.push(Light::Sphere(l));
             }
             Shape::Sphere(sphere)
         }
@@ -217,11 +224,9 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             ..
         } => quad(
             ctx,
-            point(corner),
-            vector(edge_u),
-            vector(edge_v),
+            (point(corner), vector(edge_u), vector(edge_v)),
             material,
-            emission,
+            emission.map(|e| (e, i)),
         ),
         ObjectDesc::Rect {
             center,
@@ -230,27 +235,31 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             ..
         } => {
             let (u, v) = (vector(half_u), vector(half_v));
-            quad(ctx, point(center) - u - v, 2.0 * u, 2.0 * v, material, emission)
+            quad(
+                ctx,
+                (point(center) - u - v, 2.0 * u, 2.0 * v),
+                material,
+                emission.map(|e| (e, i)),
+            )
         }
         ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => return super::mesh::add(ctx, i, o, m),
     };
     ctx.shapes.push(shape);
 }
 
-/// A quad object, with its light when it emits (one-sided along `u × v` unless
-/// two-sided).
+/// A quad object `(corner, u, v)`, with its light when it emits (`e` of
+/// object `i`; one-sided along `u × v` unless two-sided).
 fn quad(
     ctx: &mut BuildContext,
-    c: Vec3A,
-    u: Vec3A,
-    v: Vec3A,
+    (c, u, v): (Vec3A, Vec3A, Vec3A),
     material: u32,
-    e: Option<&EmissionDesc>,
+    e: Option<(&EmissionDesc, usize)>,
 ) -> Shape {
-    let Some(e) = e else {
+    let Some((e, i)) = e else {
         return Shape::Quad(Quad::new(c, u, v, material, NO_LIGHT));
     };
-    let mut q = QuadLight::new(c, u, v, Rgb::from(e.radiance));
+    let emission = ctx.emission(&format!("objects[{i}].emission.radiance"), &e.radiance);
+    let mut q = QuadLight::new(c, u, v, emission.radiance).with_emission(emission);
     q.two_sided = e.two_sided;
     let id = ctx.lights.len() as u32;
     ctx.lights.push(Light::Quad(q));
@@ -273,7 +282,8 @@ fn push_sdf_light(ctx: &mut BuildContext, i: usize, k: u32, e: &EmissionDesc) {
         sdf: k,
         center: 0.5 * (b.min + b.max),
         radius: 0.5 * (b.max - b.min).length(),
-        radiance: Rgb::from(e.radiance),
+        // Constant: the checks refuse a texture on an SDF.
+        radiance: ctx.emission("", &e.radiance).radiance,
         two_sided: e.two_sided,
     }));
 }

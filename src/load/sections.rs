@@ -103,6 +103,7 @@ impl Reader<'_> {
         }
         self.seen.push(known);
         match known {
+            "version" => s.version = self.section(known, &field.value),
             "include" => s.include = self.section(known, &field.value),
             "camera" => s.camera = self.section(known, &field.value),
             "film" => s.film = self.section(known, &field.value),

@@ -71,6 +71,20 @@ pub fn validate_files_apart(scene: &SceneDesc, base: &Path, root: Option<&Path>)
         root: root.map(Path::to_path_buf),
         missing_files: Vec::new(),
     };
+    if let Some(version) = scene.version
+        && !(1..=crate::migrate::CURRENT).contains(&version)
+    {
+        let current = crate::migrate::CURRENT;
+        v.push(
+            "version",
+            format!("scene-format version {version} is not one this ronray reads (1 to {current})"),
+            if version == 0 {
+                "versions start at 1; remove `version` or write the current one, `version: 2`".to_string()
+            } else {
+                format!("the file was written for a newer ronray: update ronray, or write `version: {current}` if the file only uses version {current}'s syntax")
+            },
+        );
+    }
     v.camera(&scene.camera);
     v.film(&scene.film);
     v.integrator(&scene.integrator);

@@ -32,7 +32,7 @@ mod facing;
 
 use super::include::Composition;
 use super::spans::Spans;
-use crate::desc::{CameraDesc, IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc};
+use crate::desc::{CameraDesc, ColorDesc, IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::{Diagnostic, Problem, Report, Severity};
 use std::collections::BTreeSet;
 
@@ -118,9 +118,14 @@ pub fn located(composition: &Composition, problems: &[Problem]) -> Report {
 /// build's work: such a mesh errs on the side of silence).
 pub fn emits(desc: &SceneDesc) -> bool {
     let positive = |c: &[f32; 3]| c.iter().any(|&x| x > 0.0);
+    // A texture is taken to glow somewhere: its checks report a black one.
+    let glows = |c: &ColorDesc| match c {
+        ColorDesc::Rgb(c) => positive(c),
+        ColorDesc::Texture(_) => true,
+    };
     let light = desc.lights.iter().any(|l| match l {
         LightDesc::Point { intensity, .. } | LightDesc::Spot { intensity, .. } => positive(intensity),
-        LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => positive(radiance),
+        LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => glows(radiance),
         LightDesc::Environment {
             radiance, strength, ..
         } => *strength > 0.0 && radiance.as_ref().is_none_or(positive),
@@ -128,7 +133,7 @@ pub fn emits(desc: &SceneDesc) -> bool {
     let object = desc.objects.iter().any(|o| {
         let mtl =
             matches!(o, ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. }) && o.material().is_none();
-        mtl || o.emission().is_some_and(|e| positive(&e.radiance))
+        mtl || o.emission().is_some_and(|e| glows(&e.radiance))
     });
     light || object
 }

@@ -67,6 +67,7 @@ impl Schema {
             }
             if alt.get("const").and_then(Value::as_str) == Some(name)
                 || enum_names(alt).iter().any(|n| n == name)
+                || struct_title(alt) == Some(name)
             {
                 return Some(alt);
             }
@@ -85,6 +86,7 @@ impl Schema {
                 out.push((c.to_string(), doc));
             }
             out.extend(enum_names(alt).into_iter().map(|n| (n, doc)));
+            out.extend(struct_title(alt).map(|t| (t.to_string(), doc)));
             if alt
                 .get("required")
                 .and_then(Value::as_array)
@@ -260,6 +262,14 @@ fn alternatives(v: &Value) -> Vec<&Value> {
         .filter_map(|k| v.get(*k).and_then(Value::as_array))
         .flatten()
         .collect()
+}
+
+/// The name of a struct told apart by its fields rather than a tag (a
+/// texture: `Image(file: …)`, `Checker(a: …, b: …)`), which its schema
+/// carries as `title`.
+fn struct_title(v: &Value) -> Option<&str> {
+    v.get("properties")?;
+    v.get("title").and_then(Value::as_str)
 }
 
 fn enum_names(v: &Value) -> Vec<String> {

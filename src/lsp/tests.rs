@@ -69,3 +69,28 @@ fn lsp_completes_film_aovs_and_denoise() {
         assert!(layers.iter().any(|(x, _)| x == l), "{l} missing: {layers:?}");
     }
 }
+
+#[test]
+fn lsp_completes_texture_forms_in_an_emission_radiance() {
+    // The radiance of a light and of an emitting object takes a texture.
+    for src in [
+        "Scene(materials: { \"m\": Lambert(albedo: ) })",
+        "Scene(lights: [Rect(center: (0, 1, 0), radiance: )])",
+        "Scene(objects: [Sphere(radius: 1, emission: (radiance: ))])",
+    ] {
+        let at = src.find(": )").expect("key") + 2;
+        let forms = labels(src, at, false);
+        for f in ["Image", "Checker", "Pattern"] {
+            assert!(
+                forms.iter().any(|(l, _)| l == f),
+                "{f} missing in {src}: {forms:?}"
+            );
+        }
+    }
+    // Inside a texture, its fields.
+    let src = "Scene(lights: [Rect(radiance: Image(file: \"sign.png\", ))])";
+    let fields = labels(src, src.find("png\", ").expect("file") + 6, false);
+    for f in ["colorspace", "scale", "uv"] {
+        assert!(fields.iter().any(|(l, _)| l == f), "{f} missing: {fields:?}");
+    }
+}
