@@ -29,6 +29,7 @@ pub mod lights;
 pub mod load;
 pub mod lsp;
 pub mod materials;
+pub mod media;
 pub mod math;
 pub mod memory;
 

@@ -230,6 +230,7 @@ pub fn build_in(
         bounded,
         geometry: ctx.geometry,
         bvh,
+        media: None,
     };
     let view = super::view::build_view(desc, base);
     // What share of the sky the surfaces the camera sees are lit by
