@@ -29,8 +29,8 @@ pub mod lights;
 pub mod load;
 pub mod lsp;
 pub mod materials;
-pub mod media;
 pub mod math;
+pub mod media;
 pub mod memory;
 
 pub mod sampler;

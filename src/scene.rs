@@ -11,9 +11,9 @@ use crate::geometry::{Geometry, Hit, Shape};
 use crate::lights::{CausticEmitters, EnvironmentLight, Light, LightPicker};
 use crate::materials::surface::{self, Surface};
 use crate::materials::{Material, Texture};
-use crate::media::Media;
 use crate::math::float_error::offset_along_normal;
 use crate::math::{Frame, Ray};
+use crate::media::Media;
 use glam::{Vec2, Vec3A};
 
 /// The runtime scene: everything rays query, in world space, indexed by `u32`.

@@ -65,7 +65,14 @@ struct Prev {
 
 /// Radiance in W/(m²·sr) arriving along camera `ray` through the scene's
 /// `media`: one sample of `path`'s estimator with media.
-pub(super) fn li(path: &Path, scene: &Scene, media: &Media, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
+pub(super) fn li(
+    path: &Path,
+    scene: &Scene,
+    media: &Media,
+    ray: &Ray,
+    sampler: &mut Sampler,
+    counters: &mut Counters,
+) -> Rgb {
     let picker: &LightPicker = &scene.light_picker;
     let (mut ray, mut beta, mut l) = (*ray, Rgb::ONE, Rgb::ZERO);
     let mut medium = media.camera;
@@ -108,7 +115,11 @@ pub(super) fn li(path: &Path, scene: &Scene, media: &Media, ray: &Ray, sampler: 
                         let tr = transmittance(scene, media, medium, shadow, extent, sampler, counters);
                         if tr != Rgb::ZERO {
                             let light_pdf = pmf * ls.pdf;
-                            let w = if ls.delta { 1.0 } else { power_heuristic(light_pdf, f) };
+                            let w = if ls.delta {
+                                1.0
+                            } else {
+                                power_heuristic(light_pdf, f)
+                            };
                             l += beta * tr * ls.li * (f * w / light_pdf);
                         }
                     }
@@ -166,7 +177,8 @@ pub(super) fn li(path: &Path, scene: &Scene, media: &Media, ray: &Ray, sampler: 
                     1.0
                 } else {
                     let light = &scene.lights[hit.light as usize];
-                    let light_pdf = picker.pmf(prev.p, prev.n, hit.light as usize) * light.pdf(prev.p, ray.d, &hit);
+                    let light_pdf =
+                        picker.pmf(prev.p, prev.n, hit.light as usize) * light.pdf(prev.p, ray.d, &hit);
                     power_heuristic(prev.pdf, light_pdf)
                 };
                 l += beta * le * w;

@@ -90,6 +90,7 @@ pub fn build_in(
         index,
         files: texture_files,
     } = super::material::build_materials(&desc.materials, base)?;
+    let (media, media_index) = super::medium::build_media(desc, base)?;
     let emitter = materials.len() as u32;
     materials.push(Material::Emitter);
     let mut ctx = BuildContext {
@@ -232,6 +233,13 @@ pub fn build_in(
         bvh,
         media: None,
     };
+    let ids = 1 + desc.objects.len() + desc.lights.len();
+    scene.media = super::medium::scene_media(desc, media, &media_index, ids);
+    if scene.media.is_some() {
+        // The caustic light tracer knows nothing of media (see
+        // `integrators::vol_path`).
+        scene.caustics = None;
+    }
     let view = super::view::build_view(desc, base);
     // What share of the sky the surfaces the camera sees are lit by
     // (light selection's weight for the sky; a few thousand rays).

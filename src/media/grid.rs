@@ -90,7 +90,8 @@ impl Grid {
         let (y0, y1) = corner(g.y, ny);
         let (z0, z1) = corner(g.z, nz);
         let (nx, ny) = (nx as usize, ny as usize);
-        let at = |x: usize, y: usize, z: usize| self.values.get((z * ny + y) * nx + x).copied().unwrap_or(0.0);
+        let at =
+            |x: usize, y: usize, z: usize| self.values.get((z * ny + y) * nx + x).copied().unwrap_or(0.0);
         let lerp = |a: f32, b: f32, t: f32| a + (b - a) * t;
         let c00 = lerp(at(x0, y0, z0), at(x1, y0, z0), f.x);
         let c10 = lerp(at(x0, y1, z0), at(x1, y1, z0), f.x);
@@ -227,8 +228,14 @@ mod tests {
         }
         let ratio = ratio / n as f64;
         let rate = passed as f64 / n as f64;
-        assert!((ratio - expect as f64).abs() < 0.005, "ratio tracking {ratio} vs {expect}");
-        assert!((rate - expect as f64).abs() < 0.005, "delta tracking {rate} vs {expect}");
+        assert!(
+            (ratio - expect as f64).abs() < 0.005,
+            "ratio tracking {ratio} vs {expect}"
+        );
+        assert!(
+            (rate - expect as f64).abs() < 0.005,
+            "delta tracking {rate} vs {expect}"
+        );
         let beside = Ray::new(Vec3A::new(-1.0, 2.0, 0.5), Vec3A::X);
         assert_eq!(g.transmittance(&beside, 10.0, &mut rand), 1.0);
     }

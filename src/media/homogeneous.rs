@@ -36,8 +36,18 @@ impl Homogeneous {
     /// pbrt-v4's spectral path tracer), which stays finite where one
     /// channel's would not. A scattering event weighs T(t)·σ_s / p(t); going
     /// through to `t_max` weighs T(t_max) / P(t ≥ t_max).
+    ///
+    /// A purely absorbing medium (σ_s = 0) never scatters: the collision
+    /// would weigh 0, so the ray goes through with weight T(t_max), exact
+    /// rather than a 0-or-1 estimate of it.
     #[inline]
     pub fn sample(&self, t_max: f32, u: Vec2) -> Collision {
+        if self.sigma_s == Vec3A::ZERO {
+            return Collision {
+                t: None,
+                weight: self.transmittance(t_max),
+            };
+        }
         let x = u.x * 3.0;
         let c = (x as usize).min(2);
         let sigma = self.sigma_t[c];
@@ -50,7 +60,11 @@ impl Homogeneous {
         if t < t_max {
             let tr = self.transmittance(t);
             let pdf = (self.sigma_t * tr).element_sum() / 3.0;
-            let weight = if pdf > 0.0 { tr * self.sigma_s / pdf } else { Vec3A::ZERO };
+            let weight = if pdf > 0.0 {
+                tr * self.sigma_s / pdf
+            } else {
+                Vec3A::ZERO
+            };
             Collision { t: Some(t), weight }
         } else {
             let tr = self.transmittance(t_max);
@@ -106,7 +120,10 @@ mod tests {
         let tr = m.transmittance(t_max);
         let expect_s = m.sigma_s / m.sigma_t * (Vec3A::ONE - tr);
         for ch in 0..3 {
-            assert!((through[ch] - tr[ch]).abs() < 0.01 * tr[ch], "through {through} vs {tr}");
+            assert!(
+                (through[ch] - tr[ch]).abs() < 0.01 * tr[ch],
+                "through {through} vs {tr}"
+            );
             assert!(
                 (scattered[ch] - expect_s[ch]).abs() < 0.01 * expect_s[ch],
                 "scattered {scattered} vs {expect_s}"

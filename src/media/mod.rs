@@ -114,7 +114,11 @@ impl Boundary {
     /// outward geometric normal).
     #[inline]
     pub fn toward(&self, w: Vec3A, ng: Vec3A) -> u32 {
-        if w.dot(ng) < 0.0 { self.inside } else { self.outside }
+        if w.dot(ng) < 0.0 {
+            self.inside
+        } else {
+            self.outside
+        }
     }
 }
 

@@ -96,11 +96,18 @@ mod tests {
             for _ in 0..n {
                 let (wi, pdf) = hgf.sample(d, rng.next_vec2());
                 assert!((wi.length() - 1.0).abs() < 1e-4);
-                assert!((pdf - hgf.eval(d, wi)).abs() <= 1e-3 * pdf.max(1.0), "g {g}: {pdf} vs {}", hgf.eval(d, wi));
+                assert!(
+                    (pdf - hgf.eval(d, wi)).abs() <= 1e-3 * pdf.max(1.0),
+                    "g {g}: {pdf} vs {}",
+                    hgf.eval(d, wi)
+                );
                 mean += d.dot(wi) as f64;
             }
             mean /= n as f64;
-            assert!((mean - g as f64).abs() < 0.01, "g {g}: sampled mean cosine {mean}");
+            assert!(
+                (mean - g as f64).abs() < 0.01,
+                "g {g}: sampled mean cosine {mean}"
+            );
         }
     }
 }

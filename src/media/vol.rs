@@ -121,7 +121,10 @@ mod tests {
     fn vol_refuses_hostile_headers() {
         let mut bytes = write_vol([2, 2, 2], &[1.0; 8], [0.0; 3], [1.0; 3]);
         assert_eq!(parse_vol(&bytes[..40]), Err(VolError::Short(40)));
-        assert!(matches!(parse_vol(&bytes[..bytes.len() - 4]), Err(VolError::Length { .. })));
+        assert!(matches!(
+            parse_vol(&bytes[..bytes.len() - 4]),
+            Err(VolError::Length { .. })
+        ));
         bytes[8..12].copy_from_slice(&100_000i32.to_le_bytes());
         assert_eq!(parse_vol(&bytes), Err(VolError::Size(100_000, 2, 2)));
         let bad = write_vol([2, 1, 1], &[1.0, -2.0], [0.0; 3], [1.0; 3]);
