@@ -174,3 +174,94 @@ fn absorbing_sphere_darkens_the_furnace() {
         img.get(8, 8).x
     );
 }
+
+/// A `.vol` grid of constant density filling the slab's box, as the
+/// camera's medium (σ_t = 0 outside the box): delta tracking passes a
+/// fraction exp(−σ_t d) of the rays, and a half-density grid (values 0.5,
+/// scale doubled) gives the same; a grid beside the view changes nothing.
+#[test]
+fn grid_medium_transmits_as_its_optical_depth_says() {
+    let dir = std::env::temp_dir().join(format!("ronray-media-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let bytes = ronray::media::vol::write_vol([4, 4, 2], &[0.5; 32], [-5.0, -5.0, -0.25], [5.0, 5.0, 0.25]);
+    std::fs::write(dir.join("half.vol"), bytes).expect("write .vol");
+    let scene = |min: &str, max: &str| {
+        format!(
+            r#"Scene(
+                camera: (eye: (0, 0, 3), target: (0, 0, 0), projection: Orthographic(view_height: 2)),
+                film: (width: 32, height: 32, spp: 16),
+                integrator: Path(max_depth: 8),
+                media: {{ "smoke": Grid(file: "half.vol", min: {min}, max: {max}, scale: 2, albedo: (0, 0, 0)) }},
+                medium: "smoke",
+                lights: [Environment(radiance: (1, 1, 1))],
+            )"#
+        )
+    };
+    let img = render_loaded(&load_in(
+        &dir,
+        &scene("(-5, -5, -0.25)", "(5, 5, 0.25)"),
+        &Overrides::default(),
+    ));
+    let expected = (-D).exp();
+    let m = mean(&img);
+    assert!(
+        (m[0] - expected).abs() < 0.03 * expected,
+        "mean {:.4}, expected exp(−1 × 0.5) = {expected:.4}",
+        m[0]
+    );
+    let beside = render_loaded(&load_in(
+        &dir,
+        &scene("(6, -5, -0.25)", "(16, 5, 0.25)"),
+        &Overrides::default(),
+    ));
+    assert!(
+        beside.pixels.iter().all(|p| (p.x - 1.0).abs() < 1e-6),
+        "a grid beside the view dimmed it"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Located errors: an undefined medium, negative coefficients, g outside
+/// (−1, 1), both parametrisations at once, a grid that does not parse.
+#[test]
+fn media_mistakes_are_located_errors() {
+    let dir = std::env::temp_dir().join(format!("ronray-media-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    std::fs::write(dir.join("bad.vol"), b"VOL\x03 not a grid").expect("write");
+    let text = r#"Scene(
+        camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+        integrator: Path(max_depth: 8),
+        media: {
+            "neg": Homogeneous(sigma_t: (1, -1, 1)),
+            "hg": Homogeneous(sigma_t: (1, 1, 1), g: 1.0),
+            "both": Homogeneous(sigma_t: (1, 1, 1), sigma_a: (1, 1, 1), sigma_s: (1, 1, 1)),
+        },
+        medium: "fgo",
+        objects: [Sphere(center: (0, 0, 0), radius: 1, interior: "nope")],
+    )"#;
+    let err = match ronray::load::load_str(&dir.join("bad.ron"), text, &Overrides::default()) {
+        Ok(_) => panic!("a scene with media mistakes loaded"),
+        Err(e) => common::message(&e),
+    };
+    for expected in [
+        "negative coefficient",
+        "g 1 is outside (−1, 1)",
+        "give either `sigma_t`",
+        "unknown medium `fgo`",
+        "unknown medium `nope`",
+    ] {
+        assert!(err.contains(expected), "expected `{expected}` in:\n{err}");
+    }
+    let grid = r#"Scene(
+        camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+        integrator: Path(max_depth: 8),
+        media: { "g": Grid(file: "bad.vol", min: (0, 0, 0), max: (1, 1, 1)) },
+        medium: "g",
+    )"#;
+    let err = match ronray::load::load_str(&dir.join("grid.ron"), grid, &Overrides::default()) {
+        Ok(_) => panic!("a broken grid loaded"),
+        Err(e) => common::message(&e),
+    };
+    assert!(err.contains("bad.vol") && err.contains("header"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
