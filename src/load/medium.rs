@@ -162,11 +162,11 @@ impl Checker {
     }
 }
 
+/// The built media in name order, and each one's index by name.
+pub(super) type BuiltMedia = (Vec<Medium>, HashMap<String, u32>);
+
 /// The scene's media by name, built (grid files read), in name order.
-pub(super) fn build_media(
-    desc: &SceneDesc,
-    base: &Path,
-) -> Result<(Vec<Medium>, HashMap<String, u32>), Vec<Problem>> {
+pub(super) fn build_media(desc: &SceneDesc, base: &Path) -> Result<BuiltMedia, Vec<Problem>> {
     let mut media = Vec::new();
     let mut index = HashMap::new();
     let mut problems = Vec::new();
@@ -244,7 +244,7 @@ fn build_medium(m: &MediumDesc, base: &Path) -> Result<Medium, (String, String)>
                 HenyeyGreenstein { g: *g },
             );
             let depth = grid.majorant * (hi - lo).length();
-            if !(depth <= MAX_GRID_OPTICAL_DEPTH) {
+            if depth.is_nan() || depth > MAX_GRID_OPTICAL_DEPTH {
                 return Err((
                     format!("optical depth {depth:e} across the grid's box is above {MAX_GRID_OPTICAL_DEPTH}"),
                     "lower `scale`: such a dense grid is opaque, and tracking through it would take that many steps per ray".into(),
