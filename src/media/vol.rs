@@ -126,7 +126,9 @@ mod tests {
             Err(VolError::Length { .. })
         ));
         bytes[8..12].copy_from_slice(&100_000i32.to_le_bytes());
-        assert_eq!(parse_vol(&bytes), Err(VolError::Size(100_000, 2, 2)));
+        assert!(matches!(parse_vol(&bytes), Err(VolError::Length { .. })));
+        bytes[12..16].copy_from_slice(&100_000i32.to_le_bytes());
+        assert_eq!(parse_vol(&bytes), Err(VolError::Size(100_000, 100_000, 2)));
         let bad = write_vol([2, 1, 1], &[1.0, -2.0], [0.0; 3], [1.0; 3]);
         assert!(matches!(parse_vol(&bad), Err(VolError::Value { index: 1, .. })));
         let nan = write_vol([1, 1, 1], &[f32::NAN], [0.0; 3], [1.0; 3]);
