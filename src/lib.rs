@@ -30,6 +30,7 @@ pub mod load;
 pub mod lsp;
 pub mod materials;
 pub mod math;
+pub mod media;
 pub mod memory;
 pub mod migrate;
 

@@ -13,6 +13,7 @@ use crate::materials::surface::{self, Surface};
 use crate::materials::{Material, Texture};
 use crate::math::float_error::offset_along_normal;
 use crate::math::{Frame, Ray};
+use crate::media::Media;
 use glam::{Vec2, Vec3A};
 
 /// The runtime scene: everything rays query, in world space, indexed by `u32`.
@@ -52,6 +53,9 @@ pub struct Scene {
     /// The lights caustic connections emit from, when the scene has
     /// perfect-specular surfaces for them to matter.
     pub caustics: Option<CausticEmitters>,
+    /// Participating media, when the scene declares any: the path tracer
+    /// takes its volumetric branch only then (`integrators::vol_path`).
+    pub media: Option<Box<Media>>,
 }
 
 /// What the nearest hit so far needs for its hit record beyond `t`.

@@ -30,6 +30,7 @@ mod film;
 mod integrator;
 mod light;
 mod material;
+mod medium;
 mod object;
 mod sdf;
 mod texture;
@@ -47,6 +48,7 @@ pub use material::{
     CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc,
     RoughnessUnitDesc,
 };
+pub use medium::MediumDesc;
 pub use object::{MeshDesc, ObjectDesc, SphereUvDesc};
 pub use sdf::{MarchDesc, RotationDesc, SdfDesc};
 pub use texture::{
@@ -97,6 +99,14 @@ pub struct SceneDesc {
     /// The geometry; each entry names a material from `materials`.
     #[serde(default)]
     pub objects: Vec<ObjectDesc>,
+    /// Named participating media (fog, smoke, the inside of wax); the
+    /// global `medium` and the `interior`/`exterior` of shapes name them.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub media: BTreeMap<String, MediumDesc>,
+    /// The medium the camera is in, filling all space outside media shapes
+    /// (default none: vacuum). Needs the `Path` integrator.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub medium: Option<String>,
     /// Named meshes that `Instance` objects place; loaded once each.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub meshes: BTreeMap<String, MeshDesc>,

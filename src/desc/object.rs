@@ -98,8 +98,17 @@ pub enum ObjectDesc {
         /// Radius in scene units, > 0.
         #[schemars(range(min = 0))]
         radius: f32,
-        /// Name of the material in `materials`.
+        /// Name of the material in `materials`; a sphere with an `interior`
+        /// medium may leave it out to be an index-matched boundary, invisible
+        /// but for its medium.
+        #[serde(default, skip_serializing_if = "String::is_empty")]
         material: String,
+        /// Name of the medium inside (in `media`, default none).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        interior: Option<String>,
+        /// Name of the medium outside (default the scene's `medium`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        exterior: Option<String>,
         /// Light the surface emits (default none); see `EmissionDesc`.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         emission: Option<super::EmissionDesc>,
@@ -187,6 +196,15 @@ pub enum ObjectDesc {
         /// false): smooth shading for faceted files.
         #[serde(default, skip_serializing_if = "is_false")]
         smooth: bool,
+        /// Name of the medium inside (in `media`, default none); the mesh
+        /// must be closed, its triangles counter-clockwise seen from outside.
+        /// Without `material` (and `materials`) the mesh is an index-matched
+        /// boundary, invisible but for its medium.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        interior: Option<String>,
+        /// Name of the medium outside (default the scene's `medium`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        exterior: Option<String>,
         /// Placement steps applied in the order written (default none); the mesh is
         /// baked into world space once.
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -226,8 +244,8 @@ impl ObjectDesc {
     pub fn material(&self) -> Option<&str> {
         match self {
             ObjectDesc::Sdf { material, .. } => Some(material),
-            ObjectDesc::Sphere { material, .. }
-            | ObjectDesc::Plane { material, .. }
+            ObjectDesc::Sphere { material, .. } => Some(material.as_str()).filter(|m| !m.is_empty()),
+            ObjectDesc::Plane { material, .. }
             | ObjectDesc::Quad { material, .. }
             | ObjectDesc::Rect { material, .. } => Some(material),
             ObjectDesc::Mesh { material, .. } | ObjectDesc::Instance { material, .. } => material.as_deref(),
@@ -245,6 +263,23 @@ impl ObjectDesc {
             | ObjectDesc::Rect { emission, .. }
             | ObjectDesc::Mesh { emission, .. }
             | ObjectDesc::Instance { emission, .. } => emission.as_ref(),
+        }
+    }
+
+    /// The media inside and outside the object (names), if it declares them.
+    pub fn media(&self) -> (Option<&str>, Option<&str>) {
+        match self {
+            ObjectDesc::Sphere {
+                interior, exterior, ..
+            }
+            | ObjectDesc::Mesh {
+                interior, exterior, ..
+            } => (interior.as_deref(), exterior.as_deref()),
+            ObjectDesc::Sdf { .. }
+            | ObjectDesc::Plane { .. }
+            | ObjectDesc::Quad { .. }
+            | ObjectDesc::Rect { .. }
+            | ObjectDesc::Instance { .. } => (None, None),
         }
     }
 

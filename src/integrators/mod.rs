@@ -7,6 +7,7 @@ pub mod path;
 pub mod sky_visibility;
 #[cfg(test)]
 mod spawn_tests;
+pub mod vol_path;
 pub mod whitted;
 
 pub use direct::Direct;

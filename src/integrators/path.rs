@@ -95,6 +95,9 @@ impl Path {
     /// sample's estimate (the mean of its continuations when paths split);
     /// unbiased for unlimited depth.
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut Sampler, counters: &mut Counters) -> Rgb {
+        if let Some(media) = &scene.media {
+            return super::vol_path::li(self, scene, media, ray, sampler, counters);
+        }
         let start = State {
             ray: *ray,
             beta: Rgb::ONE,

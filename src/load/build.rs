@@ -95,6 +95,7 @@ pub fn build_in(
         .into_iter()
         .map(|(path, tex)| (path, Emission::new(&tex, &textures)))
         .collect();
+    let (media, media_index) = super::medium::build_media(desc, base)?;
     let emitter = materials.len() as u32;
     materials.push(Material::Emitter);
     let mut ctx = BuildContext {
@@ -236,7 +237,15 @@ pub fn build_in(
         bounded,
         geometry: ctx.geometry,
         bvh,
+        media: None,
     };
+    let ids = 1 + desc.objects.len() + desc.lights.len();
+    scene.media = super::medium::scene_media(desc, media, &media_index, ids);
+    if scene.media.is_some() {
+        // The caustic light tracer knows nothing of media (see
+        // `integrators::vol_path`).
+        scene.caustics = None;
+    }
     let view = super::view::build_view(desc, base);
     // What share of the sky the surfaces the camera sees are lit by
     // (light selection's weight for the sky; a few thousand rays).

@@ -4,8 +4,8 @@
 //! back to the paths the user wrote.
 
 use crate::desc::{
-    CameraDesc, ColorDesc, FilmDesc, IncludeDesc, IntegratorDesc, LightDesc, MaterialDesc, MeshDesc,
-    ObjectDesc, SceneDesc, TestDesc,
+    CameraDesc, ColorDesc, FilmDesc, IncludeDesc, IntegratorDesc, LightDesc, MaterialDesc, MediumDesc,
+    MeshDesc, ObjectDesc, SceneDesc, TestDesc,
 };
 use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;
@@ -104,6 +104,10 @@ pub struct Sections {
     pub materials: BTreeMap<String, MaterialDesc>,
     /// The `meshes` entries that read; broken ones are stand-ins.
     pub meshes: BTreeMap<String, MeshDesc>,
+    /// The `media` entries that read; broken ones are stand-ins.
+    pub media: BTreeMap<String, MediumDesc>,
+    /// `medium: "name"`.
+    pub medium: Option<String>,
     /// The `lights` elements that read (broken ones are left out).
     pub lights: Vec<LightDesc>,
     /// The `objects` elements that read (broken ones are left out).
@@ -131,6 +135,8 @@ impl Document for SceneDesc {
         "lights",
         "objects",
         "meshes",
+        "media",
+        "medium",
         "test",
     ];
     const REQUIRED: &'static [&'static str] = &["camera"];
@@ -145,6 +151,8 @@ impl Document for SceneDesc {
             lights: s.lights,
             objects: s.objects,
             meshes: s.meshes,
+            media: s.media,
+            medium: s.medium,
             test: s.test,
         }
     }
@@ -172,6 +180,19 @@ fn stand_in_camera() -> CameraDesc {
         projection: crate::desc::ProjectionDesc::Perspective,
         aperture_radius: 0.0,
         focus_distance: None,
+    }
+}
+
+/// What a broken `media` entry reads as: clear air, so names referring to
+/// it are not reported as unknown.
+pub(super) fn stand_in_medium() -> MediumDesc {
+    MediumDesc::Homogeneous {
+        sigma_t: Some([0.0; 3]),
+        albedo: None,
+        sigma_a: None,
+        sigma_s: None,
+        scale: 1.0,
+        g: 0.0,
     }
 }
 

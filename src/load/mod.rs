@@ -20,6 +20,7 @@ pub mod include;
 mod integrator;
 mod light;
 pub mod material;
+mod medium;
 mod mesh;
 mod mesh_keys;
 mod mesh_state;

@@ -9,7 +9,7 @@
 //! so that names referring to it are not reported as unknown. A partial
 //! document is never built: the file's own errors fail the load.
 
-use super::document::{Document, Gaps, Sections, stand_in_material, stand_in_mesh};
+use super::document::{Document, Gaps, Sections, stand_in_material, stand_in_medium, stand_in_mesh};
 use super::format::Format;
 use super::outline::{Entry, Outline};
 use super::slip::Slip;
@@ -111,6 +111,8 @@ impl Reader<'_> {
             "test" => s.test = self.section::<Option<TestDesc>>(known, &field.value).flatten(),
             "materials" => s.materials = self.map(field, "materials", stand_in_material),
             "meshes" => s.meshes = self.map(field, "meshes", stand_in_mesh),
+            "media" => s.media = self.map(field, "media", stand_in_medium),
+            "medium" => s.medium = self.section::<Option<String>>(known, &field.value).flatten(),
             "lights" => s.lights = self.list(field, "lights"),
             "objects" => s.objects = self.list(field, "objects"),
             _ => {}

@@ -101,7 +101,9 @@ pub fn validate_files_apart(scene: &SceneDesc, base: &Path, root: Option<&Path>)
     v.one_environment(&scene.lights);
     for (i, o) in scene.objects.iter().enumerate() {
         v.object(&format!("objects[{i}]"), o, scene);
+        v.object_media(&format!("objects[{i}]"), o, scene);
     }
+    v.media(scene);
     for (name, m) in &scene.meshes {
         v.mesh_entry(&format!("meshes.{name}"), m);
     }

@@ -25,11 +25,13 @@ pub fn complete(
         .token
         .is_some_and(|i| toks[i].kind == Kind::Str && toks[i].span.start < offset);
     let key = frame.key.clone();
-    // A name of the scene's: `material: "…"`, `mesh: "…"`, or the value of
-    // an object's `materials: { "group": "…" }` map.
+    // A name of the scene's: `material: "…"`, `mesh: "…"`, a medium
+    // (`medium`, `interior`, `exterior`), or the value of an object's
+    // `materials: { "group": "…" }` map.
     let names_of = match key.as_deref() {
         Some("material") => Some("materials"),
         Some("mesh") => Some("meshes"),
+        Some("medium" | "interior" | "exterior") => Some("media"),
         Some(_) if cx.frames.len() > 3 && frame.step == Some(Step::Named("materials".into())) => {
             Some("materials")
         }

@@ -28,6 +28,7 @@ pub fn definition(
     let map = match (frame.key.as_deref(), &frame.step) {
         (Some("material"), _) => "materials",
         (Some("mesh"), _) => "meshes",
+        (Some("medium" | "interior" | "exterior"), _) => "media",
         (Some("file"), _) => return existing(base.join(value)),
         (Some(_), Some(Step::Named(s))) if s == "materials" && !top_level => "materials",
         (None, Some(Step::Named(s))) if s == "include" && top_level => return existing(base.join(value)),

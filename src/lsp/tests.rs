@@ -94,3 +94,14 @@ fn lsp_completes_texture_forms_in_an_emission_radiance() {
         assert!(fields.iter().any(|(l, _)| l == f), "{f} missing: {fields:?}");
     }
 }
+
+#[test]
+fn lsp_completes_media_names_and_medium_fields() {
+    let src = "Scene(\n    media: { \"fog\": Homogeneous(sigma_t: (1, 1, 1)) },\n    objects: [Sphere(center: (0, 0, 0), radius: 1, interior: \"f\n";
+    let names = labels(src, src.rfind("\"f").expect("string") + 2, false);
+    assert_eq!(names, [("fog".to_string(), "fog".to_string())]);
+    let src = "Scene(media: { \"fog\": Homogeneous(sigma_t: (1, 1, 1), ) })";
+    let fields = labels(src, src.find("), )").expect("fields") + 3, false);
+    assert!(fields.iter().any(|(l, _)| l == "albedo"), "{fields:?}");
+    assert!(fields.iter().any(|(l, _)| l == "g"), "{fields:?}");
+}
