@@ -45,7 +45,7 @@ pub use integrator::{CausticsDesc, IntegratorDesc, LightSelectionDesc};
 pub use light::LightDesc;
 pub use material::{
     CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc,
-    RoughnessUnitDesc,
+    RoughnessUnitDesc, TangentFrameDesc,
 };
 pub use object::{MeshDesc, ObjectDesc, SphereUvDesc};
 pub use sdf::{MarchDesc, RotationDesc, SdfDesc};

@@ -580,12 +580,17 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
             map,
             strength,
             flip_green,
+            tangents,
             material,
         } => {
             surface.normal = Some(Perturb::NormalMap {
                 map: b.color(map, &p("map"), false),
                 strength: *strength,
                 flip_green: *flip_green,
+                frame: match tangents {
+                    crate::desc::TangentFrameDesc::Vertex => crate::geometry::TangentFrame::Vertex,
+                    crate::desc::TangentFrameDesc::Triangle => crate::geometry::TangentFrame::Triangle,
+                },
             });
             build_material(b, &p("material"), material, surface)
         }
