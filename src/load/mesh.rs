@@ -144,7 +144,7 @@ fn slot_emission(
 
 /// The light of the triangles of `slot` in `instance` (not yet pushed), or
 /// `NO_LIGHT` when they have no area.
-fn mesh_light(
+pub(super) fn mesh_light(
     ctx: &mut BuildContext,
     instance: &Instance,
     slot: usize,

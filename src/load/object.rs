@@ -96,6 +96,7 @@ impl Checker {
             }
             ObjectDesc::Mesh { file, .. } => self.file(&format!("{path}.file"), file, "OBJ"),
             ObjectDesc::Instance { .. } => {}
+            ObjectDesc::Gltf { file, .. } => self.file(&format!("{path}.file"), file, "glTF"),
         }
     }
 
@@ -233,6 +234,7 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             quad(ctx, point(center) - u - v, 2.0 * u, 2.0 * v, material, emission)
         }
         ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => return super::mesh::add(ctx, i, o, m),
+        ObjectDesc::Gltf { .. } => return super::gltf::add(ctx, i, o, m),
     };
     ctx.shapes.push(shape);
 }
