@@ -159,13 +159,22 @@ impl Scene {
     /// analytic on quads and spheres; on meshes the tangent `p` asks for
     /// (the vertex tangents or the triangle's ∂p/∂u, carried to world space
     /// by the instance); elsewhere an arbitrary tangent frame.
-    fn derivatives(&self, hit: &Hit, shape: u32, nearest: Nearest, p: &surface::Perturb) -> (Vec3A, Vec3A, f32) {
+    fn derivatives(
+        &self,
+        hit: &Hit,
+        shape: u32,
+        nearest: Nearest,
+        p: &surface::Perturb,
+    ) -> (Vec3A, Vec3A, f32) {
         let frame = match p {
             surface::Perturb::NormalMap { frame, .. } => *frame,
             surface::Perturb::Bump { .. } => crate::geometry::TangentFrame::Vertex,
         };
         let tangent = self.mesh_triangle(nearest).and_then(|(k, h)| {
-            self.geometry.instances.get(k as usize)?.tangent(h, frame, &self.geometry.meshes)
+            self.geometry
+                .instances
+                .get(k as usize)?
+                .tangent(h, frame, &self.geometry.meshes)
         });
         if let Some(t) = tangent {
             let s = Vec3A::from(t.truncate());
@@ -303,7 +312,14 @@ impl Scene {
         match nearest {
             Nearest::Mesh(_, k, h) => Some((k, h)),
             Nearest::Triangle(i, bc) => match self.shapes.get(i as usize)? {
-                Shape::Triangle(tr) => Some((tr.instance, MeshHit { t: 0.0, tri: tr.tri, bc })),
+                Shape::Triangle(tr) => Some((
+                    tr.instance,
+                    MeshHit {
+                        t: 0.0,
+                        tri: tr.tri,
+                        bc,
+                    },
+                )),
                 _ => None,
             },
             Nearest::MeshQuad(i, k, bc) => match self.shapes.get(i as usize)? {

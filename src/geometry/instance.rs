@@ -109,7 +109,11 @@ impl Instance {
             return Some(t);
         }
         let xyz = self.world_from_object.matrix3 * Vec3A::from(t.truncate());
-        let w = if self.world_from_object.matrix3.determinant() < 0.0 { -t.w } else { t.w };
+        let w = if self.world_from_object.matrix3.determinant() < 0.0 {
+            -t.w
+        } else {
+            t.w
+        };
         Some(glam::Vec3::from(xyz).extend(w))
     }
 

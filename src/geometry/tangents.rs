@@ -130,15 +130,22 @@ mod tests {
     fn mirrored_strip() -> Mesh {
         let p = |x: f32, y: f32| Vec3A::new(x, y, 0.0);
         let mut m = Mesh::default();
-        m.positions = vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0), p(2.0, 0.0), p(2.0, 1.0)];
+        m.positions = vec![
+            p(0.0, 0.0),
+            p(1.0, 0.0),
+            p(1.0, 1.0),
+            p(0.0, 1.0),
+            p(2.0, 0.0),
+            p(2.0, 1.0),
+        ];
         m.uvs = vec![
-                Vec2::new(0.0, 0.0),
-                Vec2::new(1.0, 0.0),
-                Vec2::new(1.0, 1.0),
-                Vec2::new(0.0, 1.0),
-                Vec2::new(0.0, 0.0),
-                Vec2::new(0.0, 1.0),
-            ];
+            Vec2::new(0.0, 0.0),
+            Vec2::new(1.0, 0.0),
+            Vec2::new(1.0, 1.0),
+            Vec2::new(0.0, 1.0),
+            Vec2::new(0.0, 0.0),
+            Vec2::new(0.0, 1.0),
+        ];
         m.normals = vec![Vec3A::Z; 6];
         m.indices = vec![[0, 1, 2], [0, 2, 3], [1, 4, 5], [1, 5, 2]];
         m.slot_count = 1;
@@ -156,8 +163,15 @@ mod tests {
             let right = t >= 2;
             for &v in tri {
                 let tan = m.tangents[v as usize];
-                let want = if right { Vec4::new(-1.0, 0.0, 0.0, -1.0) } else { Vec4::new(1.0, 0.0, 0.0, 1.0) };
-                assert!((tan - want).abs().max_element() < 1e-5, "triangle {t} vertex {v}: {tan} vs {want}");
+                let want = if right {
+                    Vec4::new(-1.0, 0.0, 0.0, -1.0)
+                } else {
+                    Vec4::new(1.0, 0.0, 0.0, 1.0)
+                };
+                assert!(
+                    (tan - want).abs().max_element() < 1e-5,
+                    "triangle {t} vertex {v}: {tan} vs {want}"
+                );
             }
         }
     }

@@ -99,7 +99,15 @@ impl Perturb {
     /// bitangent is `sign·(n × s)`; 1 on every other shape, whose frames
     /// follow Mitsuba's `n × s` whatever the UVs' orientation).
     #[inline]
-    pub fn normal(&self, n: Vec3A, dpdu: Vec3A, dpdv: Vec3A, sign: f32, uv: Vec2, textures: &[Texture]) -> Vec3A {
+    pub fn normal(
+        &self,
+        n: Vec3A,
+        dpdu: Vec3A,
+        dpdv: Vec3A,
+        sign: f32,
+        uv: Vec2,
+        textures: &[Texture],
+    ) -> Vec3A {
         match self {
             Perturb::NormalMap {
                 map,
@@ -121,7 +129,9 @@ impl Perturb {
                     return n;
                 };
                 let (s, t) = tangent_frame(n, dpdu);
-                (nt.x * s + nt.y * sign * t + nt.z * n).try_normalize().unwrap_or(n)
+                (nt.x * s + nt.y * sign * t + nt.z * n)
+                    .try_normalize()
+                    .unwrap_or(n)
             }
             Perturb::Bump { height, scale } => {
                 const DU: f32 = 1.0 / 1024.0;
@@ -216,7 +226,10 @@ mod tests {
             scale: 1.0,
         };
         let n = Vec3A::Y;
-        assert_eq!(bump.normal(n, Vec3A::X, Vec3A::NEG_Z, 1.0, Vec2::splat(0.5), &[]), n);
+        assert_eq!(
+            bump.normal(n, Vec3A::X, Vec3A::NEG_Z, 1.0, Vec2::splat(0.5), &[]),
+            n
+        );
     }
 
     #[test]

@@ -45,7 +45,9 @@ pub fn read_indices(doc: &Document, buffers: &Buffers, index: usize) -> Result<V
         .nth(index)
         .ok_or_else(|| format!("indices: accessor {index} does not exist"))?;
     if a.normalized() {
-        return Err(format!("accessors[{index}] (indices): indices cannot be normalised"));
+        return Err(format!(
+            "accessors[{index}] (indices): indices cannot be normalised"
+        ));
     }
     if a.dimensions() != Dimensions::Scalar || !allowed.contains(&a.data_type()) {
         return Err(format!(
@@ -55,7 +57,9 @@ pub fn read_indices(doc: &Document, buffers: &Buffers, index: usize) -> Result<V
         ));
     }
     let mut out = Vec::new();
-    for_each_element(doc, buffers, index, &mut |bytes, ty| out.push(component_u32(bytes, ty)))?;
+    for_each_element(doc, buffers, index, &mut |bytes, ty| {
+        out.push(component_u32(bytes, ty))
+    })?;
     Ok(out)
 }
 
@@ -78,7 +82,10 @@ fn read_raw(
         return Err(format!("{at}: type {:?}, expected {dims:?}", a.dimensions()));
     }
     if !allowed.contains(&a.data_type()) {
-        return Err(format!("{at}: component type {:?} is not allowed here", a.data_type()));
+        return Err(format!(
+            "{at}: component type {:?} is not allowed here",
+            a.data_type()
+        ));
     }
     let mut out = Vec::new();
     let norm = a.normalized();
@@ -110,7 +117,9 @@ fn for_each_element(
         return Err(format!("{at}: count is 0"));
     }
     if count > MAX_ELEMENTS {
-        return Err(format!("{at}: {count} elements, more than the limit of {MAX_ELEMENTS}"));
+        return Err(format!(
+            "{at}: {count} elements, more than the limit of {MAX_ELEMENTS}"
+        ));
     }
     // Dense data: the view's bytes, or zeros.
     let mut dense: Vec<&[u8]> = Vec::new();
@@ -120,7 +129,9 @@ fn for_each_element(
             let bytes = view_bytes(buffers, &view, &at)?;
             let stride = view.stride().unwrap_or(elem);
             if stride < elem {
-                return Err(format!("{at}: byte stride {stride} is shorter than an element ({elem} bytes)"));
+                return Err(format!(
+                    "{at}: byte stride {stride} is shorter than an element ({elem} bytes)"
+                ));
             }
             let start = a.offset();
             let end = (count - 1)
@@ -129,11 +140,10 @@ fn for_each_element(
                 .and_then(|x| x.checked_add(elem))
                 .is_some_and(|e| e <= bytes.len());
             if !end {
-                return Err(
-                    format!(
-                        "{at}: {count} elements of {elem} bytes (stride {stride}) from byte {start} run past its buffer view of {} bytes",
-                        bytes.len()
-                    ));
+                return Err(format!(
+                    "{at}: {count} elements of {elem} bytes (stride {stride}) from byte {start} run past its buffer view of {} bytes",
+                    bytes.len()
+                ));
             }
             dense.reserve(count);
             for k in 0..count {
@@ -170,12 +180,16 @@ fn for_each_element(
                 .is_some_and(|e| e <= len)
         };
         if !fits(istart, ity.size(), ibytes.len()) || !fits(vstart, elem, vbytes.len()) {
-            return Err(format!("{at}.sparse: {n} indices or values run past their buffer views"));
+            return Err(format!(
+                "{at}.sparse: {n} indices or values run past their buffer views"
+            ));
         }
         for k in 0..n {
             let i = component_u32(&ibytes[istart + k * ity.size()..], ity) as usize;
             let Some(slot) = dense.get_mut(i) else {
-                return Err(format!("{at}.sparse.indices[{k}] = {i}, past the {count} elements"));
+                return Err(format!(
+                    "{at}.sparse.indices[{k}] = {i}, past the {count} elements"
+                ));
             };
             *slot = &vbytes[vstart + k * elem..vstart + (k + 1) * elem];
         }
@@ -223,7 +237,10 @@ fn component_f32(b: &[u8], ty: DataType, normalized: bool) -> f32 {
         DataType::I8 => (f32::from(b[0] as i8), 127.0),
         DataType::U16 => (f32::from(u16::from_le_bytes([b[0], b[1]])), 65535.0),
         DataType::I16 => (f32::from(i16::from_le_bytes([b[0], b[1]])), 32767.0),
-        DataType::U32 => (u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f32, u32::MAX as f32),
+        DataType::U32 => (
+            u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as f32,
+            u32::MAX as f32,
+        ),
     };
     if normalized { (v / max).max(-1.0) } else { v }
 }

@@ -36,7 +36,8 @@ pub struct Files {
 
 /// Reads `path` and its buffers.
 pub fn read(path: &Path, root: Option<&Path>) -> Result<Asset, String> {
-    let bytes = crate::files::read_regular(path, MAX_GLTF_BYTES).map_err(|e| format!("cannot read glTF: {e}"))?;
+    let bytes =
+        crate::files::read_regular(path, MAX_GLTF_BYTES).map_err(|e| format!("cannot read glTF: {e}"))?;
     let gltf = gltf::Gltf::from_slice(&bytes).map_err(describe)?;
     let mut asset = Asset {
         doc: gltf.document,
@@ -65,7 +66,10 @@ pub fn read(path: &Path, root: Option<&Path>) -> Result<Asset, String> {
             None => blob
                 .take()
                 .ok_or_else(|| format!("buffers[{i}]: no URI and the file has no GLB binary chunk"))?,
-            Some(uri) => asset.files.uri_bytes(&uri).map_err(|e| format!("buffers[{i}]: {e}"))?,
+            Some(uri) => asset
+                .files
+                .uri_bytes(&uri)
+                .map_err(|e| format!("buffers[{i}]: {e}"))?,
         };
         if data.len() < length {
             return Err(format!(
@@ -88,7 +92,10 @@ impl Files {
                 return Err("a data URI that is not base64".into());
             }
             if data.len() as u64 / 4 * 3 > self.budget {
-                return Err(format!("more than the {} MiB an asset may read", MAX_GLTF_BYTES >> 20));
+                return Err(format!(
+                    "more than the {} MiB an asset may read",
+                    MAX_GLTF_BYTES >> 20
+                ));
             }
             let bytes = base64(data).ok_or("a data URI with invalid base64")?;
             self.budget -= bytes.len() as u64;
@@ -106,12 +113,11 @@ impl Files {
             return Err(format!("glTF file {why}"));
         }
         self.files.push(path.clone());
-        let bytes =
-            crate::files::read_regular(&path, self.budget).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let bytes = crate::files::read_regular(&path, self.budget)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         self.budget -= bytes.len() as u64;
         Ok(bytes)
     }
-
 }
 
 /// The bytes of buffer view `view`, checked against its buffer.
@@ -130,9 +136,17 @@ pub fn view_bytes<'b>(buffers: &'b [Vec<u8>], view: &gltf::buffer::View) -> Resu
 fn describe(e: gltf::Error) -> String {
     match e {
         gltf::Error::Validation(list) => {
-            let parts: Vec<String> = list.iter().take(8).map(|(path, err)| format!("{path}: {err}")).collect();
+            let parts: Vec<String> = list
+                .iter()
+                .take(8)
+                .map(|(path, err)| format!("{path}: {err}"))
+                .collect();
             let more = list.len().saturating_sub(8);
-            let tail = if more > 0 { format!(" (and {more} more)") } else { String::new() };
+            let tail = if more > 0 {
+                format!(" (and {more} more)")
+            } else {
+                String::new()
+            };
             format!("invalid glTF: {}{tail}", parts.join("; "))
         }
         other => format!("invalid glTF: {other}"),

@@ -22,7 +22,9 @@
 //! the default bottom-left origin: the same texel either way.
 
 use super::document::{Files, view_bytes};
-use crate::materials::{Channel, Cutout, ImageLookup, Material, Perturb, Roughness, Surface, Tex, UvTransform};
+use crate::materials::{
+    Channel, Cutout, ImageLookup, Material, Perturb, Roughness, Surface, Tex, UvTransform,
+};
 use crate::math::Rgb;
 use glam::{Affine2, Mat2, Vec2};
 use std::collections::HashMap;
@@ -68,7 +70,12 @@ pub(crate) struct Sink<'a> {
 }
 
 /// Maps material `m` (or glTF's default material for `None`).
-pub(crate) fn map(asset: &mut Source, images: &mut Images, sink: &mut Sink, m: Option<gltf::Material>) -> Mapped {
+pub(crate) fn map(
+    asset: &mut Source,
+    images: &mut Images,
+    sink: &mut Sink,
+    m: Option<gltf::Material>,
+) -> Mapped {
     let Some(m) = m else {
         let index = sink.mtl.push(Material::MetalPlastic {
             base_color: Tex::Const(Rgb::ONE),
@@ -83,9 +90,10 @@ pub(crate) fn map(asset: &mut Source, images: &mut Images, sink: &mut Sink, m: O
             double_sided: false,
         };
     };
-    let name = m
-        .name()
-        .map_or_else(|| format!("materials[{}]", m.index().unwrap_or(0)), |n| format!("material `{n}`"));
+    let name = m.name().map_or_else(
+        || format!("materials[{}]", m.index().unwrap_or(0)),
+        |n| format!("material `{n}`"),
+    );
     let label = sink.label.to_string();
     let mut note = |s: String| sink.notes.push(format!("{label}: {name}: {s}"));
     let pbr = m.pbr_metallic_roughness();
@@ -166,7 +174,9 @@ pub(crate) fn map(asset: &mut Source, images: &mut Images, sink: &mut Sink, m: O
         note("doubleSided is false, but ronray materials shade both sides".into());
     }
     if let Some(ior) = m.ior().filter(|&i| (i - 1.5).abs() > 1e-3) {
-        note(format!("KHR_materials_ior {ior} not used: MetalPlastic's dielectric F0 is 0.04 (ior 1.5)"));
+        note(format!(
+            "KHR_materials_ior {ior} not used: MetalPlastic's dielectric F0 is 0.04 (ior 1.5)"
+        ));
     }
     let e = m.emissive_factor();
     let strength = m.emissive_strength().unwrap_or(1.0);
@@ -179,7 +189,10 @@ pub(crate) fn map(asset: &mut Source, images: &mut Images, sink: &mut Sink, m: O
         if let Some(mean) = mean {
             emission = emission * mean;
         }
-        note("emissiveTexture approximated by its mean colour (emission textures are not yet supported)".into());
+        note(
+            "emissiveTexture approximated by its mean colour (emission textures are not yet supported)"
+                .into(),
+        );
     }
     uv_sets.dedup();
     if uv_sets.len() > 1 {
@@ -223,9 +236,9 @@ fn lookup(index: u32, channel: Channel, scale: f32, info: &gltf::texture::Info) 
         scale,
         offset: 0.0,
         rows_down: false,
-        uv: info
-            .texture_transform()
-            .map_or(UvTransform::default(), |t| uv_transform(t.offset(), t.rotation(), t.scale())),
+        uv: info.texture_transform().map_or(UvTransform::default(), |t| {
+            uv_transform(t.offset(), t.rotation(), t.scale())
+        }),
     }
 }
 
@@ -261,7 +274,8 @@ fn texture(
     note: &mut dyn FnMut(String),
 ) -> Option<(u32, bool)> {
     let sampler = t.sampler();
-    if sampler.wrap_s() != gltf::texture::WrappingMode::Repeat || sampler.wrap_t() != gltf::texture::WrappingMode::Repeat
+    if sampler.wrap_s() != gltf::texture::WrappingMode::Repeat
+        || sampler.wrap_t() != gltf::texture::WrappingMode::Repeat
     {
         note(format!(
             "textures[{}]: wrap modes {:?}/{:?} read as repeat",

@@ -57,9 +57,10 @@ pub(crate) fn import(
         buffers,
         files: mut reader,
     } = asset;
-    let label = path
-        .file_name()
-        .map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned());
+    let label = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |f| f.to_string_lossy().into_owned(),
+    );
     report_unrendered(&doc, &label, notes);
     let placements = nodes::flatten(&doc, scene)?;
     let mut built: HashMap<usize, usize> = HashMap::new();
@@ -118,7 +119,10 @@ fn report_unrendered(doc: &gltf::Document, label: &str, notes: &mut Vec<String>)
         count(doc.skins().count(), "skin(s)"),
         count(doc.animations().count(), "animation(s)"),
         count(doc.cameras().count(), "camera(s)"),
-        count(doc.lights().map_or(0, |l| l.count()), "KHR_lights_punctual light(s)"),
+        count(
+            doc.lights().map_or(0, |l| l.count()),
+            "KHR_lights_punctual light(s)",
+        ),
     ]
     .into_iter()
     .flatten()
@@ -134,7 +138,10 @@ fn report_unrendered(doc: &gltf::Document, label: &str, notes: &mut Vec<String>)
 /// Adds `Gltf` object `i` to the scene.
 pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_object: Mat4) {
     let ObjectDesc::Gltf {
-        file, scene, materials, ..
+        file,
+        scene,
+        materials,
+        ..
     } = o
     else {
         return;
@@ -146,7 +153,8 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         Ok(x) => x,
         Err(e) => {
             let help = "check the asset with a glTF validator; ronray reads glTF 2.0 `.gltf` and `.glb`";
-            ctx.problems.push(Problem::new(format!("{at}.file"), e).help(help));
+            ctx.problems
+                .push(Problem::new(format!("{at}.file"), e).help(help));
             return;
         }
     };

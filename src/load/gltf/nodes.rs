@@ -9,8 +9,8 @@
 //! it; the walk is iterative and visits each node once, so a deep or
 //! cyclic tree cannot overflow the stack or loop.
 
-use gltf::Document;
 use glam::Mat4;
+use gltf::Document;
 
 /// A mesh placed by a node.
 #[derive(Clone, Copy, Debug)]

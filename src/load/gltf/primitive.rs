@@ -12,10 +12,10 @@
 use super::accessor::{Buffers, read_f32, read_indices};
 use super::material::Mapped;
 use crate::geometry::Mesh;
+use glam::{Vec2, Vec3A, Vec4};
 use gltf::Document;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
-use glam::{Vec2, Vec3A, Vec4};
 
 /// Builds mesh `index`; `material` maps a primitive's glTF material to the
 /// scene's. Errors name the primitive.
@@ -35,7 +35,9 @@ pub fn build(
     for p in m.primitives() {
         let at = format!("meshes[{index}].primitives[{}]", p.index());
         if p.morph_targets().next().is_some() {
-            notes.push(format!("{at}: morph targets read but not rendered (the base shape is)"));
+            notes.push(format!(
+                "{at}: morph targets read but not rendered (the base shape is)"
+            ));
         }
         let mode = p.mode();
         if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
@@ -45,7 +47,9 @@ pub fn build(
         let mapped = material(p.material().index().map(|_| p.material()));
         let part = read_primitive(doc, buffers, &p, mapped, mode).map_err(|e| format!("{at}: {e}"))?;
         if part.colors {
-            notes.push(format!("{at}: COLOR_0 read but not rendered (ronray meshes carry no vertex colours)"));
+            notes.push(format!(
+                "{at}: COLOR_0 read but not rendered (ronray meshes carry no vertex colours)"
+            ));
         }
         append(&mut mesh, part.mesh, slots.len() as u32);
         slots.push(mapped);
@@ -59,11 +63,18 @@ struct Part {
     colors: bool,
 }
 
-fn read_primitive(doc: &Document, buffers: &Buffers, p: &gltf::Primitive, mapped: Mapped, mode: Mode) -> Result<Part, String> {
+fn read_primitive(
+    doc: &Document,
+    buffers: &Buffers,
+    p: &gltf::Primitive,
+    mapped: Mapped,
+    mode: Mode,
+) -> Result<Part, String> {
     let f32_only = [DataType::F32];
     let uv_types = [DataType::F32, DataType::U8, DataType::U16];
     let pos = p.get(&Semantic::Positions).ok_or("no POSITION attribute")?;
-    let positions: Vec<[f32; 3]> = read_f32(doc, buffers, pos.index(), Dimensions::Vec3, &f32_only, "POSITION")?;
+    let positions: Vec<[f32; 3]> =
+        read_f32(doc, buffers, pos.index(), Dimensions::Vec3, &f32_only, "POSITION")?;
     let n = positions.len();
     let same = |len: usize, what: &str| {
         if len == n {
@@ -151,9 +162,16 @@ fn append(mesh: &mut Mesh, part: Mesh, slot: u32) {
     let (had, adds) = (base as usize, part.positions.len());
     fill(&mut mesh.normals, part.normals, had, adds, Vec3A::ZERO);
     fill(&mut mesh.uvs, part.uvs, had, adds, Vec2::ZERO);
-    fill(&mut mesh.tangents, part.tangents, had, adds, Vec4::new(1.0, 0.0, 0.0, 1.0));
+    fill(
+        &mut mesh.tangents,
+        part.tangents,
+        had,
+        adds,
+        Vec4::new(1.0, 0.0, 0.0, 1.0),
+    );
     mesh.positions.extend(part.positions);
-    mesh.indices.extend(part.indices.iter().map(|t| t.map(|v| v + base)));
+    mesh.indices
+        .extend(part.indices.iter().map(|t| t.map(|v| v + base)));
     mesh.slots.extend(std::iter::repeat_n(slot, part.indices.len()));
 }
 
