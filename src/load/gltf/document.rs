@@ -38,9 +38,26 @@ pub struct Files {
 pub fn read(path: &Path, root: Option<&Path>) -> Result<Asset, String> {
     let bytes =
         crate::files::read_regular(path, MAX_GLTF_BYTES).map_err(|e| format!("cannot read glTF: {e}"))?;
-    let gltf = gltf::Gltf::from_slice(&bytes).map_err(describe)?;
+    let gltf = gltf::Gltf::from_slice_without_validation(&bytes).map_err(describe)?;
+    let json = gltf.document.into_json();
+    // `gltf-json` 1.4.1's validation indexes `accessors` by POSITION's
+    // accessor unchecked (a panic on a hostile index): checked first.
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let pos = gltf::json::validation::Checked::Valid(gltf::Semantic::Positions);
+            if let Some(a) = prim.attributes.get(&pos)
+                && a.value() >= json.accessors.len()
+            {
+                return Err(format!(
+                    "invalid glTF: meshes[{m}].primitives[{p}].attributes.POSITION: accessor {} does not exist",
+                    a.value()
+                ));
+            }
+        }
+    }
+    let doc = gltf::Document::from_json(json).map_err(describe)?;
     let mut asset = Asset {
-        doc: gltf.document,
+        doc,
         buffers: Vec::new(),
         files: Files {
             dir: path.parent().unwrap_or(Path::new("")).to_path_buf(),
