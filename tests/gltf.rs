@@ -25,7 +25,7 @@ struct Asset {
 
 impl Asset {
     fn view(&mut self, bytes: &[u8], stride: Option<usize>) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let mut v = json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
@@ -87,11 +87,11 @@ impl Asset {
         let mut doc: Value = serde_json::from_str(&self.gltf(rest)).expect("json");
         doc["buffers"] = json!([{"byteLength": self.bin.len()}]);
         let mut json = doc.to_string().into_bytes();
-        while json.len() % 4 != 0 {
+        while !json.len().is_multiple_of(4) {
             json.push(b' ');
         }
         let mut bin = self.bin.clone();
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         let total = 12 + 8 + json.len() + 8 + bin.len();

@@ -25,10 +25,9 @@ pub fn generate(mesh: &mut Mesh) -> usize {
         return 0;
     }
     let mut corners = Corners {
+        out: vec![Vec4::new(1.0, 0.0, 0.0, 1.0); 3 * mesh.indices.len()],
         mesh,
-        out: vec![Vec4::new(1.0, 0.0, 0.0, 1.0); 0],
     };
-    corners.out = vec![Vec4::new(1.0, 0.0, 0.0, 1.0); 3 * corners.mesh.indices.len()];
     // The error type has no variants: generation cannot fail.
     let _ = bevy_mikktspace::generate_tangents(&mut corners);
     let out = std::mem::take(&mut corners.out);

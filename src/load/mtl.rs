@@ -111,7 +111,7 @@ impl MtlMaterials {
         let t = self.textures.get(i.checked_sub(self.first_texture)? as usize)?;
         let mut copy = t.clone();
         for texel in &mut copy.texels {
-            *texel = *texel * f;
+            *texel *= f;
         }
         Some(self.push_texture(copy))
     }

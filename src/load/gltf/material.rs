@@ -187,7 +187,7 @@ pub(crate) fn map(
         let mean = texture(asset, images, sink.mtl, &info.texture(), true, None, &mut note)
             .and_then(|(i, _)| sink.mtl.texture_mean(i));
         if let Some(mean) = mean {
-            emission = emission * mean;
+            emission *= mean;
         }
         note(
             "emissiveTexture approximated by its mean colour (emission textures are not yet supported)"
