@@ -60,3 +60,10 @@ pub fn image(data: &[u8]) -> bool {
     };
     crate::imageio::read::decode_image(bytes, ext).is_ok()
 }
+
+/// glTF import: the bytes as a `.glb` or `.gltf` file (the `gltf` crate
+/// tells them apart), read with every check the loader makes, its meshes
+/// built.
+pub fn gltf(data: &[u8]) -> bool {
+    crate::load::gltf::fuzz_import(data)
+}

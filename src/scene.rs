@@ -117,8 +117,8 @@ impl Scene {
     /// [`Scene::closest`] in a scene with normal maps or cut-outs.
     #[inline(never)]
     fn closest_with_surfaces(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
-        let (hit, shape) = self.closest_surface(ray, t_max)?;
-        self.apply_surface(ray, t_max, hit, shape)
+        let (nearest, t) = self.nearest(ray, t_max)?;
+        self.apply_surface(ray, t_max, nearest, t)
     }
 
     /// The material's effect on the surface at `hit` (shape index `shape`)
@@ -127,7 +127,8 @@ impl Scene {
     /// black when the new normal faces away from the ray
     /// (`materials::surface`).
     #[inline(never)]
-    fn apply_surface(&self, ray: &Ray, t_max: f32, mut hit: Hit, mut shape: u32) -> Option<(Hit, u32)> {
+    fn apply_surface(&self, ray: &Ray, t_max: f32, mut nearest: Nearest, t: f32) -> Option<(Hit, u32)> {
+        let (mut hit, mut shape) = self.resolve(ray, nearest, t);
         let (mut r, mut traveled) = (*ray, 0.0);
         for _ in 0..64 {
             let Some(s) = self.surfaces.get(hit.material as usize) else {
@@ -139,12 +140,14 @@ impl Scene {
                 // Go on from just beyond the surface, along the same line.
                 traveled += hit.t;
                 r = Ray::new(offset_along_normal(hit.p, hit.ng, hit.p_error, r.d), r.d);
-                (hit, shape) = self.closest_surface(&r, t_max - traveled)?;
+                let t;
+                (nearest, t) = self.nearest(&r, t_max - traveled)?;
+                (hit, shape) = self.resolve(&r, nearest, t);
                 continue;
             }
             if let Some(p) = &s.normal {
-                let (dpdu, dpdv) = self.derivatives(&hit, shape);
-                let ns = p.normal(hit.ns, dpdu, dpdv, hit.uv, &self.textures);
+                let (dpdu, dpdv, sign) = self.derivatives(&hit, shape, nearest, p);
+                let ns = p.normal(hit.ns, dpdu, dpdv, sign, hit.uv, &self.textures);
                 if !surface::valid_for(ray.d, hit.ns, ns) {
                     hit.material = self.black;
                 }
@@ -156,15 +159,40 @@ impl Scene {
         Some((hit, shape))
     }
 
-    /// ∂p/∂u and ∂p/∂v of the shape hit: analytic on quads and spheres; on
-    /// other shapes an arbitrary tangent frame.
-    fn derivatives(&self, hit: &Hit, shape: u32) -> (Vec3A, Vec3A) {
+    /// ∂p/∂u, ∂p/∂v and the tangent's handedness at the shape hit:
+    /// analytic on quads and spheres; on meshes the tangent `p` asks for
+    /// (the vertex tangents or the triangle's ∂p/∂u, carried to world space
+    /// by the instance); elsewhere an arbitrary tangent frame.
+    fn derivatives(
+        &self,
+        hit: &Hit,
+        shape: u32,
+        nearest: Nearest,
+        p: &surface::Perturb,
+    ) -> (Vec3A, Vec3A, f32) {
+        let frame = match p {
+            surface::Perturb::NormalMap { frame, .. } => *frame,
+            surface::Perturb::Bump { .. } => crate::geometry::TangentFrame::Vertex,
+        };
+        let tangent = self.mesh_triangle(nearest).and_then(|(k, h)| {
+            self.geometry
+                .instances
+                .get(k as usize)?
+                .tangent(h, frame, &self.geometry.meshes)
+        });
+        if let Some(t) = tangent {
+            let s = Vec3A::from(t.truncate());
+            return (s, t.w * hit.ns.cross(s), t.w);
+        }
         match self.shapes.get(shape as usize) {
-            Some(Shape::Quad(q)) => (q.u, q.v),
-            Some(Shape::Sphere(s)) => s.derivatives(hit.ng),
+            Some(Shape::Quad(q)) => (q.u, q.v, 1.0),
+            Some(Shape::Sphere(s)) => {
+                let (u, v) = s.derivatives(hit.ng);
+                (u, v, 1.0)
+            }
             _ => {
                 let f = Frame::from_normal(hit.ns);
-                (f.s, f.t)
+                (f.s, f.t, 1.0)
             }
         }
     }
@@ -172,6 +200,13 @@ impl Scene {
     /// Closest hit of any surface, cut-out or not.
     #[inline(always)]
     fn closest_surface(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
+        let (nearest, t) = self.nearest(ray, t_max)?;
+        Some(self.resolve(ray, nearest, t))
+    }
+
+    /// The nearest surface along `ray` and its `t`, before its hit record.
+    #[inline(always)]
+    fn nearest(&self, ray: &Ray, t_max: f32) -> Option<(Nearest, f32)> {
         let geo = &self.geometry;
         let shapes = &self.shapes;
         // Kept with the nearest hit so the hit record needs no second trace
@@ -238,7 +273,15 @@ impl Scene {
                 nearest = Some(Nearest::Shape(i));
             }
         }
-        Some(match nearest? {
+        Some((nearest?, t_best))
+    }
+
+    /// The hit record of the nearest surface found by [`Scene::nearest`].
+    #[inline(always)]
+    fn resolve(&self, ray: &Ray, nearest: Nearest, t_best: f32) -> (Hit, u32) {
+        let geo = &self.geometry;
+        let shapes = &self.shapes;
+        match nearest {
             Nearest::Mesh(i, k, h) => (geo.instances[k as usize].hit(ray, h, &geo.meshes), i),
             Nearest::Triangle(i, bc) => match &shapes[i as usize] {
                 Shape::Triangle(tr) => (tr.hit(ray, t_best, bc, geo), i),
@@ -264,7 +307,31 @@ impl Scene {
                 }
                 s => (s.hit(ray, t_best, geo), i),
             },
-        })
+        }
+    }
+
+    /// The mesh triangle behind a nearest hit (instance and the mesh's own
+    /// triangle and barycentrics), for tangent frames; `None` off meshes.
+    fn mesh_triangle(&self, nearest: Nearest) -> Option<(u32, MeshHit)> {
+        match nearest {
+            Nearest::Mesh(_, k, h) => Some((k, h)),
+            Nearest::Triangle(i, bc) => match self.shapes.get(i as usize)? {
+                Shape::Triangle(tr) => Some((
+                    tr.instance,
+                    MeshHit {
+                        t: 0.0,
+                        tri: tr.tri,
+                        bc,
+                    },
+                )),
+                _ => None,
+            },
+            Nearest::MeshQuad(i, k, bc) => match self.shapes.get(i as usize)? {
+                Shape::MeshQuad(q) => Some((q.instance, q.mesh_hit(0.0, k, bc))),
+                _ => None,
+            },
+            Nearest::Shape(_) | Nearest::Quad(..) => None,
+        }
     }
 
     /// Whether anything blocks `ray` before `t_max` (shadow rays). Cut-outs

@@ -71,3 +71,8 @@ fn obj_corpus_imports_without_panics() {
 fn image_corpus_decodes_without_panics() {
     replay("image", ronray::fuzzing::image);
 }
+
+#[test]
+fn gltf_corpus_imports_without_panics() {
+    replay("gltf", ronray::fuzzing::gltf);
+}

@@ -168,6 +168,11 @@ pub enum MaterialDesc {
         /// Negate the green channel: for DirectX-style maps (default false).
         #[serde(default)]
         flip_green: bool,
+        /// Where a mesh's tangent frame comes from (default `Vertex`: the
+        /// mesh's own tangents, else MikkTSpace; `Triangle`: each triangle's
+        /// ∂p/∂u, as Mitsuba 3 does). Other shapes have one analytic frame.
+        #[serde(default, skip_serializing_if = "TangentFrameDesc::is_vertex")]
+        tangents: TangentFrameDesc,
         /// The material whose shading normal is mapped.
         material: Box<MaterialDesc>,
     },
@@ -364,5 +369,23 @@ impl MaterialDesc {
         for c in self.scalar_params_mut() {
             c.file_mut().map(&mut *f);
         }
+    }
+}
+
+/// Where a normal map's tangent frame comes from on a mesh.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq, Eq)]
+pub enum TangentFrameDesc {
+    /// Per-vertex tangents, interpolated: the asset's own (glTF `TANGENT`),
+    /// else MikkTSpace (the convention glTF, Blender and Substance bake in).
+    #[default]
+    Vertex,
+    /// Each triangle's own ∂p/∂u from its positions and UVs: Mitsuba 3's
+    /// frame, for twins of Mitsuba scenes.
+    Triangle,
+}
+
+impl TangentFrameDesc {
+    fn is_vertex(&self) -> bool {
+        *self == TangentFrameDesc::Vertex
     }
 }

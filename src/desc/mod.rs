@@ -46,7 +46,7 @@ pub use integrator::{CausticsDesc, IntegratorDesc, LightSelectionDesc};
 pub use light::LightDesc;
 pub use material::{
     CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MetalDesc,
-    RoughnessUnitDesc,
+    RoughnessUnitDesc, TangentFrameDesc,
 };
 pub use medium::MediumDesc;
 pub use object::{MeshDesc, ObjectDesc, SphereUvDesc};

@@ -236,6 +236,35 @@ pub enum ObjectDesc {
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
+    /// A glTF 2.0 asset (`.gltf` with external or data-URI buffers, or
+    /// `.glb`): the meshes of one of its scenes, placed by its node tree
+    /// (a mesh used by several nodes is built once), with its
+    /// metallic-roughness materials mapped onto `MetalPlastic` (see
+    /// `docs/gltf.md`). `file` is relative to the scene file.
+    Gltf {
+        /// Path of the `.gltf` or `.glb` file, relative to the scene file.
+        file: String,
+        /// Index of the glTF scene to place (default the file's `scene`, else 0).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        scene: Option<u32>,
+        /// One scene material for every primitive without an entry in
+        /// `materials`, replacing the asset's.
+        #[serde(
+            default,
+            deserialize_with = "plain_or_some",
+            skip_serializing_if = "Option::is_none"
+        )]
+        material: Option<String>,
+        /// Scene materials by glTF material name; these win over `material`
+        /// and over the asset's own.
+        #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+        materials: BTreeMap<String, String>,
+        /// Placement steps applied after the asset's own node transforms, in
+        /// the order written (default none). glTF is +y up, metres,
+        /// right-handed, as ronray.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        transform: Vec<TransformDesc>,
+    },
 }
 
 impl ObjectDesc {
@@ -248,7 +277,9 @@ impl ObjectDesc {
             ObjectDesc::Plane { material, .. }
             | ObjectDesc::Quad { material, .. }
             | ObjectDesc::Rect { material, .. } => Some(material),
-            ObjectDesc::Mesh { material, .. } | ObjectDesc::Instance { material, .. } => material.as_deref(),
+            ObjectDesc::Mesh { material, .. }
+            | ObjectDesc::Instance { material, .. }
+            | ObjectDesc::Gltf { material, .. } => material.as_deref(),
         }
     }
 
@@ -263,6 +294,7 @@ impl ObjectDesc {
             | ObjectDesc::Rect { emission, .. }
             | ObjectDesc::Mesh { emission, .. }
             | ObjectDesc::Instance { emission, .. } => emission.as_ref(),
+            ObjectDesc::Gltf { .. } => None,
         }
     }
 
@@ -286,7 +318,9 @@ impl ObjectDesc {
     /// Per-group material overrides (meshes only).
     pub fn material_overrides(&self) -> Option<&BTreeMap<String, String>> {
         match self {
-            ObjectDesc::Mesh { materials, .. } | ObjectDesc::Instance { materials, .. } => Some(materials),
+            ObjectDesc::Mesh { materials, .. }
+            | ObjectDesc::Instance { materials, .. }
+            | ObjectDesc::Gltf { materials, .. } => Some(materials),
             _ => None,
         }
     }
@@ -301,7 +335,8 @@ impl ObjectDesc {
             | ObjectDesc::Quad { transform, .. }
             | ObjectDesc::Rect { transform, .. }
             | ObjectDesc::Mesh { transform, .. }
-            | ObjectDesc::Instance { transform, .. } => transform,
+            | ObjectDesc::Instance { transform, .. }
+            | ObjectDesc::Gltf { transform, .. } => transform,
         }
     }
 }

@@ -99,6 +99,24 @@ impl Instance {
         hit
     }
 
+    /// The mesh's tangent at hit `h` (see [`Mesh::tangent`]) in world
+    /// space: `xyz` carried by `world_from_object` (tangents are vectors in
+    /// the surface), `w` negated by a mirroring transform (the bitangent is
+    /// `w·(n × t)` and the cross product of transformed vectors turns).
+    pub fn tangent(&self, h: MeshHit, frame: super::TangentFrame, meshes: &[Mesh]) -> Option<glam::Vec4> {
+        let t = meshes.get(self.mesh as usize)?.tangent(h.tri, h.bc, frame)?;
+        if self.identity {
+            return Some(t);
+        }
+        let xyz = self.world_from_object.matrix3 * Vec3A::from(t.truncate());
+        let w = if self.world_from_object.matrix3.determinant() < 0.0 {
+            -t.w
+        } else {
+            t.w
+        };
+        Some(glam::Vec3::from(xyz).extend(w))
+    }
+
     /// Triangle `tri` of the mesh in world space, wound so that `(b − a) ×
     /// (c − a)` points to the side [`Instance::hit`] reports as outside (a
     /// mirroring transform would otherwise turn it inward).

@@ -14,7 +14,7 @@ use super::{Hit, NO_LIGHT};
 use crate::accel::{Aabb, WideBvh};
 use crate::math::Ray;
 use crate::math::float_error::{error_along, gamma_offset};
-use glam::{Vec2, Vec3A};
+use glam::{Vec2, Vec3A, Vec4};
 use rayon::prelude::*;
 
 /// A triangle mesh in its own (object) space, with its bottom-level BVH once
@@ -30,6 +30,11 @@ pub struct Mesh {
     pub normals: Vec<Vec3A>,
     /// Per-vertex texture coordinates, or empty.
     pub uvs: Vec<Vec2>,
+    /// Per-vertex tangents (same indexing as `positions`): `xyz` along +u
+    /// in the surface, `w` = ±1 the handedness, bitangent `w·(n × t)` (the
+    /// glTF `TANGENT` convention). Stored by the asset or made by
+    /// [`super::tangents::generate`] (MikkTSpace); empty when neither.
+    pub tangents: Vec<Vec4>,
     /// Per-triangle material slot (an OBJ object/group), or empty for one
     /// slot. An instance maps slots to scene materials.
     pub slots: Vec<u32>,
@@ -40,6 +45,17 @@ pub struct Mesh {
     /// `prepare`.
     tris: Vec<f32>,
     blas: Option<WideBvh>,
+}
+
+/// Where a normal map's tangent frame comes from on a mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TangentFrame {
+    /// The mesh's per-vertex tangents, interpolated: the asset's own, else
+    /// MikkTSpace (glTF's and Blender's convention).
+    #[default]
+    Vertex,
+    /// Each triangle's own ∂p/∂u (Mitsuba 3's frame), for reference twins.
+    Triangle,
 }
 
 /// Where a ray meets a mesh, in the mesh's own space.
@@ -224,6 +240,45 @@ impl Mesh {
         }
     }
 
+    /// The tangent at a hit of triangle `tri` with barycentrics `bc`, in
+    /// the mesh's space: `xyz` along +u (not normalised), `w` the
+    /// handedness of (t, b, n). `Vertex` interpolates the per-vertex
+    /// tangents (MikkTSpace's convention: the bitangent's sign comes from the
+    /// vertex); `Triangle` is the triangle's own ∂p/∂u from its positions
+    /// and UVs (pbrt-v4's `Triangle::InteractionFromIntersection`, what
+    /// Mitsuba 3 builds its normal-map frame from), with `w = 1` as Mitsuba
+    /// ignores the handedness. `None` where the mesh has no UVs (or no
+    /// tangents, for `Vertex`) or the UVs are degenerate.
+    pub fn tangent(&self, tri: u32, bc: Vec2, frame: TangentFrame) -> Option<Vec4> {
+        let [ia, ib, ic] = self.indices.get(tri as usize)?.map(|i| i as usize);
+        match frame {
+            TangentFrame::Vertex => {
+                let (a, b, c) = (
+                    self.tangents.get(ia)?,
+                    self.tangents.get(ib)?,
+                    self.tangents.get(ic)?,
+                );
+                let w = 1.0 - bc.x - bc.y;
+                let t = a.truncate() * w + b.truncate() * bc.x + c.truncate() * bc.y;
+                let sign = if a.w < 0.0 { -1.0 } else { 1.0 };
+                (t.is_finite() && t.length_squared() > 0.0).then(|| t.extend(sign))
+            }
+            TangentFrame::Triangle => {
+                let (uva, uvb, uvc) = (self.uvs.get(ia)?, self.uvs.get(ib)?, self.uvs.get(ic)?);
+                let (pa, pb, pc) = self.corners(tri);
+                // Solve [dp02 dp12] = [duv02 duv12] · [∂p/∂u ∂p/∂v] (pbrt-v4).
+                let (duv02, duv12) = (*uva - *uvc, *uvb - *uvc);
+                let (dp02, dp12) = (pa - pc, pb - pc);
+                let det = duv02.x * duv12.y - duv02.y * duv12.x;
+                if det.abs() < 1e-9 {
+                    return None;
+                }
+                let dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+                (dpdu.is_finite() && dpdu.length_squared() > 0.0).then(|| glam::Vec3::from(dpdu).extend(1.0))
+            }
+        }
+    }
+
     /// Per-axis error bound of the point [`Mesh::hit`] reports, for an
     /// instance to carry through its transform.
     pub fn point_error(&self, tri: u32, bc: Vec2) -> Vec3A {
@@ -277,6 +332,7 @@ impl Mesh {
             + std::mem::size_of_val(self.indices.as_slice())
             + std::mem::size_of_val(self.normals.as_slice())
             + std::mem::size_of_val(self.uvs.as_slice())
+            + std::mem::size_of_val(self.tangents.as_slice())
             + std::mem::size_of_val(self.slots.as_slice())
     }
 

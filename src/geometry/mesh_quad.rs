@@ -79,13 +79,20 @@ impl MeshQuad {
     /// mesh's corner order, so normals and UVs interpolate as for a
     /// triangle hit on its own.
     pub fn hit(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry) -> Hit {
+        let h = self.mesh_hit(t, k, bc);
+        geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
+    }
+
+    /// The hit of triangle `k` as a hit of the mesh's own triangle, with
+    /// barycentrics in the mesh's corner order.
+    #[inline]
+    pub fn mesh_hit(&self, t: f32, k: u32, bc: Vec2) -> MeshHit {
         let packed = self.tris[k as usize & 1];
-        let h = MeshHit {
+        MeshHit {
             t,
             tri: packed & INDEX,
             bc: to_mesh_order(packed >> 30, bc),
-        };
-        geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
+        }
     }
 
     /// World-space bounds of the four corners.

@@ -19,10 +19,11 @@ pub mod ray_sets;
 pub mod sdf;
 pub mod sdf_object;
 pub mod sphere;
+pub mod tangents;
 pub mod triangle;
 
 pub use instance::Instance;
-pub use mesh::{Mesh, MeshHit};
+pub use mesh::{Mesh, MeshHit, TangentFrame};
 pub use mesh_quad::MeshQuad;
 pub use mesh_triangle::MeshTriangle;
 pub use plane::Plane;

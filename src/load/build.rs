@@ -113,6 +113,12 @@ pub fn build_in(
         object_ids: (Vec::new(), Vec::new()),
         geometry: Geometry::default(),
         mesh_state: MeshState::default(),
+        normal_maps: surfaces.iter().any(|s| {
+            matches!(
+                s.normal,
+                Some(crate::materials::surface::Perturb::NormalMap { .. })
+            )
+        }),
         triangles: 0,
         problems: Vec::new(),
         notes: Vec::new(),

@@ -45,6 +45,9 @@ pub(super) struct BuildContext<'a> {
     pub object_ids: (Vec<u32>, Vec<u32>),
     pub geometry: Geometry,
     pub mesh_state: MeshState,
+    /// Whether any scene material has a normal map: meshes with UVs then
+    /// get MikkTSpace tangents when their file gives none.
+    pub normal_maps: bool,
     /// Triangles over all placed meshes.
     pub triangles: usize,
     pub problems: Vec<Problem>,

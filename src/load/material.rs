@@ -592,12 +592,17 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
             map,
             strength,
             flip_green,
+            tangents,
             material,
         } => {
             surface.normal = Some(Perturb::NormalMap {
                 map: b.color(map, &p("map"), false),
                 strength: *strength,
                 flip_green: *flip_green,
+                frame: match tangents {
+                    crate::desc::TangentFrameDesc::Vertex => crate::geometry::TangentFrame::Vertex,
+                    crate::desc::TangentFrameDesc::Triangle => crate::geometry::TangentFrame::Triangle,
+                },
             });
             build_material(b, &p("material"), material, surface)
         }
@@ -848,10 +853,16 @@ pub fn load_texture(path: &Path) -> Result<Texture, String> {
 /// returns the file's channel count.
 pub fn load_texture_as(path: &Path, srgb: bool) -> Result<(Texture, u8), String> {
     let img = crate::imageio::read::decode_texture(path).map_err(|e| format!("texture: {e}"))?;
+    texture_from_image(&img, srgb).map_err(|e| format!("texture {}: {e}", path.display()))
+}
+
+/// A decoded image as a texture (see [`load_texture_as`]), with its
+/// channel count.
+pub fn texture_from_image(img: &image::DynamicImage, srgb: bool) -> Result<(Texture, u8), String> {
     let color = img.color();
     let channels = color.channel_count();
     let float = matches!(color, image::ColorType::Rgb32F | image::ColorType::Rgba32F);
-    let fail = |e: String| format!("texture {}: {e}", path.display());
+    let fail = |e: String| e;
     let mut t = if srgb && !float {
         let rgb = img.to_rgb8();
         Texture::try_from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()).map_err(fail)?

@@ -146,7 +146,7 @@ fn slot_emission(
 
 /// The light of the triangles of `slot` in `instance` (not yet pushed), or
 /// `NO_LIGHT` when they have no area.
-fn mesh_light(
+pub(super) fn mesh_light(
     ctx: &mut BuildContext,
     instance: &Instance,
     slot: usize,
@@ -205,6 +205,9 @@ fn load(ctx: &mut BuildContext, file: &str, smooth: bool, at: &str) -> Option<Ob
             ctx.notes.append(&mut data.warnings);
             if smooth {
                 data.mesh.compute_smooth_normals();
+            }
+            if ctx.normal_maps {
+                crate::geometry::tangents::generate(&mut data.mesh);
             }
             Some(data)
         }
@@ -326,5 +329,11 @@ fn bake(data: &mut ObjData, m: Mat4) {
             .transform_vector3(Vec3::from(*n))
             .normalize_or_zero()
             .into();
+    }
+    // Tangents lie in the surface: carried as vectors; a mirror turns
+    // their handedness (see `Instance::tangent`).
+    let w = if m.determinant() < 0.0 { -1.0 } else { 1.0 };
+    for t in &mut data.mesh.tangents {
+        *t = m.transform_vector3(t.truncate()).extend(w * t.w);
     }
 }

@@ -16,6 +16,7 @@ pub mod canonical;
 pub mod document;
 mod film;
 pub mod format;
+pub mod gltf;
 pub mod include;
 mod integrator;
 mod light;

@@ -87,6 +87,45 @@ impl MtlMaterials {
         self.first + self.materials.len() as u32 - 1
     }
 
+    /// `--root`, when the scene is untrusted.
+    pub fn root(&self) -> Option<&Path> {
+        self.root.as_deref()
+    }
+
+    /// Adds a material with its surface effects (normal map, cut-out);
+    /// returns its scene index.
+    pub fn push_with_surface(&mut self, m: Material, surface: Surface) -> u32 {
+        let i = self.push(m);
+        if let Some(s) = self.surfaces.last_mut() {
+            *s = surface;
+        }
+        i
+    }
+
+    /// Adds a decoded texture (a glTF image); returns its scene index.
+    pub fn push_texture(&mut self, t: Texture) -> u32 {
+        self.textures.push(t);
+        self.first_texture + self.textures.len() as u32 - 1
+    }
+
+    /// A copy of texture `i` (one of these) with every texel times `f`, or
+    /// `None` if `i` is not one of these.
+    pub fn push_scaled_texture(&mut self, i: u32, f: Rgb) -> Option<u32> {
+        let t = self.textures.get(i.checked_sub(self.first_texture)? as usize)?;
+        let mut copy = t.clone();
+        for texel in &mut copy.texels {
+            *texel *= f;
+        }
+        Some(self.push_texture(copy))
+    }
+
+    /// The mean colour of texture `i` (one of these).
+    pub fn texture_mean(&self, i: u32) -> Option<Rgb> {
+        let t = self.textures.get(i.checked_sub(self.first_texture)? as usize)?;
+        let n = t.texels.len().max(1) as f32;
+        Some(t.texels.iter().fold(Rgb::ZERO, |a, &b| a + b) / n)
+    }
+
     /// The `Ke` of scene material `i`, if it came from an MTL file that gives a
     /// positive one.
     pub fn emission(&self, i: u32) -> Option<&Emission> {

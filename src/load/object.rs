@@ -104,6 +104,7 @@ impl Checker {
             }
             ObjectDesc::Mesh { file, .. } => self.file(&format!("{path}.file"), file, "OBJ"),
             ObjectDesc::Instance { .. } => {}
+            ObjectDesc::Gltf { file, .. } => self.file(&format!("{path}.file"), file, "glTF"),
         }
     }
 
@@ -243,6 +244,7 @@ pub(super) fn build_object(ctx: &mut BuildContext, i: usize, o: &ObjectDesc) {
             )
         }
         ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => return super::mesh::add(ctx, i, o, m),
+        ObjectDesc::Gltf { .. } => return super::gltf::add(ctx, i, o, m),
     };
     ctx.shapes.push(shape);
 }

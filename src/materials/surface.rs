@@ -27,6 +27,7 @@
 //! happen because their BSDFs are zero across the perturbed surface.
 
 use super::{ColorTex, ScalarTex, Texture};
+use crate::geometry::TangentFrame;
 use glam::{Vec2, Vec3A};
 
 /// A material's effect on the surface (none for most).
@@ -49,6 +50,8 @@ pub enum Perturb {
         strength: f32,
         /// Negate green (DirectX-style maps).
         flip_green: bool,
+        /// Where the tangent frame comes from on meshes.
+        frame: TangentFrame,
     },
     /// Bump (height) map.
     Bump {
@@ -92,14 +95,25 @@ impl Cutout {
 impl Perturb {
     /// The perturbed unit normal at `uv`, on `n`'s side for bump maps; `dpdu`,
     /// `dpdv` are the surface's derivatives (only their directions matter to
-    /// normal maps).
+    /// normal maps) and `sign` the handedness of a mesh's tangent (the
+    /// bitangent is `sign·(n × s)`; 1 on every other shape, whose frames
+    /// follow Mitsuba's `n × s` whatever the UVs' orientation).
     #[inline]
-    pub fn normal(&self, n: Vec3A, dpdu: Vec3A, dpdv: Vec3A, uv: Vec2, textures: &[Texture]) -> Vec3A {
+    pub fn normal(
+        &self,
+        n: Vec3A,
+        dpdu: Vec3A,
+        dpdv: Vec3A,
+        sign: f32,
+        uv: Vec2,
+        textures: &[Texture],
+    ) -> Vec3A {
         match self {
             Perturb::NormalMap {
                 map,
                 strength,
                 flip_green,
+                ..
             } => {
                 let c = map.eval(uv, textures);
                 let mut t = 2.0 * c - crate::math::Rgb::ONE;
@@ -115,7 +129,9 @@ impl Perturb {
                     return n;
                 };
                 let (s, t) = tangent_frame(n, dpdu);
-                (nt.x * s + nt.y * t + nt.z * n).try_normalize().unwrap_or(n)
+                (nt.x * s + nt.y * sign * t + nt.z * n)
+                    .try_normalize()
+                    .unwrap_or(n)
             }
             Perturb::Bump { height, scale } => {
                 const DU: f32 = 1.0 / 1024.0;
@@ -169,9 +185,10 @@ mod tests {
             map: Tex::Const(Rgb::new(0.5, 0.5, 1.0)),
             strength: 1.0,
             flip_green: false,
+            frame: TangentFrame::Vertex,
         };
         let n = Vec3A::new(0.3, 0.4, 0.5).normalize();
-        let got = flat.normal(n, Vec3A::X, Vec3A::Y, Vec2::ZERO, &[]);
+        let got = flat.normal(n, Vec3A::X, Vec3A::Y, -1.0, Vec2::ZERO, &[]);
         assert_eq!(got.to_array().map(f32::to_bits), n.to_array().map(f32::to_bits));
     }
 
@@ -184,13 +201,17 @@ mod tests {
             map: Tex::Const(c),
             strength: 1.0,
             flip_green,
+            frame: TangentFrame::Vertex,
         };
-        let r = map(Rgb::new(1.0, 0.5, 1.0), false).normal(n, dpdu, dpdv, Vec2::ZERO, &[]);
+        let r = map(Rgb::new(1.0, 0.5, 1.0), false).normal(n, dpdu, dpdv, 1.0, Vec2::ZERO, &[]);
         assert!(r.x > 0.6 && r.y > 0.6, "red tilts to +x: {r}");
-        let g = map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, Vec2::ZERO, &[]);
+        let g = map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, 1.0, Vec2::ZERO, &[]);
         assert!(g.z < -0.6, "green tilts to +v = −z: {g}");
-        let g = map(Rgb::new(0.5, 1.0, 1.0), true).normal(n, dpdu, dpdv, Vec2::ZERO, &[]);
+        let g = map(Rgb::new(0.5, 1.0, 1.0), true).normal(n, dpdu, dpdv, 1.0, Vec2::ZERO, &[]);
         assert!(g.z > 0.6, "flipped green tilts to +z: {g}");
+        // A left-handed mesh tangent (mirrored UVs) turns the bitangent.
+        let g = map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, -1.0, Vec2::ZERO, &[]);
+        assert!(g.z > 0.6, "green with handedness −1 tilts to +z: {g}");
     }
 
     #[test]
@@ -205,7 +226,10 @@ mod tests {
             scale: 1.0,
         };
         let n = Vec3A::Y;
-        assert_eq!(bump.normal(n, Vec3A::X, Vec3A::NEG_Z, Vec2::splat(0.5), &[]), n);
+        assert_eq!(
+            bump.normal(n, Vec3A::X, Vec3A::NEG_Z, 1.0, Vec2::splat(0.5), &[]),
+            n
+        );
     }
 
     #[test]

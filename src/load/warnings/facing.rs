@@ -83,9 +83,10 @@ impl Receiver {
                 let (u, v) = (vector(half_u), vector(half_v));
                 Receiver::parallelogram(point(center) - u - v, 2.0 * u, 2.0 * v)
             }
-            ObjectDesc::Sdf { .. } | ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } => {
-                built.map_or(Receiver::Unknown, Receiver::Bounds)
-            }
+            ObjectDesc::Sdf { .. }
+            | ObjectDesc::Mesh { .. }
+            | ObjectDesc::Instance { .. }
+            | ObjectDesc::Gltf { .. } => built.map_or(Receiver::Unknown, Receiver::Bounds),
         }
     }
 

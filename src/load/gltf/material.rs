@@ -1,0 +1,322 @@
+//! glTF materials → ronray materials. `pbrMetallicRoughness` maps onto
+//! [`Material::MetalPlastic`], whose model is the specification's appendix
+//! B (its one departure, the diffuse coupling, is in
+//! `materials/metal_plastic.rs`):
+//!
+//! | glTF | ronray |
+//! |---|---|
+//! | `baseColorTexture` × `baseColorFactor` | `base_color`, sRGB image (a non-grey factor is multiplied into a copy of the texels) |
+//! | `metallicRoughnessTexture` G × `roughnessFactor`, B × `metallicFactor` | `roughness` (perceptual) and `metalness`, linear |
+//! | `normalTexture` with `scale` | `NormalMap(strength: scale)` over the material, MikkTSpace tangents when the mesh has none |
+//! | `alphaMode: MASK` with `alphaCutoff` | `Cutout(mode: Threshold(cutoff))` on base-colour alpha |
+//! | `alphaMode: BLEND` | stochastic `Cutout` on alpha (a warning: blending is approximated by coverage) |
+//! | `emissiveFactor` × `KHR_materials_emissive_strength` (× the mean of `emissiveTexture`) | the primitive's light, as an emissive mesh group |
+//! | `KHR_texture_transform` | the lookup's UV transform (its `texCoord` override included) |
+//! | `KHR_materials_ior` | a note when ≠ 1.5: `MetalPlastic`'s F0 is 0.04 |
+//! | `occlusionTexture` | ignored with a note: a path tracer computes occlusion |
+//! | `doubleSided: false` | a note: ronray materials shade both sides |
+//!
+//! UVs: glTF puts `(0, 0)` at an image's top-left; the importer stores
+//! `v' = 1 − v` so every mesh in ronray has v up (OBJ's convention, which
+//! MikkTSpace and the normal-map frame assume), and images are read with
+//! the default bottom-left origin: the same texel either way.
+
+use super::document::{Files, view_bytes};
+use crate::materials::{
+    Channel, Cutout, ImageLookup, Material, Perturb, Roughness, Surface, Tex, UvTransform,
+};
+use crate::math::Rgb;
+use glam::{Affine2, Mat2, Vec2};
+use std::collections::HashMap;
+
+/// What the mesh step needs of a mapped material.
+#[derive(Clone, Copy, Debug)]
+pub struct Mapped {
+    /// Scene material index.
+    pub index: u32,
+    /// Which UV set (`TEXCOORD_n`) the material's textures read.
+    pub uv_set: u32,
+    /// Whether it has a normal map (the mesh then needs tangents).
+    pub normal_mapped: bool,
+    /// Emitted radiance, if any.
+    pub emission: Option<Rgb>,
+    /// glTF's `doubleSided` (an emissive primitive then emits both ways).
+    pub double_sided: bool,
+}
+
+/// Decoded images by (image index, sRGB?): texture index and alpha presence.
+#[derive(Default)]
+pub struct Images {
+    cache: HashMap<(usize, bool), Option<(u32, bool)>>,
+}
+
+/// Where images come from: the asset's buffers (GLB, embedded views) and
+/// the files it names.
+pub struct Source<'a> {
+    /// The buffers' bytes.
+    pub buffers: &'a [Vec<u8>],
+    /// Reads image files.
+    pub files: &'a mut Files,
+}
+
+/// Pushes textures and materials into the scene's MTL-style list.
+pub(crate) struct Sink<'a> {
+    /// Where materials and textures go.
+    pub mtl: &'a mut super::super::mtl::MtlMaterials,
+    /// What was approximated or dropped.
+    pub notes: &'a mut Vec<String>,
+    /// Names the asset in notes.
+    pub label: &'a str,
+}
+
+/// Maps material `m` (or glTF's default material for `None`).
+pub(crate) fn map(
+    asset: &mut Source,
+    images: &mut Images,
+    sink: &mut Sink,
+    m: Option<gltf::Material>,
+) -> Mapped {
+    let Some(m) = m else {
+        let index = sink.mtl.push(Material::MetalPlastic {
+            base_color: Tex::Const(Rgb::ONE),
+            roughness: Roughness::perceptual(1.0),
+            metalness: Tex::Const(1.0),
+        });
+        return Mapped {
+            index,
+            uv_set: 0,
+            normal_mapped: false,
+            emission: None,
+            double_sided: false,
+        };
+    };
+    let name = m.name().map_or_else(
+        || format!("materials[{}]", m.index().unwrap_or(0)),
+        |n| format!("material `{n}`"),
+    );
+    let label = sink.label.to_string();
+    let mut note = |s: String| sink.notes.push(format!("{label}: {name}: {s}"));
+    let pbr = m.pbr_metallic_roughness();
+    let factor = pbr.base_color_factor();
+    let mut uv_sets = Vec::new();
+    let base = pbr.base_color_texture();
+    let (base_color, alpha) = match &base {
+        Some(info) => {
+            uv_sets.push(set_of(info));
+            let f = Rgb::new(factor[0], factor[1], factor[2]);
+            match texture(asset, images, sink.mtl, &info.texture(), true, Some(f), &mut note) {
+                Some((index, has_alpha)) => {
+                    let look = lookup(index, Channel::All, 1.0, info);
+                    let alpha = has_alpha.then(|| lookup(index, Channel::A, factor[3], info));
+                    (Tex::Image(look), alpha.map(Tex::Image))
+                }
+                None => (Tex::Const(f), None),
+            }
+        }
+        None => (Tex::Const(Rgb::new(factor[0], factor[1], factor[2])), None),
+    };
+    let alpha: crate::materials::ScalarTex = alpha.unwrap_or(Tex::Const(factor[3]));
+    let (rough_f, metal_f) = (pbr.roughness_factor(), pbr.metallic_factor());
+    let (roughness, metalness) = match pbr.metallic_roughness_texture() {
+        Some(info) => {
+            uv_sets.push(set_of(&info));
+            match texture(asset, images, sink.mtl, &info.texture(), false, None, &mut note) {
+                Some((index, _)) => (
+                    Tex::Image(lookup(index, Channel::G, rough_f, &info)),
+                    Tex::Image(lookup(index, Channel::B, metal_f, &info)),
+                ),
+                None => (Tex::Const(rough_f), Tex::Const(metal_f)),
+            }
+        }
+        None => (Tex::Const(rough_f), Tex::Const(metal_f)),
+    };
+    let mut surface = Surface::default();
+    let mut normal_mapped = false;
+    if let Some(n) = m.normal_texture() {
+        uv_sets.push(n.tex_coord());
+        if let Some((index, _)) = texture(asset, images, sink.mtl, &n.texture(), false, None, &mut note) {
+            normal_mapped = true;
+            surface.normal = Some(Perturb::NormalMap {
+                map: Tex::Image(ImageLookup {
+                    index,
+                    channel: Channel::All,
+                    scale: 1.0,
+                    offset: 0.0,
+                    rows_down: false,
+                    uv: UvTransform::default(),
+                }),
+                strength: n.scale(),
+                flip_green: false,
+                frame: crate::geometry::TangentFrame::Vertex,
+            });
+        }
+    }
+    match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => {}
+        gltf::material::AlphaMode::Mask => {
+            surface.cutout = Some(Cutout {
+                opacity: alpha,
+                threshold: Some(m.alpha_cutoff().unwrap_or(0.5)),
+            });
+        }
+        gltf::material::AlphaMode::Blend => {
+            note("alphaMode BLEND approximated by a stochastic cut-out (coverage, not blending)".into());
+            surface.cutout = Some(Cutout {
+                opacity: alpha,
+                threshold: None,
+            });
+        }
+    }
+    if m.occlusion_texture().is_some() {
+        note("occlusionTexture ignored (the path tracer computes occlusion)".into());
+    }
+    if !m.double_sided() {
+        note("doubleSided is false, but ronray materials shade both sides".into());
+    }
+    if let Some(ior) = m.ior().filter(|&i| (i - 1.5).abs() > 1e-3) {
+        note(format!(
+            "KHR_materials_ior {ior} not used: MetalPlastic's dielectric F0 is 0.04 (ior 1.5)"
+        ));
+    }
+    let e = m.emissive_factor();
+    let strength = m.emissive_strength().unwrap_or(1.0);
+    let mut emission = Rgb::new(e[0], e[1], e[2]) * strength;
+    if let Some(info) = m.emissive_texture()
+        && emission.max_element() > 0.0
+    {
+        let mean = texture(asset, images, sink.mtl, &info.texture(), true, None, &mut note)
+            .and_then(|(i, _)| sink.mtl.texture_mean(i));
+        if let Some(mean) = mean {
+            emission *= mean;
+        }
+        note(
+            "emissiveTexture approximated by its mean colour (emission textures are not yet supported)"
+                .into(),
+        );
+    }
+    uv_sets.dedup();
+    if uv_sets.len() > 1 {
+        note(format!(
+            "textures read UV sets {uv_sets:?}; ronray meshes carry one, so all read TEXCOORD_{}",
+            uv_sets[0]
+        ));
+    }
+    let index = sink.mtl.push_with_surface(
+        Material::MetalPlastic {
+            base_color,
+            roughness: Roughness {
+                tex: roughness,
+                is_alpha: false,
+            },
+            metalness,
+        },
+        surface,
+    );
+    Mapped {
+        index,
+        uv_set: uv_sets.first().copied().unwrap_or(0),
+        normal_mapped,
+        emission: (emission.is_finite() && emission.max_element() > 0.0).then_some(emission),
+        double_sided: m.double_sided(),
+    }
+}
+
+/// The UV set a texture reads (`KHR_texture_transform` may override it).
+fn set_of(info: &gltf::texture::Info) -> u32 {
+    info.texture_transform()
+        .and_then(|t| t.tex_coord())
+        .unwrap_or_else(|| info.tex_coord())
+}
+
+/// An image lookup of `index` through `info`'s `KHR_texture_transform`.
+fn lookup(index: u32, channel: Channel, scale: f32, info: &gltf::texture::Info) -> ImageLookup {
+    ImageLookup {
+        index,
+        channel,
+        scale,
+        offset: 0.0,
+        rows_down: false,
+        uv: info.texture_transform().map_or(UvTransform::default(), |t| {
+            uv_transform(t.offset(), t.rotation(), t.scale())
+        }),
+    }
+}
+
+/// `KHR_texture_transform` in ronray's v-up UVs. In glTF's own UVs it is
+/// `uv' = offset + R·(scale ⊙ uv)` with `R = [[cos r, sin r], [−sin r,
+/// cos r]]` (the extension's example: offset (0, 1), rotation π/2, scale
+/// ½ reads the lower-left quadrant turned by 90°); conjugated by the flip
+/// `F(u, v) = (u, 1 − v)` the importer applies to every UV.
+pub fn uv_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> UvTransform {
+    if offset == [0.0, 0.0] && rotation == 0.0 && scale == [1.0, 1.0] {
+        return UvTransform::default();
+    }
+    let (s, c) = rotation.sin_cos();
+    let gltf = Affine2::from_mat2_translation(
+        Mat2::from_cols(Vec2::new(c, -s), Vec2::new(s, c)) * Mat2::from_diagonal(Vec2::from(scale)),
+        Vec2::from(offset),
+    );
+    let flip = Affine2::from_mat2_translation(Mat2::from_diagonal(Vec2::new(1.0, -1.0)), Vec2::new(0.0, 1.0));
+    UvTransform(Some(flip * gltf * flip))
+}
+
+/// Decodes texture `t`'s image once per colour space (`srgb` for colours);
+/// `factor` (base colour) is multiplied into a copy of the texels when it
+/// is not white. Returns the texture index and whether it has alpha; a
+/// failure is a note and `None`.
+fn texture(
+    asset: &mut Source,
+    images: &mut Images,
+    mtl: &mut super::super::mtl::MtlMaterials,
+    t: &gltf::Texture,
+    srgb: bool,
+    factor: Option<Rgb>,
+    note: &mut dyn FnMut(String),
+) -> Option<(u32, bool)> {
+    let sampler = t.sampler();
+    if sampler.wrap_s() != gltf::texture::WrappingMode::Repeat
+        || sampler.wrap_t() != gltf::texture::WrappingMode::Repeat
+    {
+        note(format!(
+            "textures[{}]: wrap modes {:?}/{:?} read as repeat",
+            t.index(),
+            sampler.wrap_s(),
+            sampler.wrap_t()
+        ));
+    }
+    let image = t.source();
+    let key = (image.index(), srgb);
+    let cached = match images.cache.get(&key) {
+        Some(c) => *c,
+        None => {
+            let decoded = decode(asset, &image, srgb);
+            let r = match decoded {
+                Ok(tex) => {
+                    let alpha = !tex.alpha.is_empty();
+                    Some((mtl.push_texture(tex), alpha))
+                }
+                Err(e) => {
+                    note(format!("images[{}] not used: {e}", image.index()));
+                    None
+                }
+            };
+            images.cache.insert(key, r);
+            r
+        }
+    };
+    let (index, alpha) = cached?;
+    match factor {
+        Some(f) if f != Rgb::ONE => mtl.push_scaled_texture(index, f).map(|i| (i, alpha)),
+        _ => Some((index, alpha)),
+    }
+}
+
+/// The image's bytes (a buffer view or a URI) decoded.
+fn decode(asset: &mut Source, image: &gltf::Image, srgb: bool) -> Result<crate::materials::Texture, String> {
+    let bytes = match image.source() {
+        gltf::image::Source::View { view, .. } => view_bytes(asset.buffers, &view)?.to_vec(),
+        gltf::image::Source::Uri { uri, .. } => asset.files.uri_bytes(uri)?,
+    };
+    let img = crate::imageio::read::decode_texture_bytes(&bytes)?;
+    super::super::material::texture_from_image(&img, srgb).map(|(t, _)| t)
+}

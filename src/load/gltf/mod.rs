@@ -1,0 +1,247 @@
+//! The `Gltf` object: a glTF 2.0 asset's meshes placed by its node tree,
+//! with its materials mapped (`material.rs`) unless the scene replaces
+//! them by name.
+//!
+//! ```text
+//! Gltf(file: "helmet/FlightHelmet.gltf", materials: { "LensesMat": "my_glass" },
+//!      transform: [Scale((2, 2, 2))])
+//! ```
+//!
+//! Steps: `document.rs` reads the file and its buffers (fenced, size
+//! capped), `nodes.rs` flattens the chosen scene's node tree, `primitive.rs`
+//! builds each mesh used once (its primitives are the mesh's material
+//! slots), and this file places one instance per node. What the asset has
+//! and ronray does not render (skins, animations, morph targets, cameras,
+//! punctual lights, vertex colours) is reported in notes, never silently
+//! dropped; a required extension ronray does not know is an error naming it
+//! (the `gltf` crate's validation).
+
+pub mod accessor;
+pub mod document;
+pub mod material;
+pub mod nodes;
+pub mod primitive;
+
+use super::build_context::BuildContext;
+use super::mtl::MtlMaterials;
+use crate::desc::ObjectDesc;
+use crate::diagnostic::Problem;
+use crate::geometry::{Instance, Mesh, NO_LIGHT, Shape};
+use glam::{Affine3A, Mat4};
+use material::Mapped;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+/// An asset imported into meshes and placements, before it joins a scene.
+pub struct Imported {
+    /// Each mesh used, with the mapped material of each of its slots.
+    pub meshes: Vec<(Mesh, Vec<Mapped>, Vec<Option<String>>)>,
+    /// (index into `meshes`, asset-space transform), one per placing node.
+    pub placements: Vec<(usize, Mat4)>,
+    /// Every file read.
+    pub files: Vec<std::path::PathBuf>,
+}
+
+/// Imports `path` (reading within `root` when given), mapping materials
+/// into `mtl`.
+pub(crate) fn import(
+    path: &Path,
+    scene: Option<u32>,
+    root: Option<&Path>,
+    mtl: &mut MtlMaterials,
+    notes: &mut Vec<String>,
+) -> Result<Imported, String> {
+    let asset = document::read(path, root)?;
+    let document::Asset {
+        doc,
+        buffers,
+        files: mut reader,
+    } = asset;
+    let label = path.file_name().map_or_else(
+        || path.display().to_string(),
+        |f| f.to_string_lossy().into_owned(),
+    );
+    report_unrendered(&doc, &label, notes);
+    let placements = nodes::flatten(&doc, scene)?;
+    let mut built: HashMap<usize, usize> = HashMap::new();
+    let mut out = Imported {
+        meshes: Vec::new(),
+        placements: Vec::new(),
+        files: Vec::new(),
+    };
+    let mut images = material::Images::default();
+    let mut by_material: HashMap<Option<usize>, Mapped> = HashMap::new();
+    for p in &placements {
+        if let Some(&k) = built.get(&p.mesh) {
+            out.placements.push((k, p.world_from_mesh));
+            continue;
+        }
+        let mut source = material::Source {
+            buffers: &buffers,
+            files: &mut reader,
+        };
+        let mut sink = material::Sink {
+            mtl: &mut *mtl,
+            notes: &mut *notes,
+            label: &label,
+        };
+        let mut names = Vec::new();
+        let mut mesh_notes = Vec::new();
+        let result = {
+            let mut map = |m: Option<gltf::Material>| {
+                names.push(m.as_ref().and_then(|m| m.name().map(str::to_string)));
+                let key = m.as_ref().and_then(gltf::Material::index);
+                if let Some(done) = by_material.get(&key) {
+                    return *done;
+                }
+                let mapped = material::map(&mut source, &mut images, &mut sink, m);
+                by_material.insert(key, mapped);
+                mapped
+            };
+            primitive::build(&doc, &buffers, p.mesh, &mut map, &mut mesh_notes)
+        };
+        notes.extend(mesh_notes.into_iter().map(|n| format!("{label}: {n}")));
+        let (mut mesh, slots) = result?;
+        mesh.prepare();
+        out.meshes.push((mesh, slots, names));
+        let k = out.meshes.len() - 1;
+        built.insert(p.mesh, k);
+        out.placements.push((k, p.world_from_mesh));
+    }
+    out.files = reader.files;
+    Ok(out)
+}
+
+/// Notes for what the asset carries and ronray does not render.
+fn report_unrendered(doc: &gltf::Document, label: &str, notes: &mut Vec<String>) {
+    let count = |n: usize, what: &str| (n > 0).then(|| format!("{n} {what}"));
+    let parts: Vec<String> = [
+        count(doc.skins().count(), "skin(s)"),
+        count(doc.animations().count(), "animation(s)"),
+        count(doc.cameras().count(), "camera(s)"),
+        count(
+            doc.lights().map_or(0, |l| l.count()),
+            "KHR_lights_punctual light(s)",
+        ),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    if !parts.is_empty() {
+        notes.push(format!(
+            "{label}: {} read but not rendered (the meshes are placed in their rest pose)",
+            parts.join(", ")
+        ));
+    }
+}
+
+/// Adds `Gltf` object `i` to the scene.
+pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_object: Mat4) {
+    let ObjectDesc::Gltf {
+        file,
+        scene,
+        materials,
+        ..
+    } = o
+    else {
+        return;
+    };
+    let at = format!("objects[{i}]");
+    let path = ctx.base.join(file);
+    let root = ctx.mtl.root().map(Path::to_path_buf);
+    let imported = match import(&path, *scene, root.as_deref(), &mut ctx.mtl, &mut ctx.notes) {
+        Ok(x) => x,
+        Err(e) => {
+            let help = "check the asset with a glTF validator; ronray reads glTF 2.0 `.gltf` and `.glb`";
+            ctx.problems
+                .push(Problem::new(format!("{at}.file"), e).help(help));
+            return;
+        }
+    };
+    ctx.mtl_files.extend(imported.files.iter().cloned());
+    let known: Vec<&str> = imported
+        .meshes
+        .iter()
+        .flat_map(|(_, _, names)| names.iter().flatten().map(String::as_str))
+        .collect();
+    check_overrides(ctx, &at, materials, &known);
+    let first_mesh = ctx.geometry.meshes.len();
+    let mut slot_materials = Vec::new();
+    for (mesh, slots, names) in imported.meshes {
+        let resolved: Vec<(u32, Option<(crate::math::Rgb, bool)>)> = slots
+            .iter()
+            .zip(&names)
+            .map(|(mapped, name)| {
+                let chosen = name
+                    .as_deref()
+                    .and_then(|n| materials.get(n))
+                    .or(o.material().map(str::to_string).as_ref())
+                    .and_then(|n| ctx.material_index.get(n.as_str()).copied());
+                match chosen {
+                    Some(m) => (m, None),
+                    None => (mapped.index, mapped.emission.map(|e| (e, mapped.double_sided))),
+                }
+            })
+            .collect();
+        ctx.geometry.meshes.push(mesh);
+        slot_materials.push(resolved);
+    }
+    for (k, asset_from_mesh) in imported.placements {
+        let world = world_from_object * asset_from_mesh;
+        let mesh = (first_mesh + k) as u32;
+        let slots = &slot_materials[k];
+        let mut instance = Instance::new(
+            mesh,
+            Affine3A::from_mat4(world),
+            slots.iter().map(|s| s.0).collect(),
+        );
+        if slots.iter().any(|s| s.1.is_some()) {
+            instance.lights = slots
+                .iter()
+                .enumerate()
+                .map(|(slot, s)| {
+                    s.1.map_or(NO_LIGHT, |(radiance, two_sided)| {
+                        super::mesh::mesh_light(ctx, &instance, slot, radiance, two_sided)
+                    })
+                })
+                .collect();
+        }
+        ctx.triangles += ctx.geometry.meshes[mesh as usize].triangle_count();
+        let id = ctx.geometry.instances.len() as u32;
+        ctx.geometry.instances.push(instance);
+        ctx.shapes.push(Shape::Instance(id));
+    }
+}
+
+/// Every key of `materials` must name a material of the asset.
+fn check_overrides(ctx: &mut BuildContext, at: &str, materials: &BTreeMap<String, String>, known: &[&str]) {
+    for key in materials.keys() {
+        if !known.contains(&key.as_str()) {
+            let mut names: Vec<&str> = known.to_vec();
+            names.sort_unstable();
+            names.dedup();
+            ctx.problems.push(
+                Problem::new(
+                    format!("{at}.materials.{key}"),
+                    format!("the asset has no material named `{key}`"),
+                )
+                .help(format!("its materials are: {}", names.join(", "))),
+            );
+        }
+    }
+}
+
+/// The fuzz target's entry: `data` as a `.glb` or `.gltf` file in a
+/// temporary folder, imported with every check; never panics.
+pub fn fuzz_import(data: &[u8]) -> bool {
+    let Ok(dir) = tempfile::tempdir() else {
+        return false;
+    };
+    let path = dir.path().join("fuzz.glb");
+    if std::fs::write(&path, data).is_err() {
+        return false;
+    }
+    let mut mtl = MtlMaterials::new(0, 0, Some(dir.path()));
+    let mut notes = Vec::new();
+    import(&path, None, Some(dir.path()), &mut mtl, &mut notes).is_ok()
+}

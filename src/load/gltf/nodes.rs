@@ -1,0 +1,73 @@
+//! The node tree of one glTF scene flattened into placements: each node
+//! that carries a mesh gives one (mesh, world-from-mesh) pair, so a mesh
+//! used by several nodes is built once and instanced. Matrices are glTF's
+//! column-major `matrix`, or `T·R·S` from the node's translation, rotation
+//! (unit quaternion) and scale (glTF 2.0 §3.5.3), composed root to leaf.
+//!
+//! A valid glTF node tree is a forest (each node has at most one parent):
+//! a node reached twice is a cycle or a shared child, and an error naming
+//! it; the walk is iterative and visits each node once, so a deep or
+//! cyclic tree cannot overflow the stack or loop.
+
+use glam::Mat4;
+use gltf::Document;
+
+/// A mesh placed by a node.
+#[derive(Clone, Copy, Debug)]
+pub struct Placement {
+    /// Index in the document's meshes.
+    pub mesh: usize,
+    /// Index of the node that places it (for messages).
+    pub node: usize,
+    /// The node's world transform (the asset's own space, before the
+    /// object's `transform`).
+    pub world_from_mesh: Mat4,
+}
+
+/// The placements of scene `scene` (default: the file's `scene`, else 0).
+pub fn flatten(doc: &Document, scene: Option<u32>) -> Result<Vec<Placement>, String> {
+    let count = doc.scenes().count();
+    let chosen = match scene {
+        Some(s) => doc
+            .scenes()
+            .nth(s as usize)
+            .ok_or_else(|| format!("the asset has {count} scene(s); there is no scene {s}"))?,
+        None => match doc.default_scene().or_else(|| doc.scenes().next()) {
+            Some(s) => s,
+            None => return Err("the asset has no scene to place".into()),
+        },
+    };
+    let mut seen = vec![false; doc.nodes().count()];
+    let mut out = Vec::new();
+    let mut stack: Vec<(gltf::Node, Mat4)> = chosen.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+    while let Some((node, parent)) = stack.pop() {
+        let i = node.index();
+        match seen.get_mut(i) {
+            Some(s) if !*s => *s = true,
+            _ => {
+                return Err(format!(
+                    "nodes[{i}] is reached twice: the node tree has a cycle or a node with two parents"
+                ));
+            }
+        }
+        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        if !local.is_finite() {
+            return Err(format!("nodes[{i}]: its transform is not finite"));
+        }
+        let world = parent * local;
+        if let Some(m) = node.mesh() {
+            if world.determinant().abs() < 1e-30 || !world.is_finite() {
+                return Err(format!("nodes[{i}]: its world transform is singular"));
+            }
+            out.push(Placement {
+                mesh: m.index(),
+                node: i,
+                world_from_mesh: world,
+            });
+        }
+        stack.extend(node.children().map(|c| (c, world)));
+    }
+    // Document order of nodes, so object ids and notes are stable.
+    out.sort_by_key(|p| p.node);
+    Ok(out)
+}

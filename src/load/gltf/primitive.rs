@@ -1,0 +1,192 @@
+//! One glTF mesh → one ronray [`Mesh`], each primitive a material slot.
+//!
+//! Primitive modes that make triangles (`TRIANGLES`, `TRIANGLE_STRIP`,
+//! `TRIANGLE_FAN`) are read; points and lines are skipped with a note.
+//! Attributes: `POSITION` (required), `NORMAL`, `TANGENT`, the UV set the
+//! material's textures read (`TEXCOORD_0` or `_1`, v flipped to ronray's
+//! v-up), `COLOR_0` (read and checked; not rendered, with a note). Tangents
+//! come from the file, else MikkTSpace when the material has a normal map
+//! (per primitive, before the primitives are merged, so seams between
+//! primitives do not weld).
+
+use super::accessor::{Buffers, read_f32, read_indices};
+use super::material::Mapped;
+use crate::geometry::Mesh;
+use glam::{Vec2, Vec3A, Vec4};
+use gltf::Document;
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::{Mode, Semantic};
+
+/// Builds mesh `index`; `material` maps a primitive's glTF material to the
+/// scene's. Errors name the primitive.
+pub fn build(
+    doc: &Document,
+    buffers: &Buffers,
+    index: usize,
+    material: &mut dyn FnMut(Option<gltf::Material>) -> Mapped,
+    notes: &mut Vec<String>,
+) -> Result<(Mesh, Vec<Mapped>), String> {
+    let m = doc
+        .meshes()
+        .nth(index)
+        .ok_or_else(|| format!("meshes[{index}] does not exist"))?;
+    let mut mesh = Mesh::default();
+    let mut slots = Vec::new();
+    for p in m.primitives() {
+        let at = format!("meshes[{index}].primitives[{}]", p.index());
+        if p.morph_targets().next().is_some() {
+            notes.push(format!(
+                "{at}: morph targets read but not rendered (the base shape is)"
+            ));
+        }
+        let mode = p.mode();
+        if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+            notes.push(format!("{at}: mode {mode:?} makes no triangles; skipped"));
+            continue;
+        }
+        let mapped = material(p.material().index().map(|_| p.material()));
+        let part = read_primitive(doc, buffers, &p, mapped, mode).map_err(|e| format!("{at}: {e}"))?;
+        if part.colors {
+            notes.push(format!(
+                "{at}: COLOR_0 read but not rendered (ronray meshes carry no vertex colours)"
+            ));
+        }
+        append(&mut mesh, part.mesh, slots.len() as u32);
+        slots.push(mapped);
+    }
+    mesh.slot_count = slots.len().max(1) as u32;
+    Ok((mesh, slots))
+}
+
+struct Part {
+    mesh: Mesh,
+    colors: bool,
+}
+
+fn read_primitive(
+    doc: &Document,
+    buffers: &Buffers,
+    p: &gltf::Primitive,
+    mapped: Mapped,
+    mode: Mode,
+) -> Result<Part, String> {
+    let f32_only = [DataType::F32];
+    let uv_types = [DataType::F32, DataType::U8, DataType::U16];
+    let pos = p.get(&Semantic::Positions).ok_or("no POSITION attribute")?;
+    let positions: Vec<[f32; 3]> =
+        read_f32(doc, buffers, pos.index(), Dimensions::Vec3, &f32_only, "POSITION")?;
+    let n = positions.len();
+    let same = |len: usize, what: &str| {
+        if len == n {
+            Ok(())
+        } else {
+            Err(format!("{what} has {len} elements for {n} positions"))
+        }
+    };
+    let mut mesh = Mesh::default();
+    mesh.positions = positions.iter().map(|&p| Vec3A::from(p)).collect();
+    if let Some(a) = p.get(&Semantic::Normals) {
+        let v: Vec<[f32; 3]> = read_f32(doc, buffers, a.index(), Dimensions::Vec3, &f32_only, "NORMAL")?;
+        same(v.len(), "NORMAL")?;
+        mesh.normals = v.iter().map(|&n| Vec3A::from(n).normalize_or_zero()).collect();
+    }
+    let uv_set = mapped.uv_set;
+    if let Some(a) = p.get(&Semantic::TexCoords(uv_set)) {
+        let what = format!("TEXCOORD_{uv_set}");
+        let v: Vec<[f32; 2]> = read_f32(doc, buffers, a.index(), Dimensions::Vec2, &uv_types, &what)?;
+        same(v.len(), &what)?;
+        // glTF's v runs down the image; ronray's up.
+        mesh.uvs = v.iter().map(|&[u, v]| Vec2::new(u, 1.0 - v)).collect();
+    }
+    if let Some(a) = p.get(&Semantic::Tangents) {
+        let v: Vec<[f32; 4]> = read_f32(doc, buffers, a.index(), Dimensions::Vec4, &f32_only, "TANGENT")?;
+        same(v.len(), "TANGENT")?;
+        mesh.tangents = v
+            .iter()
+            .map(|&t| {
+                let w = if t[3] < 0.0 { -1.0 } else { 1.0 };
+                Vec4::new(t[0], t[1], t[2], w)
+            })
+            .collect();
+    }
+    let mut colors = false;
+    if let Some(a) = p.get(&Semantic::Colors(0)) {
+        let dims = a.dimensions();
+        if !matches!(dims, Dimensions::Vec3 | Dimensions::Vec4) {
+            return Err(format!("COLOR_0 is {dims:?}, expected Vec3 or Vec4"));
+        }
+        let len = match dims {
+            Dimensions::Vec3 => read_f32::<3>(doc, buffers, a.index(), dims, &uv_types, "COLOR_0")?.len(),
+            _ => read_f32::<4>(doc, buffers, a.index(), dims, &uv_types, "COLOR_0")?.len(),
+        };
+        same(len, "COLOR_0")?;
+        colors = true;
+    }
+    let list: Vec<u32> = match p.indices() {
+        Some(a) => read_indices(doc, buffers, a.index())?,
+        None => (0..n as u32).collect(),
+    };
+    if let Some((k, &bad)) = list.iter().enumerate().find(|&(_, &v)| v as usize >= n) {
+        return Err(format!("index {bad} (element {k}) is past the {n} vertices"));
+    }
+    mesh.indices = triangles(&list, mode);
+    if mapped.normal_mapped && mesh.tangents.is_empty() && !mesh.uvs.is_empty() {
+        crate::geometry::tangents::generate(&mut mesh);
+    }
+    Ok(Part { mesh, colors })
+}
+
+/// Triangles of an index list in `mode`, counter-clockwise (glTF's front).
+fn triangles(list: &[u32], mode: Mode) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::TriangleStrip => (2..list.len())
+            .map(|i| {
+                // Every other triangle of a strip is wound the other way.
+                if i % 2 == 0 {
+                    [list[i - 2], list[i - 1], list[i]]
+                } else {
+                    [list[i - 1], list[i - 2], list[i]]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (2..list.len()).map(|i| [list[0], list[i - 1], list[i]]).collect(),
+        _ => list.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
+    }
+}
+
+/// Appends `part` to `mesh` as slot `slot`. Arrays that one side lacks are
+/// filled (zero normals mean "use the face", zero UVs, +x tangents) so the
+/// merged arrays stay per vertex.
+fn append(mesh: &mut Mesh, part: Mesh, slot: u32) {
+    let base = mesh.positions.len() as u32;
+    let (had, adds) = (base as usize, part.positions.len());
+    fill(&mut mesh.normals, part.normals, had, adds, Vec3A::ZERO);
+    fill(&mut mesh.uvs, part.uvs, had, adds, Vec2::ZERO);
+    fill(
+        &mut mesh.tangents,
+        part.tangents,
+        had,
+        adds,
+        Vec4::new(1.0, 0.0, 0.0, 1.0),
+    );
+    mesh.positions.extend(part.positions);
+    mesh.indices
+        .extend(part.indices.iter().map(|t| t.map(|v| v + base)));
+    mesh.slots.extend(std::iter::repeat_n(slot, part.indices.len()));
+}
+
+/// `dst` (covering `had` vertices, or empty) extended by `src` (covering
+/// `adds`, or empty), padding with `zero` where only one side has data.
+fn fill<T: Copy>(dst: &mut Vec<T>, src: Vec<T>, had: usize, adds: usize, zero: T) {
+    if dst.is_empty() && src.is_empty() {
+        return;
+    }
+    if dst.is_empty() {
+        dst.resize(had, zero);
+    }
+    if src.is_empty() {
+        dst.extend(std::iter::repeat_n(zero, adds));
+    } else {
+        dst.extend(src);
+    }
+}

@@ -1,0 +1,680 @@
+//! glTF import end to end, on synthetic assets written by the tests (so
+//! every feature has a small case whose answer is known) and on the shipped
+//! Fox: transforms down a node hierarchy, instancing, sparse accessors,
+//! interleaved views, texture transforms, MASK cut-outs, MikkTSpace against
+//! stored tangents, a glTF box against the same box as OBJ, and malformed
+//! assets as located errors.
+
+mod common;
+
+use glam::{Mat4, Quat, Vec3, Vec3A};
+use ronray::frame::render_whole;
+use ronray::imageio::Image;
+use ronray::load::{LoadError, Overrides, load_str};
+use ronray::math::Ray;
+use serde_json::{Value, json};
+use std::path::Path;
+
+/// A glTF asset under construction: one binary buffer, views and accessors.
+#[derive(Default)]
+struct Asset {
+    bin: Vec<u8>,
+    views: Vec<Value>,
+    accessors: Vec<Value>,
+}
+
+impl Asset {
+    fn view(&mut self, bytes: &[u8], stride: Option<usize>) -> usize {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        let mut v = json!({"buffer": 0, "byteOffset": self.bin.len(), "byteLength": bytes.len()});
+        if let Some(s) = stride {
+            v["byteStride"] = json!(s);
+        }
+        self.bin.extend_from_slice(bytes);
+        self.views.push(v);
+        self.views.len() - 1
+    }
+
+    fn floats(&mut self, data: &[f32], ty: &str) -> usize {
+        let bytes: Vec<u8> = data.iter().flat_map(|f| f.to_le_bytes()).collect();
+        let view = self.view(&bytes, None);
+        let per = match ty {
+            "VEC2" => 2,
+            "VEC3" => 3,
+            _ => 4,
+        };
+        let mut a = json!({"bufferView": view, "componentType": 5126, "count": data.len() / per, "type": ty});
+        if ty == "VEC3" {
+            // glTF requires bounds on POSITION.
+            let axis = |k: usize, f: fn(f32, f32) -> f32| data.iter().skip(k).step_by(3).copied().reduce(f);
+            a["min"] = json!([0, 1, 2].map(|k| axis(k, f32::min)));
+            a["max"] = json!([0, 1, 2].map(|k| axis(k, f32::max)));
+        }
+        self.accessor(a)
+    }
+
+    fn indices(&mut self, data: &[u16]) -> usize {
+        let bytes: Vec<u8> = data.iter().flat_map(|f| f.to_le_bytes()).collect();
+        let view = self.view(&bytes, None);
+        self.accessor(
+            json!({"bufferView": view, "componentType": 5123, "count": data.len(), "type": "SCALAR"}),
+        )
+    }
+
+    fn accessor(&mut self, a: Value) -> usize {
+        self.accessors.push(a);
+        self.accessors.len() - 1
+    }
+
+    /// The `.gltf` JSON with the buffer as a data URI, `rest` merged in.
+    fn gltf(&self, rest: Value) -> String {
+        let mut doc = json!({
+            "asset": {"version": "2.0"},
+            "buffers": [{"byteLength": self.bin.len(), "uri": format!("data:application/octet-stream;base64,{}", b64(&self.bin))}],
+            "bufferViews": self.views,
+            "accessors": self.accessors,
+        });
+        for (k, v) in rest.as_object().expect("an object") {
+            doc[k] = v.clone();
+        }
+        doc.to_string()
+    }
+
+    /// The same as a `.glb`: JSON chunk, then the BIN chunk.
+    fn glb(&self, rest: Value) -> Vec<u8> {
+        let mut doc: Value = serde_json::from_str(&self.gltf(rest)).expect("json");
+        doc["buffers"] = json!([{"byteLength": self.bin.len()}]);
+        let mut json = doc.to_string().into_bytes();
+        while !json.len().is_multiple_of(4) {
+            json.push(b' ');
+        }
+        let mut bin = self.bin.clone();
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let total = 12 + 8 + json.len() + 8 + bin.len();
+        let mut out = Vec::new();
+        out.extend_from_slice(b"glTF");
+        out.extend_from_slice(&2u32.to_le_bytes());
+        out.extend_from_slice(&(total as u32).to_le_bytes());
+        out.extend_from_slice(&(json.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"JSON");
+        out.extend_from_slice(&json);
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(&bin);
+        out
+    }
+}
+
+fn b64(data: &[u8]) -> String {
+    const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::new();
+    for c in data.chunks(3) {
+        let n = (u32::from(c[0]) << 16)
+            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
+            | u32::from(*c.get(2).unwrap_or(&0));
+        for k in 0..4 {
+            if k <= c.len() {
+                s.push(T[(n >> (18 - 6 * k)) as usize & 63] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// A 1×1 PNG of colour `rgba`, as a data URI.
+fn png_uri(rgba: [u8; 4]) -> String {
+    let mut bytes = Vec::new();
+    let img = image::RgbaImage::from_pixel(1, 1, image::Rgba(rgba));
+    img.write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .expect("encode png");
+    format!("data:image/png;base64,{}", b64(&bytes))
+}
+
+/// Writes `files` into a fresh folder and loads `scene` from it.
+fn load(files: &[(&str, &[u8])], scene: &str) -> Result<ronray::load::Loaded, LoadError> {
+    let dir = tempfile::tempdir().expect("tempdir");
+    for (name, data) in files {
+        std::fs::write(dir.path().join(name), data).expect("write");
+    }
+    let o = Overrides {
+        spp: Some(2),
+        size: Some((64, 64)),
+        seed: Some(3),
+        ..Default::default()
+    };
+    load_str(&dir.path().join("scene.ron"), scene, &o)
+}
+
+fn scene_with(objects: &str, materials: &str) -> String {
+    format!(
+        "Scene(
+            camera: (eye: (0, 1, 6), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: Path(max_depth: 3),
+            materials: {{ \"grey\": Lambert(albedo: 0.5), {materials} }},
+            lights: [Point(position: (2, 4, 5), intensity: (30, 30, 30))],
+            objects: [{objects}],
+        )"
+    )
+}
+
+/// A unit right triangle in z = 0 (positions only), as asset parts.
+fn triangle(a: &mut Asset) -> Value {
+    let pos = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "VEC3");
+    json!({"primitives": [{"attributes": {"POSITION": pos}}]})
+}
+
+/// The world point of `p` under the node chain, computed here from T·R·S.
+fn trs(t: [f32; 3], r: Quat, s: [f32; 3]) -> Mat4 {
+    Mat4::from_scale_rotation_translation(Vec3::from(s), r, Vec3::from(t))
+}
+
+#[test]
+fn gltf_hierarchy_and_instances_put_vertices_where_the_node_matrices_say() {
+    let mut a = Asset::default();
+    let tri = triangle(&mut a);
+    let r = Quat::from_axis_angle(Vec3::new(1.0, 2.0, 0.5).normalize(), 0.7);
+    let parent = trs([0.5, -0.25, 0.0], r, [2.0, 0.5, 1.5]);
+    let child = trs([1.0, 0.0, -1.0], Quat::from_rotation_y(0.4), [1.0, 1.0, 1.0]);
+    // A column-major `matrix` node for the third instance.
+    let third = Mat4::from_rotation_z(0.3) * Mat4::from_scale(Vec3::new(1.0, 3.0, 1.0));
+    let q = r.to_array();
+    let gltf = a.gltf(json!({
+        "scene": 0,
+        "scenes": [{"nodes": [0, 3]}],
+        "nodes": [
+            {"translation": [0.5, -0.25, 0.0], "rotation": q, "scale": [2.0, 0.5, 1.5], "mesh": 0, "children": [1]},
+            {"translation": [1.0, 0.0, -1.0], "rotation": Quat::from_rotation_y(0.4).to_array(), "mesh": 0, "children": [2]},
+            {"matrix": third.to_cols_array(), "mesh": 0},
+            {"translation": [-2.0, 0.0, 0.0]},
+        ],
+        "meshes": [tri],
+    }));
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf", material: "grey")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let geo = &loaded.scene.geometry;
+    assert_eq!(geo.meshes.len(), 1, "one mesh for three nodes");
+    assert_eq!(geo.instances.len(), 3, "three instances");
+    let expected = [parent, parent * child, parent * child * third];
+    let corners = [Vec3::ZERO, Vec3::X, Vec3::Y];
+    for (inst, m) in geo.instances.iter().zip(expected) {
+        let [a, b, c] = inst.world_triangle(0, &geo.meshes);
+        let mut got = [a, b, c].map(Vec3::from);
+        if m.determinant() < 0.0 {
+            got.swap(1, 2);
+        }
+        // The mesh's BVH may keep the corners in any rotation; compare as a set.
+        for want in corners.map(|p| m.transform_point3(p)) {
+            let near = got
+                .iter()
+                .map(|g| (*g - want).length())
+                .fold(f32::INFINITY, f32::min);
+            assert!(near < 1e-5, "vertex {want} missing from {got:?} (nearest {near})");
+        }
+        // A ray at the centroid hits there.
+        let centroid = (got[0] + got[1] + got[2]) / 3.0;
+        let n = (got[1] - got[0]).cross(got[2] - got[0]).normalize();
+        let o = centroid + n * 3.0;
+        let hit = loaded
+            .scene
+            .intersect(&Ray::new(Vec3A::from(o), Vec3A::from(-n)), f32::INFINITY)
+            .expect("the centroid is hit");
+        assert!(
+            (Vec3::from(hit.p) - centroid).length() < 1e-5,
+            "hit {} vs centroid {centroid}",
+            hit.p
+        );
+    }
+}
+
+#[test]
+fn gltf_sparse_accessor_and_interleaved_view_are_read() {
+    let mut a = Asset::default();
+    // Interleaved position + normal, 24 bytes a vertex.
+    let verts = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let mut bytes = Vec::new();
+    for v in verts {
+        for f in v.iter().chain(&[0.0, 0.0, 1.0]) {
+            bytes.extend_from_slice(&f.to_le_bytes());
+        }
+    }
+    let view = a.view(&bytes, Some(24));
+    let pos = a.accessor(
+        json!({"bufferView": view, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+        "min": [0, 0, 0], "max": [1, 1, 0]}),
+    );
+    let nrm = a.accessor(
+        json!({"bufferView": view, "byteOffset": 12, "componentType": 5126, "count": 3, "type": "VEC3"}),
+    );
+    // Sparse: vertex 1 moves from (1, 0, 0) to (2, 0, 0).
+    let idx = a.view(&1u16.to_le_bytes(), None);
+    let val = a.view(
+        &[2.0f32, 0.0, 0.0]
+            .iter()
+            .flat_map(|f| f.to_le_bytes())
+            .collect::<Vec<_>>(),
+        None,
+    );
+    let sparse = a.accessor(json!({"bufferView": view, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+        "min": [0, 0, 0], "max": [2, 1, 0],
+        "sparse": {"count": 1, "indices": {"bufferView": idx, "componentType": 5123}, "values": {"bufferView": val}}}));
+    let _ = pos;
+    let gltf = a.gltf(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": sparse, "NORMAL": nrm}}]}],
+    }));
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf", material: "grey")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let mesh = &loaded.scene.geometry.meshes[0];
+    let xs: Vec<f32> = mesh.positions.iter().map(|p| p.x).collect();
+    assert_eq!(xs, vec![0.0, 2.0, 0.0], "sparse value replaced vertex 1");
+    assert!(
+        mesh.normals.iter().all(|n| *n == Vec3A::Z),
+        "interleaved normals: {:?}",
+        mesh.normals
+    );
+}
+
+/// A quad (two triangles) at z = 0 spanning [−1, 1]², with UVs in set 1
+/// (set 0 is zeros) and a material from `material`.
+fn quad_asset(material: Value, tangents: bool, mirrored: bool) -> String {
+    let mut a = Asset::default();
+    let pos = a.floats(
+        &[
+            -1.0, -1.0, 0.0, 1.0, -1.0, 0.0, 1.0, 1.0, 0.0, -1.0, 1.0, 0.0, 3.0, -1.0, 0.0, 3.0, 1.0, 0.0,
+        ],
+        "VEC3",
+    );
+    let nrm = a.floats(&[0.0, 0.0, 1.0].repeat(6), "VEC3");
+    // glTF UVs: v down. The right square mirrors the left in u.
+    let uv1 = a.floats(
+        &[0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+        "VEC2",
+    );
+    let uv0 = a.floats(&[0.0; 12], "VEC2");
+    let idx: Vec<u16> = if mirrored {
+        vec![0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 2]
+    } else {
+        vec![0, 1, 2, 0, 2, 3]
+    };
+    let idx = a.indices(&idx);
+    let mut attributes = json!({"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uv0, "TEXCOORD_1": uv1});
+    if tangents {
+        // +u runs along +x on the left square and −x on the right one; glTF's
+        // bitangent is w·(n × t) and runs along the image's up (+y here) on
+        // both, so w = +1 on the left and −1 on the right. The shared middle
+        // vertices (1, 2) cannot hold both: stored tangents need them split.
+        let t = a.floats(&[1.0, 0.0, 0.0, 1.0].repeat(6), "VEC4");
+        attributes["TANGENT"] = json!(t);
+    }
+    a.gltf(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": attributes, "indices": idx, "material": 0}]}],
+        "materials": [material],
+        "images": [{"uri": png_uri([128, 128, 255, 255])}, {"uri": png_uri([255, 0, 0, 77])}],
+        "textures": [{"source": 0}, {"source": 1}],
+    }))
+}
+
+#[test]
+fn gltf_missing_tangent_gets_mikktspace_matching_stored_tangents() {
+    let normal_mapped = json!({"name": "m", "normalTexture": {"index": 0, "texCoord": 1}});
+    let gltf = quad_asset(normal_mapped.clone(), false, false);
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let mesh = &loaded.scene.geometry.meshes[0];
+    assert_eq!(
+        mesh.tangents.len(),
+        mesh.positions.len(),
+        "MikkTSpace tangents made"
+    );
+    // The second UV set was read (set 0 is all zeros).
+    assert!(
+        mesh.uvs.iter().any(|uv| uv.x > 0.5),
+        "TEXCOORD_1 used: {:?}",
+        mesh.uvs
+    );
+    let stored = quad_asset(normal_mapped, true, false);
+    let with = load(
+        &[("a.gltf", stored.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let m2 = &with.scene.geometry.meshes[0];
+    for tri in 0..mesh.triangle_count() {
+        for k in 0..3 {
+            let (a, b) = (
+                mesh.tangents[mesh.indices[tri][k] as usize],
+                m2.tangents[m2.indices[tri][k] as usize],
+            );
+            assert!(
+                (a - b).abs().max_element() < 1e-3,
+                "triangle {tri} corner {k}: MikkTSpace {a} vs stored {b}"
+            );
+        }
+    }
+}
+
+#[test]
+fn gltf_mikktspace_flips_handedness_on_mirrored_uvs() {
+    let normal_mapped = json!({"normalTexture": {"index": 0, "texCoord": 1}});
+    let gltf = quad_asset(normal_mapped, false, true);
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let mesh = &loaded.scene.geometry.meshes[0];
+    // The glTF convention written out: left square t = +x, w = +1; right
+    // square t = −x, w = −1 (what an exporter stores for mirrored UVs).
+    for (tri, corners) in mesh.indices.iter().enumerate() {
+        let right = corners.iter().any(|&v| mesh.positions[v as usize].x > 1.5);
+        for &v in corners {
+            let t = mesh.tangents[v as usize];
+            let want = if right {
+                glam::Vec4::new(-1.0, 0.0, 0.0, -1.0)
+            } else {
+                glam::Vec4::new(1.0, 0.0, 0.0, 1.0)
+            };
+            assert!(
+                (t - want).abs().max_element() < 1e-3,
+                "triangle {tri}: {t} vs {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn gltf_mask_cuts_out_below_the_cutoff_only() {
+    for (alpha, present) in [(0.3, false), (0.7, true)] {
+        let m = json!({"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, alpha]}, "alphaMode": "MASK", "alphaCutoff": 0.5});
+        let gltf = quad_asset(m, false, false);
+        let loaded = load(
+            &[("a.gltf", gltf.as_bytes())],
+            &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+        )
+        .unwrap_or_else(|e| panic!("loads: {e}"));
+        let ray = Ray::new(Vec3A::new(0.2, 0.1, 5.0), Vec3A::NEG_Z);
+        assert_eq!(
+            loaded.scene.intersect(&ray, f32::INFINITY).is_some(),
+            present,
+            "alpha {alpha} against cutoff 0.5"
+        );
+    }
+}
+
+#[test]
+fn gltf_texture_transform_moves_the_lookup() {
+    // Base colour from a 1×1 texture is constant, so the transform is
+    // checked on the mapping itself: the extension's own example (offset
+    // (0, 1), rotation π/2, scale ½) reads glTF uv (1, 0) at (0, ½) and
+    // (0, 1) at (½, 1); in ronray's v-up UVs, (1, 1) → (0, ½), (0, 0) → (½, 0).
+    let t = ronray::load::gltf::material::uv_transform([0.0, 1.0], std::f32::consts::FRAC_PI_2, [0.5, 0.5]);
+    let a = t.0.expect("a transform");
+    let close = |p: glam::Vec2, q: glam::Vec2| (p - q).length() < 1e-6;
+    assert!(close(
+        a.transform_point2(glam::Vec2::new(1.0, 1.0)),
+        glam::Vec2::new(0.0, 0.5)
+    ));
+    assert!(close(
+        a.transform_point2(glam::Vec2::new(0.0, 0.0)),
+        glam::Vec2::new(0.5, 0.0)
+    ));
+    // And it reaches the material: the asset loads with the extension used.
+    let m = json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 1, "texCoord": 1,
+        "extensions": {"KHR_texture_transform": {"offset": [0, 1], "rotation": 1.5707964, "scale": [0.5, 0.5]}}}}});
+    let mut doc: Value = serde_json::from_str(&quad_asset(m, false, false)).expect("json");
+    doc["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    load(
+        &[("a.gltf", doc.to_string().as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+}
+
+fn render(loaded: &ronray::load::Loaded) -> Vec<[u32; 3]> {
+    let img: Image = render_whole(&loaded.scene, &loaded.view, &Default::default()).0;
+    img.pixels
+        .iter()
+        .map(|p| p.to_array().map(f32::to_bits))
+        .collect()
+}
+
+/// A unit box's 8 corners and 12 counter-clockwise triangles.
+fn unit_box() -> (Vec<[f32; 3]>, Vec<[u16; 3]>) {
+    let p = (0..8)
+        .map(|i| {
+            [
+                (i & 1) as f32 - 0.5,
+                ((i >> 1) & 1) as f32 - 0.5,
+                ((i >> 2) & 1) as f32 - 0.5,
+            ]
+        })
+        .collect();
+    let t = vec![
+        [0, 2, 3],
+        [0, 3, 1],
+        [4, 5, 7],
+        [4, 7, 6],
+        [0, 1, 5],
+        [0, 5, 4],
+        [2, 6, 7],
+        [2, 7, 3],
+        [0, 4, 6],
+        [0, 6, 2],
+        [1, 3, 7],
+        [1, 7, 5],
+    ];
+    (p, t)
+}
+
+#[test]
+fn gltf_box_renders_byte_identical_to_the_same_box_as_obj() {
+    let (p, t) = unit_box();
+    let mut a = Asset::default();
+    let pos = a.floats(&p.concat(), "VEC3");
+    let idx = a.indices(&t.concat());
+    let glb = a.glb(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+    }));
+    let mut obj = String::new();
+    for v in &p {
+        obj += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for f in &t {
+        obj += &format!("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+    }
+    let files: [(&str, &[u8]); 2] = [("box.glb", &glb), ("box.obj", obj.as_bytes())];
+    let rot = r#"transform: [Rotate(axis: (0, 1, 0), degrees: 30)]"#;
+    let from_gltf = load(
+        &files,
+        &scene_with(&format!(r#"Gltf(file: "box.glb", material: "grey", {rot})"#), ""),
+    )
+    .unwrap_or_else(|e| panic!("glb loads: {e}"));
+    let ron_obj = scene_with(&format!(r#"Instance(mesh: "box", material: "grey", {rot})"#), "")
+        .replace("objects:", "meshes: { \"box\": (file: \"box.obj\") },\n objects:");
+    let from_obj = load(&files, &ron_obj).unwrap_or_else(|e| panic!("obj loads: {e}"));
+    let (g, o) = (render(&from_gltf), render(&from_obj));
+    assert!(g.iter().any(|p| p[0] != 0), "the box is lit");
+    let differ = g.iter().zip(&o).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "{differ} of {} pixels differ", g.len());
+}
+
+#[test]
+fn flat_normal_map_on_a_mesh_renders_byte_identical_to_no_map() {
+    let obj = "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n\
+               f 1/1 4/4 3/3\nf 1/1 3/3 2/2\nf 1/1 2/2 5/5\nf 2/2 3/3 5/5\nf 3/3 4/4 5/5\nf 4/4 1/1 5/5\n";
+    let files: [(&str, &[u8]); 1] = [("p.obj", obj.as_bytes())];
+    let object = r#"Mesh(file: "p.obj", material: "m", transform: [Rotate(axis: (1, 0, 0), degrees: 20)])"#;
+    let plain = load(&files, &scene_with(object, r#""m": Lambert(albedo: 0.6)"#)).expect("plain loads");
+    let mapped = load(
+        &files,
+        &scene_with(
+            object,
+            r#""m": NormalMap(map: (0.5, 0.5, 1), material: Lambert(albedo: 0.6))"#,
+        ),
+    )
+    .expect("mapped loads");
+    assert!(
+        !mapped.scene.geometry.meshes[0].tangents.is_empty(),
+        "the mesh got tangents"
+    );
+    assert!(
+        render(&plain) == render(&mapped),
+        "a flat normal map changed the image"
+    );
+}
+
+fn error_of(files: &[(&str, &[u8])]) -> String {
+    match load(
+        files,
+        &scene_with(r#"Gltf(file: "a.gltf", material: "grey")"#, ""),
+    ) {
+        Ok(_) => panic!("a malformed asset loaded"),
+        Err(LoadError::Invalid(r)) => r.render(false),
+        Err(e) => panic!("not a located error: {e}"),
+    }
+}
+
+#[test]
+fn malformed_gltf_is_a_located_error() {
+    let mut a = Asset::default();
+    let tri = triangle(&mut a);
+    let good = a.gltf(json!({"scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}], "meshes": [tri]}));
+    let mut doc: Value = serde_json::from_str(&good).expect("json");
+    // Truncated buffer: says 36 bytes, holds 12.
+    let mut t = doc.clone();
+    t["buffers"][0]["uri"] = json!(format!(
+        "data:application/octet-stream;base64,{}",
+        b64(&a.bin[..12])
+    ));
+    let e = error_of(&[("a.gltf", t.to_string().as_bytes())]);
+    assert!(
+        e.contains("scene.ron:6:"),
+        "located at the object's file line: {e}"
+    );
+    assert!(e.contains("truncated"), "names the truncation: {e}");
+    // Out-of-range accessor: 30 elements in a 36-byte view.
+    let mut t = doc.clone();
+    t["accessors"][0]["count"] = json!(30);
+    let e = error_of(&[("a.gltf", t.to_string().as_bytes())]);
+    assert!(e.contains("run past"), "names the overrun: {e}");
+    // A cycle in the node tree.
+    let mut t = doc.clone();
+    t["nodes"] = json!([{"mesh": 0, "children": [1]}, {"children": [0]}]);
+    let e = error_of(&[("a.gltf", t.to_string().as_bytes())]);
+    assert!(e.contains("cycle"), "names the cycle: {e}");
+    // An unknown required extension.
+    doc["extensionsUsed"] = json!(["EXT_from_the_future"]);
+    doc["extensionsRequired"] = json!(["EXT_from_the_future"]);
+    let e = error_of(&[("a.gltf", doc.to_string().as_bytes())]);
+    assert!(e.contains("extensionsRequired"), "names the extension: {e}");
+    // Not glTF at all.
+    let e = error_of(&[("a.gltf", b"{\"asset\": 3")]);
+    assert!(e.contains("invalid glTF"), "{e}");
+}
+
+#[test]
+fn fox_loads_with_a_note_that_skin_and_animations_are_not_rendered() {
+    let fox = common::root().join("tests/fixtures/gltf/Fox.glb");
+    let data = std::fs::read(&fox).expect("the Fox fixture");
+    let loaded = load(
+        &[("Fox.glb", &data)],
+        &scene_with(
+            r#"Gltf(file: "Fox.glb", transform: [Scale((0.02, 0.02, 0.02))])"#,
+            "",
+        ),
+    )
+    .unwrap_or_else(|e| panic!("Fox loads: {e}"));
+    let notes: Vec<String> = loaded
+        .warnings
+        .diagnostics
+        .iter()
+        .map(|d| d.message.clone())
+        .collect();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("skin") && n.contains("animation") && n.contains("not rendered")),
+        "expected a note on skin and animations, got {notes:?}"
+    );
+    assert!(loaded.scene.geometry.meshes[0].triangle_count() > 100);
+    assert!(Path::new(&fox).exists());
+}
+
+/// A small valid `.glb` (a box) and `.gltf` (a textured, normal-mapped,
+/// sparse quad), the glTF fuzz target's seeds.
+fn seeds() -> Vec<(&'static str, Vec<u8>)> {
+    let (p, t) = unit_box();
+    let mut a = Asset::default();
+    let pos = a.floats(&p.concat(), "VEC3");
+    let idx = a.indices(&t.concat());
+    let glb = a.glb(json!({
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "children": [1]}, {"mesh": 0, "scale": [1, 2, 1]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "indices": idx}]}],
+    }));
+    let m = json!({"normalTexture": {"index": 0, "texCoord": 1}, "alphaMode": "MASK",
+        "pbrMetallicRoughness": {"baseColorTexture": {"index": 1}, "metallicRoughnessTexture": {"index": 0}}});
+    vec![
+        ("box.glb", glb),
+        ("quad.gltf", quad_asset(m, true, true).into_bytes()),
+    ]
+}
+
+#[test]
+fn gltf_fuzz_seeds_are_committed_and_current() {
+    let dir = common::root().join("fuzz/corpus/gltf");
+    for (name, bytes) in seeds() {
+        let path = dir.join(name);
+        if std::env::var_os("RONRAY_WRITE_SEEDS").is_some() {
+            std::fs::create_dir_all(&dir).expect("mkdir");
+            std::fs::write(&path, &bytes).expect("write seed");
+        }
+        assert!(ronray::fuzzing::gltf(&bytes), "seed {name} imports");
+        assert!(
+            path.exists(),
+            "{} missing: RONRAY_WRITE_SEEDS=1 cargo test --test gltf",
+            path.display()
+        );
+    }
+}
+
+#[test]
+fn gltf_byte_mutations_never_panic() {
+    // A few hundred single-byte corruptions of each seed, seeded: every
+    // one must import or fail, never panic (the fuzz target, in small).
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for (_, seed) in seeds() {
+        for _ in 0..300 {
+            let mut bytes = seed.clone();
+            let at = (next() % bytes.len() as u64) as usize;
+            bytes[at] = (next() & 0xff) as u8;
+            let _ = ronray::fuzzing::gltf(&bytes);
+        }
+    }
+}
