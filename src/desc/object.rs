@@ -311,7 +311,8 @@ impl ObjectDesc {
             | ObjectDesc::Plane { .. }
             | ObjectDesc::Quad { .. }
             | ObjectDesc::Rect { .. }
-            | ObjectDesc::Instance { .. } => (None, None),
+            | ObjectDesc::Instance { .. }
+            | ObjectDesc::Gltf { .. } => (None, None),
         }
     }
 

@@ -281,7 +281,8 @@ pub(super) fn scene_media(
             | ObjectDesc::Plane { .. }
             | ObjectDesc::Quad { .. }
             | ObjectDesc::Rect { .. }
-            | ObjectDesc::Instance { .. } => false,
+            | ObjectDesc::Instance { .. }
+            | ObjectDesc::Gltf { .. } => false,
         };
         if let Some(b) = boundaries.get_mut(i + 1) {
             *b = Some(Boundary {

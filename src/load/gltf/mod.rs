@@ -201,7 +201,13 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
                 .enumerate()
                 .map(|(slot, s)| {
                     s.1.map_or(NO_LIGHT, |(radiance, two_sided)| {
-                        super::mesh::mesh_light(ctx, &instance, slot, radiance, two_sided)
+                        super::mesh::mesh_light(
+                            ctx,
+                            &instance,
+                            slot,
+                            crate::lights::Emission::constant(radiance),
+                            two_sided,
+                        )
                     })
                 })
                 .collect();
