@@ -50,8 +50,7 @@ impl TransformTrack {
 
     /// Whether the transform changes between `t0` and `t1`.
     pub fn moves_between(&self, t0: f32, t1: f32) -> bool {
-        let (a, b) = (self.track.place(t0), self.track.place(t1));
-        t0 < t1 && (a != b || matches!(a, Place::Between(..)))
+        self.track.moves_between(t0, t1)
     }
 
     /// The matrix at `time` (frames): a key's own matrix on the key, and

@@ -64,6 +64,12 @@ impl<T: Copy> Track<T> {
         }
     }
 
+    /// Whether the value changes between `t0` and `t1` (`t0 < t1`).
+    pub fn moves_between(&self, t0: f32, t1: f32) -> bool {
+        let (a, b) = (self.place(t0), self.place(t1));
+        t0 < t1 && (a != b || matches!(a, Place::Between(..)))
+    }
+
     /// The value of key `i`.
     pub fn value(&self, i: usize) -> T {
         self.keys[i].1

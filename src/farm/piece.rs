@@ -39,6 +39,9 @@ pub struct PieceMeta {
     pub tile: Option<(u32, u32)>,
     /// The whole frame, width × height.
     pub frame: (u32, u32),
+    /// The animation frame drawn (`--frame`), for scenes with an
+    /// `animation`; pieces of different ones never assemble.
+    pub animation_frame: Option<i32>,
     /// The piece's pixels (its EXR data window).
     pub rect: PixelRect,
 }
@@ -55,6 +58,7 @@ impl PieceMeta {
                 m.spp,
                 m.samples,
                 m.frame,
+                m.animation_frame,
                 m.rect,
             )
         };
@@ -71,6 +75,9 @@ impl PieceMeta {
         ];
         if let Some((i, n)) = self.tile {
             v.push(format!("tile={i}/{n}"));
+        }
+        if let Some(f) = self.animation_frame {
+            v.push(format!("animation_frame={f}"));
         }
         v
     }
@@ -101,6 +108,10 @@ impl PieceMeta {
             samples,
             tile,
             frame,
+            animation_frame: match get("animation_frame") {
+                Ok(f) => Some(f.parse().map_err(|_| bad("animation_frame", f))?),
+                Err(_) => None,
+            },
             rect,
         })
     }

@@ -98,6 +98,8 @@ pub struct Sections {
     pub integrator: Option<IntegratorDesc>,
     /// `test: (...)`.
     pub test: Option<TestDesc>,
+    /// `animation: (...)`.
+    pub animation: Option<crate::desc::AnimationDesc>,
     /// The `materials` entries that read; broken ones are stand-ins.
     pub materials: BTreeMap<String, MaterialDesc>,
     /// The `meshes` entries that read; broken ones are stand-ins.
@@ -129,6 +131,7 @@ impl Document for SceneDesc {
         "objects",
         "meshes",
         "test",
+        "animation",
     ];
     const REQUIRED: &'static [&'static str] = &["camera"];
     fn assemble(s: Sections) -> Self {
@@ -142,6 +145,7 @@ impl Document for SceneDesc {
             objects: s.objects,
             meshes: s.meshes,
             test: s.test,
+            animation: s.animation,
         }
     }
 }
@@ -168,6 +172,9 @@ fn stand_in_camera() -> CameraDesc {
         projection: crate::desc::ProjectionDesc::Perspective,
         aperture_radius: 0.0,
         focus_distance: None,
+        shutter: None,
+        keys: Vec::new(),
+        interpolation: Default::default(),
     }
 }
 

@@ -13,7 +13,7 @@ use super::document::{Document, Gaps, Sections, stand_in_material, stand_in_mesh
 use super::format::Format;
 use super::outline::{Entry, Outline};
 use super::slip::Slip;
-use crate::desc::TestDesc;
+use crate::desc::{AnimationDesc, TestDesc};
 use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -108,6 +108,7 @@ impl Reader<'_> {
             "film" => s.film = self.section(known, &field.value),
             "integrator" => s.integrator = self.section(known, &field.value),
             "test" => s.test = self.section::<Option<TestDesc>>(known, &field.value).flatten(),
+            "animation" => s.animation = self.section::<Option<AnimationDesc>>(known, &field.value).flatten(),
             "materials" => s.materials = self.map(field, "materials", stand_in_material),
             "meshes" => s.meshes = self.map(field, "meshes", stand_in_mesh),
             "lights" => s.lights = self.list(field, "lights"),
