@@ -121,7 +121,9 @@ pub fn trace(
             let area = 4.0 * PI * s.radius * s.radius;
             (s.center + s.radius * n, n, s.radiance * (area / pmf), false)
         }
-        _ => return None,
+        Light::Point(_) | Light::Spot(_) | Light::Mesh(_) | Light::Sdf(_) | Light::Environment(_) => {
+            return None;
+        }
     };
     // A direction and its density: toward the specular objects' bounding
     // spheres when they can be aimed at from here, else cosine-weighted.

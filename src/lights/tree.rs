@@ -350,14 +350,18 @@ impl LightTree {
         let mut items = Vec::new();
         let mut env = None;
         for (i, l) in lights.iter().enumerate() {
-            match (l, light_bounds(l)) {
-                (_, Some(lb)) if lb.phi > 0.0 && lb.bounds.min.is_finite() && lb.bounds.max.is_finite() => {
-                    items.push((i as u32, lb))
-                }
-                (Light::Environment(e), None) if luminance(e.power()) > 0.0 && env.is_none() => {
-                    env = Some((i as u32, *e.irradiance()))
-                }
-                _ => {}
+            // Bounded lights with power go in the tree; the first sky with
+            // power is weighed beside it; the rest are never picked here.
+            let bounds = light_bounds(l);
+            if let Some(lb) =
+                bounds.filter(|lb| lb.phi > 0.0 && lb.bounds.min.is_finite() && lb.bounds.max.is_finite())
+            {
+                items.push((i as u32, lb))
+            } else if let (Light::Environment(e), None) = (l, &bounds)
+                && luminance(e.power()) > 0.0
+                && env.is_none()
+            {
+                env = Some((i as u32, *e.irradiance()))
             }
         }
         if items.is_empty() || (items.len() == 1 && env.is_none()) {

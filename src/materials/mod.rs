@@ -215,21 +215,45 @@ impl Bxdf for Bsdf<'_> {
     fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
         match self {
             Bsdf::Lambert(b) => b.eval(wo, wi),
-            _ => self.eval_other(wo, wi),
+            Bsdf::OrenNayar(_)
+            | Bsdf::Phong(_)
+            | Bsdf::BlinnPhong(_)
+            | Bsdf::CookTorrance(_)
+            | Bsdf::MetalPlastic(_)
+            | Bsdf::Mirror(_)
+            | Bsdf::Glass(_)
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::RoughGlass(_) => self.eval_other(wo, wi),
         }
     }
     #[inline(always)]
     fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         match self {
             Bsdf::Lambert(b) => b.pdf(wo, wi),
-            _ => self.pdf_other(wo, wi),
+            Bsdf::OrenNayar(_)
+            | Bsdf::Phong(_)
+            | Bsdf::BlinnPhong(_)
+            | Bsdf::CookTorrance(_)
+            | Bsdf::MetalPlastic(_)
+            | Bsdf::Mirror(_)
+            | Bsdf::Glass(_)
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::RoughGlass(_) => self.pdf_other(wo, wi),
         }
     }
     #[inline(always)]
     fn sample(&self, wo: Vec3A, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         match self {
             Bsdf::Lambert(b) => b.sample(wo, u_lobe, u),
-            _ => self.sample_other(wo, u_lobe, u),
+            Bsdf::OrenNayar(_)
+            | Bsdf::Phong(_)
+            | Bsdf::BlinnPhong(_)
+            | Bsdf::CookTorrance(_)
+            | Bsdf::MetalPlastic(_)
+            | Bsdf::Mirror(_)
+            | Bsdf::Glass(_)
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::RoughGlass(_) => self.sample_other(wo, u_lobe, u),
         }
     }
     #[inline]
@@ -421,7 +445,16 @@ impl Material {
             Material::Lambert { albedo } => Bsdf::Lambert(Lambert {
                 albedo: albedo.eval(uv, textures),
             }),
-            _ => self.bsdf_other(uv, textures),
+            Material::OrenNayar { .. }
+            | Material::Phong { .. }
+            | Material::BlinnPhong { .. }
+            | Material::CookTorrance { .. }
+            | Material::MetalPlastic { .. }
+            | Material::Mirror { .. }
+            | Material::Glass { .. }
+            | Material::RoughPlastic { .. }
+            | Material::RoughGlass { .. }
+            | Material::Emitter => self.bsdf_other(uv, textures),
         }
     }
 

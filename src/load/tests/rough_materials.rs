@@ -29,30 +29,25 @@ fn rough_materials_load_with_defaults_share_coats_and_render() {
     )"#;
     let loaded =
         load_str(Path::new("rough.ron"), text, &Overrides::default()).unwrap_or_else(|e| panic!("{e}"));
-    let coats: Vec<_> = loaded
-        .scene
-        .materials
-        .iter()
-        .filter_map(|m| match m {
-            Material::RoughPlastic { coat, specular, .. } => {
-                assert!(
-                    matches!(specular, ColorTex::Const(c) if *c == crate::math::Rgb::ONE),
-                    "specular defaults to 1: {specular:?}"
-                );
-                Some(coat.clone())
-            }
-            Material::RoughGlass {
-                distribution, ior, ..
-            } => {
-                assert_eq!(
-                    (*distribution, ior),
-                    (Distribution::Ggx, &crate::materials::Tex::Const(1.5))
-                );
-                None
-            }
-            _ => None,
-        })
-        .collect();
+    let mut coats = Vec::new();
+    for m in &loaded.scene.materials {
+        if let Material::RoughPlastic { coat, specular, .. } = m {
+            assert!(
+                matches!(specular, ColorTex::Const(c) if *c == crate::math::Rgb::ONE),
+                "specular defaults to 1: {specular:?}"
+            );
+            coats.push(coat.clone());
+        }
+        if let Material::RoughGlass {
+            distribution, ior, ..
+        } = m
+        {
+            assert_eq!(
+                (*distribution, ior),
+                (Distribution::Ggx, &crate::materials::Tex::Const(1.5))
+            );
+        }
+    }
     assert_eq!(coats.len(), 3);
     // Name order: blue, milk, red.
     assert!(
