@@ -21,7 +21,10 @@ fn scratch(name: &str) -> PathBuf {
 
 fn run(args: &[&str]) -> (bool, String) {
     let out = ronray(args);
-    (out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned())
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 fn s(p: &Path) -> &str {
@@ -33,20 +36,41 @@ fn frames_range_writes_what_separate_frame_runs_write() {
     let dir = scratch("range");
     let scene = fixtures().join("turntable.ron");
     let template = dir.join("range_{frame:04}.exr");
-    let (ok, err) = run(&["render", s(&scene), "--frames", "3..5", "-o", s(&template), "--progress", "none"]);
+    let (ok, err) = run(&[
+        "render",
+        s(&scene),
+        "--frames",
+        "3..5",
+        "-o",
+        s(&template),
+        "--progress",
+        "none",
+    ]);
     assert!(ok, "--frames 3..5 failed: {err}");
     let mut distinct = Vec::new();
     for f in 3..=5 {
         let single = dir.join(format!("single_{f}.exr"));
         let n = f.to_string();
-        let (ok, err) = run(&["render", s(&scene), "--frame", &n, "-o", s(&single), "--progress", "none"]);
+        let (ok, err) = run(&[
+            "render",
+            s(&scene),
+            "--frame",
+            &n,
+            "-o",
+            s(&single),
+            "--progress",
+            "none",
+        ]);
         assert!(ok, "--frame {f} failed: {err}");
         let a = std::fs::read(dir.join(format!("range_{f:04}.exr"))).unwrap();
         let b = std::fs::read(&single).unwrap();
         assert!(a == b, "frame {f} of --frames differs from --frame {f}");
         distinct.push(a);
     }
-    assert!(distinct[0] != distinct[2], "frames 3 and 5 should differ: things move");
+    assert!(
+        distinct[0] != distinct[2],
+        "frames 3 and 5 should differ: things move"
+    );
 }
 
 #[test]
@@ -64,7 +88,18 @@ fn frame_auto_takes_the_job_index_and_composes_with_tiles() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     assert!(dir.join("job_4_1.exr").is_file(), "expected frame 4, tile 1");
     let given = dir.join("given.exr");
-    let (ok, err) = run(&["render", s(&scene), "--frame", "4", "--tile", "1/2", "-o", s(&given), "--progress", "none"]);
+    let (ok, err) = run(&[
+        "render",
+        s(&scene),
+        "--frame",
+        "4",
+        "--tile",
+        "1/2",
+        "-o",
+        s(&given),
+        "--progress",
+        "none",
+    ]);
     assert!(ok, "{err}");
     assert!(std::fs::read(dir.join("job_4_1.exr")).unwrap() == std::fs::read(&given).unwrap());
 }
@@ -74,14 +109,59 @@ fn assemble_refuses_pieces_of_different_frames() {
     let dir = scratch("assemble");
     let scene = fixtures().join("turntable.ron");
     let (a, b) = (dir.join("a.exr"), dir.join("b.exr"));
-    assert!(run(&["render", s(&scene), "--frame", "3", "--tile", "0/2", "-o", s(&a), "--progress", "none"]).0);
-    assert!(run(&["render", s(&scene), "--frame", "4", "--tile", "1/2", "-o", s(&b), "--progress", "none"]).0);
+    assert!(
+        run(&[
+            "render",
+            s(&scene),
+            "--frame",
+            "3",
+            "--tile",
+            "0/2",
+            "-o",
+            s(&a),
+            "--progress",
+            "none"
+        ])
+        .0
+    );
+    assert!(
+        run(&[
+            "render",
+            s(&scene),
+            "--frame",
+            "4",
+            "--tile",
+            "1/2",
+            "-o",
+            s(&b),
+            "--progress",
+            "none"
+        ])
+        .0
+    );
     let (ok, err) = run(&["assemble", s(&a), s(&b), "-o", s(&dir.join("whole.exr"))]);
     assert!(!ok, "pieces of frames 3 and 4 were assembled");
-    assert!(err.contains("different animation frames") && err.contains("frame 3") && err.contains("frame 4"), "{err}");
+    assert!(
+        err.contains("different animation frames") && err.contains("frame 3") && err.contains("frame 4"),
+        "{err}"
+    );
     // The same frame's tiles do assemble.
     let c = dir.join("c.exr");
-    assert!(run(&["render", s(&scene), "--frame", "3", "--tile", "1/2", "-o", s(&c), "--progress", "none"]).0);
+    assert!(
+        run(&[
+            "render",
+            s(&scene),
+            "--frame",
+            "3",
+            "--tile",
+            "1/2",
+            "-o",
+            s(&c),
+            "--progress",
+            "none"
+        ])
+        .0
+    );
     let (ok, err) = run(&["assemble", s(&a), s(&c), "-o", s(&dir.join("whole.exr"))]);
     assert!(ok, "{err}");
 }
@@ -90,13 +170,33 @@ fn assemble_refuses_pieces_of_different_frames() {
 fn several_frames_need_a_frame_field_and_stay_in_range() {
     let dir = scratch("template");
     let scene = fixtures().join("turntable.ron");
-    let (ok, err) = run(&["render", s(&scene), "--frames", "3..4", "-o", s(&dir.join("one.exr"))]);
+    let (ok, err) = run(&[
+        "render",
+        s(&scene),
+        "--frames",
+        "3..4",
+        "-o",
+        s(&dir.join("one.exr")),
+    ]);
     assert!(!ok && err.contains("{frame}"), "{err}");
-    let (ok, err) = run(&["render", s(&scene), "--frames", "4..9", "-o", s(&dir.join("f{frame}.exr"))]);
+    let (ok, err) = run(&[
+        "render",
+        s(&scene),
+        "--frames",
+        "4..9",
+        "-o",
+        s(&dir.join("f{frame}.exr")),
+    ]);
     assert!(!ok && err.contains("outside the scene's frames 3..=5"), "{err}");
-    assert!(!dir.join("f4.exr").exists(), "nothing is drawn before the range is refused");
+    assert!(
+        !dir.join("f4.exr").exists(),
+        "nothing is drawn before the range is refused"
+    );
     let (ok, err) = run(&["render", s(&scene), "--frame", "9", "-o", s(&dir.join("f.exr"))]);
-    assert!(!ok && err.contains("frame 9 is outside") && err.contains("--frame 9"), "{err}");
+    assert!(
+        !ok && err.contains("frame 9 is outside") && err.contains("--frame 9"),
+        "{err}"
+    );
 }
 
 /// A scene with `body` spliced in: errors must name their place.
@@ -115,10 +215,16 @@ fn time_fields_give_located_errors() {
         "Scene(\n    {CAMERA},\n        keys: [\n            (frame: 5, eye: (0, 0, 4), target: (0, 0, 0)),\n            (frame: 2, eye: (0, 0, 3), target: (0, 0, 0)),\n        ],\n    ),\n)\n"
     );
     let e = errors_of(&keys);
-    assert!(e.contains("keys out of order: frame 2 comes after frame 5") && e.contains(":5:"), "{e}");
+    assert!(
+        e.contains("keys out of order: frame 2 comes after frame 5") && e.contains(":5:"),
+        "{e}"
+    );
     let range = format!("Scene(\n    animation: (frames: (1, 10), frame: 12),\n    {CAMERA}),\n)\n");
     let e = errors_of(&range);
-    assert!(e.contains("frame 12 is outside the scene's frames 1..=10") && e.contains(":2:"), "{e}");
+    assert!(
+        e.contains("frame 12 is outside the scene's frames 1..=10") && e.contains(":2:"),
+        "{e}"
+    );
     let shutter = format!("Scene(\n    {CAMERA},\n        shutter: (0.5, 0.2)),\n)\n");
     let e = errors_of(&shutter);
     assert!(e.contains("shutter (0.5, 0.2)") && e.contains(":3:"), "{e}");
@@ -127,7 +233,10 @@ fn time_fields_give_located_errors() {
     );
     let e = errors_of(&both);
     assert!(e.contains("takes its placement from them"), "{e}");
-    assert!(e.contains("zero factor") && e.contains("objects[0].keys[0].transform[0]"), "{e}");
+    assert!(
+        e.contains("zero factor") && e.contains("objects[0].keys[0].transform[0]"),
+        "{e}"
+    );
 }
 
 /// The analytic scene: an orthographic camera 8 units wide over a
@@ -163,14 +272,20 @@ fn motion_blur_gives_each_pixel_its_shutter_time_coverage() {
         // Pixel centre in world units, and the fraction of the shutter
         // during which the square (centre −2 + 4t, half-width 1) covers it.
         let p = -4.0 + (x as f64 + 0.5) * 0.125;
-        let (t0, t1) = (((p - 1.0 + 2.0) / 4.0).clamp(0.0, 1.0), ((p + 1.0 + 2.0) / 4.0).clamp(0.0, 1.0));
+        let (t0, t1) = (
+            ((p - 1.0 + 2.0) / 4.0).clamp(0.0, 1.0),
+            ((p + 1.0 + 2.0) / 4.0).clamp(0.0, 1.0),
+        );
         let expected = 1.0 - (t1 - t0);
         for y in 0..2 {
             let got = f64::from(img.pixels[y * 64 + x].x);
             worst = worst.max((got - expected).abs());
         }
     }
-    assert!(worst < 1e-3, "worst pixel is {worst:e} from its shutter-time coverage");
+    assert!(
+        worst < 1e-3,
+        "worst pixel is {worst:e} from its shutter-time coverage"
+    );
 }
 
 /// The Cornell box's short block (from `assets/`), turning 20° about the
@@ -219,7 +334,9 @@ fn moving_block_matches_the_mean_of_static_renders_at_stratified_times() {
     // Eight blurred renders, and eight means of 64 still pictures at the
     // centres of 64 equal parts of the shutter (as many samples), each
     // with its own seeds: the spread between replicas is the bar.
-    let blurred: Vec<Vec<f64>> = (0..REPLICAS).map(|r| block_means(&moving_block("(0, 1)", 256, r))).collect();
+    let blurred: Vec<Vec<f64>> = (0..REPLICAS)
+        .map(|r| block_means(&moving_block("(0, 1)", 256, r)))
+        .collect();
     let still: Vec<Vec<f64>> = (0..REPLICAS)
         .map(|r| {
             let mut mean = vec![0.0; blurred[0].len()];
@@ -254,9 +371,14 @@ fn moving_block_matches_the_mean_of_static_renders_at_stratified_times() {
     common::report(&format!(
         "moving block: Σ(blurred − still mean)² / Σ variance = {ratio:.2} over 64 blocks of 4×4 pixels; worst block z = {worst_z:.1}"
     ));
-    assert!(ratio < 2.0, "blurred vs still mean: squared differences {ratio:.2}× what the noise explains");
+    assert!(
+        ratio < 2.0,
+        "blurred vs still mean: squared differences {ratio:.2}× what the noise explains"
+    );
     let noise = (noise2 / blurred[0].len() as f64).sqrt();
-    let rms = |a: &[f64], b: &[f64]| (a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len() as f64).sqrt();
+    let rms = |a: &[f64], b: &[f64]| {
+        (a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>() / a.len() as f64).sqrt()
+    };
     // And the motion shows: the block's first and last instants differ
     // by far more than the noise.
     let first = block_means(&moving_block("(0, 0)", 64, 1));
@@ -270,8 +392,18 @@ fn closed_shutter_equals_the_static_render_of_that_instant() {
         "keys: [\n            (frame: 0, transform: []),\n            (frame: 1, transform: [Rotate(axis: (0, 1, 0), degrees: 20), Translate((0.3, 0, 0))]),\n        ]",
         "transform: [Rotate(axis: (0, 1, 0), degrees: 20), Translate((0.3, 0, 0))]",
     );
-    assert!(static_text.contains("transform: [Rotate"), "the static twin was not made");
+    assert!(
+        static_text.contains("transform: [Rotate"),
+        "the static twin was not made"
+    );
     let still = render_loaded(&load_in(&fixtures(), &static_text, &Overrides::default()));
-    let closed = render_loaded(&load_in(&fixtures(), &moving_block("(1, 1)", 8, 3), &Overrides::default()));
-    assert!(still.pixels == closed.pixels, "a closed shutter at the last key differs from the static block there");
+    let closed = render_loaded(&load_in(
+        &fixtures(),
+        &moving_block("(1, 1)", 8, 3),
+        &Overrides::default(),
+    ));
+    assert!(
+        still.pixels == closed.pixels,
+        "a closed shutter at the last key differs from the static block there"
+    );
 }

@@ -153,14 +153,21 @@ mod tests {
         let mut angles = Vec::new();
         for s in 0..=20 {
             let trs = Trs::from_mat4(t.at(s as f32 * 0.5));
-            assert!((trs.rotation.length() - 1.0).abs() < 1e-5, "|q| = {}", trs.rotation.length());
+            assert!(
+                (trs.rotation.length() - 1.0).abs() < 1e-5,
+                "|q| = {}",
+                trs.rotation.length()
+            );
             // Scale stays 2 all along: no shrinking through the turn.
             assert!((t.at(s as f32 * 0.5).transform_vector3(Vec3::X).length() - 2.0).abs() < 1e-4);
             angles.push(trs.rotation.angle_between(Quat::IDENTITY));
         }
         for w in angles.windows(2) {
             let step = w[1] - w[0];
-            assert!((step - 7.5f32.to_radians()).abs() < 1e-3, "angular step {step} rad, expected 7.5°");
+            assert!(
+                (step - 7.5f32.to_radians()).abs() < 1e-3,
+                "angular step {step} rad, expected 7.5°"
+            );
         }
     }
 
@@ -189,7 +196,10 @@ mod tests {
                     if i & 4 == 0 { lo.z } else { hi.z },
                 );
                 let p = m.transform_point3(c);
-                assert!(p.cmpge(min).all() && p.cmple(max).all(), "{p} outside {min}..{max}");
+                assert!(
+                    p.cmpge(min).all() && p.cmple(max).all(),
+                    "{p} outside {min}..{max}"
+                );
             }
         }
     }

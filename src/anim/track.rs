@@ -93,7 +93,13 @@ impl Track<Vec3> {
 /// neighbours, `(p[i+1] − p[i−1]) / (t[i+1] − t[i−1])`, one-sided at the
 /// ends — the non-uniform form, so unevenly spaced keys do not overshoot
 /// in time.
-pub fn between<T: Copy, V>(keys: &[(f32, T)], how: Interpolation, i: usize, u: f32, part: impl Fn(T) -> V) -> V
+pub fn between<T: Copy, V>(
+    keys: &[(f32, T)],
+    how: Interpolation,
+    i: usize,
+    u: f32,
+    part: impl Fn(T) -> V,
+) -> V
 where
     V: Copy + std::ops::Add<Output = V> + std::ops::Sub<Output = V> + std::ops::Mul<f32, Output = V>,
 {

@@ -29,7 +29,10 @@ impl Trs {
         for _ in 0..100 {
             let next = (r + r.transpose().inverse()) * 0.5;
             // Largest change of any entry.
-            let d = (next - r).to_cols_array().iter().fold(0.0f32, |a, x| a.max(x.abs()));
+            let d = (next - r)
+                .to_cols_array()
+                .iter()
+                .fold(0.0f32, |a, x| a.max(x.abs()));
             r = next;
             if !(d > 1e-6) {
                 break;
@@ -68,7 +71,10 @@ mod tests {
     use super::*;
 
     fn close(a: Mat4, b: Mat4, tol: f32) -> bool {
-        a.to_cols_array().iter().zip(b.to_cols_array()).all(|(x, y)| (x - y).abs() <= tol)
+        a.to_cols_array()
+            .iter()
+            .zip(b.to_cols_array())
+            .all(|(x, y)| (x - y).abs() <= tol)
     }
 
     #[test]
@@ -86,10 +92,18 @@ mod tests {
         for m in cases {
             let trs = Trs::from_mat4(m);
             assert!((trs.rotation.length() - 1.0).abs() < 1e-6);
-            assert!(close(trs.to_mat4(), m, 1e-5), "{m} came back as {}", trs.to_mat4());
+            assert!(
+                close(trs.to_mat4(), m, 1e-5),
+                "{m} came back as {}",
+                trs.to_mat4()
+            );
         }
         // A rotation alone leaves no stretch.
         let r = Trs::from_mat4(Mat4::from_rotation_z(1.0));
-        assert!((r.stretch - Mat3::IDENTITY).abs_diff_eq(Mat3::ZERO, 1e-5), "{}", r.stretch);
+        assert!(
+            (r.stretch - Mat3::IDENTITY).abs_diff_eq(Mat3::ZERO, 1e-5),
+            "{}",
+            r.stretch
+        );
     }
 }

@@ -1,8 +1,8 @@
 //! `ronray render`: arguments in; load, plan, check the output, render,
 //! write (all library calls: `crate::frame`); the summary out.
 use super::{RenderSettings, USAGE, print_load_error, print_warnings};
-use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::frames::FrameArg;
+use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::{Existing, PieceMeta, Region, TileIndex, existing_piece, piece_meta};
 use crate::frame::{Output, Plan, RenderOptions, RenderStats, Request, TileDone, WriteOptions};
 use crate::imageio::PixelRect;
@@ -87,7 +87,16 @@ pub(super) fn cmd_render(
     limits: &Limits,
 ) -> ExitCode {
     let one = |settings: &RenderSettings, piece: &PieceArgs, frames| {
-        render_frame(path, output.clone(), settings, piece, layer_args, show_stats, limits, frames)
+        render_frame(
+            path,
+            output.clone(),
+            settings,
+            piece,
+            layer_args,
+            show_stats,
+            limits,
+            frames,
+        )
     };
     let done = match (piece.frames, settings.frame) {
         (Some((a, b)), _) => (a..=b).try_for_each(|f| {
@@ -276,7 +285,8 @@ fn prepare(
     });
     let plan = Plan::new(&loaded.scene, &loaded.view, request, denoise).map_err(|e| usage(&e))?;
     let tile = spec.and_then(|s| s.tile).map(|(i, _)| i);
-    let out = frame_name(Output::path(&loaded.view, path, output, tile), loaded, frames).map_err(|e| usage(&e))?;
+    let out =
+        frame_name(Output::path(&loaded.view, path, output, tile), loaded, frames).map_err(|e| usage(&e))?;
     let out = Output::new(out, &plan, &loaded.files, limits.max_memory)
         .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?;
     if plan.adaptive_ignored {

@@ -27,7 +27,10 @@ pub fn parse_frames(s: &str) -> Result<(i32, i32), String> {
     let bad = || format!("`{s}` is not a range of frames `A..B` (both included), e.g. `1..48`");
     let (a, b) = s.split_once("..").ok_or_else(bad)?;
     let b = b.strip_prefix('=').unwrap_or(b);
-    let (a, b): (i32, i32) = (a.trim().parse().map_err(|_| bad())?, b.trim().parse().map_err(|_| bad())?);
+    let (a, b): (i32, i32) = (
+        a.trim().parse().map_err(|_| bad())?,
+        b.trim().parse().map_err(|_| bad())?,
+    );
     if a > b {
         return Err(format!("`{s}` runs backwards: the first frame is after the last"));
     }
@@ -46,7 +49,11 @@ fn field(name: &str) -> Option<(std::ops::Range<usize>, usize)> {
     let end = rest.find('}')?;
     let width = match &rest[..end] {
         "" => 0,
-        spec => spec.strip_prefix(':')?.parse::<usize>().ok().filter(|w| *w <= 16)?,
+        spec => spec
+            .strip_prefix(':')?
+            .parse::<usize>()
+            .ok()
+            .filter(|w| *w <= 16)?,
     };
     Some((start..start + 6 + end + 1, width))
 }
@@ -61,7 +68,11 @@ pub fn fill(name: &str, frame: i32) -> String {
             break;
         };
         let number = if frame < 0 {
-            format!("-{:0width$}", frame.unsigned_abs(), width = width.saturating_sub(1))
+            format!(
+                "-{:0width$}",
+                frame.unsigned_abs(),
+                width = width.saturating_sub(1)
+            )
         } else {
             format!("{frame:0width$}")
         };

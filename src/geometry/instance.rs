@@ -160,7 +160,9 @@ impl Instance {
             return b;
         }
         if let Some(m) = &self.motion {
-            let (lo, hi) = m.track.bounds(b.min.into(), b.max.into(), m.shutter.0, m.shutter.1);
+            let (lo, hi) = m
+                .track
+                .bounds(b.min.into(), b.max.into(), m.shutter.0, m.shutter.1);
             return Aabb::EMPTY.grow_point(lo.into()).grow_point(hi.into());
         }
         (0..8).fold(Aabb::EMPTY, |acc, i| {

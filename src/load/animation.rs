@@ -8,7 +8,7 @@
 
 use super::transform::compose;
 use super::validate::Checker;
-use crate::anim::{Interpolation, MAX_KEYS, TransformTrack, Track};
+use crate::anim::{Interpolation, MAX_KEYS, Track, TransformTrack};
 use crate::camera::motion::CameraMotion;
 use crate::desc::{CameraDesc, InterpolationDesc, ObjectDesc, SceneDesc, TransformKeyDesc};
 use glam::Vec3;
@@ -92,13 +92,16 @@ impl Checker {
         self.key_times("camera.keys", c.keys.iter().map(|k| k.frame));
         for (k, key) in c.keys.iter().enumerate() {
             let at = format!("camera.keys[{k}]");
-            let ok = self.finite(&format!("{at}.eye"), &key.eye) & self.finite(&format!("{at}.target"), &key.target);
+            let ok = self.finite(&format!("{at}.eye"), &key.eye)
+                & self.finite(&format!("{at}.target"), &key.target);
             let up = key.up.unwrap_or(c.up);
             if let Some(u) = key.up {
                 self.nonzero(&format!("{at}.up"), &u, "`up`");
             }
             let view = Vec3::from(key.target) - Vec3::from(key.eye);
-            if ok && (view.length_squared() == 0.0 || view.normalize().cross(Vec3::from(up).normalize()).length() < 1e-4)
+            if ok
+                && (view.length_squared() == 0.0
+                    || view.normalize().cross(Vec3::from(up).normalize()).length() < 1e-4)
             {
                 self.push(
                     &at,
@@ -115,12 +118,20 @@ impl Checker {
         let mut last: Option<f32> = None;
         for (k, t) in times.enumerate() {
             if k == MAX_KEYS {
-                self.push(path, format!("more than {MAX_KEYS} keys"), "keep a key where the motion changes, not one per frame");
+                self.push(
+                    path,
+                    format!("more than {MAX_KEYS} keys"),
+                    "keep a key where the motion changes, not one per frame",
+                );
                 return;
             }
             let at = format!("{path}[{k}].frame");
             if !(t.is_finite() && t.abs() <= 2.0 * MAX_FRAME as f32) {
-                self.push(&at, format!("key time {t} is not a frame within ±{}", 2 * MAX_FRAME), "write the key's time in frames");
+                self.push(
+                    &at,
+                    format!("key time {t} is not a frame within ±{}", 2 * MAX_FRAME),
+                    "write the key's time in frames",
+                );
                 return;
             }
             if let Some(l) = last.filter(|l| t <= *l) {
@@ -152,13 +163,21 @@ fn interpolation(i: InterpolationDesc) -> Interpolation {
 
 /// The keys of an instance as a track, if it has any.
 pub(super) fn instance_track(o: &ObjectDesc) -> Option<TransformTrack> {
-    let ObjectDesc::Instance { keys, interpolation: how, .. } = o else {
+    let ObjectDesc::Instance {
+        keys,
+        interpolation: how,
+        ..
+    } = o
+    else {
         return None;
     };
     if keys.is_empty() {
         return None;
     }
-    let keys: Vec<_> = keys.iter().map(|TransformKeyDesc { frame, transform }| (*frame, compose(transform))).collect();
+    let keys: Vec<_> = keys
+        .iter()
+        .map(|TransformKeyDesc { frame, transform }| (*frame, compose(transform)))
+        .collect();
     Some(TransformTrack::new(&keys, interpolation(*how)))
 }
 
@@ -203,12 +222,18 @@ fn still() -> crate::camera::Camera {
 
 /// Whether the camera's keys move it between `open` and `close`.
 pub(super) fn camera_moves(m: &CameraMotion, open: f32, close: f32) -> bool {
-    [&m.eye, &m.target, &m.up].iter().any(|t| t.moves_between(open, close))
+    [&m.eye, &m.target, &m.up]
+        .iter()
+        .any(|t| t.moves_between(open, close))
 }
 
 /// Whether anything moves while the shutter is open.
 pub(super) fn moves(desc: &SceneDesc) -> bool {
     let (open, close) = shutter(desc);
     camera_motion(&desc.camera, still()).is_some_and(|m| camera_moves(&m, open, close))
-        || desc.objects.iter().filter_map(instance_track).any(|t| t.moves_between(open, close))
+        || desc
+            .objects
+            .iter()
+            .filter_map(instance_track)
+            .any(|t| t.moves_between(open, close))
 }

@@ -108,7 +108,11 @@ impl Reader<'_> {
             "film" => s.film = self.section(known, &field.value),
             "integrator" => s.integrator = self.section(known, &field.value),
             "test" => s.test = self.section::<Option<TestDesc>>(known, &field.value).flatten(),
-            "animation" => s.animation = self.section::<Option<AnimationDesc>>(known, &field.value).flatten(),
+            "animation" => {
+                s.animation = self
+                    .section::<Option<AnimationDesc>>(known, &field.value)
+                    .flatten()
+            }
             "materials" => s.materials = self.map(field, "materials", stand_in_material),
             "meshes" => s.meshes = self.map(field, "meshes", stand_in_mesh),
             "lights" => s.lights = self.list(field, "lights"),
