@@ -206,7 +206,11 @@ fn slurm_job_array_over_frames_writes_what_frames_range_writes() {
         .arg(dir.path().join("range_{frame}.exr"))
         .output()
         .expect("ronray runs");
-    assert!(range.status.success(), "{}", String::from_utf8_lossy(&range.stderr));
+    assert!(
+        range.status.success(),
+        "{}",
+        String::from_utf8_lossy(&range.stderr)
+    );
     // Array task k draws frame 3 + k: the scene's first frame plus the index.
     let wrap = format!(
         "{bin} render {} --frame auto --threads 1 --progress none -o {}",
@@ -229,10 +233,17 @@ fn slurm_job_array_over_frames_writes_what_frames_range_writes() {
     let logs: String = (0..3)
         .map(|i| std::fs::read_to_string(dir.path().join(format!("slurm-{i}.out"))).unwrap_or_default())
         .collect();
-    assert!(o.status.success(), "sbatch --wait failed: {}\n{logs}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        o.status.success(),
+        "sbatch --wait failed: {}\n{logs}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     for f in 3..=5 {
         let a = std::fs::read(dir.path().join(format!("range_{f}.exr"))).expect("range frame");
         let b = std::fs::read(dir.path().join(format!("slurm_{f}.exr"))).unwrap_or_default();
-        assert!(a == b, "frame {f} from the Slurm array differs from --frames 3..5\n{logs}");
+        assert!(
+            a == b,
+            "frame {f} from the Slurm array differs from --frames 3..5\n{logs}"
+        );
     }
 }

@@ -34,7 +34,7 @@ impl Trs {
                 .iter()
                 .fold(0.0f32, |a, x| a.max(x.abs()));
             r = next;
-            if !(d > 1e-6) {
+            if d.is_nan() || d <= 1e-6 {
                 break;
             }
         }

@@ -86,7 +86,9 @@ pub(super) fn cmd_render(
     show_stats: bool,
     limits: &Limits,
 ) -> ExitCode {
-    let one = |settings: &RenderSettings, piece: &PieceArgs, frames| {
+    // `--frames` stays in `piece`: each frame checks the range and the
+    // output name against it.
+    let one = |settings: &RenderSettings, piece: &PieceArgs| {
         render_frame(
             path,
             output.clone(),
@@ -95,7 +97,6 @@ pub(super) fn cmd_render(
             layer_args,
             show_stats,
             limits,
-            frames,
         )
     };
     let done = match (piece.frames, settings.frame) {
@@ -104,16 +105,16 @@ pub(super) fn cmd_render(
                 frame: Some(FrameArg::Given(f)),
                 ..settings.clone()
             };
-            one(&s, piece, Some((a, b)))
+            one(&s, piece)
         }),
         (None, Some(FrameArg::Auto)) => match auto_frame(path, settings, piece, limits) {
-            Ok((s, p)) => one(&s, &p, None),
+            Ok((s, p)) => one(&s, &p),
             Err(message) => {
                 eprintln!("error: {message}; nothing was written");
                 Err(USAGE.into())
             }
         },
-        (None, _) => one(settings, piece, None),
+        (None, _) => one(settings, piece),
     };
     match done {
         Ok(()) => ExitCode::SUCCESS,
@@ -175,7 +176,6 @@ fn render_frame(
     layer_args: &super::layers::DenoiseArgs,
     show_stats: bool,
     limits: &Limits,
-    frames: Option<(i32, i32)>,
 ) -> Result<(), ExitCode> {
     let json = piece.progress.as_deref() == Some("json");
     let overrides = crate::load::Overrides {
@@ -191,7 +191,7 @@ fn render_frame(
     };
     // Warnings are printed, not fatal: the scene renders as written.
     print_warnings(&loaded.warnings);
-    let (plan, out, meta) = match prepare(path, output, &loaded, piece, layer_args.denoise, limits, frames) {
+    let (plan, out, meta) = match prepare(path, output, &loaded, piece, layer_args.denoise, limits) {
         Ok(Some(job)) => job,
         Ok(None) => return Ok(()),
         Err((message, code)) => {
@@ -261,7 +261,6 @@ fn prepare(
     piece: &PieceArgs,
     denoise: bool,
     limits: &Limits,
-    frames: Option<(i32, i32)>,
 ) -> Result<Option<(Plan, Output, Option<PieceMeta>)>, Refusal> {
     let usage = |e: &dyn std::fmt::Display| (e.to_string(), USAGE.into());
     let failure = |e: &dyn std::fmt::Display| (e.to_string(), ExitCode::FAILURE);
@@ -285,8 +284,12 @@ fn prepare(
     });
     let plan = Plan::new(&loaded.scene, &loaded.view, request, denoise).map_err(|e| usage(&e))?;
     let tile = spec.and_then(|s| s.tile).map(|(i, _)| i);
-    let out =
-        frame_name(Output::path(&loaded.view, path, output, tile), loaded, frames).map_err(|e| usage(&e))?;
+    let out = frame_name(
+        Output::path(&loaded.view, path, output, tile),
+        loaded,
+        piece.frames,
+    )
+    .map_err(|e| usage(&e))?;
     let out = Output::new(out, &plan, &loaded.files, limits.max_memory)
         .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?;
     if plan.adaptive_ignored {
