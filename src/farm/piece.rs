@@ -320,6 +320,7 @@ mod tests {
             samples: (4, 12),
             tile: Some((1, 3)),
             frame: (10, 9),
+            animation_frame: Some(-12),
             rect,
         };
         let mut sums = SampleSums::new(rect);
