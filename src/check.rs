@@ -287,6 +287,31 @@ fn by_product(golden: &Path, suffix: &str) -> PathBuf {
     golden.with_extension(suffix)
 }
 
+/// Refuses to judge a scene whose golden or by-products are (or pass
+/// through) links leading out of the scene's folder and `root`: a scene
+/// repository shipping `golden/x.png -> ../../notes.txt` would otherwise
+/// have `--bless` (or a failed check) replace a file the user never named.
+fn fenced(scene: &Path, golden: &Path, root: Option<&Path>) -> Result<(), LoadError> {
+    let folder = crate::files::resolved(scene.parent().unwrap_or(Path::new("")));
+    let fences: Vec<&Path> = std::iter::once(folder.as_path()).chain(root).collect();
+    let writes = [
+        golden.to_path_buf(),
+        variance_path(golden),
+        by_product(golden, "new.png"),
+        by_product(golden, "diff.png"),
+    ];
+    match writes
+        .iter()
+        .find_map(|w| crate::files::write_outside(&fences, w))
+    {
+        None => Ok(()),
+        Some(why) => Err(io_error(
+            golden,
+            format!("{why}; a scene's golden images are written only inside its folder"),
+        )),
+    }
+}
+
 fn remove_by_products(golden: &Path) {
     for s in ["new.png", "diff.png", "html"] {
         let _ = std::fs::remove_file(by_product(golden, s));
@@ -331,6 +356,7 @@ pub fn check_scene(scene: &Path, opts: &CheckOptions) -> CheckResult {
 
 fn judge(scene: &Path, opts: &CheckOptions) -> Result<Outcome, LoadError> {
     let golden = golden_path(scene);
+    fenced(scene, &golden, opts.root.as_deref())?;
     let (o, t) = test_overrides(scene, &opts.sets, opts.root.as_deref())?;
     let img = render_with(scene, &o, opts.threads)?;
     let tolerance = opts.tolerance.unwrap_or(t.tolerance as f64);

@@ -67,6 +67,50 @@ pub fn resolved(path: &Path) -> PathBuf {
     abs
 }
 
+/// Where writing `path` really lands: a symlink at `path` is followed to
+/// its target, however many links deep (at most 40, as the kernel does),
+/// even when the target does not exist yet (a dangling link is written
+/// through too). Folders on the way are followed by [`resolved`].
+pub fn follow_links(path: &Path) -> PathBuf {
+    let mut at = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::read_link(&at) {
+            Ok(target) => {
+                at = match at.parent() {
+                    Some(dir) => dir.join(target),
+                    None => target,
+                }
+            }
+            Err(_) => break,
+        }
+    }
+    at
+}
+
+/// The file a write to `path` replaces, with every link on the way
+/// followed: the key to compare outputs with inputs and fences.
+pub fn write_target(path: &Path) -> PathBuf {
+    resolved(&follow_links(path))
+}
+
+/// `None` when a write to `path` (links followed, dangling ones too) lands
+/// inside one of `fences`; else the sentence saying where it would land.
+/// What a scene names for writing (its `film.output`, its goldens) must
+/// stay in its folder, or under `--root`.
+pub fn write_outside(fences: &[&Path], path: &Path) -> Option<String> {
+    let real = write_target(path);
+    if fences.iter().any(|f| real.starts_with(resolved(f))) {
+        return None;
+    }
+    let names: Vec<String> = fences.iter().map(|f| resolved(f).display().to_string()).collect();
+    Some(format!(
+        "{} would write {}, outside {}",
+        path.display(),
+        real.display(),
+        names.join(" and ")
+    ))
+}
+
 /// `None` when `path`, resolved (symlinks followed), lies inside `root`;
 /// else the sentence saying where it really is. Used for every input of a
 /// scene when `--root DIR` is given.
@@ -103,6 +147,32 @@ mod tests {
         // The parent of a bare file name is "": the current folder, not
         // a prefix of everything.
         assert!(outside_root(Path::new(""), Path::new("/etc/passwd")).is_some());
+    }
+
+    #[test]
+    fn a_write_through_a_link_out_of_the_folder_is_outside_it() {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let scene = dir.path().join("scene");
+        std::fs::create_dir_all(scene.join("sub")).expect("mkdir");
+        std::fs::write(dir.path().join("notes.txt"), "x").expect("write");
+        let link = |target: &str, name: &str| {
+            std::os::unix::fs::symlink(target, scene.join(name)).expect("link");
+            scene.join(name)
+        };
+        let fence = [scene.as_path()];
+        assert!(write_outside(&fence, &scene.join("out.png")).is_none());
+        assert!(write_outside(&fence, &scene.join("new/out.png")).is_none());
+        assert!(write_outside(&fence, &link("sub/x.png", "inside.png")).is_none());
+        let out = link("../notes.txt", "out.png");
+        let why = write_outside(&fence, &out).expect("outside");
+        assert!(why.contains("notes.txt"), "{why}");
+        // A dangling link is written through as well.
+        assert!(write_outside(&fence, &link("../made-up.png", "dangling.png")).is_some());
+        // A folder on the way that is a link.
+        assert!(write_outside(&fence, &link("..", "up").join("x.png")).is_some());
+        // Two links deep.
+        link("out.png", "twice.png");
+        assert!(write_outside(&fence, &scene.join("twice.png")).is_some());
     }
 
     #[test]

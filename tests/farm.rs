@@ -20,8 +20,13 @@ fn scene() -> String {
 /// `ronray render` of the test scene in `dir` with `extra` arguments; must
 /// succeed.
 fn render(dir: &Path, extra: &[&str]) -> Output {
+    render_spp(dir, SPP, extra)
+}
+
+/// [`render`] at `spp` samples per pixel.
+fn render_spp(dir: &Path, spp: &str, extra: &[&str]) -> Output {
     let s = scene();
-    let mut args = vec!["render", s.as_str(), "--size", SIZE, "--spp", SPP];
+    let mut args = vec!["render", s.as_str(), "--size", SIZE, "--spp", spp];
     args.extend_from_slice(extra);
     let o = ronray_in(dir, &args);
     assert!(
@@ -154,6 +159,73 @@ fn three_way_sample_split_merges_to_the_whole_render_exactly() {
     common::report(&format!(
         "three_way_sample_split: exact sums differ from the whole render by 0; merging the pieces' f32 means would differ by up to {abs:.2e} ({rel:.2e} relative)"
     ));
+}
+
+/// 32 spp: enough for the default `allocation: ByNoise` to spread samples
+/// (below 32 every pixel takes `spp`, and pieces would pass trivially).
+const SPREAD_SPP: &str = "32";
+
+/// Renders the whole frame and the pieces with `--spp 32` and the scene's
+/// own allocation (`ByNoise`), and requires the assembled EXR and PNG to be
+/// the whole render's bytes.
+fn assert_spread_pieces_reassemble(pieces: &[&[&str]]) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let mut names = Vec::new();
+    for (i, extra) in pieces.iter().enumerate() {
+        let out = format!("piece-{i}.exr");
+        let threads = if i % 2 == 0 { "1" } else { "2" };
+        let mut args = extra.to_vec();
+        args.extend(["-o", &out, "--threads", threads]);
+        let o = render_spp(dir.path(), SPREAD_SPP, &args);
+        assert!(
+            stderr(&o).contains("first renders the whole frame's first pass") || extra.contains(&"--samples"),
+            "a tile of a frame spread by noise says what it costs: {}",
+            stderr(&o)
+        );
+        let piece = ronray::farm::read_piece(&dir.path().join(&out)).expect("piece");
+        assert_eq!(piece.meta.spread, Some(16), "{out} is spread by noise");
+        names.push(out);
+    }
+    for ext in ["exr", "png"] {
+        render_spp(dir.path(), SPREAD_SPP, &["-o", &format!("whole.{ext}")]);
+        let out = format!("assembled.{ext}");
+        let o = assemble(dir.path(), &names, &out);
+        assert!(o.status.success(), "assemble failed: {}", stderr(&o));
+        assert!(
+            read(dir.path().join(&out)) == read(dir.path().join(format!("whole.{ext}"))),
+            "{out} assembled from {pieces:?} differs from the whole render spread by noise"
+        );
+    }
+    // The pixels really took different counts: the test is not an even render.
+    let whole = ronray::imageio::read_image(&dir.path().join("whole.exr")).expect("whole");
+    let even = {
+        render_spp(
+            dir.path(),
+            SPREAD_SPP,
+            &["--set", "film.allocation=Even", "-o", "even.exr"],
+        );
+        ronray::imageio::read_image(&dir.path().join("even.exr")).expect("even")
+    };
+    assert!(whole.pixels != even.pixels, "ByNoise rendered what Even renders");
+}
+
+#[test]
+fn tiles_of_a_frame_spread_by_noise_reassemble_byte_for_byte() {
+    assert_spread_pieces_reassemble(&[&["--tile", "0/3"], &["--tile", "2/3"], &["--tile", "1/3"]]);
+}
+
+#[test]
+fn sample_splits_of_a_frame_spread_by_noise_reassemble_byte_for_byte() {
+    assert_spread_pieces_reassemble(&[&["--samples", "13..32"], &["--samples", "0..13"]]);
+}
+
+#[test]
+fn crops_and_sample_splits_of_a_frame_spread_by_noise_mix() {
+    assert_spread_pieces_reassemble(&[
+        &["--pixels", "0,0,64,20"],
+        &["--pixels", "0,20,64,64", "--samples", "0..7"],
+        &["--pixels", "0,20,64,64", "--samples", "7..32"],
+    ]);
 }
 
 #[test]
@@ -347,4 +419,32 @@ fn tile_auto_reads_the_schedulers_index_or_says_which_variables_it_reads() {
     let none = run(None);
     assert_eq!(none.status.code(), Some(2));
     assert!(stderr(&none).contains("SLURM_ARRAY_TASK_ID"), "{}", stderr(&none));
+}
+
+/// `--resume` reads the whole piece: a truncated one is rendered again, not
+/// reported done; a FIFO named as a piece or as `--resume`'s output does
+/// not hang (issue 39).
+#[test]
+fn resume_redoes_a_truncated_piece_and_fifos_do_not_hang() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    render(dir.path(), &["--tile", "0/2", "-o", "t.exr"]);
+    let good = read(dir.path().join("t.exr"));
+    std::fs::write(dir.path().join("t.exr"), &good[..good.len() / 2]).expect("truncate");
+    let o = render(dir.path(), &["--tile", "0/2", "-o", "t.exr", "--resume"]);
+    assert!(!stderr(&o).contains("skipped"), "{}", stderr(&o));
+    assert!(
+        read(dir.path().join("t.exr")) == good,
+        "the truncated piece was not repaired"
+    );
+    let fifo = dir.path().join("pipe.exr");
+    let ok = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo");
+    assert!(ok.success());
+    let o = assemble(dir.path(), &["t.exr".into(), "pipe.exr".into()], "frame.exr");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("not a regular file"), "{}", stderr(&o));
+    let o = render(dir.path(), &["--tile", "1/2", "-o", "pipe.exr", "--resume"]);
+    assert!(stderr(&o).contains("re-rendering"), "{}", stderr(&o));
 }

@@ -5,6 +5,14 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 pub(super) fn cmd_assemble(pieces: &[PathBuf], out: &Path) -> ExitCode {
+    if let Some(p) = crate::farm::output_replaces_piece(pieces, out) {
+        eprintln!(
+            "error: -o {} would replace the piece {}; nothing was written (name another output)",
+            out.display(),
+            p.display()
+        );
+        return ExitCode::FAILURE;
+    }
     let (image, meta) = match assemble_files(pieces) {
         Ok(r) => r,
         Err(e) => {

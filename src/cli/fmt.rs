@@ -109,24 +109,44 @@ pub(super) fn unified_diff(path: &Path, old: &str, new: &str) -> String {
         .to_string()
 }
 
-/// Writes through a new temporary file in the target's folder (created
-/// exclusively under a random name, so nothing planted there is followed),
-/// with the target's permissions, renamed over the target: a reader sees the
-/// old file or the new one, never half of one, and a symbolic link at the
-/// target is replaced, not written through.
+/// Writes `text` over the scene file `target` as an editor saving it would:
+/// a symlink is written through to its target (the link stays a link), a
+/// file with other hard links is rewritten in place (the links keep sharing
+/// it), and any other file is replaced atomically — a new temporary file in
+/// its folder (created exclusively under a random name, so nothing planted
+/// there is followed) with the file's mode, renamed over it, so a reader
+/// sees the old file or the new one. A read-only file is refused: `fmt`
+/// does not change what its owner protected.
 fn write_safely(target: &Path, text: &str) -> std::io::Result<()> {
-    let dir = match target.parent() {
+    let real = crate::files::follow_links(target);
+    let meta = std::fs::metadata(&real).ok();
+    if let Some(m) = &meta {
+        if m.permissions().readonly() {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::PermissionDenied,
+                "it is read-only; nothing was changed (make it writable to format it)",
+            ));
+        }
+        #[cfg(unix)]
+        if std::os::unix::fs::MetadataExt::nlink(m) > 1 {
+            let mut f = std::fs::OpenOptions::new()
+                .write(true)
+                .truncate(true)
+                .open(&real)?;
+            f.write_all(text.as_bytes())?;
+            return f.sync_all();
+        }
+    }
+    let dir = match real.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
     let mut tmp = tempfile::Builder::new().prefix(".ronray-fmt").tempfile_in(dir)?;
     tmp.write_all(text.as_bytes())?;
     tmp.as_file().sync_all()?;
-    if let Ok(m) = std::fs::symlink_metadata(target)
-        && m.is_file()
-    {
+    if let Some(m) = meta.filter(|m| m.is_file()) {
         tmp.as_file().set_permissions(m.permissions())?;
     }
-    tmp.persist(target).map_err(|e| e.error)?;
+    tmp.persist(&real).map_err(|e| e.error)?;
     Ok(())
 }

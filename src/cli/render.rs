@@ -4,7 +4,7 @@ use super::{RenderSettings, USAGE, print_load_error, print_warnings};
 use crate::farm::frames::FrameArg;
 use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::{Existing, PieceMeta, Region, TileIndex, existing_piece, piece_meta};
-use crate::frame::{Output, Plan, RenderOptions, RenderStats, Request, TileDone, WriteOptions};
+use crate::frame::{Output, Plan, RenderOptions, RenderStats, Request, Sampling, TileDone, WriteOptions};
 use crate::imageio::PixelRect;
 use crate::load::{Loaded, load_with};
 use clap::Args;
@@ -284,6 +284,7 @@ fn prepare(
     });
     let plan = Plan::new(&loaded.scene, &loaded.view, request, denoise).map_err(|e| usage(&e))?;
     let tile = spec.and_then(|s| s.tile).map(|(i, _)| i);
+    let cli_given = output.is_some();
     let out = frame_name(
         Output::path(&loaded.view, path, output, tile),
         loaded,
@@ -291,14 +292,18 @@ fn prepare(
     )
     .map_err(|e| usage(&e))?;
     let out = Output::new(out, &plan, &loaded.files, limits.max_memory)
-        .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?;
-    if plan.adaptive_ignored {
-        eprintln!(
-            "note: film.noise_threshold is ignored for pieces: their exact sums add up across machines only when every pixel takes every sample"
-        );
+        .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?
+        .confine_scene_output(&loaded.view, path, cli_given, limits.root)
+        .map_err(|e| failure(&e))?;
+    for note in plan.piece_notes(&loaded.view) {
+        eprintln!("note: {note}");
     }
+    let spread = match plan.sampling {
+        Sampling::Spread(s) => Some(s.first),
+        Sampling::Even { .. } | Sampling::Adaptive(_) => None,
+    };
     let meta = spec
-        .map(|s| piece_meta(loaded, &s))
+        .map(|s| piece_meta(loaded, &s, spread))
         .transpose()
         .map_err(|e| failure(&e))?;
     if let (true, Some(m)) = (piece.resume, &meta) {

@@ -1,7 +1,9 @@
 //! Putting pieces back together: crops and tiles are placed, sample splits
 //! are added (exact sums, so the order does not matter), and the result is
 //! divided by the frame's samples per pixel — the same division the whole
-//! render does on the same sums, hence the same bytes.
+//! render does on the same sums, hence the same bytes. Pieces of a frame
+//! spread by noise carry each pixel's count and their two passes' sums
+//! apart; the division is then the whole render's two-pass mean.
 //!
 //! Every problem is found before anything is written, and each names the
 //! pieces and the pixels concerned: pieces from different scenes, ronray
@@ -13,7 +15,7 @@ use super::piece::{Piece, PieceMeta, read_piece};
 use crate::imageio::SampleSums;
 use crate::imageio::{Image, PixelRect};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Why pieces were not assembled: every problem found, one per line.
 #[derive(Debug, thiserror::Error)]
@@ -25,6 +27,14 @@ pub struct AssembleError {
 
 /// At most this many overlaps or gaps are described one by one.
 const SHOWN: usize = 8;
+
+/// The piece that writing the assembled frame to `out` would replace (links
+/// followed on both sides), if any: `assemble -o` must never destroy its
+/// own input.
+pub fn output_replaces_piece<'a>(pieces: &'a [PathBuf], out: &Path) -> Option<&'a PathBuf> {
+    let target = crate::files::write_target(out);
+    pieces.iter().find(|p| crate::files::resolved(p) == target)
+}
 
 /// Reads the piece files and assembles them.
 pub fn assemble_files(paths: &[PathBuf]) -> Result<(Image, PieceMeta), AssembleError> {
@@ -52,7 +62,11 @@ pub fn assemble(pieces: &[(String, Piece)]) -> Result<(Image, PieceMeta), Assemb
     }
     let first = &pieces[0].1.meta;
     let (w, h) = first.frame;
-    let mut total = SampleSums::new(PixelRect::full(w, h));
+    let full = PixelRect::full(w, h);
+    let mut total = match first.spread {
+        Some(f) => SampleSums::new_spread(full, f),
+        None => SampleSums::new(full),
+    };
     for (_, p) in pieces {
         total.add(&p.sums);
     }
@@ -82,6 +96,10 @@ pub fn check(pieces: &[(&str, &PieceMeta)]) -> Vec<String> {
         format!("{} spp", m.spp)
     });
     disagree(&mut problems, pieces, "seeds", |m| format!("seed {}", m.seed));
+    disagree(&mut problems, pieces, "sample allocations", |m| match m.spread {
+        Some(f) => format!("samples spread by noise after a first pass of {f}"),
+        None => "samples spread evenly".into(),
+    });
     if !problems.is_empty() {
         // Overlaps and gaps between different frames would only be noise.
         return problems;
@@ -290,6 +308,7 @@ mod tests {
             frame: (8, 4),
             animation_frame: None,
             rect,
+            spread: None,
         }
     }
 

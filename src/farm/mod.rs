@@ -22,7 +22,7 @@ pub mod hash;
 pub mod piece;
 pub mod split;
 
-pub use assemble::{AssembleError, assemble, assemble_files};
+pub use assemble::{AssembleError, assemble, assemble_files, output_replaces_piece};
 pub use hash::scene_hash;
 pub use piece::{Piece, PieceMeta, read_piece, read_piece_meta, write_piece};
 pub use split::{PieceSpec, Region, TileIndex, resolve};
@@ -40,8 +40,9 @@ pub struct PieceError {
     pub reason: String,
 }
 
-/// The metadata of the piece `spec` of a loaded scene.
-pub fn piece_meta(loaded: &Loaded, spec: &PieceSpec) -> Result<PieceMeta, String> {
+/// The metadata of the piece `spec` of a loaded scene; `spread` is the
+/// first pass's samples per pixel when the plan spreads samples by noise.
+pub fn piece_meta(loaded: &Loaded, spec: &PieceSpec, spread: Option<u32>) -> Result<PieceMeta, String> {
     let f = loaded.view.film;
     // The frame drawn is recorded apart, so that pieces of two frames of
     // one scene are told apart as frames, not as scenes.
@@ -61,6 +62,7 @@ pub fn piece_meta(loaded: &Loaded, spec: &PieceSpec) -> Result<PieceMeta, String
         tile: spec.tile,
         frame: (f.width, f.height),
         rect: spec.rect,
+        spread,
     })
 }
 
@@ -80,7 +82,9 @@ pub fn existing_piece(path: &Path, meta: &PieceMeta) -> Existing {
     if !path.exists() {
         return Existing::Absent;
     }
-    match read_piece_meta(path) {
+    // The whole piece is read, not only its header: a truncated or corrupt
+    // piece (a job killed mid-copy) is rendered again, not skipped.
+    match read_piece(path).map(|p| p.meta) {
         Ok(m) if m.same_work(meta) => Existing::Done,
         Ok(m) if m.scene != meta.scene => Existing::Different(format!(
             "it holds scene {}, and this scene is {}",

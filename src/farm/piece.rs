@@ -8,15 +8,20 @@
 //!   values the whole render has at those pixels. `sum0.R` … `sum3.B`
 //!   (32-bit unsigned) hold each channel's exact sample sum
 //!   ([`crate::math::ExactSum`]) as four little-endian words, which is what
-//!   assembling adds up.
+//!   assembling adds up. A piece of a frame spread by noise
+//!   (`spread=` below) adds `late0.R` … `late3.B`, the sums of the samples
+//!   past the first pass (the sum channels then hold the first pass's), and
+//!   `count` (32-bit unsigned), each pixel's number of samples in the piece.
 //! - **Metadata**: one string-vector attribute `ronray` with `version=`,
-//!   `scene=` (the scene content hash), `samples=A..B`, `spp=`, `seed=` and,
-//!   for `--tile` pieces, `tile=I/N`. One attribute rather than six: the
+//!   `scene=` (the scene content hash), `samples=A..B`, `spp=`, `seed=`,
+//!   for `--tile` pieces `tile=I/N`, and for a frame spread by noise
+//!   `spread=F` (its first pass's samples per pixel). One attribute rather than six: the
 //!   `exr` crate keeps extra attributes in a hash map whose order changes
 //!   from run to run, and a single one keeps piece files byte-reproducible.
 
 use super::PieceError;
 use crate::imageio::SampleSums;
+use crate::imageio::sample_sums::SpreadSums;
 use crate::imageio::{PixelRect, write_atomic};
 use crate::math::ExactSum;
 use exr::prelude::{self as x, AttributeValue, ReadChannels, ReadLayers, Text, WritableImage};
@@ -44,6 +49,10 @@ pub struct PieceMeta {
     pub animation_frame: Option<i32>,
     /// The piece's pixels (its EXR data window).
     pub rect: PixelRect,
+    /// For a frame spread by noise (`film.allocation: ByNoise`), the
+    /// samples per pixel of its first pass; samples `A..B` then stand for
+    /// `A·n/spp..B·n/spp` of a pixel that takes `n`.
+    pub spread: Option<u32>,
 }
 
 impl PieceMeta {
@@ -60,6 +69,7 @@ impl PieceMeta {
                 m.frame,
                 m.animation_frame,
                 m.rect,
+                m.spread,
             )
         };
         key(self) == key(other)
@@ -78,6 +88,9 @@ impl PieceMeta {
         }
         if let Some(f) = self.animation_frame {
             v.push(format!("animation_frame={f}"));
+        }
+        if let Some(first) = self.spread {
+            v.push(format!("spread={first}"));
         }
         v
     }
@@ -100,6 +113,10 @@ impl PieceMeta {
             }),
             Err(_) => None,
         };
+        let spread = match get("spread") {
+            Ok(v) => Some(v.parse::<u32>().map_err(|_| bad("spread", v))?),
+            Err(_) => None,
+        };
         Ok(PieceMeta {
             version: get("version")?.to_string(),
             scene: get("scene")?.to_string(),
@@ -113,6 +130,7 @@ impl PieceMeta {
                 Err(_) => None,
             },
             rect,
+            spread,
         })
     }
 }
@@ -126,9 +144,24 @@ pub struct Piece {
     pub sums: SampleSums,
 }
 
-/// The sum channels' names: word `w` of channel `c`.
-fn sum_channel(w: usize, c: usize) -> String {
-    format!("sum{w}.{}", ["R", "G", "B"][c])
+/// The sum channels' names: word `w` of channel `c` of the sums called
+/// `prefix` (`sum`, `late`).
+fn sum_channel(prefix: &str, w: usize, c: usize) -> String {
+    format!("{prefix}{w}.{}", ["R", "G", "B"][c])
+}
+
+/// Adds twelve channels holding `sums`' words, named `prefix`.
+fn push_sums(channels: &mut Vec<x::AnyChannel<x::FlatSamples>>, prefix: &str, sums: &[ExactSum]) {
+    let words: Vec<[[u32; 4]; 3]> = sums.iter().map(ExactSum::to_words).collect();
+    for w in 0..4 {
+        for c in 0..3 {
+            let v = words.iter().map(|p| p[c][w]).collect();
+            channels.push(x::AnyChannel::new(
+                sum_channel(prefix, w, c).as_str(),
+                x::FlatSamples::U32(v),
+            ));
+        }
+    }
 }
 
 /// Writes a piece atomically. PNG and other formats are refused: 8-bit
@@ -145,22 +178,25 @@ pub fn write_piece(path: &Path, meta: &PieceMeta, sums: &SampleSums) -> Result<(
         ));
     }
     debug_assert_eq!(meta.rect, sums.rect);
-    let mean = sums.mean(meta.samples.1 - meta.samples.0);
+    if meta.spread != sums.spread.as_ref().map(|s| s.first) {
+        return Err(err(
+            "its metadata and its sums disagree on spreading by noise".into()
+        ));
+    }
+    let mean = sums.piece_mean(meta.samples.1 - meta.samples.0);
     let mut channels: Vec<x::AnyChannel<x::FlatSamples>> = (0..3)
         .map(|c| {
             let v = mean.pixels.iter().map(|p| p[c]).collect();
             x::AnyChannel::new(["R", "G", "B"][c], x::FlatSamples::F32(v))
         })
         .collect();
-    let words: Vec<[[u32; 4]; 3]> = sums.sums.iter().map(ExactSum::to_words).collect();
-    for w in 0..4 {
-        for c in 0..3 {
-            let v = words.iter().map(|p| p[c][w]).collect();
-            channels.push(x::AnyChannel::new(
-                sum_channel(w, c).as_str(),
-                x::FlatSamples::U32(v),
-            ));
-        }
+    push_sums(&mut channels, "sum", &sums.sums);
+    if let Some(spread) = &sums.spread {
+        push_sums(&mut channels, "late", &spread.late);
+        channels.push(x::AnyChannel::new(
+            "count",
+            x::FlatSamples::U32(spread.counts.clone()),
+        ));
     }
     let r = meta.rect;
     let mut attributes = x::LayerAttributes {
@@ -227,12 +263,23 @@ fn describe(
     PieceMeta::from_lines(&lines, frame, rect)
 }
 
-/// Reads only a piece's header (for `--resume`).
+/// A FIFO or a device named as a piece would block or never end: only
+/// regular files are read (`metadata` does not open the file).
+fn regular(path: &Path) -> Result<(), String> {
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => Ok(()),
+        Ok(_) => Err("not a regular file (a piece is an .exr file)".into()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// Reads only a piece's header.
 pub fn read_piece_meta(path: &Path) -> Result<PieceMeta, PieceError> {
     let err = |reason: String| PieceError {
         path: path.to_path_buf(),
         reason,
     };
+    regular(path).map_err(err)?;
     let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| err(e.to_string()))?;
     let h = meta.headers.first().ok_or_else(|| err("no layer".into()))?;
     describe(
@@ -255,6 +302,7 @@ pub fn read_piece(path: &Path) -> Result<Piece, PieceError> {
             "pieces are .exr files written by `ronray render`; PNG pieces cannot be merged exactly".into(),
         ));
     }
+    regular(path).map_err(err)?;
     let image = x::read()
         .no_deep_data()
         .largest_resolution_level()
@@ -284,18 +332,30 @@ pub fn read_piece(path: &Path) -> Result<Piece, PieceError> {
             _ => Err(format!("channel `{name}` is not {n} 32-bit words")),
         }
     };
-    let mut words = vec![[[0u32; 4]; 3]; n];
-    for w in 0..4 {
-        for c in 0..3 {
-            let v = channel(&sum_channel(w, c)).map_err(err)?;
-            for (p, &x) in words.iter_mut().zip(v) {
-                p[c][w] = x;
+    let read_sums = |prefix: &str| -> Result<Vec<ExactSum>, String> {
+        let mut words = vec![[[0u32; 4]; 3]; n];
+        for w in 0..4 {
+            for c in 0..3 {
+                let v = channel(&sum_channel(prefix, w, c))?;
+                for (p, &x) in words.iter_mut().zip(v) {
+                    p[c][w] = x;
+                }
             }
         }
-    }
+        Ok(words.into_iter().map(ExactSum::from_words).collect())
+    };
+    let spread = match meta.spread {
+        Some(first) => Some(SpreadSums {
+            first,
+            late: read_sums("late").map_err(err)?,
+            counts: channel("count").map_err(err)?.to_vec(),
+        }),
+        None => None,
+    };
     let sums = SampleSums {
         rect: meta.rect,
-        sums: words.into_iter().map(ExactSum::from_words).collect(),
+        sums: read_sums("sum").map_err(err)?,
+        spread,
     };
     Ok(Piece { meta, sums })
 }
@@ -322,6 +382,7 @@ mod tests {
             frame: (10, 9),
             animation_frame: Some(-12),
             rect,
+            spread: None,
         };
         let mut sums = SampleSums::new(rect);
         for (i, s) in sums.sums.iter_mut().enumerate() {

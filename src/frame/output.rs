@@ -61,6 +61,16 @@ pub enum OutputError {
     /// The film would not fit in memory.
     #[error(transparent)]
     Memory(#[from] MemoryError),
+    /// The scene's own `film.output` is (or passes through) a symlink
+    /// leading out of the scene's folder (and `--root`): a scene from
+    /// someone else's repository would replace a file the user never named.
+    #[error(
+        "the scene's film.output: {why}; a scene writes only inside its own folder (pass `-o PATH` to write elsewhere)"
+    )]
+    OutsideFolder {
+        /// Where and why, as a sentence.
+        why: String,
+    },
 }
 
 impl OutputError {
@@ -69,7 +79,10 @@ impl OutputError {
     pub fn is_usage(&self) -> bool {
         match self {
             OutputError::PieceNeedsSums { .. } | OutputError::LayersNeedExr { .. } => true,
-            OutputError::Extension { .. } | OutputError::IsInput { .. } | OutputError::Memory(_) => false,
+            OutputError::Extension { .. }
+            | OutputError::IsInput { .. }
+            | OutputError::Memory(_)
+            | OutputError::OutsideFolder { .. } => false,
         }
     }
 }
@@ -92,6 +105,34 @@ impl Output {
             Some(i) => PathBuf::from(out.to_string_lossy().replace("{tile}", &i.to_string())),
             None => out,
         }
+    }
+
+    /// Refuses an output the scene chose itself (`film.output`, no `-o`)
+    /// that lands outside `fences` (the scene's folder and `--root`) once
+    /// links are followed. What `-o` names is the user's own choice.
+    pub fn confine(self, fences: &[&Path]) -> Result<Output, OutputError> {
+        match crate::files::write_outside(fences, &self.path) {
+            None => Ok(self),
+            Some(why) => Err(OutputError::OutsideFolder { why }),
+        }
+    }
+
+    /// [`Output::confine`] when the scene at `scene_path` chose this output
+    /// (`cli_given` false, `film.output` set): its folder and `root` fence
+    /// it. Render and watch mode both call it.
+    pub fn confine_scene_output(
+        self,
+        view: &View,
+        scene_path: &Path,
+        cli_given: bool,
+        root: Option<&Path>,
+    ) -> Result<Output, OutputError> {
+        if cli_given || view.output.as_os_str().is_empty() {
+            return Ok(self);
+        }
+        let folder = crate::files::resolved(scene_path.parent().unwrap_or(Path::new("")));
+        let fences: Vec<&Path> = std::iter::once(folder.as_path()).chain(root).collect();
+        self.confine(&fences)
     }
 
     /// Checks `path` for `plan`: its format carries what the plan produces,
@@ -123,12 +164,12 @@ impl Output {
         }
         // Refused before anything is allocated: pieces and passes keep exact
         // sums per pixel.
-        crate::memory::check_film(
-            plan.rect.width(),
-            plan.rect.height(),
-            plan.keeps_sums(),
-            max_memory,
-        )?;
+        // A piece spread by noise renders the whole frame's first pass.
+        let rect = match plan.sampling {
+            super::Sampling::Spread(_) => plan.frame,
+            super::Sampling::Even { .. } | super::Sampling::Adaptive(_) => plan.rect,
+        };
+        crate::memory::check_film(rect.width(), rect.height(), plan.keeps_sums(), max_memory)?;
         Ok(Output { path, format })
     }
 }
@@ -136,12 +177,11 @@ impl Output {
 /// The input (the scene file, an include, an OBJ, a texture) that writing
 /// to `out` would overwrite, if any; symlinks followed.
 fn input_at<'a>(inputs: &'a [PathBuf], out: &Path) -> Option<&'a Path> {
-    let key = |p: &Path| {
-        std::fs::canonicalize(p)
-            .unwrap_or_else(|_| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()))
-    };
-    let out = key(out);
-    inputs.iter().map(PathBuf::as_path).find(|f| key(f) == out)
+    let out = crate::files::write_target(out);
+    inputs
+        .iter()
+        .map(PathBuf::as_path)
+        .find(|f| crate::files::resolved(f) == out)
 }
 
 #[cfg(test)]

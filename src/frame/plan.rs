@@ -5,9 +5,13 @@
 //! the farm read it; none of them decides these again.
 //!
 //! A part of the samples is added to other parts' exact sums, which needs
-//! fixed counts: only a whole frame is adaptive, spread by noise or light
-//! traced (the splats land anywhere in the frame, so pieces and passes
-//! could not add up), and only a whole frame has layers or is denoised.
+//! counts fixed before any piece renders: only a whole frame is adaptive
+//! (a pixel's count depends on its own samples) or light traced (the splats
+//! land anywhere in the frame, so pieces could not add up), and only a
+//! whole frame has layers or is denoised. A piece is spread by noise as the
+//! whole frame is: it renders the frame's first pass itself, which fixes
+//! every pixel's count, so its sums add up to the whole render's bytes.
+//! Watch passes spread evenly.
 
 use crate::camera::Projection;
 use crate::film::{Adaptive, FilterKind, Spread};
@@ -83,6 +87,8 @@ pub struct Plan {
     pub request: Request,
     /// The pixels rendered.
     pub rect: PixelRect,
+    /// The whole frame's pixels.
+    pub frame: PixelRect,
     /// Samples `samples.0..samples.1` of each pixel (at most, when adaptive
     /// or spread).
     pub samples: (u32, u32),
@@ -101,6 +107,9 @@ pub struct Plan {
     /// True when the scene asks for adaptive sampling and this request
     /// cannot have it (a piece or a pass): worth a note.
     pub adaptive_ignored: bool,
+    /// True when a whole frame would light trace its caustics and this
+    /// piece path traces them: the assembled frame is not `render`'s bytes.
+    pub light_trace_skipped: bool,
 }
 
 /// A request the view cannot honour.
@@ -189,15 +198,17 @@ impl Plan {
         // or splat light paths anywhere: the others' sums must add up.
         // (A piece that happens to cover the frame is still a piece.)
         let whole = request == Request::Whole;
-        let sampling = match (whole, f.adaptive, spread(view)) {
-            (true, Some(a), _) => Sampling::Adaptive(a),
-            (true, None, Some(s)) => Sampling::Spread(s),
+        let piece = matches!(request, Request::Piece { .. });
+        let sampling = match (whole, piece, f.adaptive, spread(view)) {
+            (true, _, Some(a), _) => Sampling::Adaptive(a),
+            (true, _, None, Some(s)) | (_, true, None, Some(s)) => Sampling::Spread(s),
             _ => Sampling::Even {
                 first: samples.0,
                 count: samples.1 - samples.0,
             },
         };
-        let light_trace = whole.then(|| light_trace(scene, view)).flatten();
+        let traced = light_trace(scene, view);
+        let light_trace = traced.filter(|_| whole);
         let integrator = match view.integrator {
             Integrator::Path(p) if light_trace.is_some() => Integrator::Path(crate::integrators::Path {
                 split_caustics: true,
@@ -211,6 +222,7 @@ impl Plan {
         Plan {
             request,
             rect,
+            frame: PixelRect::full(f.width, f.height),
             samples,
             sampling,
             light_trace,
@@ -218,7 +230,37 @@ impl Plan {
             layers: if image { f.aovs } else { AovSet::EMPTY },
             denoise: image && denoise,
             adaptive_ignored: f.adaptive.is_some() && !matches!(sampling, Sampling::Adaptive(_)),
+            light_trace_skipped: piece && traced.is_some(),
         }
+    }
+
+    /// What a user splitting a frame must know, as notes: where this piece
+    /// differs from or costs more than its share of `render`.
+    pub fn piece_notes(&self, view: &View) -> Vec<String> {
+        let Request::Piece { rect, .. } = self.request else {
+            return Vec::new();
+        };
+        let mut notes = Vec::new();
+        if self.adaptive_ignored {
+            notes.push(
+                "film.noise_threshold is ignored for pieces: their exact sums add up across machines only when every pixel takes every sample; the assembled frame is not what `render` writes".to_string(),
+            );
+        }
+        if self.light_trace_skipped {
+            notes.push(
+                "this scene's caustics are light traced in a whole render and path traced in pieces: the assembled frame has the same expected value but not the bytes `render` writes".to_string(),
+            );
+        }
+        let f = view.film;
+        if let Sampling::Spread(s) = self.sampling
+            && rect.area() < u64::from(f.width) * u64::from(f.height)
+        {
+            notes.push(format!(
+                "samples are spread by noise (film.allocation: ByNoise), so this piece first renders the whole frame's first pass ({} of {} spp) to place them as `render` does; `film.allocation: Even` (or `--set film.allocation=Even`) spares each piece that pass",
+                s.first, s.spp
+            ));
+        }
+        notes
     }
 
     /// Whether this renders exact sums to be added up (a piece or a pass)

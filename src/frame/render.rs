@@ -37,8 +37,7 @@ pub fn render(
 ) -> (Pixels, RenderStats) {
     if plan.keeps_sums() {
         let (sums, stats) = Work::sums(scene, view, plan, opts, cancel, on_tile);
-        let rect = plan.rect;
-        return (Pixels::Sums(SampleSums { rect, sums }), stats);
+        return (Pixels::Sums(sums), stats);
     }
     let (mut pixels, mut stats) = Work::means(scene, view, plan, opts, cancel, on_tile);
     if let Some(trace) = plan.light_trace

@@ -15,7 +15,8 @@ use super::options::RenderOptions;
 use super::plan::{Plan, Sampling};
 use super::stats::{RenderStats, TileDone};
 use crate::film::{Adaptive, PixelNoise, Spread};
-use crate::imageio::PixelRect;
+use crate::imageio::sample_sums::two_pass_mean;
+use crate::imageio::{PixelRect, SampleSums};
 use crate::integrators::{Counters, Integrator};
 use crate::math::{ExactSum, Rgb};
 use crate::sampler::PixelSampler;
@@ -59,13 +60,16 @@ fn progress_bar(show: bool, tiles: usize, done: usize) -> indicatif::ProgressBar
 }
 
 /// `tiles` of `rect` ordered by the samples their pixels take (pixel `i`,
-/// row-major over `rect`, takes samples `from..upto[i]`), most first; tiles
-/// with equal counts keep their order.
-fn heaviest_first(mut tiles: Vec<PixelRect>, rect: PixelRect, from: u32, upto: &[u32]) -> Vec<PixelRect> {
+/// row-major over `rect`, takes samples `ranges[i].0..ranges[i].1`), most
+/// first; tiles with equal counts keep their order.
+fn heaviest_first(mut tiles: Vec<PixelRect>, rect: PixelRect, ranges: &[(u32, u32)]) -> Vec<PixelRect> {
     let samples = |t: &PixelRect| -> u64 {
         (t.y0..t.y1)
             .flat_map(|y| (t.x0..t.x1).map(move |x| (x, y)))
-            .map(|(x, y)| u64::from(upto[rect.index(x, y)].saturating_sub(from)))
+            .map(|(x, y)| {
+                let (a, b) = ranges[rect.index(x, y)];
+                u64::from(b.saturating_sub(a))
+            })
             .sum()
     };
     // `sort_by_cached_key` is stable.
@@ -90,6 +94,9 @@ pub(super) struct Work<'a> {
     sampler_spp: u32,
     /// Whether to sum each pixel's squared samples (a spread render's first pass).
     squares: bool,
+    /// Samples from this index on are summed apart (`PixelSums::late`): a
+    /// spread piece keeps its two passes' sums apart.
+    late_from: u32,
     /// This is pass `.0` of `.1`, for progress reports.
     pass: (usize, usize),
     /// The plan's integrator (told whether a light tracer takes its caustics).
@@ -101,15 +108,22 @@ pub(super) struct Work<'a> {
 enum Samples<'a> {
     /// Samples `first..first + count` of every pixel.
     Every { first: u32, count: u32 },
-    /// Pixel `i` (row-major over the rect) takes samples `from..upto[i]`.
-    UpTo { from: u32, upto: &'a [u32] },
+    /// Pixel `i` (row-major over the rect) takes samples
+    /// `ranges[i].0..ranges[i].1`.
+    Ranges(&'a [(u32, u32)]),
 }
+
+/// A spread render's first pass: each pixel's mean and variance
+/// (row-major over the frame), each pixel's count, and what it cost.
+type FirstPass = (Vec<([f32; 3], f32)>, Vec<u32>, RenderStats);
 
 /// One pixel's samples, summed, for [`Work::run`]'s `finish`.
 struct PixelSums {
     x: u32,
     y: u32,
     sum: ExactSum,
+    /// The sum of the samples from `Work::late_from` on (not in `sum`).
+    late: ExactSum,
     taken: u32,
     /// Per channel, the sum of the squared samples (when `Work::squares`).
     squares: [f64; 3],
@@ -170,12 +184,14 @@ impl<'a> Work<'a> {
             samples,
             sampler_spp: view.film.spp,
             squares: false,
+            late_from: u32::MAX,
             pass: (0, 1),
             integrator: plan.integrator,
         }
     }
 
-    /// Each pixel's exact sum (a piece or a pass: even counts).
+    /// Each pixel's exact sum (a piece or a pass: even counts, or a piece
+    /// spread by noise as the whole frame is).
     pub(super) fn sums(
         scene: &'a Scene,
         view: &'a View,
@@ -183,9 +199,24 @@ impl<'a> Work<'a> {
         opts: &'a RenderOptions,
         cancel: &'a AtomicBool,
         on_tile: &'a (dyn Fn(&TileDone) + Sync),
-    ) -> (Vec<ExactSum>, RenderStats) {
-        debug_assert!(matches!(plan.sampling, Sampling::Even { .. }));
-        Self::new(scene, view, plan, opts, cancel, on_tile).run(ExactSum::ZERO, |p| p.sum)
+    ) -> (SampleSums, RenderStats) {
+        let work = Self::new(scene, view, plan, opts, cancel, on_tile);
+        match plan.sampling {
+            Sampling::Spread(s) => work.spread_piece(s, plan.samples),
+            Sampling::Even { .. } | Sampling::Adaptive(_) => {
+                debug_assert!(matches!(plan.sampling, Sampling::Even { .. }));
+                let (sums, stats) = work.run(ExactSum::ZERO, |p| p.sum);
+                let rect = plan.rect;
+                (
+                    SampleSums {
+                        rect,
+                        sums,
+                        spread: None,
+                    },
+                    stats,
+                )
+            }
+        }
     }
 
     /// Each pixel's mean under the plan's sampling policy, row-major over
@@ -205,47 +236,59 @@ impl<'a> Work<'a> {
         }
     }
 
+    /// The first pass of a render spread by noise, over the whole frame
+    /// whatever `self.rect` is: `plan.first` samples of every pixel, each
+    /// pixel's mean and variance (row-major over the frame), and the count
+    /// of samples each pixel then takes (`crate::film::allocation`).
+    fn first_pass(&self, plan: Spread) -> FirstPass {
+        let f = self.view.film;
+        let full = PixelRect::full(f.width, f.height);
+        let first = Work {
+            rect: full,
+            samples: Samples::Every {
+                first: 0,
+                count: plan.first,
+            },
+            sampler_spp: plan.cap,
+            squares: true,
+            late_from: u32::MAX,
+            pass: (0, 2),
+            ..*self
+        };
+        let (pixels, stats) = first.run(([0.0f32; 3], 0.0f32), |p| {
+            (p.sum.mean(p.taken).to_array(), p.variance())
+        });
+        if stats.cancelled {
+            return (pixels, Vec::new(), stats);
+        }
+        let variance: Vec<f32> = pixels.iter().map(|f| f.1).collect();
+        let upto = plan.counts(full.width() as usize, full.height() as usize, &variance);
+        (pixels, upto, stats)
+    }
+
     /// A render spread by noise (`crate::film::allocation`): `plan.first`
     /// samples everywhere, then each pixel up to its count; the pixels' means.
     fn spread(mut self, plan: Spread) -> (Vec<Rgb>, RenderStats) {
         let start = Instant::now();
         self.sampler_spp = plan.cap;
-        self.samples = Samples::Every {
-            first: 0,
-            count: plan.first,
-        };
-        self.squares = true;
-        self.pass = (0, 2);
-        let (first, s1) = self.run(([0.0f32; 3], 0.0f32), |p| {
-            (p.sum.mean(p.taken).to_array(), p.variance())
-        });
+        let (first, upto, s1) = self.first_pass(plan);
         if s1.cancelled {
             return (first.iter().map(|f| Rgb::from_array(f.0)).collect(), s1);
         }
-        let variance: Vec<f32> = first.iter().map(|f| f.1).collect();
-        let (w, h) = (self.rect.width() as usize, self.rect.height() as usize);
-        let upto = plan.counts(w, h, &variance);
-        drop(variance);
+        let ranges: Vec<(u32, u32)> = upto.iter().map(|&u| (plan.first, u)).collect();
+        drop(upto);
         let second = Work {
-            samples: Samples::UpTo {
-                from: plan.first,
-                upto: &upto,
-            },
+            samples: Samples::Ranges(&ranges),
             squares: false,
             pass: (1, 2),
             ..self
         };
         let rect = second.rect;
-        let n1 = plan.first as f32;
         // A weighted mean of the two passes' means; skipped tiles (on
         // cancel) keep the first pass's.
         let (pixels, s2) = second.run(Rgb::NAN, |p| {
             let m1 = Rgb::from_array(first[rect.index(p.x, p.y)].0);
-            if p.taken == 0 {
-                return m1;
-            }
-            let n2 = p.taken as f32;
-            (m1 * n1 + p.sum.mean(p.taken) * n2) / (n1 + n2)
+            two_pass_mean(m1, plan.first, &p.sum, p.taken)
         });
         let pixels = pixels
             .into_iter()
@@ -260,6 +303,59 @@ impl<'a> Work<'a> {
             cancelled: s2.cancelled,
         };
         (pixels, stats)
+    }
+
+    /// A piece of a render spread by noise: the whole frame's first pass
+    /// (every piece repeats it: the counts depend on the noise of pixels
+    /// outside the piece, and on the frame's total), then the piece's
+    /// share of each of its pixels' samples. Samples `a..b` of the frame's
+    /// `spp` become samples `a·n/spp..b·n/spp` of a pixel that takes `n`,
+    /// so pieces splitting `0..spp` split every pixel's samples, and the
+    /// assembled sums are exactly the whole render's.
+    fn spread_piece(mut self, plan: Spread, (a, b): (u32, u32)) -> (SampleSums, RenderStats) {
+        let start = Instant::now();
+        let spp = u64::from(plan.spp.max(1));
+        self.sampler_spp = plan.cap;
+        let (_, upto, s1) = self.first_pass(plan);
+        let rect = self.rect;
+        let mut out = SampleSums::new_spread(rect, plan.first);
+        if s1.cancelled {
+            return (out, s1);
+        }
+        let full = PixelRect::full(self.view.film.width, self.view.film.height);
+        let part = |n: u32, k: u32| (u64::from(n) * u64::from(k) / spp) as u32;
+        let ranges: Vec<(u32, u32)> = (rect.y0..rect.y1)
+            .flat_map(|y| (rect.x0..rect.x1).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let n = upto[full.index(x, y)];
+                (part(n, a), part(n, b))
+            })
+            .collect();
+        drop(upto);
+        let second = Work {
+            samples: Samples::Ranges(&ranges),
+            squares: false,
+            late_from: plan.first,
+            pass: (1, 2),
+            ..self
+        };
+        let (pixels, s2) = second.run((ExactSum::ZERO, ExactSum::ZERO, 0u32), |p| {
+            (p.sum, p.late, p.taken)
+        });
+        if let Some(spread) = &mut out.spread {
+            for (i, (sum, late, taken)) in pixels.into_iter().enumerate() {
+                out.sums[i] = sum;
+                spread.late[i] = late;
+                spread.counts[i] = taken;
+            }
+        }
+        let stats = RenderStats {
+            elapsed: start.elapsed(),
+            samples: s1.samples + s2.samples,
+            rays: s1.rays + s2.rays,
+            cancelled: s1.cancelled || s2.cancelled,
+        };
+        (out, stats)
     }
 
     /// Renders every tile on the options' thread pool, turns each pixel's
@@ -307,7 +403,7 @@ impl<'a> Work<'a> {
     /// depend on the order: every pixel's samples are its own.
     fn schedule(&self, tiles: Vec<PixelRect>) -> Vec<PixelRect> {
         match self.samples {
-            Samples::UpTo { from, upto } => heaviest_first(tiles, self.rect, from, upto),
+            Samples::Ranges(ranges) => heaviest_first(tiles, self.rect, ranges),
             Samples::Every { .. } => tiles,
         }
     }
@@ -347,11 +443,13 @@ impl<'a> Work<'a> {
                     for x in tile.x0..tile.x1 {
                         let (s0, spp) = match self.samples {
                             Samples::Every { first, count } => (first, count),
-                            Samples::UpTo { from, upto } => {
-                                (from, upto[self.rect.index(x, y)].saturating_sub(from))
+                            Samples::Ranges(ranges) => {
+                                let (a, b) = ranges[self.rect.index(x, y)];
+                                (a, b.saturating_sub(a))
                             }
                         };
                         let mut sum = ExactSum::ZERO;
+                        let mut late = ExactSum::ZERO;
                         let mut squares = [0.0f64; 3];
                         let mut noise = PixelNoise::default();
                         let mut taken = spp;
@@ -367,7 +465,11 @@ impl<'a> Work<'a> {
                             } else {
                                 Rgb::ZERO
                             };
-                            sum.add_sample(c);
+                            if s < self.late_from {
+                                sum.add_sample(c);
+                            } else {
+                                late.add_sample(c);
+                            }
                             if self.squares {
                                 for (q, v) in squares.iter_mut().zip(c.to_array()) {
                                     *q += v as f64 * v as f64;
@@ -386,6 +488,7 @@ impl<'a> Work<'a> {
                             x,
                             y,
                             sum,
+                            late,
                             taken,
                             squares,
                         }));
@@ -432,17 +535,17 @@ mod tests {
         assert_eq!(tiles.len(), 6);
         // Samples 8.. of each pixel: more toward the right, and a hot spot in
         // the bottom-left tile.
-        let upto: Vec<u32> = (0..rect.area())
+        let upto: Vec<(u32, u32)> = (0..rect.area())
             .map(|i| {
                 let (x, y) = ((i % 40) as u32, (i / 40) as u32);
-                if x < 4 && y > 20 { 200 } else { 8 + x }
+                (8, if x < 4 && y > 20 { 200 } else { 8 + x })
             })
             .collect();
-        let order = heaviest_first(tiles.clone(), rect, 8, &upto);
+        let order = heaviest_first(tiles.clone(), rect, &upto);
         let upto = &upto;
         let load = |t: &PixelRect| -> u64 {
             (t.y0..t.y1)
-                .flat_map(|y| (t.x0..t.x1).map(move |x| upto[rect.index(x, y)] as u64 - 8))
+                .flat_map(|y| (t.x0..t.x1).map(move |x| upto[rect.index(x, y)].1 as u64 - 8))
                 .sum()
         };
         let loads: Vec<u64> = order.iter().map(load).collect();
@@ -455,7 +558,7 @@ mod tests {
         assert_eq!(seen, tiles, "every tile exactly once");
         // Loads in proportion to the tiles' areas (256, 256, 128, 128, 128,
         // 64 pixels), which already decrease: ties keep reading order.
-        let flat = vec![8 + 4; rect.area() as usize];
-        assert_eq!(heaviest_first(tiles.clone(), rect, 8, &flat), tiles);
+        let flat = vec![(8, 8 + 4); rect.area() as usize];
+        assert_eq!(heaviest_first(tiles.clone(), rect, &flat), tiles);
     }
 }

@@ -85,25 +85,6 @@ fn pending(tmp: &Path, add: bool) {
     }
 }
 
-/// Where writing `path` really lands: a symlink is followed to its target
-/// (so the link stays a link and the target is replaced, atomically in its
-/// own folder), however many links deep.
-fn through_links(path: &Path) -> PathBuf {
-    let mut at = path.to_path_buf();
-    for _ in 0..40 {
-        match std::fs::read_link(&at) {
-            Ok(target) => {
-                at = match at.parent() {
-                    Some(dir) => dir.join(target),
-                    None => target,
-                }
-            }
-            Err(_) => break,
-        }
-    }
-    at
-}
-
 /// Writes `path` atomically: `encode` writes into a temporary file in the
 /// target's folder, which is then renamed over the target (piece files use
 /// it too). An existing target keeps its permissions; a new one is 0644.
@@ -116,7 +97,7 @@ pub fn write_atomic(
         path: path.to_path_buf(),
         reason,
     };
-    let target = through_links(path);
+    let target = crate::files::follow_links(path);
     let ext = target.extension().and_then(|e| e.to_str()).unwrap_or("");
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,

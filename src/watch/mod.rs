@@ -256,12 +256,16 @@ impl Session {
             .map_err(|e| e.to_string())
             .and_then(|plan| {
                 let path = Output::path(&loaded.view, &self.scene, self.output.clone(), None);
-                Output::new(path, &plan, &loaded.files, self.max_memory).map_err(|e| match e {
-                    // Writing it would overwrite an input and trigger this
-                    // reload again, for ever.
-                    OutputError::IsInput { .. } => format!("{e}; keeping the last good image"),
-                    _ => e.to_string(),
-                })
+                Output::new(path, &plan, &loaded.files, self.max_memory)
+                    .and_then(|o| {
+                        o.confine_scene_output(&loaded.view, &self.scene, self.output.is_some(), None)
+                    })
+                    .map_err(|e| match e {
+                        // Writing it would overwrite an input and trigger this
+                        // reload again, for ever.
+                        OutputError::IsInput { .. } => format!("{e}; keeping the last good image"),
+                        _ => e.to_string(),
+                    })
             });
         let output = match output {
             Ok(o) => o,
