@@ -8,6 +8,7 @@
 //! render farms run on many machines, and assembles them bit for bit.
 
 pub mod accel;
+pub mod anim;
 pub mod aov;
 pub mod camera;
 pub mod check;

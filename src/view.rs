@@ -4,6 +4,7 @@
 //! query, and one scene can be rendered through several views.
 
 use crate::camera::Camera;
+use crate::camera::motion::CameraMotion;
 use crate::film::{Adaptive, Filter};
 use crate::imageio::Display;
 use crate::integrators::Integrator;
@@ -63,6 +64,21 @@ pub struct View {
     /// The scene's `film.output`, resolved against the scene file's folder;
     /// empty when the scene names none.
     pub output: PathBuf,
+    /// When something moves while the shutter is open: the interval each
+    /// camera sample draws its time in. `None` for a still frame.
+    pub shutter: Option<Shutter>,
+}
+
+/// The shutter of a frame in which something moves.
+#[derive(Clone, Debug)]
+pub struct Shutter {
+    /// Opening and closing times, in frames (absolute: frame + the
+    /// camera's `shutter`).
+    pub open: f32,
+    /// See `open`.
+    pub close: f32,
+    /// The camera's keys, when the camera itself moves.
+    pub camera: Option<Box<CameraMotion>>,
 }
 
 impl View {
@@ -75,8 +91,22 @@ impl View {
         let (w, h) = (self.film.width as f32, self.film.height as f32);
         let (offset, weight) = self.filter.sample(sampler.next_vec2());
         let film_pos = glam::Vec2::new((x as f32 + offset.x) / w, (y as f32 + offset.y) / h);
+        if let Some(s) = &self.shutter {
+            return (moving_ray(&self.camera, s, film_pos, w / h, sampler), weight);
+        }
         (self.camera.ray(film_pos, w / h, sampler.next_vec2()), weight)
     }
+}
+
+/// The camera ray of a sample of a frame with motion: its time drawn in the
+/// shutter ([`Sampler::time`]) and set on this thread's clock for the
+/// moving instances, then the camera at that time.
+#[inline(never)]
+fn moving_ray(still: &Camera, s: &Shutter, film_pos: glam::Vec2, aspect: f32, sampler: &mut Sampler) -> Ray {
+    let t = s.open + (s.close - s.open) * sampler.time();
+    crate::anim::clock::set(t);
+    let camera = s.camera.as_ref().map_or(*still, |c| c.at(t));
+    camera.ray(film_pos, aspect, sampler.next_vec2())
 }
 
 /// One AOV layer, as `film.aovs` lists them; written beside the beauty

@@ -188,3 +188,62 @@ fn gnu_parallel_renders_four_tiles_that_reassemble_to_the_plain_render() {
         plain.as_secs_f64()
     ));
 }
+
+#[test]
+fn slurm_job_array_over_frames_writes_what_frames_range_writes() {
+    let test = "slurm_job_array_over_frames_writes_what_frames_range_writes";
+    let install = "apt-get install slurm-wlm munge";
+    if tool_or_skip("sbatch", test, install).is_none() || !slurm_cluster(test) {
+        return;
+    }
+    let dir = tempfile::tempdir().expect("temp dir");
+    let scene = root().join("tests/fixtures/anim/turntable.ron");
+    let bin = env!("CARGO_BIN_EXE_ronray");
+    let range = Command::new(bin)
+        .arg("render")
+        .arg(&scene)
+        .args(["--frames", "3..5", "--progress", "none", "-o"])
+        .arg(dir.path().join("range_{frame}.exr"))
+        .output()
+        .expect("ronray runs");
+    assert!(
+        range.status.success(),
+        "{}",
+        String::from_utf8_lossy(&range.stderr)
+    );
+    // Array task k draws frame 3 + k: the scene's first frame plus the index.
+    let wrap = format!(
+        "{bin} render {} --frame auto --threads 1 --progress none -o {}",
+        scene.display(),
+        dir.path().join("slurm_{frame}.exr").display()
+    );
+    let name = format!("ronray-frames-{}", std::process::id());
+    let o = run_for(
+        Command::new("sbatch")
+            .args(["--wait", "--array=0-2", "--time=5", "-J", &name, "-o"])
+            .arg(dir.path().join("slurm-%a.out"))
+            .arg("--chdir")
+            .arg(dir.path())
+            .args(["--wrap", &wrap]),
+        Duration::from_secs(180),
+        || {
+            let _ = Command::new("scancel").args(["-n", &name]).status();
+        },
+    );
+    let logs: String = (0..3)
+        .map(|i| std::fs::read_to_string(dir.path().join(format!("slurm-{i}.out"))).unwrap_or_default())
+        .collect();
+    assert!(
+        o.status.success(),
+        "sbatch --wait failed: {}\n{logs}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for f in 3..=5 {
+        let a = std::fs::read(dir.path().join(format!("range_{f}.exr"))).expect("range frame");
+        let b = std::fs::read(dir.path().join(format!("slurm_{f}.exr"))).unwrap_or_default();
+        assert!(
+            a == b,
+            "frame {f} from the Slurm array differs from --frames 3..5\n{logs}"
+        );
+    }
+}

@@ -10,6 +10,7 @@
 //! environment map's own mapping, so a map seen through it comes back as
 //! itself).
 
+pub mod motion;
 pub mod orthographic;
 pub mod perspective;
 pub mod spherical;

@@ -310,6 +310,11 @@ pub struct RenderSettings {
     /// Bits per channel of PNG outputs, 8 or 16; `--set film.png_bits=N`.
     #[arg(long, value_name = "BITS")]
     pub png_bits: Option<u8>,
+    /// Frame of an animated scene to draw (within its `animation.frames`).
+    /// `auto` (render only) is the first frame
+    /// plus the job index (SLURM_ARRAY_TASK_ID, …, as `--tile auto`).
+    #[arg(long, value_parser = crate::farm::frames::parse_frame, value_name = "N|auto", allow_hyphen_values = true)]
+    pub frame: Option<crate::farm::frames::FrameArg>,
 }
 
 impl RenderSettings {
@@ -332,6 +337,7 @@ impl RenderSettings {
         if let Some(b) = self.png_bits {
             flag(format!("film.png_bits={b}"), format!("--png-bits {b}"));
         }
+
         Overrides {
             spp: self.spp,
             size: self.size,
@@ -339,6 +345,10 @@ impl RenderSettings {
             sets,
             flags,
             root: None,
+            frame: match self.frame {
+                Some(crate::farm::frames::FrameArg::Given(f)) => Some(f),
+                Some(crate::farm::frames::FrameArg::Auto) | None => None,
+            },
         }
     }
 }

@@ -1,6 +1,7 @@
 //! `ronray render`: arguments in; load, plan, check the output, render,
 //! write (all library calls: `crate::frame`); the summary out.
 use super::{RenderSettings, USAGE, print_load_error, print_warnings};
+use crate::farm::frames::FrameArg;
 use crate::farm::split::{parse_crop, parse_pixels, parse_samples, parse_tile};
 use crate::farm::{Existing, PieceMeta, Region, TileIndex, existing_piece, piece_meta};
 use crate::frame::{Output, Plan, RenderOptions, RenderStats, Request, Sampling, TileDone, WriteOptions};
@@ -28,6 +29,10 @@ pub struct PieceArgs {
     /// `{tile}` in the output path becomes I. Writes a piece.
     #[arg(long, value_parser = parse_tile, value_name = "I/N")]
     pub tile: Option<(TileIndex, u32)>,
+    /// Render frames A to B of an animated scene, both included, one after
+    /// another; the output name needs `{frame}` or `{frame:04}`.
+    #[arg(long, value_parser = crate::farm::frames::parse_frames, value_name = "A..B", conflicts_with = "frame", allow_hyphen_values = true)]
+    pub frames: Option<(i32, i32)>,
     /// Render samples A to B−1 of every pixel (of the scene's spp), so
     /// several machines can add samples to one frame. Writes a piece.
     #[arg(long, value_parser = parse_samples, value_name = "A..B")]
@@ -81,6 +86,97 @@ pub(super) fn cmd_render(
     show_stats: bool,
     limits: &Limits,
 ) -> ExitCode {
+    // `--frames` stays in `piece`: each frame checks the range and the
+    // output name against it.
+    let one = |settings: &RenderSettings, piece: &PieceArgs| {
+        render_frame(
+            path,
+            output.clone(),
+            settings,
+            piece,
+            layer_args,
+            show_stats,
+            limits,
+        )
+    };
+    let done = match (piece.frames, settings.frame) {
+        (Some((a, b)), _) => (a..=b).try_for_each(|f| {
+            let s = RenderSettings {
+                frame: Some(FrameArg::Given(f)),
+                ..settings.clone()
+            };
+            one(&s, piece)
+        }),
+        (None, Some(FrameArg::Auto)) => match auto_frame(path, settings, piece, limits) {
+            Ok((s, p)) => one(&s, &p),
+            Err(message) => {
+                eprintln!("error: {message}; nothing was written");
+                Err(USAGE.into())
+            }
+        },
+        (None, _) => one(settings, piece),
+    };
+    match done {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(code) => code,
+    }
+}
+
+/// `--frame auto`: the scene's first frame plus the job index. With `--tile
+/// auto/N` too, job `k` draws tile `k mod N` of frame `first + ⌊k / N⌋`, so
+/// one job array covers every tile of every frame.
+fn auto_frame(
+    path: &Path,
+    settings: &RenderSettings,
+    piece: &PieceArgs,
+    limits: &Limits,
+) -> Result<(RenderSettings, PieceArgs), String> {
+    let env = |k: &str| std::env::var(k).ok();
+    let (index, _) = crate::farm::split::auto_index(&env)?;
+    let still = RenderSettings {
+        frame: None,
+        ..settings.clone()
+    };
+    let overrides = crate::load::Overrides {
+        root: limits.root.map(Path::to_path_buf),
+        ..still.overrides()
+    };
+    let first = match load_with(path, &overrides) {
+        Ok(l) => l.desc.animation.map(|a| a.frames.0),
+        Err(e) => {
+            print_load_error(&e, "");
+            return Err("the scene did not load".into());
+        }
+    };
+    let first = first.ok_or("--frame auto needs an `animation` section in the scene")?;
+    let mut piece = piece.clone();
+    let per_frame = match piece.tile {
+        Some((TileIndex::Auto, n)) => {
+            piece.tile = Some((TileIndex::Given(index % n.max(1)), n));
+            n.max(1)
+        }
+        _ => 1,
+    };
+    let frame = i32::try_from(index / per_frame)
+        .ok()
+        .and_then(|k| first.checked_add(k))
+        .ok_or("the job index is past any frame")?;
+    let settings = RenderSettings {
+        frame: Some(FrameArg::Given(frame)),
+        ..settings.clone()
+    };
+    Ok((settings, piece))
+}
+
+fn render_frame(
+    path: &Path,
+    output: Option<PathBuf>,
+    settings: &RenderSettings,
+    piece: &PieceArgs,
+    layer_args: &super::layers::DenoiseArgs,
+    show_stats: bool,
+    limits: &Limits,
+) -> Result<(), ExitCode> {
     let json = piece.progress.as_deref() == Some("json");
     let overrides = crate::load::Overrides {
         root: limits.root.map(Path::to_path_buf),
@@ -90,17 +186,17 @@ pub(super) fn cmd_render(
         Ok(l) => l,
         Err(e) => {
             print_load_error(&e, "; nothing was written");
-            return ExitCode::FAILURE;
+            return Err(ExitCode::FAILURE);
         }
     };
     // Warnings are printed, not fatal: the scene renders as written.
     print_warnings(&loaded.warnings);
     let (plan, out, meta) = match prepare(path, output, &loaded, piece, layer_args.denoise, limits) {
         Ok(Some(job)) => job,
-        Ok(None) => return ExitCode::SUCCESS,
+        Ok(None) => return Ok(()),
         Err((message, code)) => {
             eprintln!("error: {message}; nothing was written");
-            return code;
+            return Err(code);
         }
     };
     let (scene, view) = (&loaded.scene, &loaded.view);
@@ -132,7 +228,7 @@ pub(super) fn cmd_render(
         Ok(extra) => extra,
         Err(e) => {
             eprintln!("error: {e}");
-            return ExitCode::FAILURE;
+            return Err(ExitCode::FAILURE);
         }
     };
     let what = plan.describe(view, stats.samples);
@@ -150,7 +246,7 @@ pub(super) fn cmd_render(
     if show_stats {
         print_stats(&loaded, &stats);
     }
-    ExitCode::SUCCESS
+    Ok(())
 }
 
 /// A refusal to render: the message and the exit code.
@@ -189,7 +285,12 @@ fn prepare(
     let plan = Plan::new(&loaded.scene, &loaded.view, request, denoise).map_err(|e| usage(&e))?;
     let tile = spec.and_then(|s| s.tile).map(|(i, _)| i);
     let cli_given = output.is_some();
-    let out = Output::path(&loaded.view, path, output, tile);
+    let out = frame_name(
+        Output::path(&loaded.view, path, output, tile),
+        loaded,
+        piece.frames,
+    )
+    .map_err(|e| usage(&e))?;
     let out = Output::new(out, &plan, &loaded.files, limits.max_memory)
         .map_err(|e| if e.is_usage() { usage(&e) } else { failure(&e) })?
         .confine_scene_output(&loaded.view, path, cli_given, limits.root)
@@ -298,4 +399,30 @@ fn print_stats(loaded: &Loaded, stats: &RenderStats) {
             sdf.histogram_text()
         );
     }
+}
+
+/// The output name of the frame drawn: `{frame}` fields filled in; a name
+/// without one is refused when `--frames` writes several, which would all
+/// land on it. `--frames` past the scene's last frame is refused before
+/// the first is drawn.
+fn frame_name(out: PathBuf, loaded: &Loaded, frames: Option<(i32, i32)>) -> Result<PathBuf, String> {
+    let Some(a) = &loaded.desc.animation else {
+        return Ok(out);
+    };
+    let name = out.to_string_lossy();
+    if let Some((first, last)) = frames {
+        let (lo, hi) = a.frames;
+        if first < lo || last > hi {
+            return Err(format!(
+                "--frames {first}..{last} reaches outside the scene's frames {lo}..={hi}"
+            ));
+        }
+        if first < last && !crate::farm::frames::has_field(&name) {
+            return Err(format!(
+                "--frames {first}..{last} writes {} images, and the output name `{name}` has no `{{frame}}`: each would overwrite the last",
+                i64::from(last) - i64::from(first) + 1
+            ));
+        }
+    }
+    Ok(PathBuf::from(crate::farm::frames::fill(&name, a.current())))
 }

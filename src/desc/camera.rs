@@ -1,7 +1,7 @@
 //! The camera a scene file describes: where it looks from and its
 //! projection.
 
-use super::V3;
+use super::{CameraKeyDesc, InterpolationDesc, V3};
 use serde::{Deserialize, Serialize};
 
 /// A camera looking from `eye` toward `target`: perspective (the default,
@@ -38,6 +38,19 @@ pub struct CameraDesc {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schemars(range(min = 0))]
     pub focus_distance: Option<f32>,
+    /// When the shutter opens and closes, in frames from the frame's start
+    /// (default closed at 0: no motion blur): `(0, 0.5)` is a 180° shutter.
+    /// Within [−1, 1], open ≤ close.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shutter: Option<(f32, f32)>,
+    /// Where the camera is at given frames (`eye`, `target`, `up` keyed
+    /// together); between keys by `interpolation`. The camera's own `eye`
+    /// and `target` are used when there are none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keys: Vec<CameraKeyDesc>,
+    /// How the camera moves between `keys` (default `Linear`).
+    #[serde(default, skip_serializing_if = "InterpolationDesc::is_default")]
+    pub interpolation: InterpolationDesc,
 }
 
 /// The camera's projection.

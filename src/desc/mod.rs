@@ -21,6 +21,7 @@
 //! assert_eq!(scene.objects.len(), 1);
 //! ```
 
+mod animation;
 mod aov;
 mod camera;
 mod color;
@@ -36,6 +37,7 @@ mod sdf;
 mod texture;
 mod transform;
 
+pub use animation::{AnimationDesc, CameraKeyDesc, InterpolationDesc, TransformKeyDesc};
 pub use aov::AovDesc;
 pub use camera::{CameraDesc, ProjectionDesc};
 pub use color::ColorDesc;
@@ -113,6 +115,17 @@ pub struct SceneDesc {
     /// Settings for `ronray check`: the scene's regression test.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub test: Option<TestDesc>,
+    /// The frames of an animation, for scenes with `keys` (default: one
+    /// still frame, time 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub animation: Option<AnimationDesc>,
+}
+
+impl SceneDesc {
+    /// The time drawn, in frames: the animation's current frame, or 0.
+    pub fn frame(&self) -> i32 {
+        self.animation.as_ref().map_or(0, AnimationDesc::current)
+    }
 }
 
 /// An included file: shared materials, lights and objects (a studio rig, a

@@ -235,6 +235,13 @@ pub enum ObjectDesc {
         /// instance's object-to-world transform.
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
+        /// Placements at given frames, instead of `transform`: the instance
+        /// moves, and is blurred while the camera's shutter is open.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        keys: Vec<super::TransformKeyDesc>,
+        /// How the instance moves between `keys` (default `Linear`).
+        #[serde(default, skip_serializing_if = "super::InterpolationDesc::is_default")]
+        interpolation: super::InterpolationDesc,
     },
     /// A glTF 2.0 asset (`.gltf` with external or data-URI buffers, or
     /// `.glb`): the meshes of one of its scenes, placed by its node tree

@@ -82,6 +82,12 @@ pub fn check(pieces: &[(&str, &PieceMeta)]) -> Vec<String> {
     disagree(&mut problems, pieces, "ronray versions", |m| {
         format!("version {}", m.version)
     });
+    disagree(&mut problems, pieces, "animation frames", |m| {
+        match m.animation_frame {
+            Some(f) => format!("frame {f}"),
+            None => "no animation frame".into(),
+        }
+    });
     disagree(&mut problems, pieces, "scenes", |m| format!("scene {}", m.scene));
     disagree(&mut problems, pieces, "frame sizes", |m| {
         format!("a {}×{} frame", m.frame.0, m.frame.1)
@@ -300,6 +306,7 @@ mod tests {
             samples,
             tile: None,
             frame: (8, 4),
+            animation_frame: None,
             rect,
             spread: None,
         }

@@ -17,6 +17,7 @@
 //! - `assemble.rs`: checks (scenes, versions, overlaps, gaps) and merging.
 
 pub mod assemble;
+pub mod frames;
 pub mod hash;
 pub mod piece;
 pub mod split;
@@ -43,9 +44,18 @@ pub struct PieceError {
 /// first pass's samples per pixel when the plan spreads samples by noise.
 pub fn piece_meta(loaded: &Loaded, spec: &PieceSpec, spread: Option<u32>) -> Result<PieceMeta, String> {
     let f = loaded.view.film;
+    // The frame drawn is recorded apart, so that pieces of two frames of
+    // one scene are told apart as frames, not as scenes.
+    let mut desc = loaded.desc.clone();
+    let animation_frame = desc.animation.as_mut().map(|a| {
+        let f = a.current();
+        a.frame = None;
+        f
+    });
     Ok(PieceMeta {
         version: env!("CARGO_PKG_VERSION").to_string(),
-        scene: scene_hash(&loaded.desc, &loaded.files)?,
+        scene: scene_hash(&desc, &loaded.files)?,
+        animation_frame,
         seed: f.seed,
         spp: f.spp,
         samples: spec.samples,

@@ -44,6 +44,9 @@ pub struct PieceMeta {
     pub tile: Option<(u32, u32)>,
     /// The whole frame, width × height.
     pub frame: (u32, u32),
+    /// The animation frame drawn (`--frame`), for scenes with an
+    /// `animation`; pieces of different ones never assemble.
+    pub animation_frame: Option<i32>,
     /// The piece's pixels (its EXR data window).
     pub rect: PixelRect,
     /// For a frame spread by noise (`film.allocation: ByNoise`), the
@@ -64,6 +67,7 @@ impl PieceMeta {
                 m.spp,
                 m.samples,
                 m.frame,
+                m.animation_frame,
                 m.rect,
                 m.spread,
             )
@@ -81,6 +85,9 @@ impl PieceMeta {
         ];
         if let Some((i, n)) = self.tile {
             v.push(format!("tile={i}/{n}"));
+        }
+        if let Some(f) = self.animation_frame {
+            v.push(format!("animation_frame={f}"));
         }
         if let Some(first) = self.spread {
             v.push(format!("spread={first}"));
@@ -118,6 +125,10 @@ impl PieceMeta {
             samples,
             tile,
             frame,
+            animation_frame: match get("animation_frame") {
+                Ok(f) => Some(f.parse().map_err(|_| bad("animation_frame", f))?),
+                Err(_) => None,
+            },
             rect,
             spread,
         })
@@ -369,6 +380,7 @@ mod tests {
             samples: (4, 12),
             tile: Some((1, 3)),
             frame: (10, 9),
+            animation_frame: Some(-12),
             rect,
             spread: None,
         };

@@ -8,6 +8,7 @@
 //! <https://pbr-book.org/4ed/Primitives_and_Intersection_Acceleration/Object_Instancing_and_Primitives_in_Motion>).
 
 use super::mesh::{Mesh, MeshHit};
+use super::moving::{InstanceMotion, Placement};
 use super::{Hit, NO_LIGHT};
 use crate::accel::Aabb;
 use crate::math::Ray;
@@ -33,6 +34,9 @@ pub struct Instance {
     /// Light of each of the mesh's slots (an emissive group), or
     /// [`NO_LIGHT`]; empty when nothing in the instance emits.
     pub lights: Box<[u32]>,
+    /// Keys, when the instance moves while the shutter is open; the
+    /// transforms above are then its placement at the shutter's opening.
+    motion: Option<Box<InstanceMotion>>,
 }
 
 impl Instance {
@@ -47,13 +51,40 @@ impl Instance {
             identity: world_from_object == Affine3A::IDENTITY,
             materials,
             lights: Box::default(),
+            motion: None,
         }
+    }
+
+    /// This instance moving by `motion` (it must not emit: its lights
+    /// would be sampled where the static transforms put it).
+    pub fn with_motion(mut self, motion: InstanceMotion) -> Self {
+        self.identity = false;
+        self.motion = Some(Box::new(motion));
+        self
+    }
+
+    /// Whether the instance moves while the shutter is open.
+    pub fn moves(&self) -> bool {
+        self.motion.is_some()
+    }
+
+    /// The placement at the time traced (moving instances only).
+    #[cold]
+    #[inline(never)]
+    fn moving_local(&self, m: &InstanceMotion, ray: &Ray) -> Ray {
+        let p = m.now();
+        Ray::new(
+            p.object_from_world.transform_point3a(ray.o),
+            p.object_from_world.transform_vector3a(ray.d),
+        )
     }
 
     #[inline(always)]
     fn local(&self, ray: &Ray) -> Ray {
         if self.identity {
             *ray
+        } else if let Some(m) = &self.motion {
+            self.moving_local(m, ray)
         } else {
             Ray::new(
                 self.object_from_world.transform_point3a(ray.o),
@@ -87,11 +118,19 @@ impl Instance {
         hit.material = self.materials.get(slot).copied().unwrap_or(0);
         hit.light = self.lights.get(slot).copied().unwrap_or(NO_LIGHT);
         if !self.identity {
+            let p = match &self.motion {
+                Some(m) => m.now(),
+                None => Placement {
+                    world_from_object: self.world_from_object,
+                    object_from_world: self.object_from_world,
+                    normal_from_object: self.normal_from_object,
+                },
+            };
             let p_err = mesh.point_error(h.tri, h.bc);
-            let p_err = transform_point_error(&self.world_from_object, hit.p, p_err);
-            hit.p = self.world_from_object.transform_point3a(hit.p);
-            hit.ng = (self.normal_from_object * hit.ng).normalize_or(hit.ng);
-            hit.ns = (self.normal_from_object * hit.ns).normalize_or(hit.ng);
+            let p_err = transform_point_error(&p.world_from_object, hit.p, p_err);
+            hit.p = p.world_from_object.transform_point3a(hit.p);
+            hit.ng = (p.normal_from_object * hit.ng).normalize_or(hit.ng);
+            hit.ns = (p.normal_from_object * hit.ns).normalize_or(hit.ng);
             hit.p_error = error_along(hit.ng, p_err);
         }
         // A point on the world-space ray is more accurate far from the origin.
@@ -131,11 +170,18 @@ impl Instance {
         }
     }
 
-    /// World bounds: the mesh box's eight corners transformed.
+    /// World bounds: the mesh box's eight corners transformed; for a
+    /// moving instance, the box they sweep over the shutter.
     pub fn bounds(&self, meshes: &[Mesh]) -> Aabb {
         let b = meshes[self.mesh as usize].bounds();
         if b.is_empty() {
             return b;
+        }
+        if let Some(m) = &self.motion {
+            let (lo, hi) = m
+                .track
+                .bounds(b.min.into(), b.max.into(), m.shutter.0, m.shutter.1);
+            return Aabb::EMPTY.grow_point(lo.into()).grow_point(hi.into());
         }
         (0..8).fold(Aabb::EMPTY, |acc, i| {
             let c = Vec3A::new(

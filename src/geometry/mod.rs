@@ -12,6 +12,7 @@ pub mod instance;
 pub mod mesh;
 pub mod mesh_quad;
 pub mod mesh_triangle;
+pub mod moving;
 pub mod obj;
 pub mod plane;
 pub mod quad;

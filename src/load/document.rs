@@ -100,6 +100,8 @@ pub struct Sections {
     pub integrator: Option<IntegratorDesc>,
     /// `test: (...)`.
     pub test: Option<TestDesc>,
+    /// `animation: (...)`.
+    pub animation: Option<crate::desc::AnimationDesc>,
     /// The `materials` entries that read; broken ones are stand-ins.
     pub materials: BTreeMap<String, MaterialDesc>,
     /// The `meshes` entries that read; broken ones are stand-ins.
@@ -138,6 +140,7 @@ impl Document for SceneDesc {
         "media",
         "medium",
         "test",
+        "animation",
     ];
     const REQUIRED: &'static [&'static str] = &["camera"];
     fn assemble(s: Sections) -> Self {
@@ -154,6 +157,7 @@ impl Document for SceneDesc {
             media: s.media,
             medium: s.medium,
             test: s.test,
+            animation: s.animation,
         }
     }
 }
@@ -180,6 +184,9 @@ fn stand_in_camera() -> CameraDesc {
         projection: crate::desc::ProjectionDesc::Perspective,
         aperture_radius: 0.0,
         focus_distance: None,
+        shutter: None,
+        keys: Vec::new(),
+        interpolation: Default::default(),
     }
 }
 

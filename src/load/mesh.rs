@@ -71,6 +71,15 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     let emission = slot_emission(ctx, o, &path, &loaded, &materials);
     let id = ctx.geometry.instances.len() as u32;
     let mut instance = Instance::new(loaded.mesh, transform, materials.into_boxed_slice());
+    if let Some(track) = super::animation::instance_track(o) {
+        // Keyed: placed at the shutter's opening, and moving while it is open.
+        let shutter = super::animation::shutter(ctx.desc);
+        let placed = Affine3A::from_mat4(track.at(shutter.0));
+        instance = Instance::new(loaded.mesh, placed, instance.materials);
+        if track.moves_between(shutter.0, shutter.1) {
+            instance = instance.with_motion(crate::geometry::moving::InstanceMotion { track, shutter });
+        }
+    }
     if emission.iter().any(Option::is_some) {
         instance.lights = emission
             .iter()

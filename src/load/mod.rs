@@ -8,6 +8,7 @@
 //! and `build.rs` run them in order; every check runs before any build, so
 //! `validate` and watch mode stop after checking.
 
+mod animation;
 mod brackets;
 pub mod build;
 mod build_context;

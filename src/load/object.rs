@@ -109,8 +109,23 @@ impl Checker {
     }
 
     fn transform(&mut self, path: &str, o: &ObjectDesc) {
-        for (k, t) in o.transform().iter().enumerate() {
-            let tp = format!("{path}.transform[{k}]");
+        self.steps(&format!("{path}.transform"), o.transform());
+        if let ObjectDesc::Sphere { transform, .. } = o
+            && !transform.is_empty()
+            && !is_similarity(&compose(transform))
+        {
+            self.push(
+                &format!("{path}.transform"),
+                "a sphere's transform must keep it round",
+                "use equal scale factors on all axes (or a Mesh for an ellipsoid)",
+            );
+        }
+    }
+
+    /// The placement steps at `path` (`objects[2].transform`, a key's).
+    pub(super) fn steps(&mut self, path: &str, steps: &[TransformDesc]) {
+        for (k, t) in steps.iter().enumerate() {
+            let tp = format!("{path}[{k}]");
             match t {
                 TransformDesc::Translate(v) => {
                     self.finite(&tp, v);
@@ -141,16 +156,6 @@ impl Checker {
                     }
                 }
             }
-        }
-        if let ObjectDesc::Sphere { transform, .. } = o
-            && !transform.is_empty()
-            && !is_similarity(&compose(transform))
-        {
-            self.push(
-                &format!("{path}.transform"),
-                "a sphere's transform must keep it round",
-                "use equal scale factors on all axes (or a Mesh for an ellipsoid)",
-            );
         }
     }
 }

@@ -100,6 +100,9 @@ pub struct Overrides {
     /// followed, inside this folder; for rendering untrusted scenes. It also
     /// widens where includes may come from (by default, the scene's folder).
     pub root: Option<PathBuf>,
+    /// `--frame N`: the animation frame drawn (`animation.frame`). A scene
+    /// without `animation` has the one frame 0.
+    pub frame: Option<i32>,
 }
 
 impl Overrides {
@@ -115,6 +118,7 @@ impl Overrides {
             "film.spp" => self.spp.map(|n| format!("--spp {n}")),
             "film.width" | "film.height" => self.size.map(|(w, h)| format!("--size {w}x{h}")),
             "film.seed" => self.seed.map(|n| format!("--seed {n}")),
+            "animation.frame" => self.frame.map(|n| format!("--frame {n}")),
             _ => None,
         };
         // The flags are applied after the sets: they win.
@@ -143,6 +147,14 @@ impl Overrides {
         }
         if let Some(seed) = self.seed {
             desc.film.seed = seed;
+        }
+        if let Some(frame) = self.frame {
+            let a = desc.animation.get_or_insert(crate::desc::AnimationDesc {
+                frames: (0, 0),
+                fps: 24.0,
+                frame: None,
+            });
+            a.frame = Some(frame);
         }
     }
 }

@@ -13,7 +13,7 @@ use super::document::{Document, Gaps, Sections, stand_in_material, stand_in_medi
 use super::format::Format;
 use super::outline::{Entry, Outline};
 use super::slip::Slip;
-use crate::desc::TestDesc;
+use crate::desc::{AnimationDesc, TestDesc};
 use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -109,6 +109,11 @@ impl Reader<'_> {
             "film" => s.film = self.section(known, &field.value),
             "integrator" => s.integrator = self.section(known, &field.value),
             "test" => s.test = self.section::<Option<TestDesc>>(known, &field.value).flatten(),
+            "animation" => {
+                s.animation = self
+                    .section::<Option<AnimationDesc>>(known, &field.value)
+                    .flatten()
+            }
             "materials" => s.materials = self.map(field, "materials", stand_in_material),
             "meshes" => s.meshes = self.map(field, "meshes", stand_in_mesh),
             "media" => s.media = self.map(field, "media", stand_in_medium),

@@ -107,6 +107,7 @@ pub fn validate_files_apart(scene: &SceneDesc, base: &Path, root: Option<&Path>)
     for (name, m) in &scene.meshes {
         v.mesh_entry(&format!("meshes.{name}"), m);
     }
+    v.animation(scene);
     Validated {
         problems: v.problems,
         missing_files: v.missing_files,

@@ -6,14 +6,26 @@ use super::camera::build_camera;
 use super::film::{build_display, build_film, build_filter};
 use super::integrator::build_integrator;
 use crate::desc::SceneDesc;
-use crate::view::View;
+use crate::view::{Shutter, View};
 use std::path::Path;
 
 /// The view of a checked scene; `base` resolves `film.output`.
 pub(super) fn build_view(desc: &SceneDesc, base: &Path) -> View {
     let f = &desc.film;
+    // Built at the shutter's opening; what moves while it is open goes to
+    // the renderer with its keys.
+    let (open, close) = super::animation::shutter(desc);
+    let camera = build_camera(&super::animation::camera_at(&desc.camera, open), f.height);
+    let shutter = super::animation::moves(desc).then(|| Shutter {
+        open,
+        close,
+        camera: super::animation::camera_motion(&desc.camera, camera)
+            .filter(|m| super::animation::camera_moves(m, open, close))
+            .map(Box::new),
+    });
     View {
-        camera: build_camera(&desc.camera, f.height),
+        camera,
+        shutter,
         film: build_film(f),
         filter: build_filter(f),
         display: build_display(f),

@@ -146,6 +146,20 @@ impl Sampler {
         Some(p)
     }
 
+    /// Where in the shutter this camera sample is, in [0, 1): stratified
+    /// over the pixel's samples (sample `i` takes stratum `π(i)` of `spp`,
+    /// `π` a per-pixel permutation, jittered), and not a draw of the
+    /// sample's stream but a hash of (pixel, sample), so that the other
+    /// draws are the same whether the scene moves or not, and a static
+    /// scene, which never asks, keeps its numbers exactly.
+    pub fn time(&self) -> f32 {
+        let n = self.spp.max(1);
+        let h = mix64(self.pixel_hash ^ 0x7469_6d65_7469_6d65);
+        let stratum = permutation_element(self.index % n, n, h as u32);
+        let jitter = to_unit(mix64(h ^ u64::from(self.index)) as u32);
+        ((stratum as f32 + jitter) / n as f32).min(1.0 - f32::EPSILON)
+    }
+
     /// The next dimension, uniform in [0, 1).
     #[inline(always)]
     pub fn next_f32(&mut self) -> f32 {
