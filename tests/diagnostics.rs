@@ -708,8 +708,13 @@ fn shipped_scenes_give_no_warnings() {
     assert!(scenes.len() >= 4, "found {scenes:?}");
     for p in &scenes {
         match load(p) {
+            // Notes (what an importer approximates or drops, as the glTF
+            // asset's ignored occlusion maps) are information, not warnings.
             Ok(l) => assert!(
-                l.warnings.diagnostics.is_empty(),
+                l.warnings
+                    .diagnostics
+                    .iter()
+                    .all(|d| d.severity == ronray::diagnostic::Severity::Note),
                 "{} warns:\n{}",
                 p.display(),
                 l.warnings.render(false)

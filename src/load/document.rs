@@ -136,9 +136,9 @@ impl Document for SceneDesc {
         "materials",
         "lights",
         "objects",
-        "meshes",
         "media",
         "medium",
+        "meshes",
         "test",
         "animation",
     ];
