@@ -206,6 +206,27 @@ macro_rules! forward {
     };
 }
 
+impl Bsdf<'_> {
+    /// The lobe dispatched inline ([`Bxdf for Bsdf`](Bxdf)), `None` for the
+    /// out-of-line ones: the one place that names every variant, so a new
+    /// one has to say which side it is on.
+    #[inline(always)]
+    fn inline_lobe(&self) -> Option<&Lambert> {
+        match self {
+            Bsdf::Lambert(b) => Some(b),
+            Bsdf::OrenNayar(_)
+            | Bsdf::Phong(_)
+            | Bsdf::BlinnPhong(_)
+            | Bsdf::CookTorrance(_)
+            | Bsdf::MetalPlastic(_)
+            | Bsdf::Mirror(_)
+            | Bsdf::Glass(_)
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::RoughGlass(_) => None,
+        }
+    }
+}
+
 /// The diffuse variant is dispatched inline and every other through an
 /// out-of-line call: a Lambert lobe's methods are a few instructions, less
 /// than the call and the enum copy they were behind (three calls per path
@@ -213,47 +234,23 @@ macro_rules! forward {
 impl Bxdf for Bsdf<'_> {
     #[inline(always)]
     fn eval(&self, wo: Vec3A, wi: Vec3A) -> Rgb {
-        match self {
-            Bsdf::Lambert(b) => b.eval(wo, wi),
-            Bsdf::OrenNayar(_)
-            | Bsdf::Phong(_)
-            | Bsdf::BlinnPhong(_)
-            | Bsdf::CookTorrance(_)
-            | Bsdf::MetalPlastic(_)
-            | Bsdf::Mirror(_)
-            | Bsdf::Glass(_)
-            | Bsdf::RoughPlastic(_)
-            | Bsdf::RoughGlass(_) => self.eval_other(wo, wi),
+        match self.inline_lobe() {
+            Some(b) => b.eval(wo, wi),
+            None => self.eval_other(wo, wi),
         }
     }
     #[inline(always)]
     fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        match self {
-            Bsdf::Lambert(b) => b.pdf(wo, wi),
-            Bsdf::OrenNayar(_)
-            | Bsdf::Phong(_)
-            | Bsdf::BlinnPhong(_)
-            | Bsdf::CookTorrance(_)
-            | Bsdf::MetalPlastic(_)
-            | Bsdf::Mirror(_)
-            | Bsdf::Glass(_)
-            | Bsdf::RoughPlastic(_)
-            | Bsdf::RoughGlass(_) => self.pdf_other(wo, wi),
+        match self.inline_lobe() {
+            Some(b) => b.pdf(wo, wi),
+            None => self.pdf_other(wo, wi),
         }
     }
     #[inline(always)]
     fn sample(&self, wo: Vec3A, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        match self {
-            Bsdf::Lambert(b) => b.sample(wo, u_lobe, u),
-            Bsdf::OrenNayar(_)
-            | Bsdf::Phong(_)
-            | Bsdf::BlinnPhong(_)
-            | Bsdf::CookTorrance(_)
-            | Bsdf::MetalPlastic(_)
-            | Bsdf::Mirror(_)
-            | Bsdf::Glass(_)
-            | Bsdf::RoughPlastic(_)
-            | Bsdf::RoughGlass(_) => self.sample_other(wo, u_lobe, u),
+        match self.inline_lobe() {
+            Some(b) => b.sample(wo, u_lobe, u),
+            None => self.sample_other(wo, u_lobe, u),
         }
     }
     #[inline]
