@@ -32,10 +32,11 @@
 //! (transmitting surfaces, media). Mitsuba 3's `constant` samples the
 //! sphere uniformly: half its shadow rays from a floor go into the floor.
 
-use super::LightSample;
 use super::env_map::EnvMap;
 use super::env_table::EnvTable;
 use super::irradiance::{ShSum, SkyIrradiance};
+use super::tree::LightBounds;
+use super::{LightModel, LightSample};
 use crate::math::Frame;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
 use crate::math::trig::sin_cos_turns;
@@ -374,4 +375,15 @@ fn map_irradiance(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyIrradi
         })
         .reduce(ShSum::default, ShSum::merge);
     sum.irradiance()
+}
+
+impl LightModel for EnvironmentLight {
+    /// None: the sky is infinitely far; the tree weighs it beside its root
+    /// by its irradiance instead.
+    fn bounds(&self, _phi: f32) -> Option<LightBounds> {
+        None
+    }
+    fn as_environment(&self) -> Option<&EnvironmentLight> {
+        Some(self)
+    }
 }

@@ -2,9 +2,10 @@
 //! of one `Mesh` or `Instance` object), sampled uniformly by area — a
 //! triangle by an alias table over the areas, then a uniform point on it.
 
-use super::LightSample;
 use super::alias::AliasTable;
 use super::emission::{Emission, EmissionTexture};
+use super::tree::LightBounds;
+use super::{LightModel, LightSample};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
@@ -179,5 +180,13 @@ impl MeshLight {
     pub fn power(&self) -> Rgb {
         let sides = if self.two_sided { 2.0 } else { 1.0 };
         sides * PI * self.area * self.radiance
+    }
+}
+
+impl LightModel for MeshLight {
+    /// The triangles' box and their normal cone.
+    fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        let (b, w, cos_theta_o) = self.bounds_and_normal_cone();
+        Some(LightBounds::surface(b, w, cos_theta_o, self.two_sided, phi))
     }
 }

@@ -27,7 +27,7 @@ use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{Instance, MeshQuad, MeshTriangle, NO_LIGHT, Shape};
 use crate::lights::{Emission, Light, MeshLight};
-use crate::materials::{ColorTex, Material};
+use crate::materials::{ColorTex, LambertMaterial, Material};
 use crate::math::Rgb;
 use glam::{Affine3A, Mat4, Vec2, Vec3};
 use std::collections::BTreeMap;
@@ -313,9 +313,9 @@ fn grey(ctx: &mut BuildContext, path: &str, group: &str) -> u32 {
     ctx.notes.push(format!(
         "{path}: OBJ group `{group}` has no material and the scene gives none; using grey Lambert (0.5)"
     ));
-    let g = ctx.mtl.push(Material::Lambert {
+    let g = ctx.mtl.push(Material::Lambert(LambertMaterial {
         albedo: ColorTex::Const(Rgb::splat(0.5)),
-    });
+    }));
     ctx.mesh_state.grey = Some(g);
     g
 }

@@ -26,8 +26,9 @@
 
 use crate::lights::Emission;
 use crate::materials::{
-    Channel, ColorTex, Cutout, DielectricFresnel, ImageLookup, Material, Roughness, ScalarTex, Surface, Tex,
-    Texture, UvTransform,
+    Channel, ColorTex, Cutout, DielectricFresnel, GlassMaterial, ImageLookup, LambertMaterial, Material,
+    MetalPlasticMaterial, MirrorMaterial, PhongMaterial, Roughness, ScalarTex, Surface, Tex, Texture,
+    UvTransform,
 };
 use crate::math::Rgb;
 use std::collections::HashMap;
@@ -239,7 +240,7 @@ impl MtlMaterials {
                     (v.len() == 3).then(|| [v[0], v[1], v[2]])
                 })
                 .map_or(Rgb::ONE, |c| rgb(Some(c), 1.0));
-            Material::Glass {
+            Material::Glass(GlassMaterial {
                 ior: Tex::Const(
                     m.optical_density
                         .filter(|n| n.is_finite() && *n >= 1.0)
@@ -247,33 +248,33 @@ impl MtlMaterials {
                 ),
                 tint: ColorTex::Const(tint),
                 fresnel: DielectricFresnel::Exact,
-            }
+            })
         } else if illum == 3 {
             let tint = if ks.max_element() > 0.0 {
                 ks
             } else {
                 Rgb::splat(0.9)
             };
-            Material::Mirror {
+            Material::Mirror(MirrorMaterial {
                 tint: ColorTex::Const(tint),
-            }
+            })
         } else if pr.is_some() || pm.is_some() || pr_map.is_some() || pm_map.is_some() {
-            Material::MetalPlastic {
+            Material::MetalPlastic(MetalPlasticMaterial {
                 base_color: albedo,
                 roughness: Roughness {
                     tex: pr_map.unwrap_or(Tex::Const(pr.unwrap_or(0.5).clamp(0.0, 1.0))),
                     is_alpha: false,
                 },
                 metalness: pm_map.unwrap_or(Tex::Const(pm.unwrap_or(0.0).clamp(0.0, 1.0))),
-            }
+            })
         } else if ks.max_element() > 0.0 || ks_map.is_some() {
-            Material::Phong {
+            Material::Phong(PhongMaterial {
                 kd: albedo,
                 ks: ks_map.unwrap_or(ColorTex::Const(ks)),
                 exponent: ns_map.unwrap_or(Tex::Const(ns.unwrap_or(10.0))),
-            }
+            })
         } else {
-            Material::Lambert { albedo }
+            Material::Lambert(LambertMaterial { albedo })
         };
         let i = self.push(material);
         if let Some(opacity) = opacity {
