@@ -17,7 +17,14 @@ fn first_readme_command_writes_cornell_png_in_the_current_folder() {
     let scene = root().join("scenes/cornell.ron");
     let out = common::ronray_in(
         dir.path(),
-        &["render", scene.to_str().expect("utf-8 path"), "--size", "16x16", "--spp", "1"],
+        &[
+            "render",
+            scene.to_str().expect("utf-8 path"),
+            "--size",
+            "16x16",
+            "--spp",
+            "1",
+        ],
     );
     assert!(
         out.status.success(),
@@ -206,9 +213,18 @@ fn new_keeps_an_existing_scene_unless_forced() {
 fn stats_name_meshes_marches_and_the_sky_map() {
     let dir = tempfile::tempdir().expect("temp dir");
     for (scene, expect) in [
-        ("bunny", &["meshes: 1 in memory", "mesh 0: 3674 triangles", "rays/s"][..]),
-        ("sdf_shapes", &["marches", "steps per march", "steps histogram"][..]),
-        ("env_spheres", &["environment: ", "map read in", "sampling tables built in"][..]),
+        (
+            "bunny",
+            &["meshes: 1 in memory", "mesh 0: 3674 triangles", "rays/s"][..],
+        ),
+        (
+            "sdf_shapes",
+            &["marches", "steps per march", "steps histogram"][..],
+        ),
+        (
+            "env_spheres",
+            &["environment: ", "map read in", "sampling tables built in"][..],
+        ),
     ] {
         let path = root().join(format!("scenes/{scene}.ron"));
         let out = dir.path().join(format!("{scene}.png"));
@@ -230,7 +246,10 @@ fn stats_name_meshes_marches_and_the_sky_map() {
         );
         assert!(run.status.success(), "{scene}: {text}");
         for e in expect {
-            assert!(text.contains(e), "{scene}: `--stats` does not print `{e}`:\n{text}");
+            assert!(
+                text.contains(e),
+                "{scene}: `--stats` does not print `{e}`:\n{text}"
+            );
         }
     }
 }

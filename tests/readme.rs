@@ -130,7 +130,14 @@ fn readme_annotated_scene_is_the_shipped_file() {
 
 /// Folders of the clone whose files the shell examples may name.
 const CLONE_FOLDERS: [&str; 8] = [
-    "scenes/", "assets/", "examples/", "tools/", "scripts/", ".ci/", "tests/", "schema/",
+    "scenes/",
+    "assets/",
+    "examples/",
+    "tools/",
+    "scripts/",
+    ".ci/",
+    "tests/",
+    "schema/",
 ];
 
 /// Options after which a shell example names a file it writes.
@@ -175,7 +182,10 @@ fn readme_commands_need_nothing_outside_the_clone() {
             }
         }
     }
-    assert!(checked >= 10, "only {checked} file names checked: is the reader broken?");
+    assert!(
+        checked >= 10,
+        "only {checked} file names checked: is the reader broken?"
+    );
 }
 
 /// The anchor GitHub gives a heading: lower case, punctuation other than
@@ -216,12 +226,18 @@ fn links(text: &str) -> Vec<String> {
 
 #[test]
 fn anchor_follows_githubs_rule() {
-    assert_eq!(anchor(" Versions and `ronray migrate`"), "versions-and-ronray-migrate");
+    assert_eq!(
+        anchor(" Versions and `ronray migrate`"),
+        "versions-and-ronray-migrate"
+    );
     assert_eq!(
         anchor(" Side by side after the realism merges (2026-12-05 02:13–02:22 UTC)"),
-        "side-by-side-after-the-realism-merges-2026-12-05-0213-0222-utc"
+        "side-by-side-after-the-realism-merges-2026-12-05-02130222-utc"
     );
-    assert_eq!(links("see [a](docs/a.md#x) and [b](https://x.org)"), ["docs/a.md#x"]);
+    assert_eq!(
+        links("see [a](docs/a.md#x) and [b](https://x.org)"),
+        ["docs/a.md#x"]
+    );
 }
 
 /// Moved text stays reachable: every relative link of the README and of
@@ -232,7 +248,9 @@ fn guide_links_lead_to_files_and_headings_that_exist() {
     let pages = pages();
     let mut checked = 0;
     for (page, text) in &pages {
-        let folder = std::path::Path::new(page).parent().unwrap_or(std::path::Path::new(""));
+        let folder = std::path::Path::new(page)
+            .parent()
+            .unwrap_or(std::path::Path::new(""));
         for target in links(text) {
             let (file, fragment) = match target.split_once('#') {
                 Some((f, a)) => (f, Some(a)),

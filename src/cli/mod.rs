@@ -189,7 +189,7 @@ pub enum Command {
         force: bool,
     },
     /// Render every scene of the folders given into one folder of PNGs and
-    /// print a Markdown gallery (what the README shows).
+    /// print a Markdown gallery (what `docs/gallery.md` shows).
     Gallery {
         /// Scene files or folders; default `scenes`.
         paths: Vec<PathBuf>,
