@@ -253,3 +253,57 @@ fn stats_name_meshes_marches_and_the_sky_map() {
         }
     }
 }
+
+/// A key track holds at most 10,000 keys (`MAX_KEYS`): one more is a
+/// located error that names the limit, and 10,000 load.
+#[test]
+fn a_track_of_more_than_ten_thousand_keys_is_refused() {
+    let scene = |n: usize| {
+        let keys: String = (0..n)
+            .map(|i| format!("(frame: {i}, transform: [Translate(({}, 0, 0))]),", i as f32 * 1e-4))
+            .collect();
+        format!(
+            "Scene(camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+             materials: {{ \"white\": Lambert(albedo: 0.8) }},
+             lights: [Point(position: (0, 2, 2), intensity: (1, 1, 1))],
+             meshes: {{ \"block\": (file: \"../assets/short_block.obj\") }},
+             objects: [Instance(mesh: \"block\", material: \"white\", keys: [{keys}])])"
+        )
+    };
+    let path = root().join("scenes/keys_test.ron");
+    let err = match load_str(&path, &scene(10_001), &Overrides::default()) {
+        Ok(_) => panic!("10,001 keys were accepted"),
+        Err(e) => common::message(&e),
+    };
+    assert!(err.contains("10000"), "the error does not name the limit:\n{err}");
+    if let Err(e) = load_str(&path, &scene(10_000), &Overrides::default()) {
+        panic!("10,000 keys are refused:\n{}", common::message(&e));
+    }
+}
+
+/// A density grid whose optical depth across its box is above 10,000
+/// (`MAX_GRID_OPTICAL_DEPTH`) is refused naming the limit.
+#[test]
+fn a_grid_too_dense_to_track_is_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let bytes = ronray::media::vol::write_vol([2, 2, 2], &[1.0; 8], [-1.0; 3], [1.0; 3]);
+    std::fs::write(dir.path().join("g.vol"), bytes).expect("write .vol");
+    let scene = |scale: f32| {
+        format!(
+            "Scene(camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+             integrator: Path(max_depth: 4),
+             media: {{ \"smoke\": Grid(file: \"g.vol\", min: (-1, -1, -1), max: (1, 1, 1), scale: {scale}) }},
+             medium: \"smoke\",
+             lights: [Point(position: (0, 2, 2), intensity: (1, 1, 1))])"
+        )
+    };
+    let path = dir.path().join("grid.ron");
+    let err = match load_str(&path, &scene(1e5), &Overrides::default()) {
+        Ok(_) => panic!("a grid of optical depth 2e5 was accepted"),
+        Err(e) => common::message(&e),
+    };
+    assert!(err.contains("10000"), "the error does not name the limit:\n{err}");
+    if let Err(e) = load_str(&path, &scene(1.0), &Overrides::default()) {
+        panic!("a grid of optical depth 2 is refused:\n{}", common::message(&e));
+    }
+}
