@@ -62,10 +62,18 @@ fn pages() -> Vec<(String, String)> {
         .collect()
 }
 
+/// Pages whose RON blocks are fragments that cannot load alone: the
+/// material entries of `docs/textures.md` name image files the reader
+/// brings (`"albedo.png"`, `"window.exr"`).
+const FRAGMENT_PAGES: [&str; 1] = ["docs/textures.md"];
+
 #[test]
 fn readme_ron_examples_load() {
     let mut count = 0;
     for (page, text) in pages() {
+        if FRAGMENT_PAGES.contains(&page.as_str()) {
+            continue;
+        }
         let ron = blocks(&text, "ron");
         count += ron.len();
         ron_examples_load(&page, &ron);
