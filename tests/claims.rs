@@ -260,7 +260,12 @@ fn stats_name_meshes_marches_and_the_sky_map() {
 fn a_track_of_more_than_ten_thousand_keys_is_refused() {
     let scene = |n: usize| {
         let keys: String = (0..n)
-            .map(|i| format!("(frame: {i}, transform: [Translate(({}, 0, 0))]),", i as f32 * 1e-4))
+            .map(|i| {
+                format!(
+                    "(frame: {i}, transform: [Translate(({}, 0, 0))]),",
+                    i as f32 * 1e-4
+                )
+            })
             .collect();
         format!(
             "Scene(camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),

@@ -394,7 +394,7 @@ fn every_variant_sites(name: &str, variants: &[String]) -> Vec<String> {
 #[test]
 fn readme_change_checklists_name_every_file_a_new_variant_touches() {
     let readme = std::fs::read_to_string(root().join("docs/design.md")).expect("docs/design.md");
-    let checklists = [
+    let checklists: [(&str, &[(&str, &str)]); 3] = [
         (
             "Adding a material touches",
             &[
