@@ -1,4 +1,4 @@
-//! `ronray lsp`: the language server, for editors (set-up in the README).
+//! `ronray lsp`: the language server, for editors (set-up in `docs/editors.md`).
 use std::process::ExitCode;
 
 pub(super) fn cmd_lsp() -> ExitCode {

@@ -11,7 +11,7 @@
 //! the seam is at −z; columns wrap across the seam, row 0 is exactly the
 //! zenith and row H − 1 the nadir. This is what Mitsuba 3.9.1's `envmap`
 //! evaluates (probed through its Python API: a map whose row j holds j
-//! returns `v·(H − 1)`); `shared/refs/README.md` gives row centres at
+//! returns `v·(H − 1)`); the Mitsuba reference set's notes give row centres at
 //! `(j + ½)/H`, which stretches the sky's rows by H/(H − 1) less and left
 //! the floor of `env_spheres` 0.35% darker than Mitsuba's. The environment's
 //! frame is the world's turned by `rotation` about +y (right-handed).
