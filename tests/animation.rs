@@ -243,6 +243,21 @@ fn time_fields_give_located_errors() {
     );
 }
 
+#[test]
+fn keys_of_different_handedness_give_a_located_error() {
+    let text = format!(
+        "Scene(\n    {CAMERA}),\n    meshes: {{ \"sq\": (file: \"square.obj\") }},\n    materials: {{ \"m\": Lambert(albedo: (1, 1, 1)) }},\n    objects: [\n        Instance(mesh: \"sq\", material: \"m\", emission: (radiance: (1, 1, 1)), keys: [\n            (frame: 0, transform: [Scale((1, 1, 1))]),\n            (frame: 1, transform: [Scale((-1, 1, 1))]),\n        ]),\n    ],\n)\n"
+    );
+    let e = errors_of(&text);
+    assert!(
+        e.contains("turns inside out") && e.contains("objects[0].keys[1].transform") && e.contains(":8:"),
+        "{e}"
+    );
+    // The same keys, both mirrored, are fine; and a keyed instance may emit.
+    let fine = text.replace("Scale((1, 1, 1))", "Scale((1, -1, 1))");
+    load_in(&fixtures(), &fine, &Overrides::default());
+}
+
 /// The analytic scene: an orthographic camera 8 units wide over a
 /// 64-pixel row, an emissive wall of radiance 1 behind, and in front a
 /// black 2-unit square crossing from x = −2 to x = +2 at constant speed
