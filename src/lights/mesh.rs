@@ -159,7 +159,7 @@ impl MeshLight {
         // A moving light: the point and normal placed at the path's time.
         let (q, n, area) = match &self.motion {
             None => (q, n, self.area),
-            Some(m) => placed(&m.now(), q, n, self.area),
+            Some(m) => placed(m, q, n, self.area),
         };
         let d = q - p;
         let dist2 = d.length_squared();
@@ -198,7 +198,7 @@ impl MeshLight {
         let cos_l = wi.dot(n).abs();
         let area = match &self.motion {
             None => self.area,
-            Some(m) => self.area * m.now().area_scale(n),
+            Some(m) => moving_area(m, self.area, n),
         };
         if cos_l > 0.0 {
             dist * dist / (cos_l * area)
@@ -260,10 +260,22 @@ impl MeshLight {
 }
 
 /// A rest-frame sample point `q` with unit normal `n` on a light of rest
-/// area `area`, placed by `p`: the world point, its unit normal, and the
-/// area its density is over (`area · J`, see the module docs).
-#[inline]
-fn placed(p: &Placement, q: Vec3A, n: Vec3A, area: f32) -> (Vec3A, Vec3A, f32) {
+/// area `area`, placed by `m` at the path's time: the world point, its unit
+/// normal, and the area its density is over (`area · J`, see the module
+/// docs). Out of line, as [`moving_area`], so that still lights compile as
+/// before.
+#[cold]
+#[inline(never)]
+fn placed(m: &InstanceMotion, q: Vec3A, n: Vec3A, area: f32) -> (Vec3A, Vec3A, f32) {
+    let p: Placement = m.now();
     let (nw, scale) = p.normal_and_area_scale(n);
     (p.world_from_object.transform_point3a(q), nw, area * scale)
+}
+
+/// The area `area · J` a moving light's density is over at a hit of world
+/// normal `n`, at the path's time.
+#[cold]
+#[inline(never)]
+fn moving_area(m: &InstanceMotion, area: f32, n: Vec3A) -> f32 {
+    area * m.now().area_scale(n)
 }
