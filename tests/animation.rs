@@ -549,7 +549,7 @@ fn closed_shutter_between_keys_equals_the_static_render_of_the_interpolated_tran
     // The keys as the loader composes them (steps applied in order), and
     // their interpolation at u.
     let key1 = Mat4::from_translation(Vec3::new(0.3, 0.0, 0.0))
-        * Mat4::from_axis_angle(Vec3::Y.normalize(), 20f32.to_radians());
+        * (Mat4::from_axis_angle(Vec3::Y.normalize(), 20f32.to_radians()) * Mat4::IDENTITY);
     let track = TransformTrack::new(&[(0.0, Mat4::IDENTITY), (1.0, key1)], Interpolation::Linear);
     let m = track.at(u);
     // That placement is the rotation by 20u° and the translation by 0.3u,

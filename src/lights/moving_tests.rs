@@ -13,6 +13,7 @@ use crate::geometry::moving::InstanceMotion;
 use crate::geometry::{Instance, Mesh};
 use crate::math::{Pcg32, Ray};
 use glam::{Affine3A, Mat4, Quat, Vec3};
+use std::f32::consts::PI;
 
 /// The unit square in the mesh's xz plane, facing down (−y).
 const SQUARE: [Vec3A; 4] = [
