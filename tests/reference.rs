@@ -9,13 +9,14 @@
 //!
 //! Whole-image figures dilute a wrong region (a far floor rendered at 0.5% of
 //! the reference moved the whole-image RMSE less than the noise), so every
-//! 8 × 8 block is judged too: see [`check_blocks`].
+//! 8 × 8 block is judged too: see `common::check_blocks` (the bar is shared
+//! with `tests/animation.rs`, whose references are means of still renders).
 
 mod common;
 
 use common::root;
 use ronray::frame::render_whole;
-use ronray::imageio::{Image, blocks, compare, read_image};
+use ronray::imageio::{Image, compare, read_image};
 use ronray::load::{Overrides, load_with};
 
 fn render_at(scene: &str, spp: u32, seed: u64) -> Image {
@@ -34,7 +35,8 @@ fn check(scene: &str, reference: &str, spp: u32) {
 }
 
 /// [`check`] with the channel means within `mean_rel` of the reference's;
-/// returns the two renders (seeds 1 and 2) for further checks.
+/// returns the two renders (seeds 1 and 2) for further checks. The bar is
+/// [`common::reference_bar`]'s, over all pixels and off the light.
 fn check_within(scene: &str, reference: &str, spp: u32, mean_rel: f64) -> (Image, Image) {
     let fixture = |f: &str| read_image(&root().join("tests/fixtures/refs").join(f)).expect("fixture");
     let reference_img = fixture(&format!("{reference}_64.pfm"));
@@ -42,82 +44,8 @@ fn check_within(scene: &str, reference: &str, spp: u32, mean_rel: f64) -> (Image
     let skip: Vec<bool> = mask.pixels.iter().map(|p| p.x > 0.5).collect();
     let a = render_at(scene, spp, 1);
     let b = render_at(scene, spp, 2);
-    for (label, skip) in [("all pixels", None), ("off the light", Some(skip.as_slice()))] {
-        let err = compare(&a, &reference_img, skip).expect("same size").rmse;
-        let noise = compare(&a, &b, skip).expect("same size").rmse / 2f64.sqrt();
-        // Reference noise at 64² is ~0.0006; allow for it and for the
-        // spread of the noise estimate itself.
-        let bound = 1.1 * noise + 0.002;
-        assert!(
-            err <= bound,
-            "{scene} ({label}): RMSE vs Mitsuba {err:.5} exceeds 1.1 × own noise {noise:.5} + 0.002 — biased?"
-        );
-    }
-    check_blocks(scene, &a, &b, &reference_img);
-    let c = compare(&a, &reference_img, None).expect("same size");
-    for ch in 0..3 {
-        // Half of the image mean's own noise at this spp is far below 1%.
-        let rel = (c.mean_a[ch] - c.mean_b[ch]).abs() / c.mean_b[ch];
-        assert!(
-            rel < mean_rel,
-            "{scene}: channel {ch} mean {:.5} vs reference {:.5} (tolerance {mean_rel})",
-            c.mean_a[ch],
-            c.mean_b[ch]
-        );
-    }
+    common::reference_bar(scene, &a, &b, &reference_img, Some(&skip), mean_rel);
     (a, b)
-}
-
-/// Block side in pixels for the regional check.
-const BLOCK: usize = 8;
-/// Blocks whose reference mean (every channel) is below this are too dark to
-/// judge relatively; their absolute error is within the noise term anyway.
-const TINY: f64 = 1e-3;
-
-/// Every 8 × 8 block's mean, per channel, averaged over the two independent
-/// renders `a` and `b`, must be within 4σ + 3% of the reference mean + 0.001.
-/// σ is the noise of that average, estimated from the per-pixel differences
-/// of `a` and `b`: Var(pixel of (a+b)/2) = E[(a − b)²]/4, and a block mean
-/// of n pixels has Σ Var / n². The 3% covers the reference's own noise and
-/// the heavy tail of caustic noise (a block under the glass sphere of
-/// `cornell_specular` strayed 11% at 64 spp with one render and converges to
-/// the reference within 0.2% at 4096); a region at half its brightness fails.
-fn check_blocks(scene: &str, a: &Image, b: &Image, reference: &Image) {
-    let mean_ab = Image {
-        width: a.width,
-        height: a.height,
-        pixels: a
-            .pixels
-            .iter()
-            .zip(&b.pixels)
-            .map(|(x, y)| 0.5 * (*x + *y))
-            .collect(),
-    };
-    let vs_ref = blocks(&mean_ab, reference, BLOCK).expect("same size");
-    let noise = blocks(a, b, BLOCK).expect("same size");
-    let mut bad = Vec::new();
-    for (r, n) in vs_ref.iter().zip(&noise) {
-        if r.mean_b.iter().all(|&m| m < TINY) {
-            continue;
-        }
-        for ch in 0..3 {
-            let sigma = n.sum_sq_diff[ch].sqrt() / (2.0 * r.pixels as f64);
-            let tol = 4.0 * sigma + 0.03 * r.mean_b[ch] + 0.001;
-            let err = (r.mean_a[ch] - r.mean_b[ch]).abs();
-            if err > tol {
-                bad.push(format!(
-                    "block at ({}, {}) channel {ch}: {:.5} vs reference {:.5} (tolerance {tol:.5})",
-                    r.x, r.y, r.mean_a[ch], r.mean_b[ch]
-                ));
-            }
-        }
-    }
-    assert!(
-        bad.is_empty(),
-        "{scene}: {} block(s) off the reference:\n{}",
-        bad.len(),
-        bad.join("\n")
-    );
 }
 
 #[test]

@@ -7,7 +7,7 @@
 //! | `Point`, `Spot` | a point (delta) | its position |
 //! | `Quad` | a `Quad`/`Rect` light, or an emissive `Quad`/`Rect` object | rectangles uniformly in solid angle (spherical rectangles), other parallelograms by area |
 //! | `Sphere` | an emissive sphere | uniformly in the cone it subtends |
-//! | `Mesh` | the emissive triangles of a placed mesh (one material slot) | by area: a triangle by an alias table, then a uniform point |
+//! | `Mesh` | the emissive triangles of a placed mesh (one material slot), moving with a keyed instance | by area: a triangle by an alias table, then a uniform point (placed at the path's time when it moves) |
 //! | `Sdf` | an emissive implicit surface | uniformly in its bounding sphere's cone, then marched |
 //! | `Environment` | the sky at infinity (at most one) | an image by its bilinear luminance × sin θ; a constant sky by the cosine about the shading normal |
 //!
@@ -36,6 +36,8 @@ pub mod spherical_rect;
 pub mod spot;
 pub mod tree;
 
+#[cfg(test)]
+mod moving_tests;
 #[cfg(test)]
 mod tests;
 

@@ -25,7 +25,7 @@ fn hit_of(ls: &LightSample) -> Hit {
 
 /// Irradiance at `p` (normal `n`) estimated from `n_samples` light samples,
 /// checking on the way that each sample's pdf is `Light::pdf`'s.
-fn irradiance(light: &Light, p: Vec3A, n: Vec3A, n_samples: u32) -> f64 {
+pub(super) fn irradiance(light: &Light, p: Vec3A, n: Vec3A, n_samples: u32) -> f64 {
     let geo = Geometry::default();
     let mut rng = Pcg32::new(11, 3);
     let mut sum = 0.0f64;
@@ -114,7 +114,7 @@ fn two_sided_sphere_lights_its_inside() {
 }
 
 /// Lambert's polygon formula, E = L/2 Σ βᵢ n·γᵢ.
-fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {
+pub(super) fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {
     let mut sum = 0.0;
     for i in 0..verts.len() {
         let a = (verts[i] - x).normalize();

@@ -10,7 +10,8 @@
 //! MTL material when the group keeps that material (a scene material that
 //! replaces it replaces its emission too). Each emitting group of each
 //! placed mesh is one [`MeshLight`] with its own world-space copy of the
-//! group's triangles.
+//! group's triangles; a moving instance's light keeps them in the mesh's
+//! space with the instance's motion.
 //!
 //! The check step only makes sure each OBJ file exists (`Checker::file`);
 //! parsing the file is the build's work, and its problems are reported at
@@ -77,7 +78,7 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         let placed = Affine3A::from_mat4(track.at(shutter.0));
         instance = Instance::new(loaded.mesh, placed, instance.materials);
         if track.moves_between(shutter.0, shutter.1) {
-            instance = instance.with_motion(crate::geometry::moving::InstanceMotion { track, shutter });
+            instance = instance.with_motion(crate::geometry::moving::InstanceMotion::new(track, shutter));
         }
     }
     if emission.iter().any(Option::is_some) {
@@ -164,13 +165,21 @@ pub(super) fn mesh_light(
 ) -> u32 {
     let mesh = &ctx.geometry.meshes[instance.mesh as usize];
     let in_slot = || (0..mesh.triangle_count() as u32).filter(|&t| mesh.slot(t) as usize == slot);
+    // A moving instance's light keeps the triangles in the mesh's space
+    // and places them at each time (`lights/mesh.rs`).
     let tris: Vec<_> = in_slot()
-        .map(|t| instance.world_triangle(t, &ctx.geometry.meshes))
+        .map(|t| match instance.motion() {
+            None => instance.world_triangle(t, &ctx.geometry.meshes),
+            Some(_) => {
+                let (a, b, c) = mesh.corners(t);
+                [a, b, c]
+            }
+        })
         .collect();
     // Corner UVs as a hit interpolates them (`Mesh::hit`: barycentric
     // (0, 0), (1, 0), (0, 1) without UVs), in `world_triangle`'s order,
     // which swaps two corners under a mirroring transform.
-    let mirrored = instance.world_from_object.matrix3.determinant() < 0.0;
+    let mirrored = instance.motion().is_none() && instance.world_from_object.matrix3.determinant() < 0.0;
     let uvs: Vec<[Vec2; 3]> = if emission.is_textured() {
         in_slot()
             .map(|t| {
@@ -185,7 +194,11 @@ pub(super) fn mesh_light(
     } else {
         Vec::new()
     };
-    match MeshLight::new(tris, emission.radiance, two_sided).map(|l| l.with_emission(emission, uvs)) {
+    let light = MeshLight::new(tris, emission.radiance, two_sided).map(|l| l.with_emission(emission, uvs));
+    match light.map(|l| match instance.motion() {
+        Some(m) => l.with_motion(m.clone()),
+        None => l,
+    }) {
         Some(light) => {
             ctx.lights.push(Light::Mesh(light));
             ctx.lights.len() as u32 - 1
