@@ -8,8 +8,9 @@ tests/fixtures/refs/, with emitter masks.
 
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba==3.9.1 numpy
     /tmp/mi/bin/python tools/media_refs.py vol                 # writes the .vol (what the test checks)
-    /tmp/mi/bin/python tools/media_refs.py ref NAME --spp 2048 --out /tmp/refs
-    /tmp/mi/bin/python tools/media_refs.py noise NAME --out /tmp/refs   # Mitsuba's RMSE at 64/256 spp
+    /tmp/mi/bin/python tools/media_refs.py probe               # asserts Mitsuba's gridvolume conventions
+    /tmp/mi/bin/python tools/media_refs.py ref NAME --spp 256 --out /tmp/refs   # 256x256 -> 64x64 fixture
+    /tmp/mi/bin/python tools/media_refs.py noise NAME --out /tmp/refs   # Mitsuba's RMSE at 64/256 spp, 64x64
 
 Run from the repository root. Variant `scalar_rgb` (Mitsuba's plain C++
 path; `llvm_ad_rgb` computes the same estimator but needs libLLVM, which
@@ -85,7 +86,7 @@ def rect(mi, center, hu, hv):
     return {"type": "rectangle", "to_world": mi.ScalarTransform4f(m.tolist())}
 
 
-def base(mi, eye, target, fov, spp, max_depth, with_env=True):
+def base(mi, eye, target, fov, spp, max_depth, size):
     T = mi.ScalarTransform4f
     d = {
         "type": "scene",
@@ -93,7 +94,7 @@ def base(mi, eye, target, fov, spp, max_depth, with_env=True):
         "sensor": {
             "type": "perspective", "fov": fov, "fov_axis": "y", "near_clip": 1e-3, "far_clip": 1000.0,
             "to_world": T().look_at(origin=eye, target=target, up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": 256, "height": 256, "rfilter": {"type": "box"},
+            "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"},
                      "pixel_format": "rgb", "component_format": "float32", "sample_border": False},
             "sampler": {"type": "independent", "sample_count": spp},
         },
@@ -101,10 +102,10 @@ def base(mi, eye, target, fov, spp, max_depth, with_env=True):
     return d
 
 
-def media_blob(mi, spp, max_depth=64, with_env=True):
+def media_blob(mi, spp, size, max_depth=64, with_env=True):
     """tests/fixtures/media/media_blob.ron."""
     T = mi.ScalarTransform4f
-    d = base(mi, [0, 1.2, 5.0], [0, 0.9, 0], 35.0, spp, max_depth)
+    d = base(mi, [0, 1.2, 5.0], [0, 0.9, 0], 35.0, spp, max_depth, size)
     lo, hi = BLOB_MIN, BLOB_MAX
     d["ground"] = dict(rect(mi, [0, 0, 0], [4, 0, 0], [0, 0, -4]), bsdf=lambert([0.5, 0.5, 0.5]))
     d["light"] = dict(rect(mi, [-1.5, 4, 1.5], [0.75, 0, 0], [0, 0, 0.75]),
@@ -125,9 +126,9 @@ def media_blob(mi, spp, max_depth=64, with_env=True):
     return d
 
 
-def subsurface_sphere(mi, spp, max_depth=256, with_env=True):
+def subsurface_sphere(mi, spp, size, max_depth=256, with_env=True):
     """tests/fixtures/media/subsurface_sphere.ron."""
-    d = base(mi, [0, 1.2, 3.5], [0, 0.45, 0], 30.0, spp, max_depth)
+    d = base(mi, [0, 1.2, 3.5], [0, 0.45, 0], 30.0, spp, max_depth, size)
     d["ground"] = dict(rect(mi, [0, 0, 0], [4, 0, 0], [0, 0, -4]), bsdf=lambert([0.6, 0.6, 0.6]))
     d["light"] = dict(rect(mi, [-1, 3, 1.5], [0.8, 0, 0], [0, 0, 0.8]),
                       bsdf=lambert([0, 0, 0]), emitter={"type": "area", "radiance": rgb([10, 10, 10])})
@@ -145,9 +146,9 @@ def subsurface_sphere(mi, spp, max_depth=256, with_env=True):
 SCENES = {"media_blob": media_blob, "subsurface_sphere": subsurface_sphere}
 
 
-def render(mi, name, spp, seed, **kw):
+def render(mi, name, spp, seed, size=256, **kw):
     import numpy as np
-    scene = mi.load_dict(SCENES[name](mi, spp, **kw))
+    scene = mi.load_dict(SCENES[name](mi, spp, size, **kw))
     return np.array(mi.render(scene, spp=spp, seed=seed), dtype=np.float32)
 
 
@@ -169,11 +170,39 @@ def read_pfm(path):
     return data.reshape(h, w, 3 if magic == b"PF" else 1)[::-1]
 
 
+def probe(mi, out):
+    """Mitsuba's gridvolume conventions, asserted: a 4x3x2 grid of value
+    x + 10y + 100z (x fastest) whose header box is deliberately wrong, placed
+    by to_world in [1,5]x[2,5]x[3,5]: texel centres hold the values,
+    trilinear between them, clamped at the faces, header box ignored."""
+    nx, ny, nz = 4, 3, 2
+    vals = [x + 10 * y + 100 * z for z in range(nz) for y in range(ny) for x in range(nx)]
+    path = os.path.join(out, "probe.vol")
+    with open(path, "wb") as f:
+        f.write(b"VOL\x03" + struct.pack("<5i", 1, nx, ny, nz, 1) + struct.pack("<6f", 9, 9, 9, 10, 10, 10)
+                + struct.pack(f"<{len(vals)}f", *vals))
+    T = mi.ScalarTransform4f
+    vol = mi.load_dict({"type": "gridvolume", "filename": path, "to_world": T().translate([1, 2, 3]).scale([4, 3, 2])})
+
+    def at(p):
+        it = mi.Interaction3f()
+        it.p = mi.Point3f(p)
+        return vol.eval(it)[0]
+    cases = [([1.5, 2.5, 3.5], 0), ([2.5, 2.5, 3.5], 1), ([1.5, 3.5, 3.5], 10), ([1.5, 2.5, 4.5], 100),
+             ([2.0, 2.5, 3.5], 0.5), ([1.5, 2.5, 4.0], 50), ([1.01, 2.01, 3.01], 0), ([4.99, 4.99, 4.99], 123)]
+    for p, want in cases:
+        got = at(p)
+        assert abs(got - want) < 1e-4, (p, got, want)
+    bb = vol.bbox()
+    assert list(bb.min) == [1, 2, 3] and list(bb.max) == [5, 5, 5], bb
+    print("gridvolume conventions: texel centres, x fastest, trilinear, clamped, header box ignored: ok")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=["vol", "ref", "noise"])
+    ap.add_argument("what", choices=["vol", "probe", "ref", "noise"])
     ap.add_argument("name", nargs="?", choices=sorted(SCENES))
-    ap.add_argument("--spp", type=int, default=2048)
+    ap.add_argument("--spp", type=int, default=256)
     ap.add_argument("--out", default="/tmp/media_refs")
     ap.add_argument("--threads", type=int, default=2)
     a = ap.parse_args()
@@ -187,7 +216,9 @@ def main():
     mi.set_variant("scalar_rgb")
     dr.set_thread_count(a.threads)
     os.makedirs(a.out, exist_ok=True)
-    if a.what == "ref":
+    if a.what == "probe":
+        probe(mi, a.out)
+    elif a.what == "ref":
         img = render(mi, a.name, a.spp, 0)
         write_pfm(os.path.join(a.out, f"{a.name}_ref.pfm"), img)
         # Emitter mask: area lights seen directly (through the media), sky left out.
@@ -201,12 +232,14 @@ def main():
         print(json.dumps({"scene": a.name, "spp": a.spp, "mean": small.reshape(-1, 3).mean(0).tolist(),
                           "mask_pixels_64": int(m64.sum())}))
     else:
-        ref = read_pfm(os.path.join(a.out, f"{a.name}_ref.pfm"))
-        keep = read_pfm(os.path.join(a.out, f"{a.name}_mask.pfm"))[..., 0] < 0.5
+        # At 64x64, the size the tests render at, against the fixture: the
+        # same figures as tests/reference.rs computes for ronray.
+        ref = read_pfm(os.path.join(REFS, f"{a.name}_64.pfm"))
+        keep = read_pfm(os.path.join(REFS, f"{a.name}_mask_64.pfm"))[..., 0] < 0.5
         rows = []
-        for spp, seeds in ((64, (1, 2, 3)), (256, (1,))):
+        for spp, seeds in ((64, (1, 2)), (256, (1, 2))):
             for seed in seeds:
-                img = render(mi, a.name, spp, seed)
+                img = render(mi, a.name, spp, seed, size=64)
                 d2 = ((img - ref) ** 2).mean(axis=2)
                 rows.append({"spp": spp, "seed": seed, "rmse": float(np.sqrt(d2.mean())),
                              "rmse_off_light": float(np.sqrt(d2[keep].mean())),
