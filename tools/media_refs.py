@@ -131,7 +131,7 @@ def subsurface_sphere(mi, spp, size, max_depth=256, with_env=True):
     d = base(mi, [0, 1.2, 3.5], [0, 0.45, 0], 30.0, spp, max_depth, size)
     d["ground"] = dict(rect(mi, [0, 0, 0], [4, 0, 0], [0, 0, -4]), bsdf=lambert([0.6, 0.6, 0.6]))
     d["light"] = dict(rect(mi, [-1, 3, 1.5], [0.8, 0, 0], [0, 0, 0.8]),
-                      bsdf=lambert([0, 0, 0]), emitter={"type": "area", "radiance": rgb([10, 10, 10])})
+                      bsdf=lambert([0, 0, 0]), emitter={"type": "area", "radiance": rgb([4, 4, 4])})
     d["sphere"] = {
         "type": "sphere", "center": [0, 0.5, 0], "radius": 0.5,
         "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0},
@@ -139,7 +139,7 @@ def subsurface_sphere(mi, spp, size, max_depth=256, with_env=True):
                      "scale": 1.0, "phase": {"type": "isotropic"}},
     }
     if with_env:
-        d["sky"] = {"type": "constant", "radiance": rgb([0.1, 0.1, 0.1])}
+        d["sky"] = {"type": "constant", "radiance": rgb([0.5, 0.5, 0.5])}
     return d
 
 
