@@ -274,7 +274,8 @@ fn null_boundary_meshes_take_no_grey_material_note() {
     let notes = |object: &str| {
         let text = format!(
             r#"Scene(
-                camera: (eye: (0, 0, 3), target: (0, 0, 0)),
+                camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+                integrator: Path(max_depth: 4),
                 media: {{ "m": Homogeneous(sigma_t: (1, 1, 1)) }},
                 lights: [Environment(radiance: (1, 1, 1))],
                 objects: [{object}],
