@@ -26,7 +26,7 @@ fn render_at(scene: &str, spp: u32, seed: u64) -> Image {
         seed: Some(seed),
         ..Default::default()
     };
-    let loaded = load_with(&root().join("scenes").join(scene), &o).unwrap_or_else(|e| panic!("{scene}: {e}"));
+    let loaded = load_with(&root().join(scene), &o).unwrap_or_else(|e| panic!("{scene}: {e}"));
     render_whole(&loaded.scene, &loaded.view, &Default::default()).0
 }
 
@@ -50,54 +50,82 @@ fn check_within(scene: &str, reference: &str, spp: u32, mean_rel: f64) -> (Image
 
 #[test]
 fn path_matches_mitsuba_on_a_large_floor_lit_at_low_angles() {
-    check("floor_rect.ron", "floor_rect", 64);
+    check("scenes/floor_rect.ron", "floor_rect", 64);
 }
 
 #[test]
 fn path_matches_mitsuba_cornell_diffuse() {
-    check("cornell.ron", "cornell_diffuse", 64);
+    check("scenes/cornell.ron", "cornell_diffuse", 64);
 }
 
 #[test]
 fn path_matches_mitsuba_cornell_specular() {
     // 256 spp: at 64, the caustic under the glass sphere is noisy enough in
     // its heavy tail to bring one block to 0.96 of its tolerance.
-    check("cornell_specular.ron", "cornell_specular", 256);
+    check("scenes/cornell_specular.ron", "cornell_specular", 256);
 }
 
 #[test]
 fn path_matches_mitsuba_cornell_dof() {
-    check("cornell_dof.ron", "cornell_dof", 64);
+    check("scenes/cornell_dof.ron", "cornell_dof", 64);
 }
 
 #[test]
 fn path_matches_mitsuba_env_spheres() {
-    check("env_spheres.ron", "env_spheres", 64);
+    check("scenes/env_spheres.ron", "env_spheres", 64);
 }
 
 #[test]
 fn path_matches_mitsuba_emissive_shapes() {
-    check("emissive_shapes.ron", "emissive_shapes", 64);
+    check("scenes/emissive_shapes.ron", "emissive_shapes", 64);
 }
 
 /// Textures on colours and on GGX α, a normal map, and cut-outs (Mitsuba's
 /// `mask`), with Mitsuba's UV and image conventions; means within 0.5%.
 #[test]
 fn path_matches_mitsuba_textured_spheres() {
-    check_within("textured_spheres.ron", "textured_spheres", 64, 0.005);
+    check_within("scenes/textured_spheres.ron", "textured_spheres", 64, 0.005);
 }
 
 /// The Cornell box in homogeneous fog (σ_t 0.5, albedo 0.8, camera inside)
-/// against Mitsuba's `volpath`, at 64 and 256 spp: the path tracer's
-/// volumetric branch (`integrators/vol_path.rs`). The fog's image mean
-/// (0.037) is noisy: two 64² renders at 1,024 spp differ by 0.45%, so one
-/// render's mean is held to 1%, and the mean of all four renders (640 spp
-/// per pixel) to 0.5%.
+/// against Mitsuba's `volpath`: the path tracer's volumetric branch
+/// (`integrators/vol_path.rs`). The fog's image mean (0.037) is noisy: two
+/// 64² renders at 1,024 spp differ by 0.45%, hence [`check_volpath`]'s
+/// tolerances.
 #[test]
 fn path_matches_mitsuba_volpath_fog_box() {
-    let (a64, b64) = check_within("fog_box.ron", "fog_box", 64, 0.01);
-    let (a256, b256) = check_within("fog_box.ron", "fog_box", 256, 0.01);
-    let reference_img = read_image(&root().join("tests/fixtures/refs/fog_box_64.pfm")).expect("fixture");
+    check_volpath("scenes/fog_box.ron", "fog_box");
+}
+
+/// A heterogeneous medium: the smooth blob of `blob.vol` (a 32³ grid,
+/// trilinear, in an index-matched box; delta and ratio tracking) against
+/// Mitsuba's `heterogeneous` medium reading the same file
+/// (`tools/media_refs.py`). A grid read with x and z swapped fails it.
+#[test]
+fn path_matches_mitsuba_volpath_media_blob() {
+    check_volpath("tests/fixtures/media/media_blob.ron", "media_blob");
+}
+
+/// Subsurface scattering: a glass sphere (IOR 1.5) holding a dense
+/// (mean free path a tenth of the radius), nearly white medium, against
+/// Mitsuba's `volpath` with max_depth 256 in both. Light reaches the inside
+/// only through the refracting boundary (shadow rays from inside are
+/// blocked by the glass), so this tests the boundary's medium changes, its
+/// (n₁/n₂)² radiance scaling and long paths. An albedo of 0.98 instead of
+/// 0.99 fails it.
+#[test]
+fn path_matches_mitsuba_volpath_subsurface_sphere() {
+    check_volpath("tests/fixtures/media/subsurface_sphere.ron", "subsurface_sphere");
+}
+
+/// The reference bar for media scenes, whose image means converge slowly:
+/// [`check_within`] at 64 and 256 spp (one render's channel means within
+/// 1%), and the mean of its four renders (640 spp per pixel) within 0.5%.
+fn check_volpath(scene: &str, reference: &str) {
+    let (a64, b64) = check_within(scene, reference, 64, 0.01);
+    let (a256, b256) = check_within(scene, reference, 256, 0.01);
+    let reference_img =
+        read_image(&root().join(format!("tests/fixtures/refs/{reference}_64.pfm"))).expect("fixture");
     let all = Image {
         width: a64.width,
         height: a64.height,
@@ -112,11 +140,66 @@ fn path_matches_mitsuba_volpath_fog_box() {
         let rel = (c.mean_a[ch] - c.mean_b[ch]).abs() / c.mean_b[ch];
         assert!(
             rel < 0.005,
-            "fog_box at 640 spp: channel {ch} mean {:.5} vs reference {:.5}",
+            "{reference} at 640 spp: channel {ch} mean {:.5} vs reference {:.5}",
             c.mean_a[ch],
             c.mean_b[ch]
         );
     }
+}
+
+/// `tests/fixtures/media/blob.vol`, generated: three smooth bumps
+/// w (1 − d²/r²)² summed in f64 and rounded once to f32, x fastest. The
+/// arithmetic is `blob_values` of `tools/media_refs.py` operation for
+/// operation, so both sides produce the same bytes.
+fn blob_vol() -> Vec<u8> {
+    const RES: u32 = 32;
+    // (centre x, y, z, radius, weight) in the grid's unit cube.
+    const BUMPS: [(f64, f64, f64, f64, f64); 3] = [
+        (0.5, 0.45, 0.5, 0.42, 1.0),
+        (0.7, 0.68, 0.42, 0.2, 0.9),
+        (0.3, 0.6, 0.72, 0.17, 0.7),
+    ];
+    let n = RES as f64;
+    let mut values = Vec::with_capacity((RES * RES * RES) as usize);
+    for k in 0..RES {
+        for j in 0..RES {
+            for i in 0..RES {
+                let p = [(i as f64 + 0.5) / n, (j as f64 + 0.5) / n, (k as f64 + 0.5) / n];
+                let mut v = 0.0f64;
+                for (cx, cy, cz, r, w) in BUMPS {
+                    let (dx, dy, dz) = (p[0] - cx, p[1] - cy, p[2] - cz);
+                    let d2 = (dx * dx + dy * dy + dz * dz) / (r * r);
+                    if d2 < 1.0 {
+                        let s = 1.0 - d2;
+                        v += w * (s * s);
+                    }
+                }
+                values.push(v as f32);
+            }
+        }
+    }
+    ronray::media::vol::write_vol([RES; 3], &values, [-1.0, 0.0625, -1.0], [1.0, 2.0625, 1.0])
+}
+
+/// The committed grid is the generator's, byte for byte (Mitsuba's
+/// reference was rendered from that file), and it is not symmetric under
+/// swapping x and z, so a transposed read would change the image.
+#[test]
+fn blob_fixture_is_what_the_generator_writes() {
+    let committed = std::fs::read(root().join("tests/fixtures/media/blob.vol")).expect("fixture");
+    let generated = blob_vol();
+    assert_eq!(committed.len(), generated.len(), "blob.vol length");
+    let first = committed.iter().zip(&generated).position(|(a, b)| a != b);
+    assert_eq!(
+        first, None,
+        "blob.vol differs from its generator from byte {first:?}"
+    );
+    let grid = ronray::media::vol::parse_vol(&committed).expect("parses");
+    let at = |x: usize, y: usize, z: usize| grid.values[(z * 32 + y) * 32 + x];
+    let asymmetry: f32 = (0..32 * 32 * 32)
+        .map(|i| (at(i % 32, i / 32 % 32, i / 1024) - at(i / 1024, i / 32 % 32, i % 32)).abs())
+        .sum();
+    assert!(asymmetry > 100.0, "x↔z asymmetry of the blob only {asymmetry}");
 }
 
 /// Environment importance sampling (luminance × sin θ) against uniform

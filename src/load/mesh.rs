@@ -68,7 +68,11 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         _ => return,
     };
     let overrides = o.material_overrides().cloned().unwrap_or_default();
-    let materials = resolve(ctx, &path, &loaded, o.material(), &overrides);
+    // An index-matched medium boundary (a medium and no material) is never
+    // shaded: its grey slots are placeholders, not worth a note.
+    let (interior, exterior) = o.media();
+    let null = (interior.is_some() || exterior.is_some()) && o.material().is_none() && overrides.is_empty();
+    let materials = resolve(ctx, &path, &loaded, o.material(), &overrides, null);
     let emission = slot_emission(ctx, o, &path, &loaded, &materials);
     let id = ctx.geometry.instances.len() as u32;
     let mut instance = Instance::new(loaded.mesh, transform, materials.into_boxed_slice());
@@ -279,6 +283,7 @@ fn resolve(
     l: &LoadedMesh,
     material: Option<&str>,
     overrides: &BTreeMap<String, String>,
+    null: bool,
 ) -> Vec<u32> {
     let mtl_names: Vec<Option<String>> = l
         .groups
@@ -313,19 +318,23 @@ fn resolve(
             if let Some(m) = g.material {
                 return l.mtl[m];
             }
-            grey(ctx, path, &g.name)
+            grey(ctx, path, &g.name, null)
         })
         .collect()
 }
 
-/// The grey default for a group that has no material from anywhere.
-fn grey(ctx: &mut BuildContext, path: &str, group: &str) -> u32 {
+/// The grey default for a group that has no material from anywhere, with
+/// a note the first time a shaded (not `null`) group takes it.
+fn grey(ctx: &mut BuildContext, path: &str, group: &str, null: bool) -> u32 {
+    if !null && !ctx.mesh_state.grey_noted {
+        ctx.mesh_state.grey_noted = true;
+        ctx.notes.push(format!(
+            "{path}: OBJ group `{group}` has no material and the scene gives none; using grey Lambert (0.5)"
+        ));
+    }
     if let Some(g) = ctx.mesh_state.grey {
         return g;
     }
-    ctx.notes.push(format!(
-        "{path}: OBJ group `{group}` has no material and the scene gives none; using grey Lambert (0.5)"
-    ));
     let g = ctx.mtl.push(Material::Lambert(LambertMaterial {
         albedo: ColorTex::Const(Rgb::splat(0.5)),
     }));
