@@ -191,6 +191,26 @@ def ron_block(shapes, gltf_rel):
     return "\n".join(lines)
 
 
+def read_pfm(p):
+    """A PFM as rows top first (the format stores the bottom row first)."""
+    with open(p, "rb") as f:
+        magic = f.readline().strip()
+        w, h = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    return data.reshape(h, w, 3 if magic == b"PF" else 1)[::-1].astype(np.float64)
+
+
+def write_pfm(p, img):
+    """Little-endian PFM, bottom row first, as tests/fixtures/refs/downsample_refs.py writes."""
+    h, w, c = img.shape
+    with open(p, "wb") as f:
+        f.write(b"PF\n" if c == 3 else b"Pf\n")
+        f.write(f"{w} {h}\n".encode())
+        f.write(b"-1.0\n")
+        f.write(np.ascontiguousarray(img[::-1]).astype("<f4").tobytes())
+
+
 def mitsuba_scene(mi, shapes, a):
     T = mi.ScalarTransform4f
     d = {"type": "scene",
@@ -228,14 +248,17 @@ def main():
     ap.add_argument("--ron-dir", default=".", help="folder the RON scene sits in (for relative paths)")
     ap.add_argument("--exr", help="render with Mitsuba to this file")
     ap.add_argument("--envmap")
-    ap.add_argument("--eye", type=float, nargs=3, default=[0.25, 0.42, 0.9])
-    ap.add_argument("--target", type=float, nargs=3, default=[0.0, 0.3, 0.0])
-    ap.add_argument("--fov", type=float, default=35.0)
+    ap.add_argument("--eye", type=float, nargs=3, default=[0.3, 0.45, 1.05])
+    ap.add_argument("--target", type=float, nargs=3, default=[0.0, 0.31, 0.0])
+    ap.add_argument("--fov", type=float, default=36.0)
     ap.add_argument("--floor-half", type=float, default=5.0)
     ap.add_argument("--size", type=int, default=64)
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--fixture", help="also write FIXTURE_64.pfm (box-downsampled to 64²) and an "
+                    "all-zero FIXTURE_mask_64.pfm (the scene has no area lights)")
+    ap.add_argument("--compare", help="print the RMSE of the 64² image against this 64² PFM")
     a = ap.parse_args()
     shapes = convert(a.gltf, a.out)
     for _, m in shapes:
@@ -251,8 +274,19 @@ def main():
         scene = mi.load_dict(mitsuba_scene(mi, shapes, a))
         img = np.array(mi.render(scene, spp=a.spp, seed=a.seed), dtype=np.float32)
         mi.Bitmap(np.ascontiguousarray(img), mi.Bitmap.PixelFormat.RGB).write(a.exr)
-        print(json.dumps({"exr": a.exr, "spp": a.spp, "size": a.size, "seed": a.seed,
-                          "mitsuba": mi.__version__, "mean": [float(x) for x in img.mean(axis=(0, 1))]}))
+        k = a.size // 64
+        if k * 64 != a.size:
+            sys.exit("--size must be a multiple of 64")
+        small = img.reshape(64, k, 64, k, 3).mean(axis=(1, 3))
+        report = {"exr": a.exr, "spp": a.spp, "size": a.size, "seed": a.seed, "mitsuba": mi.__version__,
+                  "mean_64": [float(x) for x in small.reshape(-1, 3).mean(axis=0)]}
+        if a.fixture:
+            write_pfm(a.fixture + "_64.pfm", small)
+            write_pfm(a.fixture + "_mask_64.pfm", np.zeros((64, 64, 1), dtype=np.float32))
+        if a.compare:
+            ref = read_pfm(a.compare)
+            report["rmse_64"] = float(np.sqrt(np.mean((small.astype(np.float64) - ref) ** 2)))
+        print(json.dumps(report))
 
 
 if __name__ == "__main__":
