@@ -182,7 +182,12 @@ fn path_matches_mitsuba_textured_spheres() {
 /// without them (docs/gltf.md, "Planted defects").
 #[test]
 fn path_matches_mitsuba_gltf_flight_helmet() {
-    check_within("tests/fixtures/refs/flight_helmet.ron", "flight_helmet", 64, 0.005);
+    check_within(
+        "tests/fixtures/refs/flight_helmet.ron",
+        "flight_helmet",
+        64,
+        0.005,
+    );
 }
 
 /// The Cornell box in homogeneous fog (σ_t 0.5, albedo 0.8, camera inside)
