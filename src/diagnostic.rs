@@ -169,7 +169,11 @@ impl<'a> LineIndex<'a> {
     /// 1-based line and character column of byte `offset`, as [`line_col`].
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let (line, before, ascii) = self.line_prefix(offset);
-        let col = if ascii { before.len() } else { before.chars().count() };
+        let col = if ascii {
+            before.len()
+        } else {
+            before.chars().count()
+        };
         (line + 1, col + 1)
     }
 

@@ -453,16 +453,18 @@ fn resume_redoes_a_truncated_piece_and_fifos_do_not_hang() {
 /// (`Kd`, `map_Kd tex.png`) under a sky map, in a grey fog grid, beside a
 /// textured sphere: each kind of file a scene reads indirectly.
 fn textured_folder(kd: &str, texel: u8) -> tempfile::TempDir {
+    // `texel` differs from `wall.png`'s 200, so that swapping them matters.
     let dir = tempfile::tempdir().expect("temp dir");
     let p = |f: &str| dir.path().join(f);
     std::fs::write(
         p("scene.ron"),
         r#"Scene(
     camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+    integrator: Path(max_depth: 4),
     materials: { "wall": Lambert(albedo: Image(file: "wall.png")) },
     media: { "fog": Grid(file: "fog.vol", min: (-3, -3, -3), max: (3, 3, 3), scale: 0.01) },
     medium: "fog",
-    lights: [Environment(map: "sky.png")],
+    lights: [Environment(map: "sky.exr")],
     objects: [
         Mesh(file: "quad.obj"),
         Sphere(center: (0.7, 0.7, 0), radius: 0.2, material: "wall"),
@@ -485,40 +487,89 @@ fn textured_folder(kd: &str, texel: u8) -> tempfile::TempDir {
     };
     png("tex.png", texel);
     png("wall.png", 200);
-    png("sky.png", 128);
+    sky(&p("sky.exr"), 0.5);
     let vol = ronray::media::vol::write_vol([2, 2, 2], &[1.0; 8], [-3.0; 3], [3.0; 3]);
     std::fs::write(p("fog.vol"), vol).expect("write");
     dir
+}
+
+/// A 2 × 2 sky map of radiance `v`.
+fn sky(path: &Path, v: f32) {
+    image::Rgb32FImage::from_raw(2, 2, vec![v; 12])
+        .expect("2 × 2")
+        .save(path)
+        .expect("write exr")
 }
 
 /// One tile of `dir/scene.ron` to `out`.
 fn render_tile(dir: &Path, tile: &str, out: &str) {
     let o = ronray_in(
         dir,
-        &["render", "scene.ron", "--size", "16x16", "--spp", "1", "--tile", tile, "-o", out],
+        &[
+            "render",
+            "scene.ron",
+            "--size",
+            "16x16",
+            "--spp",
+            "1",
+            "--tile",
+            tile,
+            "-o",
+            out,
+        ],
     );
     assert!(o.status.success(), "render --tile {tile}: {}", stderr(&o));
 }
 
-/// Pieces rendered while an MTL file or a texture it names differed are
-/// two scenes: `assemble` refuses them (it merged them into a frame that
-/// matched neither, exit 0, when the hash left out files the scene reads
-/// indirectly or hashed contents without their places).
+/// Pieces rendered while a file the scene reads indirectly differed are
+/// two scenes: `assemble` refuses them. A different MTL file or MTL
+/// texture was already refused; a `.vol` grid was not in the hash, and two
+/// textures with their contents swapped left the sorted digests alike:
+/// both were merged into a frame that matched neither, exit 0.
 #[test]
-fn pieces_rendered_with_different_mtl_or_texture_files_are_refused() {
-    for (what, kd, texel) in [("MTL file", "0.2 0.9 0.2", 255), ("MTL's texture", "0.8 0.8 0.8", 40)] {
+fn pieces_rendered_with_different_indirect_files_are_refused() {
+    let swap = |d: &Path| {
+        std::fs::copy(d.join("wall.png"), d.join("tmp.png")).expect("copy");
+        std::fs::copy(d.join("tex.png"), d.join("wall.png")).expect("copy");
+        std::fs::copy(d.join("tmp.png"), d.join("tex.png")).expect("copy");
+    };
+    let cases: [(&str, &dyn Fn(&Path)); 4] = [
+        ("MTL file", &|d| {
+            std::fs::write(
+                d.join("look.mtl"),
+                "newmtl paint\nKd 0.2 0.9 0.2\nmap_Kd tex.png\n",
+            )
+            .expect("write")
+        }),
+        ("MTL's texture", &|d| {
+            image::RgbImage::from_raw(2, 2, vec![40; 12])
+                .expect("2 × 2")
+                .save(d.join("tex.png"))
+                .expect("write png")
+        }),
+        ("textures swapped", &swap),
+        ("density grid", &|d| {
+            let v = ronray::media::vol::write_vol([2, 2, 2], &[50.0; 8], [-3.0; 3], [3.0; 3]);
+            std::fs::write(d.join("fog.vol"), v).expect("write")
+        }),
+    ];
+    for (what, change) in cases {
         let dir = textured_folder("0.8 0.8 0.8", 255);
         render_tile(dir.path(), "0/2", "a-0.exr");
-        let other = textured_folder(kd, texel);
-        for f in ["look.mtl", "tex.png"] {
-            std::fs::copy(other.path().join(f), dir.path().join(f)).expect("copy");
-        }
+        change(dir.path());
         render_tile(dir.path(), "1/2", "a-1.exr");
         let o = assemble(dir.path(), &["a-0.exr".into(), "a-1.exr".into()], "out.exr");
         let e = stderr(&o);
-        assert_eq!(o.status.code(), Some(1), "a different {what} was merged: {e}");
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "pieces with a different {what} were merged: {e}"
+        );
         assert!(e.contains("different scenes"), "{what}: {e}");
-        assert!(!dir.path().join("out.exr").exists(), "{what}: a refused assembly wrote");
+        assert!(
+            !dir.path().join("out.exr").exists(),
+            "{what}: a refused assembly wrote"
+        );
     }
 }
 
@@ -537,20 +588,32 @@ fn scene_hash_covers_every_file_the_scene_reads() {
     let moved = textured_folder("0.8 0.8 0.8", 255);
     assert_eq!(hash(moved.path()), base, "another folder, same files");
     let changes: [(&str, &dyn Fn(&Path)); 6] = [
-        ("wall.png", &|d| std::fs::copy(d.join("sky.png"), d.join("wall.png")).map(drop).expect("copy")),
-        ("sky.png", &|d| std::fs::copy(d.join("wall.png"), d.join("sky.png")).map(drop).expect("copy")),
+        ("wall.png", &|d| {
+            std::fs::copy(d.join("tex.png"), d.join("wall.png"))
+                .map(drop)
+                .expect("copy")
+        }),
+        ("sky.exr", &|d| sky(&d.join("sky.exr"), 2.0)),
         ("fog.vol", &|d| {
             let v = ronray::media::vol::write_vol([2, 2, 2], &[2.0; 8], [-3.0; 3], [3.0; 3]);
             std::fs::write(d.join("fog.vol"), v).expect("write")
         }),
         ("look.mtl", &|d| {
-            std::fs::write(d.join("look.mtl"), "newmtl paint\nKd 0.1 0.1 0.1\nmap_Kd tex.png\n").expect("write")
+            std::fs::write(
+                d.join("look.mtl"),
+                "newmtl paint\nKd 0.1 0.1 0.1\nmap_Kd tex.png\n",
+            )
+            .expect("write")
         }),
-        ("tex.png", &|d| std::fs::copy(d.join("sky.png"), d.join("tex.png")).map(drop).expect("copy")),
-        ("wall.png and sky.png swapped", &|d| {
+        ("tex.png", &|d| {
+            std::fs::copy(d.join("wall.png"), d.join("tex.png"))
+                .map(drop)
+                .expect("copy")
+        }),
+        ("wall.png and tex.png swapped", &|d| {
             std::fs::copy(d.join("wall.png"), d.join("tmp.png")).expect("copy");
-            std::fs::copy(d.join("sky.png"), d.join("wall.png")).expect("copy");
-            std::fs::copy(d.join("tmp.png"), d.join("sky.png")).expect("copy");
+            std::fs::copy(d.join("tex.png"), d.join("wall.png")).expect("copy");
+            std::fs::copy(d.join("tmp.png"), d.join("tex.png")).expect("copy");
         }),
     ];
     for (what, change) in changes {

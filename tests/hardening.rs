@@ -409,7 +409,10 @@ fn a_huge_texture_is_refused_before_decoding() {
 /// CPU time of the calling thread, in nanoseconds (not the wall clock: the
 /// machine may be busy with other work).
 fn thread_cpu_ns() -> u128 {
-    let mut t = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
     // SAFETY: `t` is a valid timespec for the call to write.
     let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
     assert_eq!(rc, 0, "clock_gettime");

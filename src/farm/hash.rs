@@ -33,7 +33,11 @@ pub fn scene_hash(desc: &SceneDesc, files: &[PathBuf]) -> Result<String, String>
             continue;
         }
         let bytes = std::fs::read(f).map_err(|e| format!("cannot read {}: {e}", f.display()))?;
-        let place = f.strip_prefix(base).unwrap_or(f).to_string_lossy().replace('\\', "/");
+        let place = f
+            .strip_prefix(base)
+            .unwrap_or(f)
+            .to_string_lossy()
+            .replace('\\', "/");
         assets.push((place, hex(&Sha256::digest(&bytes))));
     }
     assets.sort();
@@ -79,18 +83,32 @@ mod tests {
     fn scene_hash_sees_files_swapped() {
         let dir = tempfile::tempdir().expect("temp dir");
         let d = desc("Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40))");
-        let files: Vec<PathBuf> = ["s.ron", "a.png", "b.png"].iter().map(|f| dir.path().join(f)).collect();
+        let files: Vec<PathBuf> = ["s.ron", "a.png", "b.png"]
+            .iter()
+            .map(|f| dir.path().join(f))
+            .collect();
         let write = |a: &str, b: &str| {
             std::fs::write(&files[1], a).expect("write");
             std::fs::write(&files[2], b).expect("write");
             scene_hash(&d, &files).expect("hash")
         };
-        assert_ne!(write("red", "blue"), write("blue", "red"), "swapping two textures kept the hash");
+        assert_ne!(
+            write("red", "blue"),
+            write("blue", "red"),
+            "swapping two textures kept the hash"
+        );
         // Wherever the folder is, the same files give the same hash.
         let other = tempfile::tempdir().expect("temp dir");
-        let moved: Vec<PathBuf> = files.iter().map(|f| other.path().join(f.file_name().expect("name"))).collect();
+        let moved: Vec<PathBuf> = files
+            .iter()
+            .map(|f| other.path().join(f.file_name().expect("name")))
+            .collect();
         std::fs::write(&moved[1], "blue").expect("write");
         std::fs::write(&moved[2], "red").expect("write");
-        assert_eq!(scene_hash(&d, &moved).expect("hash"), write("blue", "red"), "the folder's place counted");
+        assert_eq!(
+            scene_hash(&d, &moved).expect("hash"),
+            write("blue", "red"),
+            "the folder's place counted"
+        );
     }
 }

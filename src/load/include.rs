@@ -88,7 +88,6 @@ impl Composition {
             .and_then(|i| self.gaps.get(i))
             .is_some_and(|g| g.is_repaired(path))
     }
-
 }
 
 /// The file and the path as written there of `path` in the composed scene:
@@ -397,8 +396,12 @@ impl Composer {
             .help(format!(
                 "it is first defined at {first}; rename one, or define it in the including scene to choose"
             ));
-            self.errors
-                .push(source::locate(full, &LineIndex::new(text), &Spans::scan(text), &p));
+            self.errors.push(source::locate(
+                full,
+                &LineIndex::new(text),
+                &Spans::scan(text),
+                &p,
+            ));
             return;
         }
         self.defined

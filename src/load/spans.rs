@@ -52,7 +52,7 @@ impl Spans {
     /// field's key counts as part of the value around it); `None` at the top.
     pub fn path_at(&self, offset: usize) -> Option<String> {
         self.values()
-            .filter(|(p, r)| r.contains(&offset))
+            .filter(|(_, r)| r.contains(&offset))
             .min_by_key(|(p, r)| (r.len(), std::cmp::Reverse(p.len())))
             .map(|(p, _)| p.to_string())
     }

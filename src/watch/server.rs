@@ -206,7 +206,14 @@ fn handle(mut stream: TcpStream, hub: &Hub, slots: &Slots, id: u64) -> io::Resul
     };
     let (method, target, host) = read_request(head)?;
     let path = target.split(['?', '#']).next().unwrap_or("/");
-    slots.set_stage(id, if path == "/events" { Stage::Events } else { Stage::Response });
+    slots.set_stage(
+        id,
+        if path == "/events" {
+            Stage::Events
+        } else {
+            Stage::Response
+        },
+    );
     if !host_allowed(host.as_deref()) {
         return respond(&mut stream, "403 Forbidden", "text/plain", b"unknown Host");
     }
@@ -491,7 +498,8 @@ mod tests {
     /// A request of `path` that reads the whole answer (hang guard 60 s).
     fn fetch(addr: SocketAddr, path: &str) -> Vec<u8> {
         let mut s = TcpStream::connect(addr).expect("connect");
-        s.set_read_timeout(Some(Duration::from_secs(60))).expect("timeout");
+        s.set_read_timeout(Some(Duration::from_secs(60)))
+            .expect("timeout");
         let _ = write!(s, "GET {path} HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
         let mut out = Vec::new();
         let _ = s.read_to_end(&mut out);
@@ -559,7 +567,8 @@ mod tests {
     fn server_cuts_off_a_request_head_that_dribbles() {
         let addr = start("0", Arc::new(Hub::default())).expect("start");
         let mut s = TcpStream::connect(addr).expect("connect");
-        s.set_read_timeout(Some(Duration::from_millis(200))).expect("timeout");
+        s.set_read_timeout(Some(Duration::from_millis(200)))
+            .expect("timeout");
         let t = Instant::now();
         let guard = REQUEST_TIMEOUT * 12;
         let mut b = [0u8; 64];
