@@ -514,8 +514,8 @@ mod tests {
     fn server_serves_a_new_client_while_slow_ones_hold_every_slot() {
         use crate::imageio::Image;
         let hub = Arc::new(Hub::default());
-        // Noise does not compress: megabytes that no socket buffer holds.
-        let (w, h) = (2048, 1024);
+        // Noise does not compress: 25 MB, more than socket buffers hold.
+        let (w, h) = (4096, 2048);
         let mut image = Image::new(w, h);
         let mut rng = crate::math::Pcg32::new(7, 1);
         for p in image.pixels.iter_mut() {
