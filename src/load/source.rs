@@ -17,7 +17,7 @@ use super::set::SetProblem;
 pub use super::slip::Slip;
 use super::spans::Spans;
 use crate::desc::SceneDesc;
-use crate::diagnostic::{Diagnostic, Problem, Report};
+use crate::diagnostic::{Diagnostic, LineIndex, Problem, Report};
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -97,10 +97,11 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
         whole = Slip::new(0..0, "the file is empty".into(), help);
     }
     let spans = Spans::scan(&clean);
+    let (lines, nesting) = (LineIndex::new(text), spans.nesting());
     let located = |slips: Vec<Slip>| -> Vec<Diagnostic> {
         slips
             .into_iter()
-            .map(|s| s.diagnostic(path, text, &spans))
+            .map(|s| s.diagnostic(path, &lines, &nesting))
             .collect()
     };
     let stop = |slip: Slip| Report {
@@ -135,8 +136,8 @@ pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
 }
 
 /// A problem found in a parsed file, located by its scene path.
-pub fn locate(file: &Path, text: &str, spans: &Spans, p: &Problem) -> Diagnostic {
-    let mut d = Diagnostic::new(file, text, spans.find(&p.path), p.message.clone());
+pub fn locate(file: &Path, lines: &LineIndex, spans: &Spans, p: &Problem) -> Diagnostic {
+    let mut d = Diagnostic::indexed(file, lines, spans.find(&p.path), p.message.clone());
     d.path = Some(p.path.clone());
     d.help = p.help.clone();
     d
@@ -145,8 +146,9 @@ pub fn locate(file: &Path, text: &str, spans: &Spans, p: &Problem) -> Diagnostic
 /// Semantic problems → diagnostics located through the file's text.
 pub fn located(path: &Path, text: &str, problems: &[Problem]) -> Report {
     let spans = Spans::scan(text);
+    let lines = LineIndex::new(text);
     Report {
-        diagnostics: problems.iter().map(|p| locate(path, text, &spans, p)).collect(),
+        diagnostics: problems.iter().map(|p| locate(path, &lines, &spans, p)).collect(),
         sources: vec![(path.to_path_buf(), text.to_string())],
     }
 }

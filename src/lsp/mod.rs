@@ -57,7 +57,10 @@ struct Server {
 }
 
 /// Serves on standard input and output until the client says `exit`.
-pub fn run() -> Result<()> {
+/// `Ok(true)` when a `shutdown` request came first: the protocol asks the
+/// server to exit with status 0 then, and 1 on an `exit` without one (or
+/// when the client goes away without either).
+pub fn run() -> Result<bool> {
     let (conn, io) = Connection::stdio();
     let caps = ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
@@ -77,31 +80,50 @@ pub fn run() -> Result<()> {
         schema: schema::Schema::new(),
         meshes: MeshCache::default(),
     };
-    s.serve()?;
+    let shut_down = s.serve()?;
     drop(s);
     io.join()?;
-    Ok(())
+    Ok(shut_down)
 }
 
 impl Server {
-    fn serve(&mut self) -> Result<()> {
+    /// Answers until `exit` (or the end of input); whether `shutdown` came
+    /// first. After `shutdown` requests are refused and notifications other
+    /// than `exit` ignored, as the protocol says. (`lsp-server`'s
+    /// `handle_shutdown` could not tell `exit` alone from `shutdown` then
+    /// `exit`: both ended in status 0.)
+    fn serve(&mut self) -> Result<bool> {
+        let mut shut_down = false;
         while let Ok(msg) = self.conn.receiver.recv() {
             match msg {
                 Message::Request(r) => {
-                    if self.conn.handle_shutdown(&r)? {
-                        return Ok(());
-                    }
-                    let resp = self.request(r);
+                    let resp = if shut_down {
+                        Response::new_err(
+                            r.id,
+                            lsp_server::ErrorCode::InvalidRequest as i32,
+                            "the server is shutting down".into(),
+                        )
+                    } else if r.method == req::Shutdown::METHOD {
+                        shut_down = true;
+                        Response::new_ok(r.id, ())
+                    } else {
+                        self.request(r)
+                    };
                     self.conn.sender.send(Message::Response(resp))?;
                 }
-                Message::Notification(n) => self.notification(n),
+                Message::Notification(n) if n.method == note::Exit::METHOD => return Ok(shut_down),
+                Message::Notification(n) => {
+                    if !shut_down {
+                        self.notification(n);
+                    }
+                }
                 Message::Response(_) => {}
             }
-            if self.conn.receiver.is_empty() {
+            if !shut_down && self.conn.receiver.is_empty() {
                 self.publish_dirty()?;
             }
         }
-        Ok(())
+        Ok(false)
     }
 
     fn notification(&mut self, n: Notification) {
