@@ -21,6 +21,7 @@ pub mod hover;
 pub mod names;
 pub mod schema;
 pub mod text;
+pub mod transport;
 
 use crate::syntax::lex::tokenize_lenient;
 use crate::watch::mesh_cache::MeshCache;
@@ -58,7 +59,7 @@ struct Server {
 
 /// Serves on standard input and output until the client says `exit`.
 pub fn run() -> Result<()> {
-    let (conn, io) = Connection::stdio();
+    let (conn, io) = transport::stdio();
     let caps = ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         hover_provider: Some(HoverProviderCapability::Simple(true)),
@@ -70,20 +71,53 @@ pub fn run() -> Result<()> {
         ..Default::default()
     };
     conn.initialize(serde_json::to_value(caps)?)?;
-    let mut s = Server {
-        conn,
-        docs: HashMap::new(),
-        dirty: BTreeSet::new(),
-        schema: schema::Schema::new(),
-        meshes: MeshCache::default(),
-    };
+    let mut s = Server::new(conn);
     s.serve()?;
     drop(s);
     io.join()?;
     Ok(())
 }
 
+/// What the `lsp` fuzz target runs: `data` read as a client's framed
+/// messages ([`transport::read_message`]) and handled by the server's
+/// message loop, with the diagnostics published when the messages run out.
+/// Whether every byte was read as a message.
+pub fn replay(data: &[u8]) -> bool {
+    let (server, client) = Connection::memory();
+    let mut input = data;
+    let whole = loop {
+        match transport::read_message(&mut input) {
+            Ok(Some(m)) => {
+                if client.sender.send(m).is_err() {
+                    break false;
+                }
+            }
+            Ok(None) => break true,
+            Err(_) => break false,
+        }
+    };
+    // The server's replies pile up in `_replies` until it returns: once the
+    // messages run out, the closed channel ends its loop.
+    let Connection {
+        sender,
+        receiver: _replies,
+    } = client;
+    drop(sender);
+    let _ = Server::new(server).serve();
+    whole
+}
+
 impl Server {
+    fn new(conn: Connection) -> Self {
+        Server {
+            conn,
+            docs: HashMap::new(),
+            dirty: BTreeSet::new(),
+            schema: schema::Schema::new(),
+            meshes: MeshCache::default(),
+        }
+    }
+
     fn serve(&mut self) -> Result<()> {
         while let Ok(msg) = self.conn.receiver.recv() {
             match msg {
