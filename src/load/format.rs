@@ -6,7 +6,6 @@ use super::slip::{Slip, widen};
 use super::tokens::{Tok, tokenize};
 use super::words;
 use crate::diagnostic::offset_of;
-use serde::Deserialize;
 use serde::de::DeserializeOwned;
 use std::ops::Range;
 use std::path::Path;

@@ -272,7 +272,7 @@ impl Server {
         let mut extra = Vec::new();
         let base = doc.path.parent().unwrap_or(std::path::Path::new("."));
         for inc in names::includes(&doc.text, &toks, base) {
-            if let Ok(t) = std::fs::read_to_string(&inc) {
+            if let Ok(t) = crate::load::source::read_text(&inc) {
                 let it = tokenize_lenient(&t);
                 for map in ["materials", "meshes"] {
                     extra.extend(names::defined(&t, &it, map).into_iter().map(|(n, _)| (map, n)));
@@ -296,7 +296,7 @@ impl Server {
         let loc = match file {
             None => Location::new(uri, text::range(&doc.text, span)),
             Some(f) => {
-                let t = std::fs::read_to_string(&f).unwrap_or_default();
+                let t = crate::load::source::read_text(&f).unwrap_or_default();
                 let Some(u) = text::uri_of(&f) else {
                     return Ok(serde_json::Value::Null);
                 };
