@@ -152,24 +152,66 @@ fn lsp_publishes_a_located_nesting_error_for_30000_deep_text() {
     assert_eq!(out.status.code(), Some(0), "lsp exits cleanly after `exit`");
 }
 
+/// An SDF of `n` nested `Transform`s: what serde recurses deepest on
+/// (three `ron` levels a bracket), then validation and the SDF build.
+fn deep_sdf(dir: &Path, n: usize, json: bool) -> (PathBuf, String) {
+    let (name, text) = if json {
+        let shape = format!(
+            "{}{{\"Sphere\": {{\"radius\": 0.5}}}}{}",
+            "{\"Transform\": {\"scale\": 1, \"of\": ".repeat(n),
+            "}}".repeat(n)
+        );
+        (
+            "sdf.json",
+            format!(
+                "{{\"camera\": {{\"eye\": [0, 0, 4], \"target\": [0, 0, 0], \"fov_y_degrees\": 40}}, \
+                 \"objects\": [{{\"Sdf\": {{\"shape\": {shape}}}}}]}}\n"
+            ),
+        )
+    } else {
+        let shape = format!(
+            "{}Sphere(radius: 0.5){}",
+            "Transform(scale: 1, of: ".repeat(n),
+            ")".repeat(n)
+        );
+        (
+            "sdf.ron",
+            format!(
+                "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), \
+                 objects: [Sdf(shape: {shape})])\n"
+            ),
+        )
+    };
+    let path = dir.join(name);
+    std::fs::write(&path, &text).expect("write");
+    (path, text)
+}
+
 #[test]
 fn nesting_up_to_the_raised_ceiling_overflows_no_parser() {
     let dir = tempfile::tempdir().expect("temp dir");
-    let depth = MAX_NESTING_CEILING;
-    for json in [false, true] {
-        let (path, text) = deep_scene(dir.path(), depth, json);
+    let limit = MAX_NESTING_CEILING;
+    // Nested exactly `limit` deep: `Scene(objects: ` or `{"objects": `
+    // holds one bracket, `Sdf(shape: ` or `[{"Sdf": {"shape": ` a few more.
+    let files = [
+        deep_scene(dir.path(), limit - 1, false),
+        deep_scene(dir.path(), limit - 1, true),
+        deep_sdf(dir.path(), limit - 4, false),
+        deep_sdf(dir.path(), (limit - 6) / 2, true),
+    ];
+    for (path, text) in files {
         let p = path.to_str().expect("path");
-        let validate = run(&["validate", p], Some(depth), None);
-        let err = exited(&validate, "validate at the ceiling");
-        assert!(!err.contains("nested deeper"), "the raised limit was not applied: {err}");
-        let fmt = run(&["fmt", "--stdout", p], Some(depth), None);
-        let err = exited(&fmt, "fmt at the ceiling");
-        assert_eq!(fmt.status.code(), Some(0), "{err}");
+        let validate = run(&["validate", p], Some(limit), None);
+        let err = exited(&validate, &format!("validate {p} at the ceiling"));
+        assert!(!err.contains("nested deeper"), "{p}: the raised limit was not applied: {err}");
+        let fmt = run(&["fmt", "--stdout", p], Some(limit), None);
+        let err = exited(&fmt, &format!("fmt {p} at the ceiling"));
+        assert_eq!(fmt.status.code(), Some(0), "{p}: {err}");
         let uri = format!("file://{}", path.display());
-        let lsp = run(&["lsp"], Some(depth), Some(&lsp_session(&uri, &text, (0, depth))));
-        exited(&lsp, "lsp at the ceiling");
+        let lsp = run(&["lsp"], Some(limit), Some(&lsp_session(&uri, &text, (0, limit))));
+        exited(&lsp, &format!("lsp {p} at the ceiling"));
         // One past the ceiling is refused as a setting.
-        let past = run(&["validate", p], Some(depth + 1), None);
+        let past = run(&["validate", p], Some(limit + 1), None);
         let err = String::from_utf8_lossy(&past.stderr);
         assert_eq!(past.status.code(), Some(2), "{err}");
         assert!(err.contains(NESTING_VAR), "{err}");
@@ -177,7 +219,7 @@ fn nesting_up_to_the_raised_ceiling_overflows_no_parser() {
 }
 
 #[test]
-fn a_deep_sdf_within_the_limit_loads_in_ron_and_json() {
+fn a_40_deep_sdf_within_the_limit_loads_in_ron() {
     // 40 nested transforms: ron's own default recursion limit (128 levels,
     // three per transform) refused this before the bracket limit existed.
     let n = 40;

@@ -22,7 +22,7 @@ pub const MAX_NESTING: usize = 128;
 /// The highest limit [`NESTING_VAR`] may set: every parser stays within
 /// the main thread's 8 MiB stack up to here (measured: see
 /// `tests/nesting.rs`).
-pub const MAX_NESTING_CEILING: usize = 4096;
+pub const MAX_NESTING_CEILING: usize = 1024;
 
 /// The environment variable that raises (or lowers) the limit.
 pub const NESTING_VAR: &str = "RONRAY_MAX_NESTING";
