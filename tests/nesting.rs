@@ -230,8 +230,9 @@ fn a_40_deep_sdf_within_the_limit_loads_in_ron() {
     );
     let ron = format!(
         "Scene(camera: (eye: (0, 0, 4), target: (0, 0, 0), fov_y_degrees: 40), \
+         materials: {{ \"m\": Lambert(albedo: 0.5) }}, \
          lights: [Point(position: (0, 3, 0), intensity: (5, 5, 5))], \
-         objects: [Sdf(shape: {shape})])"
+         objects: [Sdf(shape: {shape}, material: \"m\")])"
     );
     let path = common::root().join("tests/fixtures/deep_sdf.ron");
     let loaded = ronray::load::load_str(&path, &ron, &ronray::load::Overrides::default());
