@@ -229,7 +229,11 @@ fn fmt_canonical_and_json_keep_the_numbers_as_written() {
         let file = *args.last().expect("file");
         let out = ronray_in(dir.path(), &args);
         let text = String::from_utf8_lossy(&out.stdout);
-        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
         for n in numbers {
             assert!(text.contains(n), "{args:?} lost `{n}`:\n{text}");
         }

@@ -48,7 +48,10 @@ fn mtl_ke_that_is_no_radiance_is_repaired_with_a_note_saying_which() {
             n.contains("objects[0]") && n.contains("m.obj") && n.contains("MTL material `glow`"),
             "{ke}: the note does not say where: {n}"
         );
-        assert!(n.contains(&format!("`{}", ke.split(' ').next().unwrap_or("Ke"))), "{ke}: {n}");
+        assert!(
+            n.contains(&format!("`{}", ke.split(' ').next().unwrap_or("Ke"))),
+            "{ke}: {n}"
+        );
         assert!(n.contains(what), "{ke}: expected a note saying {what}: {n}");
         for light in &l.scene.lights {
             let p = light.power();
@@ -70,8 +73,14 @@ fn mtl_kd_that_is_no_colour_is_repaired_with_a_note() {
     for kd in ["Kd nan 0.5 0.5", "Kd -1 0.5 0.5", "Kd inf 0.5 0.5"] {
         let l = load_with_glow(&format!("{kd}\nKe 1 1 1"));
         let n = notes(&l);
-        assert!(n.contains("`Kd") && n.contains("MTL material `glow`"), "{kd}: {n}");
+        assert!(
+            n.contains("`Kd") && n.contains("MTL material `glow`"),
+            "{kd}: {n}"
+        );
         let img = common::render_loaded(&l);
-        assert!(img.pixels.iter().all(|p| p.is_finite()), "{kd}: non-finite pixels");
+        assert!(
+            img.pixels.iter().all(|p| p.is_finite()),
+            "{kd}: non-finite pixels"
+        );
     }
 }

@@ -79,7 +79,10 @@ fn validate_refuses_30000_deep_nesting_at_the_first_bracket_past_the_limit() {
         let out = run(&["validate", path.to_str().expect("path")], None, None);
         let err = exited(&out, "validate");
         assert_eq!(out.status.code(), Some(1), "{err}");
-        assert!(err.contains(&format!("nested deeper than {MAX_NESTING}")), "{err}");
+        assert!(
+            err.contains(&format!("nested deeper than {MAX_NESTING}")),
+            "{err}"
+        );
         let at = format!(":1:{}", column_past(&text, MAX_NESTING));
         assert!(err.contains(&at), "expected the error at {at}: {err}");
     }
@@ -92,7 +95,10 @@ fn fmt_refuses_30000_and_10000_deep_nesting_with_the_byte() {
         for json in [false, true] {
             let (path, text) = deep_scene(dir.path(), depth, json);
             let p = path.to_str().expect("path");
-            for args in [vec!["fmt", "--stdout", p], vec!["fmt", "--canonical", "--stdout", p]] {
+            for args in [
+                vec!["fmt", "--stdout", p],
+                vec!["fmt", "--canonical", "--stdout", p],
+            ] {
                 let out = run(&args, None, None);
                 let err = exited(&out, "fmt");
                 assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
@@ -203,7 +209,10 @@ fn nesting_up_to_the_raised_ceiling_overflows_no_parser() {
         let p = path.to_str().expect("path");
         let validate = run(&["validate", p], Some(limit), None);
         let err = exited(&validate, &format!("validate {p} at the ceiling"));
-        assert!(!err.contains("nested deeper"), "{p}: the raised limit was not applied: {err}");
+        assert!(
+            !err.contains("nested deeper"),
+            "{p}: the raised limit was not applied: {err}"
+        );
         let fmt = run(&["fmt", "--stdout", p], Some(limit), None);
         let err = exited(&fmt, &format!("fmt {p} at the ceiling"));
         assert_eq!(fmt.status.code(), Some(0), "{p}: {err}");

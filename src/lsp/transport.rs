@@ -77,8 +77,14 @@ pub struct IoThreads {
 impl IoThreads {
     /// Waits for both threads; the first error either met.
     pub fn join(self) -> io::Result<()> {
-        let reader = self.reader.join().unwrap_or_else(|_| Err(invalid("reader panicked".into())));
-        let writer = self.writer.join().unwrap_or_else(|_| Err(invalid("writer panicked".into())));
+        let reader = self
+            .reader
+            .join()
+            .unwrap_or_else(|_| Err(invalid("reader panicked".into())));
+        let writer = self
+            .writer
+            .join()
+            .unwrap_or_else(|_| Err(invalid("writer panicked".into())));
         reader.and(writer)
     }
 }
@@ -134,6 +140,9 @@ mod tests {
         }
         assert!(read_message(&mut r).expect("end").is_none());
         let cut = &text[..text.len() / 2 - 3];
-        assert!(read_message(&mut cut.as_bytes()).is_err(), "a truncated body is an error");
+        assert!(
+            read_message(&mut cut.as_bytes()).is_err(),
+            "a truncated body is an error"
+        );
     }
 }
