@@ -255,11 +255,15 @@ fn load(ctx: &mut BuildContext, file: &str, smooth: bool, at: &str) -> Option<Ob
 fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> LoadedMesh {
     let obj = ctx.base.join(file);
     let dir = obj.parent().unwrap_or(ctx.base);
+    // The MTL's notes say which object's OBJ they come from.
+    let mut notes = Vec::new();
     let mtl = data
         .materials
         .iter()
-        .map(|m| ctx.mtl.add(m, dir, &mut ctx.notes))
+        .map(|m| ctx.mtl.add(m, dir, &mut notes))
         .collect();
+    ctx.notes
+        .extend(notes.into_iter().map(|n| format!("{at} ({file}): {n}")));
     for why in std::mem::take(&mut ctx.mtl.refused) {
         let help = "an untrusted scene may read only files inside --root";
         ctx.problems.push(Problem::new(at, why).help(help));

@@ -80,6 +80,14 @@ pub fn read_text(path: &Path) -> std::io::Result<String> {
 /// is in [`Parsed::diagnostics`], beside what could be read.
 pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
     let clean = without_bom(text);
+    // Before any parser, all of which recurse per bracket.
+    if let Err(deep) = crate::syntax::nesting::check(&clean, crate::syntax::nesting::limit()) {
+        let slip = Slip::new(deep.at..deep.at + 1, deep.to_string(), Some(deep.help()));
+        return Err(Report {
+            diagnostics: vec![slip.diagnostic(path, text, &Spans::default())],
+            sources: vec![(path.to_path_buf(), text.to_string())],
+        });
+    }
     let format = Format::of(path, &clean);
     let mut whole = match format.read::<T>(&clean, 0..clean.len()) {
         Ok(desc) => {

@@ -43,6 +43,11 @@ impl Spans {
         }
     }
 
+    /// Every located path and its span, in no particular order.
+    pub fn iter(&self) -> impl Iterator<Item = (&str, Range<usize>)> {
+        self.map.iter().map(|(p, r)| (p.as_str(), r.clone()))
+    }
+
     /// The span of exactly `path`.
     pub fn get(&self, path: &str) -> Option<Range<usize>> {
         self.map.get(path).cloned()

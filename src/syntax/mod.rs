@@ -5,6 +5,7 @@
 
 pub mod cursor;
 pub mod lex;
+pub mod nesting;
 pub mod print;
 pub mod tree;
 
@@ -31,6 +32,11 @@ pub enum FormatError {
 /// hold the same tokens as `src` (trailing commas aside) before it is
 /// returned.
 pub fn format(src: &str, json: bool) -> Result<String, FormatError> {
+    // The tree and its printer recurse per bracket.
+    nesting::check(src, nesting::limit()).map_err(|e| FormatError::Syntax {
+        at: e.at,
+        message: e.to_string(),
+    })?;
     let doc = tree::parse(src).map_err(|e| FormatError::Syntax {
         at: e.at,
         message: e.message,
