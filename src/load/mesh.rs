@@ -187,7 +187,10 @@ pub(super) fn mesh_light(
     };
     match MeshLight::new(tris, emission.radiance, two_sided).map(|l| l.with_emission(emission, uvs)) {
         Some(light) => {
-            ctx.lights.push(Light::Mesh(light));
+            ctx.lights.push(match light.as_parallelogram() {
+                Some(quad) => Light::Quad(quad),
+                None => Light::Mesh(light),
+            });
             ctx.lights.len() as u32 - 1
         }
         None => NO_LIGHT,
