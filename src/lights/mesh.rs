@@ -15,6 +15,7 @@
 //! recovers `Jₖ` from the hit's world normal at the same time
 //! ([`Placement::area_scale`]), so MIS sees the density the sample had.
 
+use super::QuadLight;
 use super::alias::AliasTable;
 use super::emission::{Emission, EmissionTexture};
 use super::tree::LightBounds;
@@ -131,6 +132,45 @@ impl MeshLight {
     /// Whether the light moves while the shutter is open.
     pub fn moves(&self) -> bool {
         self.motion.is_some()
+    }
+
+    /// The same light as one parallelogram, when it is one: two untextured
+    /// triangles sharing an edge, coplanar, wound alike, whose unshared
+    /// corners sum to the shared ones (the rectangle an OBJ file writes for
+    /// an area lamp), and still. A [`QuadLight`] samples the same uniform-by-area
+    /// density without the alias table and the triangle's square root, and
+    /// a rectangle near a shading point by solid angle instead; the OBJ
+    /// Cornell box spent 10% of its time in [`MeshLight::sample`] against
+    /// 2.4% for the analytic box's quad light.
+    pub fn as_parallelogram(&self) -> Option<QuadLight> {
+        let ([t0, t1], [n0, n1]) = (self.tris.as_slice(), self.normals.as_slice()) else {
+            return None;
+        };
+        if self.texture.is_some() || self.motion.is_some() || n0.dot(*n1) < 1.0 - 1e-6 {
+            return None;
+        }
+        // The corner of t0 that t1 lacks, and the corner of t1 that t0 lacks.
+        let lone = |a: &[Vec3A; 3], b: &[Vec3A; 3]| {
+            let mut out = a.iter().filter(|p| !b.contains(p));
+            match (out.next(), out.next()) {
+                (Some(&p), None) => Some(p),
+                _ => None,
+            }
+        };
+        let (x, y) = (lone(t0, t1)?, lone(t1, t0)?);
+        let mut shared = t0.iter().filter(|p| **p != x);
+        let (&s0, &s1) = (shared.next()?, shared.next()?);
+        let (mut u, mut v) = (s0 - x, s1 - x);
+        let gap = ((x + y) - (s0 + s1)).length();
+        if !(gap <= 1e-5 * (u.length() + v.length())) {
+            return None;
+        }
+        if u.cross(v).dot(*n0) < 0.0 {
+            std::mem::swap(&mut u, &mut v);
+        }
+        let mut quad = QuadLight::new(x, u, v, self.radiance);
+        quad.two_sided = self.two_sided;
+        Some(quad)
     }
 
     /// Radiance leaving a point of geometric normal `n` (the triangle's front)

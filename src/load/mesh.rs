@@ -204,7 +204,10 @@ pub(super) fn mesh_light(
         None => l,
     }) {
         Some(light) => {
-            ctx.lights.push(Light::Mesh(light));
+            ctx.lights.push(match light.as_parallelogram() {
+                Some(quad) => Light::Quad(quad),
+                None => Light::Mesh(light),
+            });
             ctx.lights.len() as u32 - 1
         }
         None => NO_LIGHT,
