@@ -83,8 +83,9 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
     // Before any parser, all of which recurse per bracket.
     if let Err(deep) = crate::syntax::nesting::check(&clean, crate::syntax::nesting::limit()) {
         let slip = Slip::new(deep.at..deep.at + 1, deep.to_string(), Some(deep.help()));
+        let spans = Spans::default();
         return Err(Report {
-            diagnostics: vec![slip.diagnostic(path, text, &Spans::default())],
+            diagnostics: vec![slip.diagnostic(path, &LineIndex::new(text), &spans.nesting())],
             sources: vec![(path.to_path_buf(), text.to_string())],
         });
     }
