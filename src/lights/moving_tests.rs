@@ -104,12 +104,12 @@ fn moving_mesh_light_samples_average_the_placed_area_of_every_triangle() {
                 f64::from(0.5 * (b - a).cross(c - a).length())
             })
             .sum();
-        // E[|cos θl| / (d² · pdf)] = E[1 / area density] = the placed area.
+        // E[d² / (pdf · |cos θl|)] = E[1 / area density] = the placed area.
         let n = 100_000;
         let mut sum = 0.0f64;
         for _ in 0..n {
             let ls = light.sample(p, rng.next_vec2()).expect("two-sided, outside");
-            sum += f64::from(ls.wi.dot(ls.n).abs() / (ls.dist * ls.dist * ls.pdf));
+            sum += f64::from(ls.dist * ls.dist / (ls.pdf * ls.wi.dot(ls.n).abs()));
         }
         let got = sum / f64::from(n);
         assert!(
