@@ -9,6 +9,9 @@ use common::{ronray_in, root};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
+/// A named edit of the files in a scene's folder.
+type Edit<'a> = (&'a str, &'a dyn Fn(&Path));
+
 /// A 64×64, 4-spp Cornell box: a few hundred milliseconds per render.
 const SIZE: &str = "64x64";
 const SPP: &str = "4";
@@ -533,7 +536,7 @@ fn pieces_rendered_with_different_indirect_files_are_refused() {
         std::fs::copy(d.join("tex.png"), d.join("wall.png")).expect("copy");
         std::fs::copy(d.join("tmp.png"), d.join("tex.png")).expect("copy");
     };
-    let cases: [(&str, &dyn Fn(&Path)); 4] = [
+    let cases: [Edit; 4] = [
         ("MTL file", &|d| {
             std::fs::write(
                 d.join("look.mtl"),
@@ -587,7 +590,7 @@ fn scene_hash_covers_every_file_the_scene_reads() {
     let base = hash(dir.path());
     let moved = textured_folder("0.8 0.8 0.8", 255);
     assert_eq!(hash(moved.path()), base, "another folder, same files");
-    let changes: [(&str, &dyn Fn(&Path)); 6] = [
+    let changes: [Edit; 6] = [
         ("wall.png", &|d| {
             std::fs::copy(d.join("tex.png"), d.join("wall.png"))
                 .map(drop)

@@ -162,7 +162,8 @@ impl MeshLight {
         let (&s0, &s1) = (shared.next()?, shared.next()?);
         let (mut u, mut v) = (s0 - x, s1 - x);
         let gap = ((x + y) - (s0 + s1)).length();
-        if !(gap <= 1e-5 * (u.length() + v.length())) {
+        // A NaN gap (corners at infinity) is no parallelogram either.
+        if gap.is_nan() || gap > 1e-5 * (u.length() + v.length()) {
             return None;
         }
         if u.cross(v).dot(*n0) < 0.0 {

@@ -130,7 +130,7 @@ pub fn blocks(px: &[ronray::math::Rgb], w: usize, q: usize) -> Vec<f64> {
 /// reference, for two renders `a` and `b` of the same scene at different
 /// seeds: over the pixels not in `skip`, and over all pixels, the RMSE of
 /// `a` against the reference within 1.1 × its own noise (RMSE(a, b)/√2)
-/// + 0.002; every 8 × 8 block within [`check_blocks`]'s tolerance; each
+/// plus 0.002; every 8 × 8 block within [`check_blocks`]'s tolerance; each
 /// channel's image mean within `mean_rel` of the reference's. An unbiased
 /// renderer's error against the reference is its own noise; bias shows up
 /// as error in excess of it.
