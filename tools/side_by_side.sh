@@ -29,6 +29,12 @@
 # the `mitsuba` package (MITSUBA_PYTHON=..., default `python3`; Mitsuba's
 # LLVM backend may need DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so).
 #
+# EXTRA=path of a second ronray binary (say target/pgo/release/ronray):
+# timed in the same rounds, right after the first (same scenes, same sample
+# counts), as two more columns of the summary. NEED="name=spp name=spp ..."
+# skips step 2 and takes those sample counts instead (from an earlier run of
+# the same sampling code: the counts depend on the images, not the build).
+#
 # Usage: tools/side_by_side.sh [ROUNDS] [SPP_LIST]   (defaults 3, 48,64,96,128,192,256;
 # SPP_LIST ascending: the summary interpolates between neighbours)
 set -euo pipefail
@@ -39,6 +45,7 @@ refs="${REFS:-$here/../shared/refs}"
 run="${MITSUBA_RUN:-$here/../shared/tools/mitsuba_run.py}"
 py="${MITSUBA_PYTHON:-python3}"
 ronray="${RONRAY:-$here/target/release/ronray}"
+extra="${EXTRA:-}"
 threads="${THREADS:-2}"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
@@ -46,6 +53,7 @@ trap 'rm -rf "$out"' EXIT
 log="$out/log"
 : > "$log"
 [ -x "$ronray" ] || { echo "build first: cargo build --release" >&2; exit 2; }
+[ -z "$extra" ] || [ -x "$extra" ] || { echo "EXTRA=$extra is not an executable" >&2; exit 2; }
 [ -d "$refs" ] || { echo "no reference folder at $refs (set REFS)" >&2; exit 2; }
 scenes=()
 for json in "$refs"/*.json; do
@@ -83,9 +91,9 @@ mi_render() { # NAME OUT -> "render_s" or "failed"
     "$py" "$run" "$(json_of "$1")" --variant llvm_ad_rgb --spp 256 --out "$2" 2>/dev/null \
         | sed -n 's/.*"render_s": \([0-9.]*\).*/\1/p' | grep . || echo failed
 }
-rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed"
+rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed" (RR_BIN: another binary)
     local twin="$1" spp="$2" o="$3"; shift 3
-    "$ronray" render "$twin" --size 256x256 --spp "$spp" --threads "$threads" "$@" \
+    "${RR_BIN:-$ronray}" render "$twin" --size 256x256 --spp "$spp" --threads "$threads" "$@" \
         --progress none -o "$o" 2>&1 | sed -n 's/.* in \([0-9.]*\) s.*/\1/p' | grep . || echo failed
 }
 err_of() { "$ronray" diff "$1" "$(refdir_of "$2")/${2}_ref.exr" $(mask_of "$2") | awk '$1 == "rmse" {print $2}'; }
@@ -97,34 +105,38 @@ for s in "${scenes[@]}"; do
     "$py" "$run" "$(json_of "$name")" --variant llvm_ad_rgb --spp 16 --out "$out/warm.exr" > /dev/null 2>&1 || true
     [ "$(mi_render "$name" "$out/mi.exr")" != failed ] && echo "err0 $name $(err_of "$out/mi.exr" "$name")" >> "$log"
 done
-echo "== ronray error per sample count $(date -u +%T) (its timings are single runs: not used)"
-: > "$out/bench"
-for s in "${scenes[@]}"; do
-    name="${s%%:*}" twin="${s#*:}"
-    d="$(refdir_of "$name")"
-    # One scene at a time: a folder of references renders every twin it finds.
-    mkdir -p "$out/one_$name"
-    ln -s "$d/${name}_ref.exr" "$out/one_$name/${name}_ref.exr"
-    [ -f "$d/${name}_emitter_mask.png" ] && ln -s "$d/${name}_emitter_mask.png" "$out/one_$name/"
-    "$ronray" bench --scenes "$out/one_$name" --ronray-scenes "$(dirname "$twin")" --spp "$spps" \
-        --sampler Independent,Sobol --threads "$threads" | tee -a "$out/bench"
-done
-# The sample count at which ronray's defaults reach Mitsuba's error: log-log
-# interpolation between the bench's counts, rounded up.
-awk -F'|' '
-    FILENAME == ARGV[1] { split($0, w, " "); if (w[1] == "err0") e[w[2]] = w[3]; next }
-    $3 ~ /Sobol/ && $4 + 0 > 0 { n = $2; gsub(/ /, "", n); k = ++rows[n]; spp[n, k] = $4 + 0; off[n, k] = $10 + 0 }
-    END {
-        for (n in e) {
-            s = 0
-            for (k = 1; k <= rows[n]; k++) if (off[n, k] <= e[n]) {
-                if (k == 1) { s = spp[n, 1]; break }
-                f = log(off[n, k - 1] / e[n]) / log(off[n, k - 1] / off[n, k])
-                s = spp[n, k - 1] * exp(f * log(spp[n, k] / spp[n, k - 1])); break
+if [ -n "${NEED:-}" ]; then
+    for kv in $NEED; do echo "need ${kv%%=*} ${kv#*=}" >> "$log"; done
+else
+    echo "== ronray error per sample count $(date -u +%T) (its timings are single runs: not used)"
+    : > "$out/bench"
+    for s in "${scenes[@]}"; do
+        name="${s%%:*}" twin="${s#*:}"
+        d="$(refdir_of "$name")"
+        # One scene at a time: a folder of references renders every twin it finds.
+        mkdir -p "$out/one_$name"
+        ln -s "$d/${name}_ref.exr" "$out/one_$name/${name}_ref.exr"
+        [ -f "$d/${name}_emitter_mask.png" ] && ln -s "$d/${name}_emitter_mask.png" "$out/one_$name/"
+        "$ronray" bench --scenes "$out/one_$name" --ronray-scenes "$(dirname "$twin")" --spp "$spps" \
+            --sampler Independent,Sobol --threads "$threads" | tee -a "$out/bench"
+    done
+    # The sample count at which ronray's defaults reach Mitsuba's error: log-log
+    # interpolation between the bench's counts, rounded up.
+    awk -F'|' '
+        FILENAME == ARGV[1] { split($0, w, " "); if (w[1] == "err0") e[w[2]] = w[3]; next }
+        $3 ~ /Sobol/ && $4 + 0 > 0 { n = $2; gsub(/ /, "", n); k = ++rows[n]; spp[n, k] = $4 + 0; off[n, k] = $10 + 0 }
+        END {
+            for (n in e) {
+                s = 0
+                for (k = 1; k <= rows[n]; k++) if (off[n, k] <= e[n]) {
+                    if (k == 1) { s = spp[n, 1]; break }
+                    f = log(off[n, k - 1] / e[n]) / log(off[n, k - 1] / off[n, k])
+                    s = spp[n, k - 1] * exp(f * log(spp[n, k] / spp[n, k - 1])); break
+                }
+                if (s > 0) printf "need %s %d\n", n, (s == int(s) ? s : int(s) + 1)
             }
-            if (s > 0) printf "need %s %d\n", n, (s == int(s) ? s : int(s) + 1)
-        }
-    }' "$log" "$out/bench" >> "$log"
+        }' "$log" "$out/bench" >> "$log"
+fi
 for round in $(seq "$rounds"); do
     echo "== round $round $(date -u +%T), load $(cut -d' ' -f1-3 /proc/loadavg)"
     for s in "${scenes[@]}"; do
@@ -147,6 +159,17 @@ for round in $(seq "$rounds"); do
             fi
             line="$line | ronray defaults $need spp $dt s"
         fi
+        if [ -n "$extra" ]; then
+            x=$(RR_BIN="$extra" rr_render "$twin" 256 "$out/rr.exr" --set film.sampler=Independent \
+                --set film.allocation=Even --set integrator.splits=1)
+            [ "$x" != failed ] && echo "xrr $name $x" >> "$log"
+            line="$line | extra Independent 256 spp $x s"
+            if [ -n "$need" ]; then
+                x=$(RR_BIN="$extra" rr_render "$twin" "$need" "$out/def.exr" --set film.sampler=Sobol)
+                [ "$x" != failed ] && echo "xdef $name $x" >> "$log"
+                line="$line | extra defaults $x s"
+            fi
+        fi
         echo "$line"
     done
 done
@@ -162,10 +185,19 @@ awk '
     END {
         print "| scene | Mitsuba 256 spp s | ronray Independent 256 spp s | per sample | Mitsuba RMSE off light | ronray defaults: spp to it | their RMSE off light | their s | their time / Mitsuba | scaled to Mitsuba error |"
         print "|---|---|---|---|---|---|---|---|---|---|"
+        xs = ""
         for (n in names) {
             mi = median(v["mi", n]); rr = median(v["rr", n]); e = median(v["err", n])
             d = median(v["def", n]); de = median(v["deferr", n])
             at = (n in need) ? need[n] : "> bench range"
             printf "| %s | %.2f | %.2f | %.2f× | %.5f | %s | %.5f | %.2f | %s | %s |\n", n, mi, rr, (mi > 0 ? rr / mi : 0), e, at, de, d, (mi > 0 && d > 0 ? sprintf("%.2f×", d / mi) : "—"), (mi > 0 && d > 0 && e > 0 ? sprintf("%.2f×", d / mi * (de / e) ^ 2) : "—")
+            xr = median(v["xrr", n]); xd = median(v["xdef", n])
+            if (xr > 0) xs = xs sprintf("| %s | %.2f | %.2f× | %.2f | %s |\n", n, xr, (mi > 0 ? xr / mi : 0), xd, (mi > 0 && xd > 0 ? sprintf("%.2f×", xd / mi) : "—"))
+        }
+        if (xs != "") {
+            print "\nThe EXTRA binary, same rounds:\n"
+            print "| scene | Independent 256 spp s | per sample | defaults s | their time / Mitsuba |"
+            print "|---|---|---|---|---|"
+            printf "%s", xs
         }
     }' "$log"
