@@ -2,7 +2,7 @@
 //! is low enough, never take more than `spp`, and the image still does not
 //! depend on the thread count.
 
-mod common;
+use crate::common;
 
 use common::{load_text, report};
 use ronray::frame::{Plan, RenderOptions, Request, render_whole};

@@ -2,7 +2,7 @@
 //! same number of samples as an even render, the same image on any number
 //! of threads, the same expected image, and less error.
 
-mod common;
+use crate::common;
 
 use common::{load_text, report, ronray, root};
 use ronray::frame::{Plan, RenderOptions, Request, render_whole};

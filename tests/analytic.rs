@@ -1,6 +1,6 @@
 //! Integrators against closed-form answers.
 
-mod common;
+use crate::common;
 
 use glam::Vec3A;
 use ronray::load::{Overrides, load_str};

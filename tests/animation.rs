@@ -3,7 +3,7 @@
 //! emitters, seen and sampled), and located errors for the new fields.
 //! Scenes are tiny (2 × 64 to 64²) and few-sampled.
 
-mod common;
+use crate::common;
 
 use common::{load_in, message, render_loaded, ronray, root};
 use glam::{Mat4, Vec3};

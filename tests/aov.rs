@@ -2,7 +2,7 @@
 //! with the channel names compositors expect and first-hit values a Lambert
 //! plane lets us check exactly; and their scene-file checks.
 
-mod common;
+use crate::common;
 
 use common::{load_in, ronray_in};
 use ronray::aov::{AovSet, render_aovs};

@@ -401,3 +401,73 @@ fn the_wildcard_finder_finds_a_planted_arm() {
     );
     assert_eq!(scan_text(code, &["Material"]), vec![]);
 }
+
+/// The files of `tests/` that no test target builds. With `autotests =
+/// false` cargo builds only the `[[test]]` targets of `Cargo.toml`, so every
+/// `tests/<name>.rs` (`files`) must be a target's `path` or named by a
+/// `mod <name>;` line of a target's root file (`read` gives a root's text).
+fn unbuilt_test_files(manifest: &str, files: &[String], read: impl Fn(&str) -> String) -> Vec<String> {
+    let mut roots = Vec::new();
+    let mut in_test = false;
+    for line in manifest.lines().map(str::trim) {
+        if line.starts_with('[') {
+            in_test = line == "[[test]]";
+        } else if in_test && let Some(p) = line.strip_prefix("path") {
+            let p = p.trim_start().trim_start_matches('=').trim().trim_matches('"');
+            roots.push(p.to_string());
+        }
+    }
+    let mut built: BTreeSet<String> = roots.iter().cloned().collect();
+    for root in &roots {
+        let dir = root.rsplit_once('/').map_or("", |(d, _)| d);
+        for line in read(root).lines() {
+            let line = line.trim().trim_start_matches("pub ");
+            if let Some(name) = line.strip_prefix("mod ").and_then(|r| r.strip_suffix(';')) {
+                built.insert(format!("{dir}/{}.rs", name.trim()));
+            }
+        }
+    }
+    files.iter().filter(|f| !built.contains(*f)).cloned().collect()
+}
+
+/// No test disappears silently: every `tests/*.rs` file is built, as a test
+/// target of its own or as a module of `tests/main.rs`.
+#[test]
+fn every_test_file_is_in_a_test_target() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let manifest = std::fs::read_to_string(root.join("Cargo.toml")).expect("read Cargo.toml");
+    let mut files: Vec<String> = std::fs::read_dir(root.join("tests"))
+        .expect("read tests")
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".rs"))
+        .map(|n| format!("tests/{n}"))
+        .collect();
+    files.sort();
+    assert!(files.len() > 40, "read too few test files: {files:?}");
+    let read = |p: &str| std::fs::read_to_string(root.join(p)).unwrap_or_else(|e| panic!("{p}: {e}"));
+    let unbuilt = unbuilt_test_files(&manifest, &files, read);
+    assert!(
+        unbuilt.is_empty(),
+        "not built by any test target, so their tests never run: {unbuilt:?}; add `mod <name>;` to tests/main.rs (or a [[test]] in Cargo.toml)"
+    );
+}
+
+/// The test-file check itself: a file that is neither a target nor a
+/// module of one is reported; modules and targets are not.
+#[test]
+fn the_test_file_check_finds_a_planted_orphan() {
+    let manifest = "[package]\nname = \"x\"\npath = \"tests/not_a_test.rs\"\n\n[[test]]\nname = \"integration\"\npath = \"tests/main.rs\"\n\n[[test]]\nname = \"alone\"\npath = \"tests/alone.rs\"\n\n[dependencies]\n";
+    let files: Vec<String> = ["alone", "kept", "main", "not_a_test", "orphan"]
+        .iter()
+        .map(|n| format!("tests/{n}.rs"))
+        .collect();
+    let read = |p: &str| match p {
+        "tests/main.rs" => "//! root\nmod common;\n#[cfg(unix)]\nmod kept;\n// mod orphan;\n".to_string(),
+        _ => String::new(),
+    };
+    assert_eq!(
+        unbuilt_test_files(manifest, &files, read),
+        vec!["tests/not_a_test.rs".to_string(), "tests/orphan.rs".to_string()]
+    );
+}

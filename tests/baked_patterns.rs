@@ -7,7 +7,7 @@
 //! what differs between the two renders is only bilinear reconstruction
 //! (512 texels per UV unit, 128 per noise cell) against the exact function.
 
-mod common;
+use crate::common;
 
 use common::load_in;
 use glam::Vec2;

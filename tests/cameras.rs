@@ -2,7 +2,7 @@
 //! whatever the distance, the spherical camera sees an environment map as
 //! the map itself.
 
-mod common;
+use crate::common;
 
 use common::{load_in, render_loaded, report};
 use ronray::imageio::{Image, compare, write_image};

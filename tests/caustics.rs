@@ -3,7 +3,7 @@
 //! alone, region by region, less noise, the same image on any number of
 //! threads, and nothing changed where there is nothing to light-trace.
 
-mod common;
+use crate::common;
 
 use common::{blocks, load_text, report};
 use ronray::frame::{Plan, RenderOptions, Request, render_whole};

@@ -1,6 +1,6 @@
 //! `ronray check`: golden-image regression checks.
 
-mod common;
+use crate::common;
 
 use common::{ronray_in, root};
 use ronray::check::{CheckOptions, Outcome, check_scene};

@@ -3,7 +3,7 @@
 //! sidedness of materials and area lights, counts over their limit, and the
 //! test suite's own rule for a missing tool.
 
-mod common;
+use crate::common;
 
 use common::{load_text, render_loaded, root};
 use ronray::imageio::Image;

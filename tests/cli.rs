@@ -1,6 +1,6 @@
 //! The `ronray` binary as a user drives it.
 
-mod common;
+use crate::common;
 
 use common::{ronray, ronray_in, root};
 use std::path::{Path, PathBuf};

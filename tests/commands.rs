@@ -3,7 +3,7 @@
 //! scenes of one name or a zero width, numeric flags at 0, NaN or huge,
 //! a film larger than the machine's memory, Ctrl-C during a render.
 
-mod common;
+use crate::common;
 
 use common::ronray_in;
 use std::path::Path;

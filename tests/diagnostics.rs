@@ -1,6 +1,6 @@
 //! Broken scene files give located, helpful diagnostics — all of them at once.
 
-mod common;
+use crate::common;
 
 use ronray::diagnostic::Diagnostic;
 use ronray::load::{LoadError, Overrides, load, load_str, load_with};

@@ -12,7 +12,7 @@
 //! within 1.25× the unmoved render's, and no pixel may be more than 5σ off,
 //! σ the pixel's noise estimated from the reference renders.
 
-mod common;
+use crate::common;
 
 use common::{load_in, report, root};
 use glam::DVec3;

@@ -3,7 +3,7 @@
 //! splits exactly, and every mismatch refused with the pieces and pixels
 //! named.
 
-mod common;
+use crate::common;
 
 use common::{ronray_in, root};
 use std::path::{Path, PathBuf};

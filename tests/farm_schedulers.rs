@@ -7,7 +7,7 @@
 //! says so and skips; `.ci/run` sets `RONRAY_REQUIRE_TOOLS=1`, which turns
 //! the skip into a failure.
 
-mod common;
+use crate::common;
 
 use common::{report, ronray_in, root, skip_or_fail, tool_or_skip};
 use std::path::Path;

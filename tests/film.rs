@@ -1,7 +1,7 @@
 //! Pixel filters, exposure and tone mapping, and the output formats: each
 //! filter integrates to 1, exposure is in stops, what is written reads back.
 
-mod common;
+use crate::common;
 
 use common::{load_text, render_loaded, report, ronray_in};
 use ronray::frame::{RenderOptions, render_whole};

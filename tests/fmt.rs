@@ -1,7 +1,7 @@
 //! `ronray fmt`: every shipped scene and fixture means the same after
 //! formatting, keeps every comment, and formats to itself a second time.
 
-mod common;
+use crate::common;
 
 use common::{ronray_in, root};
 use ronray::syntax::format;

@@ -5,7 +5,7 @@
 //! stored tangents, a glTF box against the same box as OBJ, and malformed
 //! assets as located errors.
 
-mod common;
+use crate::common;
 
 use glam::{Mat4, Quat, Vec3, Vec3A};
 use ronray::frame::render_whole;
@@ -652,7 +652,7 @@ fn gltf_fuzz_seeds_are_committed_and_current() {
         assert!(ronray::fuzzing::gltf(&bytes), "seed {name} imports");
         assert!(
             path.exists(),
-            "{} missing: RONRAY_WRITE_SEEDS=1 cargo test --test gltf",
+            "{} missing: RONRAY_WRITE_SEEDS=1 cargo test --test integration gltf::",
             path.display()
         );
     }

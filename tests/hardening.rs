@@ -2,7 +2,7 @@
 //! panic and never put a NaN or an infinity on the film, whatever their
 //! numbers; files that are not regular files are refused without blocking.
 
-mod common;
+use crate::common;
 
 use common::root;
 use ronray::frame::{RenderOptions, render_whole};

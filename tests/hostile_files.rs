@@ -3,7 +3,7 @@
 //! include or a JSON scene, one texture spelled two ways, a batch with one
 //! hostile scene. None may block, abort, panic or cost a summary.
 
-mod common;
+use crate::common;
 
 use common::{ronray_in, root};
 use ronray::load::{Overrides, load_str};

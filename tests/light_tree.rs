@@ -3,7 +3,7 @@
 //! region, and at equal samples it must be closer to that image where the
 //! scene has many lights.
 
-mod common;
+use crate::common;
 
 use ronray::math::Rgb;
 

@@ -2,7 +2,7 @@
 //! located diagnostics for a scene with mistakes, updated after an edit;
 //! hover, completion and go-to-definition answers.
 
-mod common;
+use crate::common;
 
 use serde_json::{Value, json};
 use std::io::{BufRead, BufReader, Read, Write};

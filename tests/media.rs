@@ -4,7 +4,7 @@
 //! −0.25 to 0.25), an index-matched boundary around its medium; an
 //! orthographic camera looks straight through it at a constant sky.
 
-mod common;
+use crate::common;
 
 use common::{load_in, render_loaded, root};
 use ronray::imageio::Image;

@@ -3,7 +3,7 @@
 //! order, the file states the current version, and a second run changes
 //! nothing.
 
-mod common;
+use crate::common;
 
 use common::{ronray_in, root};
 use ronray::frame::render_whole;

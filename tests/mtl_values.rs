@@ -4,7 +4,7 @@
 //! `Ke` silently turned the light off and a `Ke` of 1e38 made the light's
 //! power infinite.
 
-mod common;
+use crate::common;
 
 use ronray::load::{Loaded, Overrides};
 

@@ -6,7 +6,7 @@
 //! Each run is a child process, so a stack overflow fails the test instead
 //! of killing the test binary.
 
-mod common;
+use crate::common;
 
 use ronray::syntax::nesting::{MAX_NESTING, MAX_NESTING_CEILING, NESTING_VAR};
 use std::io::Write;

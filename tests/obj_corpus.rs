@@ -2,7 +2,7 @@
 //! SOURCES.md) loads and renders through a small generated scene, and broken
 //! OBJ files — generated here — fail with a located error, never a panic.
 
-mod common;
+use crate::common;
 
 use common::message;
 use ronray::frame::{RenderOptions, render_whole};

@@ -2,7 +2,7 @@
 //! `Mesh` or `Instance`) say which part they recolour, and an MTL file that
 //! defines a name twice is refused (issue 46, falsehood 5).
 
-mod common;
+use crate::common;
 
 use common::ronray_in;
 use ronray::load::{LoadError, load};

@@ -8,13 +8,13 @@
 //! Noise is measured without a reference: the RMS difference of two renders
 //! with different seeds, divided by √2.
 //!
-//! `RONRAY_DUMP_OPEN_SCENES=DIR cargo test --test open_scenes dump` writes
+//! `RONRAY_DUMP_OPEN_SCENES=DIR cargo test --test integration open_scenes::dump` writes
 //! every scene as RON (for `ronray render`) and as the renderer-neutral
 //! JSON of `../shared/refs` (for Mitsuba 3 through `mitsuba_run.py`), with
 //! the sun's sky map, for the side-by-side table in `docs/benchmarks.md`
 //! (`tools/open_scenes.sh`).
 
-mod common;
+use crate::common;
 
 use ronray::math::Rgb;
 use std::f32::consts::PI;

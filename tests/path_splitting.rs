@@ -3,7 +3,7 @@
 //! noise per camera sample, the same image on any number of threads, and
 //! out-of-range counts refused with a located diagnostic.
 
-mod common;
+use crate::common;
 
 use common::{blocks, load_text};
 use ronray::frame::{RenderOptions, render_whole};

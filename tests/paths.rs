@@ -3,7 +3,7 @@
 //! (its content is never echoed otherwise), and `validate -v` shows what a
 //! scene reads and writes, resolved.
 
-mod common;
+use crate::common;
 
 use common::{ronray_in, root};
 use ronray::load::{Overrides, load_str};

@@ -7,7 +7,7 @@
 //! `docs/design.md` name every file a new variant touches, and every test
 //! `docs/claims.md` cites as a claim's backing exists.
 
-mod common;
+use crate::common;
 
 use common::root;
 use ronray::load::{Overrides, load_str};

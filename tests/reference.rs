@@ -12,7 +12,7 @@
 //! 8 × 8 block is judged too: see `common::check_blocks` (the bar is shared
 //! with `tests/animation.rs`, whose references are means of still renders).
 
-mod common;
+use crate::common;
 
 use common::root;
 use ronray::frame::render_whole;

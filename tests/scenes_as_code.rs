@@ -1,7 +1,7 @@
 //! Scenes as code: schema, JSON scenes, overrides, machine-readable
 //! validation and formatting.
 
-mod common;
+use crate::common;
 
 use common::{ronray, root};
 use ronray::frame::render_whole;

@@ -3,15 +3,11 @@
 //! images are checked with every other shipped scene's by `ronray check`
 //! (`tests/check.rs`, goldens in `scenes/golden/`).
 
-mod common;
+use crate::common;
 
-#[path = "sdf/geometry.rs"]
 mod geometry;
-#[path = "sdf/mandelbulb.rs"]
 mod mandelbulb;
-#[path = "sdf/torus.rs"]
 mod torus;
-#[path = "sdf/validation.rs"]
 mod validation;
 
 use common::root;

@@ -2,7 +2,7 @@
 //! changes nothing, a cut-out's shadow is its mask's, and the reference
 //! comparison catches an sRGB map read as linear.
 
-mod common;
+use crate::common;
 
 use common::root;
 use ronray::frame::render_whole;

@@ -3,7 +3,7 @@
 //! one of its pieces, `fmt` through links, hard links and read-only files,
 //! and a render killed while it writes.
 
-mod common;
+use crate::common;
 
 use common::{ronray_in, root};
 use std::io::{BufRead, BufReader};

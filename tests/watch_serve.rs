@@ -6,7 +6,7 @@
 //! Chromium is required: CI installs it (`.ci/run`), and a missing browser
 //! fails this test rather than skipping it.
 
-mod common;
+use crate::common;
 
 use serde_json::{Value, json};
 use std::io::{BufRead, BufReader, Read, Write};

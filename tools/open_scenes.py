@@ -10,7 +10,7 @@ over pixels and channels, divided by sqrt(2).
         python3 tools/open_scenes.py [--size 256] [--spp 64] [--only NAME_SUBSTRING]
 
 Needs the `mitsuba` and `numpy` packages and ../shared/tools/mitsuba_run.py (or
-MITSUBA_RUN=...). Dumps the scenes with `cargo test --test open_scenes dump`
+MITSUBA_RUN=...). Dumps the scenes with `cargo test --test integration open_scenes::dump`
 (RONRAY_DUMP_OPEN_SCENES), renders each with ronray (Independent, as written) and with
 Mitsuba `llvm_ad_rgb` (independent sampler), two seeds each, and prints a Markdown table.
 
@@ -49,7 +49,7 @@ def main():
     ronray = os.environ.get("RONRAY", os.path.join(here, "target", "release", "ronray"))
     out = tempfile.mkdtemp(prefix="open_scenes.")
     env = dict(os.environ, RONRAY_DUMP_OPEN_SCENES=out, RONRAY_DUMP_SIZE=str(a.size))
-    subprocess.run(["cargo", "test", "-q", "--test", "open_scenes", "dump"], cwd=here, env=env,
+    subprocess.run(["cargo", "test", "-q", "--test", "integration", "open_scenes::dump"], cwd=here, env=env,
                    check=True, stdout=subprocess.DEVNULL)
     names = sorted(f[:-5] for f in os.listdir(out) if f.endswith(".json") and a.only in f)
     if a.timing:

@@ -1,6 +1,7 @@
 //! Helpers shared by the end-to-end tests: the crate root, the `ronray`
-//! binary, loading scene text and rendering it. Each test binary uses a
-//! different subset, hence the `dead_code` allowance.
+//! binary, loading scene text and rendering it. The integration binary
+//! (`tests/main.rs`) and the two on their own (`fuzz_corpus`, `denoise`)
+//! each use a different subset, hence the `dead_code` allowance.
 #![allow(dead_code)]
 
 use glam::Vec3A;
