@@ -292,7 +292,15 @@ fn texture(
         None => {
             let decoded = decode(asset, &image, srgb);
             let r = match decoded {
-                Ok(tex) => {
+                Ok(super::super::material::DecodedTexture {
+                    texture: tex, repaired, ..
+                }) => {
+                    if let Some(what) = repaired {
+                        note(format!(
+                            "images[{}] has {what}, read as 0 (NaN, infinite and negative texels are no value)",
+                            image.index()
+                        ));
+                    }
                     let alpha = !tex.alpha.is_empty();
                     Some((mtl.push_texture(tex), alpha))
                 }
@@ -313,11 +321,15 @@ fn texture(
 }
 
 /// The image's bytes (a buffer view or a URI) decoded.
-fn decode(asset: &mut Source, image: &gltf::Image, srgb: bool) -> Result<crate::materials::Texture, String> {
+fn decode(
+    asset: &mut Source,
+    image: &gltf::Image,
+    srgb: bool,
+) -> Result<super::super::material::DecodedTexture, String> {
     let bytes = match image.source() {
         gltf::image::Source::View { view, .. } => view_bytes(asset.buffers, &view)?.to_vec(),
         gltf::image::Source::Uri { uri, .. } => asset.files.uri_bytes(uri)?,
     };
     let img = crate::imageio::read::decode_texture_bytes(&bytes)?;
-    super::super::material::texture_from_image(&img, srgb).map(|(t, _)| t)
+    super::super::material::texture_from_image(&img, srgb)
 }
