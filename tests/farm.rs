@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{ronray_in, ronray_within, root};
+use common::{ronray_in, ronray_within_memory, root};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 use std::time::Duration;
@@ -429,21 +429,25 @@ fn tile_auto_reads_the_schedulers_index_or_says_which_variables_it_reads() {
 /// takes longer hangs (a FIFO opened for reading waits for ever).
 const HANG: Duration = Duration::from_secs(120);
 
-/// `ronray render` of an 8×8, 1-spp Cornell box tile `tile` to `out`,
-/// killed and failed if it hangs; its output.
+/// `ronray render` of an 8×8, 1-spp Cornell box tile `tile` with `extra`
+/// arguments, killed and failed if it hangs, in 4 GiB of address space
+/// (`--resume` reads what is at the output first); its output.
 fn render_small(dir: &Path, tile: &str, extra: &[&str]) -> Output {
     let s = scene();
     let mut args = vec!["render", s.as_str(), "--size", "8x8", "--spp", "1", "--tile", tile];
     args.extend_from_slice(extra);
-    ronray_within(dir, &args, HANG)
+    ronray_within_memory(dir, &args, HANG, 4)
 }
 
-/// `ronray assemble pieces -o out`, killed and failed if it hangs.
+/// `ronray assemble pieces -o out`, killed and failed if it hangs, in 4
+/// GiB of address space (a few hundred MB is what it needs here; a
+/// regression to allocating what a header claims aborts instead of taking
+/// the machine's memory).
 fn assemble_within(dir: &Path, pieces: &[&str], out: &str) -> Output {
     let mut args = vec!["assemble"];
     args.extend_from_slice(pieces);
     args.extend(["-o", out]);
-    ronray_within(dir, &args, HANG)
+    ronray_within_memory(dir, &args, HANG, 4)
 }
 
 /// The process ended by itself with `code` (not on a signal: an abort on

@@ -696,7 +696,7 @@ struct Builder<'a> {
     /// Each file once per colour space (true = sRGB-decoded).
     by_path: HashMap<(PathBuf, bool), Decoded>,
     problems: Vec<Problem>,
-    /// Images whose texels were repaired ([`super::texels`]), as notes at
+    /// Images whose texels were repaired (`src/load/texels.rs`), as notes at
     /// the scene path that first read them.
     notes: Vec<Problem>,
     /// Rough-plastic coats built so far: their tables cost ~0.1 s each, and
@@ -900,7 +900,7 @@ pub struct DecodedTexture {
     /// Channels in the file (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA).
     pub channels: u8,
     /// What was repaired in a float image's texels (NaN, infinite or
-    /// negative values read as 0, see [`super::texels`]), for the caller
+    /// negative values read as 0, see `src/load/texels.rs`), for the caller
     /// to report where the file was read; `None` when nothing was.
     pub repaired: Option<String>,
 }

@@ -31,10 +31,29 @@ pub fn ronray_in(dir: &Path, args: &[&str]) -> Output {
 /// and the test fails saying so: a regression to a hang (a FIFO read, a
 /// pipe waited on) fails instead of stopping the test run.
 pub fn ronray_within(dir: &Path, args: &[&str], limit: std::time::Duration) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ronray"));
+    cmd.args(args);
+    run_within(cmd, dir, args, limit)
+}
+
+/// As [`ronray_within`], with the process's address space capped at
+/// `gib` GiB (`ulimit -v`): a regression that sizes an allocation from a
+/// hostile header then fails at once (an abort) instead of taking the
+/// shared machine's memory.
+pub fn ronray_within_memory(dir: &Path, args: &[&str], limit: std::time::Duration, gib: u64) -> Output {
+    let mut cmd = Command::new("sh");
+    cmd.arg("-c")
+        .arg(format!("ulimit -v {} && exec \"$0\" \"$@\"", gib << 20))
+        .arg(env!("CARGO_BIN_EXE_ronray"))
+        .args(args);
+    run_within(cmd, dir, args, limit)
+}
+
+/// Runs `cmd` in `dir`, killed and failed after `limit` (`args` name it).
+fn run_within(mut cmd: Command, dir: &Path, args: &[&str], limit: std::time::Duration) -> Output {
     use std::io::Read;
     use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ronray"))
-        .args(args)
+    let mut child = cmd
         .current_dir(dir)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
