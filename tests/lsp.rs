@@ -403,8 +403,13 @@ fn lsp_exit_status_says_whether_shutdown_came_first() {
 /// that allocated it would abort. Bounded by a deadline either way.
 #[test]
 fn lsp_refuses_a_content_length_past_the_limit_without_allocating_it() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ronray"))
-        .arg("lsp")
+    // In 4 GiB of address space (`ulimit -v`): a regression that sizes the
+    // buffer from the header aborts at once instead of taking the shared
+    // machine's memory.
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {} && exec \"$0\" lsp", 4u64 << 20))
+        .arg(env!("CARGO_BIN_EXE_ronray"))
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())

@@ -26,6 +26,7 @@ use crate::materials::{
     Channel, Cutout, ImageLookup, Material, MetalPlasticMaterial, Perturb, Roughness, Surface, Tex,
     UvTransform,
 };
+use super::super::validate::MAX_RADIANCE;
 use crate::math::Rgb;
 use glam::{Affine2, Mat2, Vec2};
 use std::collections::HashMap;
@@ -181,7 +182,22 @@ pub(crate) fn map(
     }
     let e = m.emissive_factor();
     let strength = m.emissive_strength().unwrap_or(1.0);
-    let mut emission = Rgb::new(e[0], e[1], e[2]) * strength;
+    // As MTL `Ke`: channels that are no radiance read as 0, and at most
+    // MAX_RADIANCE (a strength of 1e38 made the light's power infinite).
+    let asked = Rgb::new(e[0], e[1], e[2]) * strength;
+    let mut repairs = super::super::texels::Repairs::default();
+    let fixed = |x: f32, r: &mut super::super::texels::Repairs| r.value(x).min(MAX_RADIANCE);
+    let mut emission = Rgb::new(
+        fixed(asked.x, &mut repairs),
+        fixed(asked.y, &mut repairs),
+        fixed(asked.z, &mut repairs),
+    );
+    if repairs.summary().is_some() || asked.max_element() > MAX_RADIANCE {
+        note(format!(
+            "emissiveFactor {e:?} × emissive strength {strength} is {asked}, no radiance (NaN, infinite \
+             and negative channels read as 0, at most {MAX_RADIANCE:e}); read as {emission}"
+        ));
+    }
     if let Some(info) = m.emissive_texture()
         && emission.max_element() > 0.0
     {
