@@ -896,6 +896,7 @@ pub fn load_texture(path: &Path) -> Result<Texture, String> {
 /// A texture as decoded from its file.
 #[derive(Clone, Debug)]
 pub struct DecodedTexture {
+    /// The texels, linear, repaired.
     pub texture: Texture,
     /// Channels in the file (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA).
     pub channels: u8,
