@@ -5,9 +5,10 @@
 
 use crate::common;
 
-use common::{ronray_in, root};
+use common::{ronray_in, ronray_within_memory, root};
 use std::path::{Path, PathBuf};
 use std::process::Output;
+use std::time::Duration;
 
 /// A named edit of the files in a scene's folder.
 type Edit<'a> = (&'a str, &'a dyn Fn(&Path));
@@ -424,32 +425,158 @@ fn tile_auto_reads_the_schedulers_index_or_says_which_variables_it_reads() {
     assert!(stderr(&none).contains("SLURM_ARRAY_TASK_ID"), "{}", stderr(&none));
 }
 
+/// Long enough for any run of these tests on a loaded machine; a run that
+/// takes longer hangs (a FIFO opened for reading waits for ever).
+const HANG: Duration = Duration::from_secs(120);
+
+/// `ronray render` of an 8×8, 1-spp Cornell box tile `tile` with `extra`
+/// arguments, killed and failed if it hangs, in 4 GiB of address space
+/// (`--resume` reads what is at the output first); its output.
+fn render_small(dir: &Path, tile: &str, extra: &[&str]) -> Output {
+    let s = scene();
+    let mut args = vec!["render", s.as_str(), "--size", "8x8", "--spp", "1", "--tile", tile];
+    args.extend_from_slice(extra);
+    ronray_within_memory(dir, &args, HANG, 4)
+}
+
+/// `ronray assemble pieces -o out`, killed and failed if it hangs, in 4
+/// GiB of address space (a few hundred MB is what it needs here; a
+/// regression to allocating what a header claims aborts instead of taking
+/// the machine's memory).
+fn assemble_within(dir: &Path, pieces: &[&str], out: &str) -> Output {
+    let mut args = vec!["assemble"];
+    args.extend_from_slice(pieces);
+    args.extend(["-o", out]);
+    ronray_within_memory(dir, &args, HANG, 4)
+}
+
+/// The process ended by itself with `code` (not on a signal: an abort on
+/// a failed allocation is SIGABRT).
+fn assert_code(o: &Output, code: i32, what: &str) {
+    assert!(
+        o.status.code() == Some(code),
+        "{what}: expected exit code {code}, got {} (a signal is an abort or a crash)\n{}",
+        o.status,
+        stderr(o)
+    );
+}
+
+fn mkfifo(p: &Path) {
+    let ok = std::process::Command::new("mkfifo")
+        .arg(p)
+        .status()
+        .expect("mkfifo");
+    assert!(ok.success(), "mkfifo {}", p.display());
+}
+
 /// `--resume` reads the whole piece: a truncated one is rendered again, not
-/// reported done; a FIFO named as a piece or as `--resume`'s output does
-/// not hang (issue 39).
+/// reported done; a FIFO named as a piece (`assemble`) or as `--resume`'s
+/// output is refused as not a regular file instead of hanging (issue 39:
+/// both waited for ever on a writer that never came). Every run is bounded
+/// by [`HANG`], so a regression fails instead of stopping the test run.
 #[test]
 fn resume_redoes_a_truncated_piece_and_fifos_do_not_hang() {
     let dir = tempfile::tempdir().expect("temp dir");
-    render(dir.path(), &["--tile", "0/2", "-o", "t.exr"]);
+    let o = render_small(dir.path(), "0/2", &["-o", "t.exr"]);
+    assert_code(&o, 0, "the first render");
     let good = read(dir.path().join("t.exr"));
     std::fs::write(dir.path().join("t.exr"), &good[..good.len() / 2]).expect("truncate");
-    let o = render(dir.path(), &["--tile", "0/2", "-o", "t.exr", "--resume"]);
+    let o = render_small(dir.path(), "0/2", &["-o", "t.exr", "--resume"]);
+    assert_code(&o, 0, "--resume over a truncated piece");
     assert!(!stderr(&o).contains("skipped"), "{}", stderr(&o));
     assert!(
         read(dir.path().join("t.exr")) == good,
         "the truncated piece was not repaired"
     );
-    let fifo = dir.path().join("pipe.exr");
-    let ok = std::process::Command::new("mkfifo")
-        .arg(&fifo)
-        .status()
-        .expect("mkfifo");
-    assert!(ok.success());
-    let o = assemble(dir.path(), &["t.exr".into(), "pipe.exr".into()], "frame.exr");
-    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
-    assert!(stderr(&o).contains("not a regular file"), "{}", stderr(&o));
-    let o = render(dir.path(), &["--tile", "1/2", "-o", "pipe.exr", "--resume"]);
+    mkfifo(&dir.path().join("pipe.exr"));
+    let o = assemble_within(dir.path(), &["t.exr", "pipe.exr"], "frame.exr");
+    assert_code(&o, 1, "assemble with a FIFO as a piece");
+    assert!(
+        stderr(&o).contains("pipe.exr") && stderr(&o).contains("not a regular file"),
+        "{}",
+        stderr(&o)
+    );
+    let o = render_small(dir.path(), "1/2", &["-o", "pipe.exr", "--resume"]);
+    assert_code(&o, 0, "--resume with a FIFO as the output");
     assert!(stderr(&o).contains("re-rendering"), "{}", stderr(&o));
+    assert!(
+        std::fs::metadata(dir.path().join("pipe.exr")).is_ok_and(|m| m.is_file()),
+        "the piece did not replace the FIFO"
+    );
+}
+
+/// `bytes` (an EXR file) with its `box2i` attribute `name` set to
+/// `[x_min, y_min, x_max, y_max]` (inclusive, as EXR stores a window).
+fn set_window(bytes: &mut [u8], name: &str, b: [i32; 4]) {
+    let key = format!("{name}\0box2i\0");
+    let at = bytes
+        .windows(key.len())
+        .position(|w| w == key.as_bytes())
+        .unwrap_or_else(|| panic!("no `{name}` attribute"))
+        + key.len()
+        + 4;
+    for (i, v) in b.iter().enumerate() {
+        bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+    }
+}
+
+/// The `box2i` attribute `name` of an EXR file.
+fn window(bytes: &[u8], name: &str) -> [i32; 4] {
+    let key = format!("{name}\0box2i\0");
+    let at = bytes
+        .windows(key.len())
+        .position(|w| w == key.as_bytes())
+        .unwrap_or_else(|| panic!("no `{name}` attribute"))
+        + key.len()
+        + 4;
+    std::array::from_fn(|i| i32::from_le_bytes(bytes[at + 4 * i..at + 4 * i + 4].try_into().unwrap_or_default()))
+}
+
+/// Issue 39: piece headers sized allocations. A piece of about a kilobyte
+/// whose data window starts at x = −(2³⁰ − 2) (the widest window EXR
+/// allows, two billion pixels a row) made the decoder ask for 32 GB a
+/// channel, and one claiming a 100,000² display window made `assemble`
+/// allocate a frame of 10¹⁰ pixels: both aborted (SIGABRT). Now both are
+/// refused by `assemble`, naming the piece, and `--resume` renders such a
+/// piece again instead of trusting it.
+#[test]
+fn piece_headers_that_lie_about_their_size_are_refused_before_allocating() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let o = render_small(dir.path(), "0/2", &["-o", "good.exr"]);
+    assert_code(&o, 0, "the first render");
+    let good = read(dir.path().join("good.exr"));
+    assert!(good.len() < 4096, "the small piece is {} bytes", good.len());
+    let data = window(&good, "dataWindow");
+
+    let mut wide = good.clone();
+    set_window(&mut wide, "dataWindow", [-(1 << 30) + 2, data[1], (1 << 30) - 3, data[3]]);
+    std::fs::write(dir.path().join("wide.exr"), &wide).expect("write");
+    let mut huge = good.clone();
+    set_window(&mut huge, "displayWindow", [0, 0, 99_999, 99_999]);
+    std::fs::write(dir.path().join("huge.exr"), &huge).expect("write");
+
+    let o = assemble_within(dir.path(), &["wide.exr"], "frame.exr");
+    assert_code(&o, 1, "assemble of a piece with a negative data window");
+    assert!(
+        stderr(&o).contains("wide.exr") && stderr(&o).contains("truncated or corrupt"),
+        "{}",
+        stderr(&o)
+    );
+    let o = assemble_within(dir.path(), &["huge.exr"], "frame.exr");
+    assert_code(&o, 1, "assemble of a piece claiming a 100000² frame");
+    assert!(
+        stderr(&o).contains("huge.exr") && stderr(&o).contains("100000×100000, above the limit of 16384"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.path().join("frame.exr").exists(), "a frame was written");
+
+    for bad in ["wide.exr", "huge.exr"] {
+        let o = render_small(dir.path(), "0/2", &["-o", bad, "--resume"]);
+        assert_code(&o, 0, &format!("--resume over {bad}"));
+        assert!(stderr(&o).contains("re-rendering"), "{bad}: {}", stderr(&o));
+        assert!(read(dir.path().join(bad)) == good, "{bad} was not rendered again");
+    }
 }
 
 /// A folder with a textured quad whose look comes from its MTL file

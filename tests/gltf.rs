@@ -400,6 +400,33 @@ fn gltf_mikktspace_flips_handedness_on_mirrored_uvs() {
     }
 }
 
+/// Issue 39, as for MTL `Ke`: an emissive strength of 1e38 made the
+/// light's power infinite, silently. The emission is clamped to
+/// `MAX_RADIANCE` with a note, and every light's power is finite.
+#[test]
+fn gltf_emission_above_the_limit_is_clamped_with_a_note() {
+    let m = json!({"emissiveFactor": [1, 0.5, 0],
+        "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 1e38}}});
+    let mut gltf: Value = serde_json::from_str(&quad_asset(m, false, false)).expect("JSON");
+    gltf["extensionsUsed"] = json!(["KHR_materials_emissive_strength"]);
+    let loaded = load(
+        &[("a.gltf", gltf.to_string().as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let notes: Vec<&str> = loaded.warnings.diagnostics.iter().map(|d| d.message.as_str()).collect();
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("emissive strength") && n.contains("at most 1e12") && n.contains("read as [1000000000000, 1000000000000, 0]")),
+        "{notes:#?}"
+    );
+    assert!(!loaded.scene.lights.is_empty(), "the emission was dropped");
+    for l in &loaded.scene.lights {
+        assert!(l.power().is_finite(), "a light's power is {:?}", l.power());
+    }
+}
+
 #[test]
 fn gltf_mask_cuts_out_below_the_cutoff_only() {
     for (alpha, present) in [(0.3, false), (0.7, true)] {

@@ -394,3 +394,74 @@ fn lsp_exit_status_says_whether_shutdown_came_first() {
     let status = c.child.wait().expect("exits");
     assert_eq!(status.code(), Some(1), "exit without shutdown: {status}");
 }
+
+/// Issue 39: one header line, `Content-Length: 100000000000`, made the
+/// server size a 100 GB buffer before any body byte arrived, and abort on
+/// the failed allocation (SIGABRT). The server now refuses it, naming the
+/// limit (`MAX_MESSAGE_BYTES`), and exits with status 1 at once: with its
+/// input still open, a server that waited for the body would hang, and one
+/// that allocated it would abort. Bounded by a deadline either way.
+#[test]
+fn lsp_refuses_a_content_length_past_the_limit_without_allocating_it() {
+    // In 4 GiB of address space (`ulimit -v`): a regression that sizes the
+    // buffer from the header aborts at once instead of taking the shared
+    // machine's memory.
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {} && exec \"$0\" lsp", 4u64 << 20))
+        .arg(env!("CARGO_BIN_EXE_ronray"))
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("ronray lsp starts");
+    let mut stdin = child.stdin.take().expect("stdin");
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            let _ = r.read_to_end(&mut v);
+            v
+        })
+    };
+    let out = drain(Box::new(child.stdout.take().expect("stdout")));
+    let err = drain(Box::new(child.stderr.take().expect("stderr")));
+    let frame = |v: Value| {
+        let body = v.to_string();
+        format!("Content-Length: {}\r\n\r\n{body}", body.len())
+    };
+    let init = json!({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+        "params": {"capabilities": {}, "processId": null, "rootUri": null}});
+    let initialized = json!({"jsonrpc": "2.0", "method": "initialized", "params": {}});
+    let text = format!(
+        "{}{}Content-Length: 100000000000\r\n\r\n{{\"jsonrpc\":",
+        frame(init),
+        frame(initialized)
+    );
+    stdin.write_all(text.as_bytes()).expect("write");
+    stdin.flush().expect("flush");
+    let deadline = Instant::now() + Duration::from_secs(60);
+    let status = loop {
+        if let Some(s) = child.try_wait().expect("wait") {
+            break s;
+        }
+        if Instant::now() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("the server neither refused nor ended within a minute of a 100 GB Content-Length");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    drop(stdin);
+    let err = String::from_utf8_lossy(&err.join().unwrap_or_default()).into_owned();
+    let out = String::from_utf8_lossy(&out.join().unwrap_or_default()).into_owned();
+    assert_eq!(
+        status.code(),
+        Some(1),
+        "expected exit status 1, got {status} (a signal is an abort)\n{err}"
+    );
+    assert!(
+        err.contains("a message of 100000000000 bytes is above the limit of"),
+        "stderr: {err}"
+    );
+    assert!(out.contains("\"id\":1"), "the server never answered `initialize`: {out}");
+}

@@ -8,7 +8,7 @@
 use super::build_context::BuildContext;
 use super::mesh_state::MeshState;
 use super::mtl::MtlMaterials;
-use super::validate::MAX_COORD;
+use super::validate::{MAX_COORD, MAX_RADIANCE, RADIANCE_HELP};
 use crate::accel::{Aabb, Leaves, WideBvh};
 use crate::desc::{ColorDesc, IntegratorDesc, LightDesc, LightSelectionDesc, SceneDesc};
 use crate::diagnostic::Problem;
@@ -56,6 +56,9 @@ pub struct BuildStats {
     /// What the build repaired or defaulted (an OBJ group without a
     /// material, an MTL feature not supported), for the commands to show.
     pub notes: Vec<String>,
+    /// Notes at a scene path (an image whose texels were repaired, at the
+    /// parameter that read it), located in the files like warnings.
+    pub located_notes: Vec<Problem>,
 }
 
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
@@ -90,7 +93,15 @@ pub fn build_in(
         index,
         files: texture_files,
         emissions,
+        notes: located_notes,
     } = super::material::build_materials(&desc.materials, &textured_emissions(desc), base)?;
+    let too_bright: Vec<Problem> = emissions
+        .iter()
+        .filter_map(|(path, tex)| too_bright(path, tex, &textures))
+        .collect();
+    if !too_bright.is_empty() {
+        return Err(too_bright);
+    }
     let emissions = emissions
         .into_iter()
         .map(|(path, tex)| (path, Emission::new(&tex, &textures)))
@@ -180,6 +191,7 @@ pub fn build_in(
         instances: ctx.geometry.instances.len(),
         mesh_accel_bytes: ctx.geometry.meshes.iter().map(|m| m.accel_bytes()).sum(),
         notes: ctx.notes,
+        located_notes,
         env_read_time: ctx.env_times.0,
         env_table_time: ctx.env_times.1,
     };
@@ -310,6 +322,29 @@ fn bvh_and_leaf_order(
     ordered.extend(unbounded);
     objects.extend(unbounded_ids);
     (ordered, objects, bounded, bvh)
+}
+
+/// An emission image whose brightest texel, times the lookup's scale and
+/// plus its offset, is above [`MAX_RADIANCE`] (an EXR texel of 1e38 is a
+/// finite number, so neither the texel repair nor validation saw it), as a
+/// problem at `path`.
+fn too_bright(path: &str, tex: &crate::materials::ColorTex, textures: &[crate::materials::Texture]) -> Option<Problem> {
+    let crate::materials::Tex::Image(l) = tex else {
+        return None;
+    };
+    let t = textures.get(l.index as usize)?;
+    let texel = t.texels.iter().fold(0.0f32, |m, c| m.max(c.max_element()));
+    let brightest = texel * l.scale.abs() + l.offset.abs();
+    (!(brightest <= MAX_RADIANCE)).then(|| {
+        Problem::new(
+            format!("{path}.file"),
+            format!(
+                "the emission image's brightest texel is {texel:e}; times its scale, {brightest:e} W/(m²·sr), \
+                 above the limit of {MAX_RADIANCE:e}"
+            ),
+        )
+        .help(RADIANCE_HELP)
+    })
 }
 
 /// The textured `radiance` of every light and emitting object, by scene path

@@ -5,7 +5,7 @@
 //! crate) and builds its sampling tables.
 
 use super::build_context::BuildContext;
-use super::validate::Checker;
+use super::validate::{Checker, MAX_RADIANCE, RADIANCE_HELP};
 use crate::desc::LightDesc;
 use crate::diagnostic::{Problem, suggest};
 use crate::geometry::{Quad, Shape};
@@ -33,7 +33,7 @@ impl Checker {
         match l {
             LightDesc::Point { position, intensity } => {
                 self.finite(&p("position"), position);
-                self.color(&p("intensity"), intensity, None);
+                self.emitted(&p("intensity"), intensity, "intensity");
             }
             LightDesc::Spot {
                 position,
@@ -44,7 +44,7 @@ impl Checker {
             } => {
                 self.finite(&p("position"), position);
                 self.nonzero(&p("direction"), direction, "`direction`");
-                self.color(&p("intensity"), intensity, None);
+                self.emitted(&p("intensity"), intensity, "intensity");
                 if !(*cone_degrees > 0.0 && *cone_degrees < 180.0) {
                     self.push(
                         &p("cone_degrees"),
@@ -69,7 +69,7 @@ impl Checker {
             } => {
                 self.finite(&p("corner"), corner);
                 self.parallelogram(path, "edge_u", edge_u, "edge_v", edge_v);
-                self.color_param(&p("radiance"), radiance, None);
+                self.emitted_param(&p("radiance"), radiance);
                 surface(self, material);
             }
             LightDesc::Rect {
@@ -81,7 +81,7 @@ impl Checker {
             } => {
                 self.finite(&p("center"), center);
                 self.parallelogram(path, "half_u", half_u, "half_v", half_v);
-                self.color_param(&p("radiance"), radiance, None);
+                self.emitted_param(&p("radiance"), radiance);
                 surface(self, material);
             }
             LightDesc::Environment {
@@ -131,7 +131,7 @@ impl Checker {
             _ => {}
         }
         if let Some(c) = radiance {
-            self.color(&p("radiance"), c, None);
+            self.emitted(&p("radiance"), c, "radiance");
         }
         if let Some(f) = map {
             let ext = Path::new(f)
@@ -155,6 +155,20 @@ impl Checker {
                 format!("strength {strength} must be ≥ 0 and finite"),
                 "it multiplies the radiance or map; 1 keeps it as given",
             );
+        } else {
+            // The radiance the sky has: each channel times `strength` (a map's
+            // texels are bounded once read, in the build step).
+            let brightest = radiance.map_or(1.0, |c| c.iter().fold(0.0f32, |m, &x| m.max(x)));
+            if brightest <= MAX_RADIANCE && strength * brightest > MAX_RADIANCE {
+                self.push(
+                    &p("strength"),
+                    format!(
+                        "strength {strength:e} makes the sky's radiance {:e}, above the limit of {MAX_RADIANCE:e}",
+                        strength * brightest
+                    ),
+                    RADIANCE_HELP,
+                );
+            }
         }
     }
 
@@ -247,11 +261,25 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             let env = match (radiance, map) {
                 (_, Some(file)) => match read_map(&ctx.base.join(file)) {
                     Ok(mut m) => {
-                        if let Some(what) = repair_texels(&mut m) {
+                        if let Some(what) = super::texels::repair_values(&mut m.rgb) {
                             ctx.notes.push(format!(
                                 "lights[{i}].map: {file} has {what}, read as 0 (one NaN texel \
                                  darkened a whole image by 11%); fix the map to silence this"
                             ));
+                        }
+                        let brightest = m.rgb.iter().fold(0.0f32, |b, &x| b.max(x)) * *strength;
+                        if !(brightest <= MAX_RADIANCE) {
+                            ctx.problems.push(
+                                Problem::new(
+                                    format!("lights[{i}].map"),
+                                    format!(
+                                        "{file}'s brightest texel times `strength` is {brightest:e} W/(m²·sr), \
+                                         above the limit of {MAX_RADIANCE:e}"
+                                    ),
+                                )
+                                .help(RADIANCE_HELP),
+                            );
+                            return;
                         }
                         let t1 = std::time::Instant::now();
                         let env = EnvironmentLight::from_map(m, *strength, *rotation_degrees);
@@ -277,36 +305,6 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
     }
 }
 
-/// Sets texels that are not radiance (NaN, infinite or negative) to 0:
-/// one NaN spreads through the sky's importance tables and irradiance
-/// into every pixel. Says what it found, `None` when the map was clean.
-fn repair_texels(m: &mut EnvMap) -> Option<String> {
-    let (mut nan, mut inf, mut neg) = (0usize, 0usize, 0usize);
-    for x in m.rgb.iter_mut() {
-        let bad = if x.is_nan() {
-            nan += 1;
-            true
-        } else if x.is_infinite() {
-            inf += 1;
-            true
-        } else if *x < 0.0 {
-            neg += 1;
-            true
-        } else {
-            false
-        };
-        if bad {
-            *x = 0.0;
-        }
-    }
-    let parts: Vec<String> = [(nan, "NaN"), (inf, "infinite"), (neg, "negative")]
-        .iter()
-        .filter(|(n, _)| *n > 0)
-        .map(|(n, what)| format!("{n} {what} channel value{}", if *n == 1 { "" } else { "s" }))
-        .collect();
-    (!parts.is_empty()).then(|| parts.join(", "))
-}
-
 /// What the `envmap` fuzz target runs: the sky map at `path` read as the
 /// build step reads it (limits, repair of texels that are not radiance)
 /// and its sampling tables built; whether it was accepted.
@@ -314,7 +312,7 @@ pub fn fuzz_sky_map(path: &Path) -> bool {
     let Ok(mut m) = read_map(path) else {
         return false;
     };
-    let _ = repair_texels(&mut m);
+    let _ = super::texels::repair_values(&mut m.rgb);
     let env = EnvironmentLight::from_map(m, 1.0, 0.0);
     std::hint::black_box(&env);
     true

@@ -3,7 +3,7 @@
 //! [`Material`]s, decoding each image texture once (a file used by several
 //! materials is read once). The models themselves live in `materials/`.
 
-use super::validate::Checker;
+use super::validate::{Checker, MAX_RADIANCE, RADIANCE_HELP};
 use crate::desc::{
     ChannelDesc, ColorDesc, ColorspaceDesc, CutoutModeDesc, DielectricFresnelDesc, DistributionDesc,
     FresnelDesc, ImageDesc, MaterialDesc, MetalDesc, OriginDesc, PatternDesc, RoughnessUnitDesc, ScalarDesc,
@@ -32,6 +32,30 @@ impl Checker {
         match c {
             ColorDesc::Rgb(c) => self.color(path, c, upper),
             ColorDesc::Texture(t) => self.texture(path, t, &mut |ck, p, v: &[f32; 3]| ck.color(p, v, upper)),
+        }
+    }
+
+    /// An emitted radiance: constants through [`Checker::emitted`], and an
+    /// image's `scale` and `offset` at most [`MAX_RADIANCE`] too (a scale of
+    /// 1e38 passed as finite and made the light's power infinite); the
+    /// texels themselves are bounded when the build decodes them.
+    pub(super) fn emitted_param(&mut self, path: &str, c: &ColorDesc) {
+        match c {
+            ColorDesc::Rgb(c) => self.emitted(path, c, "radiance"),
+            ColorDesc::Texture(t) => {
+                if let TexDesc::Image(i) = t {
+                    for (field, v) in [("scale", i.scale), ("offset", i.offset)] {
+                        if v.is_finite() && v.abs() > MAX_RADIANCE {
+                            self.push(
+                                &format!("{path}.{field}"),
+                                format!("an emission texture's {field} of {v:e} is above the limit of {MAX_RADIANCE:e}"),
+                                RADIANCE_HELP,
+                            );
+                        }
+                    }
+                }
+                self.texture(path, t, &mut |ck, p, v: &[f32; 3]| ck.emitted(p, v, "radiance"))
+            }
         }
     }
 
@@ -439,6 +463,8 @@ pub struct Materials {
     pub files: Vec<PathBuf>,
     /// The emission textures, by the scene path of their `radiance`.
     pub emissions: HashMap<String, ColorTex>,
+    /// Notes at the scene paths whose image had texels repaired.
+    pub notes: Vec<Problem>,
 }
 
 /// Builds every entry of the scene's `materials`, resolving texture files against
@@ -458,6 +484,7 @@ pub fn build_materials(
         textures: Vec::new(),
         by_path: HashMap::new(),
         problems: Vec::new(),
+        notes: Vec::new(),
         coats: Vec::new(),
     };
     let mut materials = Vec::new();
@@ -487,6 +514,7 @@ pub fn build_materials(
         index,
         files,
         emissions,
+        notes: b.notes,
     })
 }
 
@@ -668,6 +696,9 @@ struct Builder<'a> {
     /// Each file once per colour space (true = sRGB-decoded).
     by_path: HashMap<(PathBuf, bool), Decoded>,
     problems: Vec<Problem>,
+    /// Images whose texels were repaired (`src/load/texels.rs`), as notes at
+    /// the scene path that first read them.
+    notes: Vec<Problem>,
     /// Rough-plastic coats built so far: their tables cost ~0.1 s each, and
     /// materials differing only in colour share one.
     coats: Vec<Arc<RoughCoat>>,
@@ -829,9 +860,19 @@ impl Builder<'_> {
             return Some((d.index, d.channels));
         }
         match load_texture_as(&full, srgb) {
-            Ok((t, channels)) => {
+            Ok(DecodedTexture {
+                texture,
+                channels,
+                repaired,
+            }) => {
+                if let Some(what) = repaired {
+                    self.notes.push(Problem::new(
+                        format!("{path}.file"),
+                        format!("{file} has {what}, read as 0 (NaN, infinite and negative texels are no value); fix the image to silence this"),
+                    ));
+                }
                 let index = self.textures.len() as u32;
-                self.textures.push(t);
+                self.textures.push(texture);
                 self.by_path.insert((full, srgb), Decoded { index, channels });
                 Some((index, channels))
             }
@@ -849,20 +890,33 @@ impl Builder<'_> {
 
 /// Decodes an 8-bit image as sRGB-encoded colour.
 pub fn load_texture(path: &Path) -> Result<Texture, String> {
-    load_texture_as(path, true).map(|(t, _)| t)
+    load_texture_as(path, true).map(|d| d.texture)
+}
+
+/// A texture as decoded from its file.
+#[derive(Clone, Debug)]
+pub struct DecodedTexture {
+    /// The texels, linear, repaired.
+    pub texture: Texture,
+    /// Channels in the file (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA).
+    pub channels: u8,
+    /// What was repaired in a float image's texels (NaN, infinite or
+    /// negative values read as 0, see `src/load/texels.rs`), for the caller
+    /// to report where the file was read; `None` when nothing was.
+    pub repaired: Option<String>,
 }
 
 /// Decodes an image, 8- and 16-bit texels through the sRGB curve when
-/// `srgb` (float images are linear), with its alpha when it has one; also
-/// returns the file's channel count.
-pub fn load_texture_as(path: &Path, srgb: bool) -> Result<(Texture, u8), String> {
+/// `srgb` (float images are linear), with its alpha when it has one.
+pub fn load_texture_as(path: &Path, srgb: bool) -> Result<DecodedTexture, String> {
     let img = crate::imageio::read::decode_texture(path).map_err(|e| format!("texture: {e}"))?;
     texture_from_image(&img, srgb).map_err(|e| format!("texture {}: {e}", path.display()))
 }
 
-/// A decoded image as a texture (see [`load_texture_as`]), with its
-/// channel count.
-pub fn texture_from_image(img: &image::DynamicImage, srgb: bool) -> Result<(Texture, u8), String> {
+/// A decoded image as a texture (see [`load_texture_as`]), its texels
+/// repaired: every texture decoded for a parameter goes through here, so
+/// none reaches the render with a NaN, infinite or negative texel.
+pub fn texture_from_image(img: &image::DynamicImage, srgb: bool) -> Result<DecodedTexture, String> {
     let color = img.color();
     let channels = color.channel_count();
     let float = matches!(color, image::ColorType::Rgb32F | image::ColorType::Rgba32F);
@@ -887,7 +941,12 @@ pub fn texture_from_image(img: &image::DynamicImage, srgb: bool) -> Result<(Text
     if color.has_alpha() {
         t.alpha = img.to_rgba32f().as_raw().chunks_exact(4).map(|p| p[3]).collect();
     }
-    Ok((t, channels))
+    let repaired = super::texels::repair_texture(&mut t);
+    Ok(DecodedTexture {
+        texture: t,
+        channels,
+        repaired,
+    })
 }
 
 #[cfg(test)]

@@ -37,6 +37,7 @@ pub mod set;
 mod slip;
 pub mod source;
 pub mod spans;
+mod texels;
 mod tokens;
 pub mod transform;
 pub mod validate;

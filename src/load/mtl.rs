@@ -18,7 +18,7 @@
 //! tangent frame from their UVs — and each gives a note naming the statement.
 //!
 //! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), at
-//! most [`MAX_MTL_RADIANCE`]; NaN, infinite and negative channels of any
+//! most [`MAX_RADIANCE`], the scene's own limit; NaN, infinite and negative channels of any
 //! colour read as 0, each repair with a note) makes the groups that use the material emit from the
 //! counter-clockwise front of their triangles (see `mesh.rs`); `map_Ke` (sRGB)
 //! is an emission texture, times `Ke` when both are given, alone when `Ke` is
@@ -31,6 +31,7 @@ use crate::materials::{
     MetalPlasticMaterial, MirrorMaterial, PhongMaterial, Roughness, ScalarTex, Surface, Tex, Texture,
     UvTransform,
 };
+use super::validate::MAX_RADIANCE;
 use crate::math::Rgb;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -62,13 +63,6 @@ pub struct MtlMaterials {
 fn rgb(c: Option<[f32; 3]>, default: f32) -> Rgb {
     Rgb::from(c.unwrap_or([default; 3])).clamp(Rgb::ZERO, Rgb::ONE)
 }
-
-/// Largest `Ke` channel read, in W/(m²·sr): a hundred thousand times the
-/// sun's disc (~2·10⁷), and far enough below `f32::MAX` (3.4·10³⁸) that a
-/// light's power (radiance × area × π, summed over its triangles) stays
-/// finite; `Ke 1e38 1e38 1e38` on two triangles made it infinite and the
-/// light sampling weights NaN.
-pub const MAX_MTL_RADIANCE: f32 = 1e12;
 
 /// An MTL colour statement (`key`, of material `name`) with the channels
 /// that are no colour repaired, and a note saying which: NaN, infinite and
@@ -207,7 +201,7 @@ impl MtlMaterials {
         // `map_Ke` alone glows at the map's value; with `Ke` it is scaled by it.
         let ke = m
             .emissive
-            .map(|e| Rgb::from(repaired(&m.name, "Ke", e, MAX_MTL_RADIANCE, notes)))
+            .map(|e| Rgb::from(repaired(&m.name, "Ke", e, MAX_RADIANCE, notes)))
             .or(ke_map.map(|_| Rgb::ONE))
             .filter(|e| e.is_finite() && e.max_element() > 0.0)
             .map(|ke| match ke_map {
@@ -363,8 +357,19 @@ impl MtlMaterials {
             return None;
         }
         let t = match super::material::load_texture_as(path, false) {
-            Ok((t, channels)) => {
-                self.textures.push(t);
+            Ok(super::material::DecodedTexture {
+                texture,
+                channels,
+                repaired,
+            }) => {
+                if let Some(what) = repaired {
+                    notes.push(format!(
+                        "texture {} has {what}, read as 0 (NaN, infinite and negative texels are no value); \
+                         fix the image to silence this",
+                        path.display()
+                    ));
+                }
+                self.textures.push(texture);
                 Some((self.first_texture + self.textures.len() as u32 - 1, channels))
             }
             Err(e) => {
@@ -396,7 +401,14 @@ impl MtlMaterials {
             return None;
         }
         let t = match crate::imageio::read::decode_texture(path) {
-            Ok(img) => {
+            Ok(mut img) => {
+                if let Some(what) = super::texels::repair_image(&mut img) {
+                    notes.push(format!(
+                        "texture {} has {what}, read as 0 (NaN, infinite and negative texels are no value); \
+                         fix the image to silence this",
+                        path.display()
+                    ));
+                }
                 let rgb = img.to_rgb8();
                 match Texture::try_from_srgb8(rgb.width(), rgb.height(), rgb.as_raw()) {
                     Ok(t) => {

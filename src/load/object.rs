@@ -37,7 +37,7 @@ impl Checker {
             return;
         }
         let at = format!("{path}.radiance");
-        self.color_param(&at, &e.radiance, None);
+        self.emitted_param(&at, &e.radiance);
         if let (ObjectDesc::Sdf { .. }, ColorDesc::Texture(_)) = (o, &e.radiance) {
             self.push(
                 &at,

@@ -242,6 +242,12 @@ pub fn load_str_with_meshes(
             severity: crate::diagnostic::Severity::Note,
             ..crate::diagnostic::Diagnostic::new(path, "", None, n.clone())
         }));
+    warnings.diagnostics.extend(
+        composition
+            .locate(&stats.located_notes)
+            .with_severity(crate::diagnostic::Severity::Note)
+            .diagnostics,
+    );
     let mut files: Vec<PathBuf> = composition.sources.iter().map(|(p, _)| p.clone()).collect();
     files.extend(stats.texture_files.iter().cloned());
     for o in &desc.objects {

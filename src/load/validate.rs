@@ -37,6 +37,19 @@ pub const MAX_FILTER_RADIUS: f32 = 8.0;
 pub const MIN_FILTER_SIGMA: f32 = 0.05;
 /// Largest exposure magnitude, in stops (2⁶⁴ is far beyond any scene).
 pub const MAX_EXPOSURE: f32 = 64.0;
+/// Largest channel of anything that emits, in a scene or an MTL file: a
+/// radiance in W/(m²·sr) (area lights, emitting objects, an environment's
+/// radiance times its `strength`, an emission texture's scale and offset,
+/// MTL `Ke`) or a point or spot light's intensity in W/sr. A hundred
+/// thousand times the sun's disc (~2·10⁷), and far enough below `f32::MAX`
+/// (3.4·10³⁸) that a light's power (radiance × area × π, summed over its
+/// triangles) stays finite: a radiance of 1e38 made the power infinite and
+/// the light sampling weights NaN. Above it, a scene is refused with the
+/// path of the value and an MTL `Ke` is clamped with a note.
+pub const MAX_RADIANCE: f32 = 1e12;
+/// The help line of an emitted value above [`MAX_RADIANCE`].
+pub(super) const RADIANCE_HELP: &str = "the limit is a hundred thousand times the sun's disc; beyond it a \
+     light's power overflows and the image turns NaN (raise MAX_RADIANCE in src/load/validate.rs)";
 
 /// Every problem of `scene`, found before anything is built: values out of
 /// range, unknown names, and files that are missing (paths resolve against
@@ -319,6 +332,22 @@ impl Checker {
             });
             self.push(path, format!("colour {c:?} has a channel above {max}"), help);
         }
+    }
+
+    /// An emitted colour (`what`: `radiance` or `intensity`, with its
+    /// unit): a colour ([`Checker::color`]) no channel of which is above
+    /// [`MAX_RADIANCE`].
+    pub(super) fn emitted(&mut self, path: &str, c: &Color, what: &str) {
+        // Before `color`, whose ±MAX_COORD bound would call 1e38 a size.
+        if c.iter().all(|x| x.is_finite()) && c.iter().any(|&x| x > MAX_RADIANCE) {
+            self.push(
+                path,
+                format!("{what} {c:?} has a channel above the limit of {MAX_RADIANCE:e}"),
+                RADIANCE_HELP,
+            );
+            return;
+        }
+        self.color(path, c, None);
     }
 
     pub(super) fn nonzero(&mut self, path: &str, v: &V3, what: &str) -> bool {

@@ -28,6 +28,70 @@ pub fn ronray_in(dir: &Path, args: &[&str]) -> Output {
         .expect("the ronray binary runs")
 }
 
+/// As [`ronray_in`], but a run that has not ended after `limit` is killed
+/// and the test fails saying so: a regression to a hang (a FIFO read, a
+/// pipe waited on) fails instead of stopping the test run.
+pub fn ronray_within(dir: &Path, args: &[&str], limit: std::time::Duration) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_ronray"));
+    cmd.args(args);
+    run_within(cmd, dir, args, limit)
+}
+
+/// As [`ronray_within`], with the process's address space capped at
+/// `gib` GiB (`ulimit -v`): a regression that sizes an allocation from a
+/// hostile header then fails at once (an abort) instead of taking the
+/// shared machine's memory.
+pub fn ronray_within_memory(dir: &Path, args: &[&str], limit: std::time::Duration, gib: u64) -> Output {
+    let mut cmd = Command::new("sh");
+    cmd.arg("-c")
+        .arg(format!("ulimit -v {} && exec \"$0\" \"$@\"", gib << 20))
+        .arg(env!("CARGO_BIN_EXE_ronray"))
+        .args(args);
+    run_within(cmd, dir, args, limit)
+}
+
+/// Runs `cmd` in `dir`, killed and failed after `limit` (`args` name it).
+fn run_within(mut cmd: Command, dir: &Path, args: &[&str], limit: std::time::Duration) -> Output {
+    use std::io::Read;
+    use std::process::Stdio;
+    let mut child = cmd
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the ronray binary runs");
+    // Each pipe drained on its own thread, so a chatty child never blocks.
+    let drain = |r: Option<Box<dyn Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            if let Some(mut r) = r {
+                let _ = r.read_to_end(&mut v);
+            }
+            v
+        })
+    };
+    let out = drain(child.stdout.take().map(|r| Box::new(r) as Box<dyn Read + Send>));
+    let err = drain(child.stderr.take().map(|r| Box::new(r) as Box<dyn Read + Send>));
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().expect("wait") {
+            break s;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("`ronray {}` did not end within {limit:?}: it hangs", args.join(" "));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    Output {
+        status,
+        stdout: out.join().unwrap_or_default(),
+        stderr: err.join().unwrap_or_default(),
+    }
+}
+
 /// Runs the `ronray` binary in the repository root.
 pub fn ronray(args: &[&str]) -> Output {
     ronray_in(&root(), args)

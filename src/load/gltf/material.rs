@@ -26,6 +26,7 @@ use crate::materials::{
     Channel, Cutout, ImageLookup, Material, MetalPlasticMaterial, Perturb, Roughness, Surface, Tex,
     UvTransform,
 };
+use super::super::validate::MAX_RADIANCE;
 use crate::math::Rgb;
 use glam::{Affine2, Mat2, Vec2};
 use std::collections::HashMap;
@@ -181,7 +182,22 @@ pub(crate) fn map(
     }
     let e = m.emissive_factor();
     let strength = m.emissive_strength().unwrap_or(1.0);
-    let mut emission = Rgb::new(e[0], e[1], e[2]) * strength;
+    // As MTL `Ke`: channels that are no radiance read as 0, and at most
+    // MAX_RADIANCE (a strength of 1e38 made the light's power infinite).
+    let asked = Rgb::new(e[0], e[1], e[2]) * strength;
+    let mut repairs = super::super::texels::Repairs::default();
+    let fixed = |x: f32, r: &mut super::super::texels::Repairs| r.value(x).min(MAX_RADIANCE);
+    let mut emission = Rgb::new(
+        fixed(asked.x, &mut repairs),
+        fixed(asked.y, &mut repairs),
+        fixed(asked.z, &mut repairs),
+    );
+    if repairs.summary().is_some() || asked.max_element() > MAX_RADIANCE {
+        note(format!(
+            "emissiveFactor {e:?} × emissive strength {strength} is {asked}, no radiance (NaN, infinite \
+             and negative channels read as 0, at most {MAX_RADIANCE:e}); read as {emission}"
+        ));
+    }
     if let Some(info) = m.emissive_texture()
         && emission.max_element() > 0.0
     {
@@ -292,7 +308,15 @@ fn texture(
         None => {
             let decoded = decode(asset, &image, srgb);
             let r = match decoded {
-                Ok(tex) => {
+                Ok(super::super::material::DecodedTexture {
+                    texture: tex, repaired, ..
+                }) => {
+                    if let Some(what) = repaired {
+                        note(format!(
+                            "images[{}] has {what}, read as 0 (NaN, infinite and negative texels are no value)",
+                            image.index()
+                        ));
+                    }
                     let alpha = !tex.alpha.is_empty();
                     Some((mtl.push_texture(tex), alpha))
                 }
@@ -313,11 +337,15 @@ fn texture(
 }
 
 /// The image's bytes (a buffer view or a URI) decoded.
-fn decode(asset: &mut Source, image: &gltf::Image, srgb: bool) -> Result<crate::materials::Texture, String> {
+fn decode(
+    asset: &mut Source,
+    image: &gltf::Image,
+    srgb: bool,
+) -> Result<super::super::material::DecodedTexture, String> {
     let bytes = match image.source() {
         gltf::image::Source::View { view, .. } => view_bytes(asset.buffers, &view)?.to_vec(),
         gltf::image::Source::Uri { uri, .. } => asset.files.uri_bytes(uri)?,
     };
     let img = crate::imageio::read::decode_texture_bytes(&bytes)?;
-    super::super::material::texture_from_image(&img, srgb).map(|(t, _)| t)
+    super::super::material::texture_from_image(&img, srgb)
 }
