@@ -2,8 +2,8 @@
 //! diagnostic: what the bracket check (`brackets.rs`), the section reader
 //! (`sections.rs`) and [`super::format::Format::read`] report.
 
-use super::spans::Spans;
 use crate::diagnostic::Diagnostic;
+use crate::syntax::spans::Spans;
 use std::ops::Range;
 use std::path::Path;
 

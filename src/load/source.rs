@@ -3,21 +3,23 @@
 //! diagnostic.
 //!
 //! A file that parses as a whole is done in one step. One that does not is
-//! checked for unbalanced brackets (`brackets.rs`), the only mistake
-//! that stops reading; otherwise it is read section by section
-//! (`sections.rs`) so that every mistake in it is reported at once,
-//! in the user's words (`words.rs`).
+//! read once as a [`crate::syntax::tree`] and checked for unbalanced
+//! brackets (`brackets.rs`), the only mistake that stops reading; otherwise
+//! it is read section by section along the tree's outline (`sections.rs`)
+//! so that every mistake in it is reported at once, in the user's words
+//! (`words.rs`).
 
 use super::brackets;
 use super::document::{Document, Gaps};
 pub use super::format::Format;
-use super::outline::Outline;
 use super::sections;
 use super::set::SetProblem;
 pub use super::slip::Slip;
-use super::spans::Spans;
 use crate::desc::SceneDesc;
 use crate::diagnostic::{Diagnostic, Problem, Report};
+use crate::syntax::outline::Outline;
+use crate::syntax::spans::Spans;
+use crate::syntax::tree;
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -96,7 +98,10 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
         let help = Some("a scene is written `Scene(camera: (…), objects: […])`".to_string());
         whole = Slip::new(0..0, "the file is empty".into(), help);
     }
-    let spans = Spans::scan(&clean);
+    // One read of the text's structure serves the bracket check, the
+    // outline and the location of every mistake.
+    let tree = tree::read(&clean);
+    let spans = Spans::of(&tree);
     let located = |slips: Vec<Slip>| -> Vec<Diagnostic> {
         slips
             .into_iter()
@@ -107,10 +112,10 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
         diagnostics: located(vec![slip]),
         sources: vec![(path.to_path_buf(), text.to_string())],
     };
-    if let Some(broken) = brackets::check(&clean) {
+    if let Some(broken) = brackets::check(&clean, &tree) {
         return Err(stop(broken));
     }
-    let Some(outline) = Outline::of(&clean) else {
+    let Some(outline) = Outline::of(&tree) else {
         return Err(stop(whole));
     };
     let (desc, gaps, slips) = sections::read::<T>(&format, &clean, &outline, whole);

@@ -1,11 +1,16 @@
-//! Scene text as text: a lossless tokenizer ([`lex`]), the tokens grouped
-//! with their comments ([`tree`]), a layout printer ([`print`]) for
-//! `ronray fmt`, and the position queries of the language server
-//! ([`cursor`]). Nothing here knows the scene types; the loader does.
+//! Scene text as text: the one lossless tokenizer ([`lex`]), the one tree of
+//! its tokens grouped with their comments and spans ([`tree`]), and views of
+//! it: a layout printer ([`print`]) for `ronray fmt`, the values by scene
+//! path ([`spans`]) and the fields and entries ([`outline`]) for the
+//! loader's diagnostics and recovery, and the position queries of the
+//! language server ([`cursor`]). Nothing here knows the scene types; the
+//! loader does.
 
 pub mod cursor;
 pub mod lex;
+pub mod outline;
 pub mod print;
+pub mod spans;
 pub mod tree;
 
 use lex::{Kind, tokenize};

@@ -3,8 +3,15 @@
 //! (after its comma) trails it, a comment on its own line leads the next
 //! one (or closes the group). Nothing is interpreted: atoms keep their
 //! spelling, so laying the tree out again cannot change what a scene means.
+//!
+//! Every atom and group keeps its byte span, so the same tree serves the
+//! formatter ([`parse`], which refuses any [`Fault`]) and the loader
+//! ([`read`], which records the faults and reads on: [`super::spans`] and
+//! [`super::outline`] are views of it). Groups nest by recursion through
+//! one function, [`Parser::group`], where a depth guard belongs.
 
-use super::lex::{Kind, LexError, Token, tokenize};
+use super::lex::{Kind, LexError, Recovered, Token, Unclosed, tokenize, tokenize_recovering};
+use std::ops::Range;
 
 /// A comment, with what its placement needs.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,13 +28,22 @@ pub struct Comment {
     pub gap: usize,
 }
 
+/// A word or string, as written, and where.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Atom {
+    /// The text as written (quotes included).
+    pub text: String,
+    /// Its bytes in the source.
+    pub span: Range<usize>,
+}
+
 /// A part of an entry, in source order.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Piece {
     /// A word or string, as written.
-    Atom(String),
-    /// `:` between a key and its value.
-    Colon,
+    Atom(Atom),
+    /// `:` between a key and its value, and where.
+    Colon(Range<usize>),
     /// A bracketed group.
     Group(Group),
     /// A comment in the middle of an entry (`key: /* why */ value`).
@@ -47,6 +63,54 @@ pub struct Entry {
     pub trailing: Vec<Comment>,
     /// A comma followed it in the source.
     pub comma: bool,
+    /// Where a comma was missing after it (only in [`read`]'s trees): the
+    /// token that began the next entry.
+    pub missing_comma: Option<Range<usize>>,
+}
+
+impl Entry {
+    /// The pieces that are not comments.
+    fn significant(&self) -> impl Iterator<Item = &Piece> {
+        self.pieces.iter().filter(|p| !matches!(p, Piece::Comment(_)))
+    }
+
+    /// The key of `key: value`: an atom followed by `:`.
+    pub fn key(&self) -> Option<&Atom> {
+        let mut it = self.significant();
+        match (it.next(), it.next()) {
+            (Some(Piece::Atom(a)), Some(Piece::Colon(_))) => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The value's pieces (after `key:` when there is one), comments left
+    /// out.
+    pub fn value(&self) -> Vec<&Piece> {
+        let skip = if self.key().is_some() { 2 } else { 0 };
+        self.significant().skip(skip).collect()
+    }
+
+    /// The bytes of the value, from its first piece to its last; an empty
+    /// range after the colon when nothing follows it.
+    pub fn value_span(&self) -> Option<Range<usize>> {
+        let v = self.value();
+        match (v.first(), v.last()) {
+            (Some(a), Some(b)) => Some(a.span().start..b.span().end),
+            _ => self.significant().nth(1).map(|c| c.span().end..c.span().end),
+        }
+    }
+}
+
+impl Piece {
+    /// Its bytes in the source (a comment's are not kept: it is empty).
+    pub fn span(&self) -> Range<usize> {
+        match self {
+            Piece::Atom(a) => a.span.clone(),
+            Piece::Colon(r) => r.clone(),
+            Piece::Group(g) => g.span.clone(),
+            Piece::Comment(_) => 0..0,
+        }
+    }
 }
 
 /// A bracketed group and its entries.
@@ -67,6 +131,96 @@ pub struct Group {
     /// Written hugging its last entry: `of: [` on the opening line, the
     /// entries of the last value below, `])` closing both on one line.
     pub hug: bool,
+    /// From the opening bracket to the closing one (to the last token read
+    /// when it is never closed).
+    pub span: Range<usize>,
+}
+
+/// A mistake in the structure. [`parse`] stops at the first; [`read`]
+/// records each and reads on as the scanners before it did.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Fault {
+    /// A bracket still open at the end of the text (the innermost).
+    NeverClosed {
+        /// The bracket.
+        open: char,
+        /// Its offset.
+        at: usize,
+    },
+    /// A closing bracket that does not match the innermost open one; it is
+    /// read as closing it.
+    Mismatch {
+        /// The closing bracket.
+        close: char,
+        /// Its offset.
+        at: usize,
+        /// The brackets open at that point, outermost first.
+        open: Vec<(char, usize)>,
+    },
+    /// A closing bracket, comma or colon outside any bracket; skipped.
+    Stray {
+        /// What it is.
+        kind: Kind,
+        /// Its offset.
+        at: usize,
+    },
+    /// A comma with no entry before it; skipped.
+    LeadingComma {
+        /// Its offset.
+        at: usize,
+    },
+    /// Two values with no comma between them; the second starts an entry.
+    MissingComma {
+        /// The start of the second.
+        at: usize,
+    },
+    /// An entry that starts with `:`; the colon is its value.
+    StrayColon {
+        /// Its offset.
+        at: usize,
+    },
+}
+
+impl Fault {
+    /// The formatter's words for it, at its byte.
+    fn lex_error(&self) -> LexError {
+        let (at, message) = match self {
+            Fault::NeverClosed { open, at } => (*at, format!("`{open}` is never closed")),
+            Fault::Mismatch { close, at, open } => {
+                let inner = open.last().map_or('(', |o| o.0);
+                (*at, format!("`{close}` closes `{inner}`"))
+            }
+            Fault::Stray { at, .. } => (*at, "unexpected token outside any bracket".into()),
+            Fault::LeadingComma { at } => (*at, "a comma with nothing before it".into()),
+            Fault::MissingComma { at } | Fault::StrayColon { at } => {
+                (*at, "expected `,` between two values".into())
+            }
+        };
+        LexError { at, message }
+    }
+}
+
+/// A tree read from text that may be broken: what could be read, the faults
+/// met on the way, and the literal that swallowed the end, if any.
+#[derive(Clone, Debug, Default)]
+pub struct Read {
+    /// What could be read.
+    pub doc: Document,
+    /// The faults, in the order of the text.
+    pub faults: Vec<Fault>,
+    /// A string or comment running to the end of the text.
+    pub unclosed: Option<Unclosed>,
+}
+
+impl Read {
+    /// The top-level values, past comments and `#![…]` attributes (a
+    /// scene file holds one).
+    pub fn values(&self) -> impl Iterator<Item = &Entry> {
+        self.doc.items.iter().filter(|e| {
+            !e.pieces.is_empty()
+                && !matches!(e.pieces.as_slice(), [Piece::Atom(a)] if a.text.starts_with('#'))
+        })
+    }
 }
 
 /// A whole file: comments, attributes and the value, each on its own lines.
@@ -80,17 +234,68 @@ pub struct Document {
 /// outside any bracket is an error at that byte.
 pub fn parse(src: &str) -> Result<Document, LexError> {
     let toks = tokenize(src)?;
-    let mut p = Parser { src, toks, pos: 0 };
-    p.document()
+    Parser::new(src, toks, true).document()
+}
+
+/// Reads `src` as far as it goes, whatever it holds (see [`Read`]).
+pub fn read(src: &str) -> Read {
+    let Recovered { tokens, unclosed } = tokenize_recovering(src);
+    let mut p = Parser::new(src, tokens, false);
+    let doc = p.document().unwrap_or_default();
+    Read {
+        doc,
+        faults: p.faults,
+        unclosed,
+    }
 }
 
 struct Parser<'a> {
     src: &'a str,
     toks: Vec<Token>,
     pos: usize,
+    /// Stop at the first fault (the formatter) or record it and read on.
+    strict: bool,
+    faults: Vec<Fault>,
+    /// The brackets open around the current token, outermost first.
+    open: Vec<(char, usize)>,
 }
 
-impl Parser<'_> {
+impl<'a> Parser<'a> {
+    fn new(src: &'a str, toks: Vec<Token>, strict: bool) -> Self {
+        Parser {
+            src,
+            toks,
+            pos: 0,
+            strict,
+            faults: Vec::new(),
+            open: Vec::new(),
+        }
+    }
+
+    /// Stops at `f` when strict, else records it.
+    fn fault(&mut self, f: Fault) -> Result<(), LexError> {
+        if self.strict {
+            return Err(f.lex_error());
+        }
+        self.faults.push(f);
+        Ok(())
+    }
+
+    fn atom(&self, t: &Token) -> Piece {
+        Piece::Atom(Atom {
+            text: t.text(self.src).to_string(),
+            span: t.span.clone(),
+        })
+    }
+
+    /// End of the last token read.
+    fn end_of_prev(&self) -> usize {
+        self.pos
+            .checked_sub(1)
+            .and_then(|p| self.toks.get(p))
+            .map_or(0, |t| t.span.end)
+    }
+
     fn peek(&self) -> Option<&Token> {
         self.toks.get(self.pos)
     }
@@ -110,13 +315,6 @@ impl Parser<'_> {
             blank_before: t.newlines_before >= 2,
             ends_line: t.kind == Kind::LineComment || text.contains('\n'),
             gap,
-        }
-    }
-
-    fn error(&self, at: usize, message: &str) -> LexError {
-        LexError {
-            at,
-            message: message.into(),
         }
     }
 
@@ -140,12 +338,16 @@ impl Parser<'_> {
                     self.pos += 1;
                     doc.items.push(Entry {
                         blank_before: t.newlines_before >= 2,
-                        pieces: vec![Piece::Atom(t.text(self.src).to_string())],
+                        pieces: vec![self.atom(&t)],
                         ..Entry::default()
                     });
                 }
                 Kind::Close(_) | Kind::Comma | Kind::Colon => {
-                    return Err(self.error(t.span.start, "unexpected token outside any bracket"));
+                    self.fault(Fault::Stray {
+                        kind: t.kind,
+                        at: t.span.start,
+                    })?;
+                    self.pos += 1;
                 }
                 _ => {
                     let blank_before = t.newlines_before >= 2;
@@ -175,7 +377,7 @@ impl Parser<'_> {
                 }
                 Kind::Word | Kind::Str if pieces.is_empty() => {
                     self.pos += 1;
-                    pieces.push(Piece::Atom(t.text(self.src).to_string()));
+                    pieces.push(self.atom(&t));
                     if !matches!(self.peek().map(|t| t.kind), Some(Kind::Open(_))) {
                         return Ok(pieces);
                     }
@@ -185,10 +387,18 @@ impl Parser<'_> {
         }
     }
 
-    /// The group opening at the current token.
+    /// The group opening at the current token. Groups nest through here
+    /// alone: `self.open.len()` is the depth.
     fn group(&mut self, open: char) -> Result<Group, LexError> {
         let open_at = self.toks[self.pos].span.start;
+        self.open.push((open, open_at));
         self.pos += 1;
+        let g = self.group_body(open, open_at);
+        self.open.pop();
+        g
+    }
+
+    fn group_body(&mut self, open: char, open_at: usize) -> Result<Group, LexError> {
         let close = match open {
             '(' => ')',
             '[' => ']',
@@ -202,6 +412,7 @@ impl Parser<'_> {
             closing: Vec::new(),
             one_line: true,
             hug: false,
+            span: open_at..open_at + 1,
         };
         let first_on_open_line = self
             .peek()
@@ -212,7 +423,10 @@ impl Parser<'_> {
         let mut blank_before = false;
         loop {
             let Some(t) = self.peek().cloned() else {
-                return Err(self.error(open_at, &format!("`{open}` is never closed")));
+                self.fault(Fault::NeverClosed { open, at: open_at })?;
+                g.span = open_at..self.end_of_prev();
+                g.closing = leading;
+                return Ok(g);
             };
             if t.newlines_before > 0 {
                 g.one_line = false;
@@ -234,17 +448,24 @@ impl Parser<'_> {
                         leading.push(c);
                     }
                 }
-                Kind::Close(c) if c == close => {
+                // A mismatched bracket is a fault; read on, it closes this group.
+                Kind::Close(c) => {
+                    if c != close {
+                        let open = self.open.clone();
+                        self.fault(Fault::Mismatch {
+                            close: c,
+                            at: t.span.start,
+                            open,
+                        })?;
+                    }
                     self.pos += 1;
+                    g.span = open_at..t.span.end;
                     g.hug = first_on_open_line
                         && !g.one_line
                         && t.newlines_before == 0
                         && matches!(g.entries.last(), Some(e) if !e.comma && matches!(e.pieces.last(), Some(Piece::Group(_))));
                     g.closing = leading;
                     return Ok(g);
-                }
-                Kind::Close(c) => {
-                    return Err(self.error(t.span.start, &format!("`{c}` closes `{open}`")));
                 }
                 // `value // why` + newline + `,`: the comment trails the value.
                 Kind::Comma if g.entries.last().is_some_and(|e| !e.comma) => {
@@ -254,7 +475,10 @@ impl Parser<'_> {
                         e.trailing.append(&mut leading);
                     }
                 }
-                Kind::Comma => return Err(self.error(t.span.start, "a comma with nothing before it")),
+                Kind::Comma => {
+                    self.fault(Fault::LeadingComma { at: t.span.start })?;
+                    self.pos += 1;
+                }
                 _ => {
                     if leading.is_empty() {
                         blank_before = t.newlines_before >= 2;
@@ -302,7 +526,6 @@ impl Parser<'_> {
             Value,
         }
         let mut seen = Seen::Nothing;
-        let missing_comma = |p: &Self, at: usize| p.error(at, "expected `,` between two values");
         while let Some(t) = self.peek().cloned() {
             seen = match (&seen, t.kind) {
                 (_, Kind::LineComment | Kind::BlockComment | Kind::Comma | Kind::Close(_)) => seen,
@@ -310,7 +533,17 @@ impl Parser<'_> {
                 (Seen::Key, Kind::Word | Kind::Str) => Seen::KeyWord,
                 (Seen::Nothing | Seen::Word | Seen::Key | Seen::KeyWord, Kind::Open(_)) => Seen::Value,
                 (Seen::Word, Kind::Colon) => Seen::Key,
-                _ => return Err(missing_comma(self, t.span.start)),
+                // Read on: a colon that starts an entry is its value.
+                (Seen::Nothing, Kind::Colon) => {
+                    self.fault(Fault::StrayColon { at: t.span.start })?;
+                    Seen::Value
+                }
+                // Read on: the token begins the next entry.
+                _ => {
+                    self.fault(Fault::MissingComma { at: t.span.start })?;
+                    e.missing_comma = Some(t.span.clone());
+                    break;
+                }
             };
             if t.newlines_before > 0 {
                 *one_line = false;
@@ -324,7 +557,7 @@ impl Parser<'_> {
                 }
                 Kind::Colon => {
                     self.pos += 1;
-                    e.pieces.push(Piece::Colon);
+                    e.pieces.push(Piece::Colon(t.span.clone()));
                 }
                 Kind::LineComment | Kind::BlockComment => {
                     // Comments on their own lines before the comma or the
@@ -337,7 +570,7 @@ impl Parser<'_> {
                 }
                 Kind::Word | Kind::Str | Kind::Attribute => {
                     self.pos += 1;
-                    e.pieces.push(Piece::Atom(t.text(self.src).to_string()));
+                    e.pieces.push(self.atom(&t));
                 }
             }
         }
