@@ -120,7 +120,7 @@ fn unclosed_literal(u: &Unclosed) -> Slip {
 #[cfg(test)]
 mod tests {
     use super::check;
-    use crate::syntax::tree::read;
+    use crate::syntax::parser::read;
 
     fn check_text(text: &str) -> Option<super::Slip> {
         check(text, &read(text))

@@ -3,7 +3,7 @@
 //! diagnostic.
 //!
 //! A file that parses as a whole is done in one step. One that does not is
-//! read once as a [`crate::syntax::tree`] and checked for unbalanced
+//! read once as a [`crate::syntax::tree`] ([`parser::read`]) and checked for unbalanced
 //! brackets (`brackets.rs`), the only mistake that stops reading; otherwise
 //! it is read section by section along the tree's outline (`sections.rs`)
 //! so that every mistake in it is reported at once, in the user's words
@@ -18,8 +18,8 @@ pub use super::slip::Slip;
 use crate::desc::SceneDesc;
 use crate::diagnostic::{Diagnostic, Problem, Report};
 use crate::syntax::outline::Outline;
+use crate::syntax::parser;
 use crate::syntax::spans::Spans;
-use crate::syntax::tree;
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -100,7 +100,7 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
     }
     // One read of the text's structure serves the bracket check, the
     // outline and the location of every mistake.
-    let tree = tree::read(&clean);
+    let tree = parser::read(&clean);
     let spans = Spans::of(&tree);
     let located = |slips: Vec<Slip>| -> Vec<Diagnostic> {
         slips

@@ -1,5 +1,6 @@
 //! Scene text as text: the one lossless tokenizer ([`lex`]), the one tree of
-//! its tokens grouped with their comments and spans ([`tree`]), and views of
+//! its tokens grouped with their comments and spans ([`tree`], built by
+//! [`parser`]), and views of
 //! it: a layout printer ([`print`]) for `ronray fmt`, the values by scene
 //! path ([`spans`]) and the fields and entries ([`outline`]) for the
 //! loader's diagnostics and recovery, and the position queries of the
@@ -7,8 +8,10 @@
 //! loader does.
 
 pub mod cursor;
+pub mod fault;
 pub mod lex;
 pub mod outline;
+pub mod parser;
 pub mod print;
 pub mod spans;
 pub mod tree;
@@ -36,7 +39,7 @@ pub enum FormatError {
 /// hold the same tokens as `src` (trailing commas aside) before it is
 /// returned.
 pub fn format(src: &str, json: bool) -> Result<String, FormatError> {
-    let doc = tree::parse(src).map_err(|e| FormatError::Syntax {
+    let doc = parser::parse(src).map_err(|e| FormatError::Syntax {
         at: e.at,
         message: e.message,
     })?;

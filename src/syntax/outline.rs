@@ -115,7 +115,7 @@ fn is_ident(text: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::Outline;
-    use crate::syntax::tree::read;
+    use crate::syntax::parser::read;
 
     #[test]
     fn outline_splits_fields_elements_and_entries() {

@@ -9,7 +9,8 @@
 //! as they are in the paths.
 
 use super::lex::unquote;
-use super::tree::{Group, Piece, Read, read};
+use super::parser::read;
+use super::tree::{Group, Piece, Read};
 use std::collections::HashMap;
 use std::ops::Range;
 
