@@ -67,3 +67,62 @@ pub fn image(data: &[u8]) -> bool {
 pub fn gltf(data: &[u8]) -> bool {
     crate::load::gltf::fuzz_import(data)
 }
+
+/// Between the pieces of an `assemble` input.
+pub const PIECE_SEPARATOR: &[u8] = b"\n--piece--\n";
+
+/// Assembling a frame: the bytes cut at [`PIECE_SEPARATOR`] into at most
+/// four piece files, each read as `ronray assemble` and `--resume` read
+/// them (header alone, then the whole piece), then assembled.
+pub fn assemble(data: &[u8]) -> bool {
+    let Ok(dir) = tempfile::tempdir() else {
+        return false;
+    };
+    let mut paths = Vec::new();
+    for (i, bytes) in split(data, PIECE_SEPARATOR).into_iter().take(4).enumerate() {
+        let path = dir.path().join(format!("piece{i}.exr"));
+        if std::fs::write(&path, bytes).is_err() {
+            return false;
+        }
+        let _ = crate::farm::read_piece_meta(&path);
+        paths.push(path);
+    }
+    crate::farm::assemble_files(&paths).is_ok()
+}
+
+/// `data` cut at every `sep`.
+fn split<'a>(data: &'a [u8], sep: &[u8]) -> Vec<&'a [u8]> {
+    let mut parts = Vec::new();
+    let mut rest = data;
+    while let Some(i) = rest.windows(sep.len()).position(|w| w == sep) {
+        parts.push(&rest[..i]);
+        rest = &rest[i + sep.len()..];
+    }
+    parts.push(rest);
+    parts
+}
+
+/// The language server: the bytes as what a client writes to `ronray lsp`
+/// (framed messages, `Content-Length: N` then the JSON body), read with the
+/// server's own framing and handled by its message loop, diagnostics
+/// published at the end. Whether every byte was read as a message.
+pub fn lsp(data: &[u8]) -> bool {
+    crate::lsp::replay(data)
+}
+
+/// Sky maps: the first byte picks the file's extension (even `.exr`, odd
+/// `.hdr`, the two the loader reads), the rest is the file, read, repaired
+/// and turned into sampling tables as the build step does it.
+pub fn envmap(data: &[u8]) -> bool {
+    let Some((&kind, bytes)) = data.split_first() else {
+        return false;
+    };
+    let Ok(dir) = tempfile::tempdir() else {
+        return false;
+    };
+    let path = dir.path().join(if kind % 2 == 0 { "sky.exr" } else { "sky.hdr" });
+    if std::fs::write(&path, bytes).is_err() {
+        return false;
+    }
+    crate::load::fuzz_sky_map(&path)
+}

@@ -15,5 +15,12 @@ fn main() -> ExitCode {
         );
         return ExitCode::FAILURE;
     }
+    // A nesting limit that is not a number is refused here, once, rather
+    // than read as the default by every parser (see `ronray::syntax::nesting`).
+    let nesting = ronray::syntax::nesting::NESTING_VAR;
+    if let Err(e) = ronray::syntax::nesting::parse_limit(std::env::var(nesting).ok().as_deref()) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     ronray::cli::run(ronray::cli::Cli::parse())
 }

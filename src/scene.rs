@@ -76,15 +76,7 @@ impl Scene {
     #[inline]
     pub fn environment(&self) -> Option<(u32, &EnvironmentLight)> {
         let i = self.environment?;
-        match &self.lights[i as usize] {
-            Light::Environment(e) => Some((i, e)),
-            Light::Point(_)
-            | Light::Spot(_)
-            | Light::Quad(_)
-            | Light::Sphere(_)
-            | Light::Mesh(_)
-            | Light::Sdf(_) => None,
-        }
+        self.lights[i as usize].as_environment().map(|e| (i, e))
     }
 
     /// Closest hit in `(0, t_max)`.

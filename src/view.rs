@@ -128,7 +128,7 @@ pub enum Aov {
 }
 
 impl Aov {
-    /// Every layer, in the order they are listed in the README.
+    /// Every layer, in the order `docs/aov.md` lists them.
     pub const ALL: [Aov; 6] = [
         Aov::Albedo,
         Aov::Normal,

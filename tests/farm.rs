@@ -9,6 +9,9 @@ use common::{ronray_in, root};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
+/// A named edit of the files in a scene's folder.
+type Edit<'a> = (&'a str, &'a dyn Fn(&Path));
+
 /// A 64×64, 4-spp Cornell box: a few hundred milliseconds per render.
 const SIZE: &str = "64x64";
 const SPP: &str = "4";
@@ -447,4 +450,178 @@ fn resume_redoes_a_truncated_piece_and_fifos_do_not_hang() {
     assert!(stderr(&o).contains("not a regular file"), "{}", stderr(&o));
     let o = render(dir.path(), &["--tile", "1/2", "-o", "pipe.exr", "--resume"]);
     assert!(stderr(&o).contains("re-rendering"), "{}", stderr(&o));
+}
+
+/// A folder with a textured quad whose look comes from its MTL file
+/// (`Kd`, `map_Kd tex.png`) under a sky map, in a grey fog grid, beside a
+/// textured sphere: each kind of file a scene reads indirectly.
+fn textured_folder(kd: &str, texel: u8) -> tempfile::TempDir {
+    // `texel` differs from `wall.png`'s 200, so that swapping them matters.
+    let dir = tempfile::tempdir().expect("temp dir");
+    let p = |f: &str| dir.path().join(f);
+    std::fs::write(
+        p("scene.ron"),
+        r#"Scene(
+    camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+    integrator: Path(max_depth: 4),
+    materials: { "wall": Lambert(albedo: Image(file: "wall.png")) },
+    media: { "fog": Grid(file: "fog.vol", min: (-3, -3, -3), max: (3, 3, 3), scale: 0.01) },
+    medium: "fog",
+    lights: [Environment(map: "sky.exr")],
+    objects: [
+        Mesh(file: "quad.obj"),
+        Sphere(center: (0.7, 0.7, 0), radius: 0.2, material: "wall"),
+    ],
+)
+"#,
+    )
+    .expect("write");
+    std::fs::write(
+        p("quad.obj"),
+        "mtllib look.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl paint\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n",
+    )
+    .expect("write");
+    std::fs::write(p("look.mtl"), format!("newmtl paint\nKd {kd}\nmap_Kd tex.png\n")).expect("write");
+    let png = |name: &str, v: u8| {
+        image::RgbImage::from_raw(2, 2, vec![v; 12])
+            .expect("2 × 2")
+            .save(p(name))
+            .expect("write png")
+    };
+    png("tex.png", texel);
+    png("wall.png", 200);
+    sky(&p("sky.exr"), 0.5);
+    let vol = ronray::media::vol::write_vol([2, 2, 2], &[1.0; 8], [-3.0; 3], [3.0; 3]);
+    std::fs::write(p("fog.vol"), vol).expect("write");
+    dir
+}
+
+/// A 2 × 2 sky map of radiance `v`.
+fn sky(path: &Path, v: f32) {
+    image::Rgb32FImage::from_raw(2, 2, vec![v; 12])
+        .expect("2 × 2")
+        .save(path)
+        .expect("write exr")
+}
+
+/// One tile of `dir/scene.ron` to `out`.
+fn render_tile(dir: &Path, tile: &str, out: &str) {
+    let o = ronray_in(
+        dir,
+        &[
+            "render",
+            "scene.ron",
+            "--size",
+            "16x16",
+            "--spp",
+            "1",
+            "--tile",
+            tile,
+            "-o",
+            out,
+        ],
+    );
+    assert!(o.status.success(), "render --tile {tile}: {}", stderr(&o));
+}
+
+/// Pieces rendered while a file the scene reads indirectly differed are
+/// two scenes: `assemble` refuses them. A different MTL file or MTL
+/// texture was already refused; a `.vol` grid was not in the hash, and two
+/// textures with their contents swapped left the sorted digests alike:
+/// both were merged into a frame that matched neither, exit 0.
+#[test]
+fn pieces_rendered_with_different_indirect_files_are_refused() {
+    let swap = |d: &Path| {
+        std::fs::copy(d.join("wall.png"), d.join("tmp.png")).expect("copy");
+        std::fs::copy(d.join("tex.png"), d.join("wall.png")).expect("copy");
+        std::fs::copy(d.join("tmp.png"), d.join("tex.png")).expect("copy");
+    };
+    let cases: [Edit; 4] = [
+        ("MTL file", &|d| {
+            std::fs::write(
+                d.join("look.mtl"),
+                "newmtl paint\nKd 0.2 0.9 0.2\nmap_Kd tex.png\n",
+            )
+            .expect("write")
+        }),
+        ("MTL's texture", &|d| {
+            image::RgbImage::from_raw(2, 2, vec![40; 12])
+                .expect("2 × 2")
+                .save(d.join("tex.png"))
+                .expect("write png")
+        }),
+        ("textures swapped", &swap),
+        ("density grid", &|d| {
+            let v = ronray::media::vol::write_vol([2, 2, 2], &[50.0; 8], [-3.0; 3], [3.0; 3]);
+            std::fs::write(d.join("fog.vol"), v).expect("write")
+        }),
+    ];
+    for (what, change) in cases {
+        let dir = textured_folder("0.8 0.8 0.8", 255);
+        render_tile(dir.path(), "0/2", "a-0.exr");
+        change(dir.path());
+        render_tile(dir.path(), "1/2", "a-1.exr");
+        let o = assemble(dir.path(), &["a-0.exr".into(), "a-1.exr".into()], "out.exr");
+        let e = stderr(&o);
+        assert_eq!(
+            o.status.code(),
+            Some(1),
+            "pieces with a different {what} were merged: {e}"
+        );
+        assert!(e.contains("different scenes"), "{what}: {e}");
+        assert!(
+            !dir.path().join("out.exr").exists(),
+            "{what}: a refused assembly wrote"
+        );
+    }
+}
+
+/// Every file the scene reads indirectly is in its hash: changing any one
+/// of them (the scene's texture, the sky map, the grid, the MTL file, the
+/// texture it names) changes the hash; swapping two files' contents does
+/// too; moving the folder does not.
+#[test]
+fn scene_hash_covers_every_file_the_scene_reads() {
+    let hash = |dir: &Path| {
+        let l = ronray::load::load(&dir.join("scene.ron")).unwrap_or_else(|e| panic!("{e}"));
+        ronray::farm::scene_hash(&l.desc, &l.files).expect("hash")
+    };
+    let dir = textured_folder("0.8 0.8 0.8", 255);
+    let base = hash(dir.path());
+    let moved = textured_folder("0.8 0.8 0.8", 255);
+    assert_eq!(hash(moved.path()), base, "another folder, same files");
+    let changes: [Edit; 6] = [
+        ("wall.png", &|d| {
+            std::fs::copy(d.join("tex.png"), d.join("wall.png"))
+                .map(drop)
+                .expect("copy")
+        }),
+        ("sky.exr", &|d| sky(&d.join("sky.exr"), 2.0)),
+        ("fog.vol", &|d| {
+            let v = ronray::media::vol::write_vol([2, 2, 2], &[2.0; 8], [-3.0; 3], [3.0; 3]);
+            std::fs::write(d.join("fog.vol"), v).expect("write")
+        }),
+        ("look.mtl", &|d| {
+            std::fs::write(
+                d.join("look.mtl"),
+                "newmtl paint\nKd 0.1 0.1 0.1\nmap_Kd tex.png\n",
+            )
+            .expect("write")
+        }),
+        ("tex.png", &|d| {
+            std::fs::copy(d.join("wall.png"), d.join("tex.png"))
+                .map(drop)
+                .expect("copy")
+        }),
+        ("wall.png and tex.png swapped", &|d| {
+            std::fs::copy(d.join("wall.png"), d.join("tmp.png")).expect("copy");
+            std::fs::copy(d.join("tex.png"), d.join("wall.png")).expect("copy");
+            std::fs::copy(d.join("tmp.png"), d.join("tex.png")).expect("copy");
+        }),
+    ];
+    for (what, change) in changes {
+        let d = textured_folder("0.8 0.8 0.8", 255);
+        change(d.path());
+        assert_ne!(hash(d.path()), base, "{what} changed and the hash did not");
+    }
 }

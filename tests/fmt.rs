@@ -207,3 +207,48 @@ fn fmt_keeps_the_schema_header_and_exact_numbers() {
         }
     }
 }
+
+#[test]
+fn fmt_canonical_and_json_keep_the_numbers_as_written() {
+    // `1e-50` reads as the f32 0 and `40.000001` as 40: the canonical text
+    // printed those values (`0.0`, `40.0`), not what the author wrote.
+    let dir = tempfile::tempdir().expect("temp dir");
+    let numbers = ["1e-50", "40.000001", "0.1", "-2.5e-3"];
+    let ron = "Scene(camera: (eye: (0, 1, 4), target: (0, -2.5e-3, 1e-50), fov_y_degrees: 40.000001), \
+               objects: [Sphere(center: (0.1, 0, 0), radius: 1)])\n";
+    let json = r#"{"camera": {"eye": [0, 1, 4], "target": [0, -2.5e-3, 1e-50], "fov_y_degrees": 40.000001}, "objects": [{"Sphere": {"center": [0.1, 0, 0], "radius": 1}}]}
+"#;
+    std::fs::write(dir.path().join("n.ron"), ron).expect("write");
+    std::fs::write(dir.path().join("n.json"), json).expect("write");
+    for args in [
+        vec!["fmt", "--canonical", "--stdout", "n.json"],
+        vec!["fmt", "--canonical", "--stdout", "n.ron"],
+        vec!["fmt", "--json", "--stdout", "n.ron"],
+        vec!["fmt", "--stdout", "n.json"],
+    ] {
+        let file = *args.last().expect("file");
+        let out = ronray_in(dir.path(), &args);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        for n in numbers {
+            assert!(text.contains(n), "{args:?} lost `{n}`:\n{text}");
+        }
+        // What was printed reads back as the same scene.
+        let again = dir.path().join(if args.contains(&"--json") || file == "n.json" {
+            "again.json"
+        } else {
+            "again.ron"
+        });
+        std::fs::write(&again, text.as_bytes()).expect("write");
+        let src = dir.path().join(file);
+        assert_eq!(
+            meaning(&again, &text),
+            meaning(&src, &std::fs::read_to_string(&src).expect("read")),
+            "{args:?} changed the scene"
+        );
+    }
+}

@@ -1,4 +1,5 @@
-//! Every input of the committed fuzz corpora (`fuzz/corpus/<target>/`),
+//! Every input of the committed fuzz corpora (`fuzz/corpus/<target>/`:
+//! scene, obj, image, gltf, assemble, lsp, envmap),
 //! and every crash the fuzzers found (`fuzz/regressions/<target>/`), run
 //! through the same library entry points as the `cargo fuzz` targets, on
 //! stable Rust: what the fuzzers fixed stays fixed without nightly. None
@@ -75,4 +76,19 @@ fn image_corpus_decodes_without_panics() {
 #[test]
 fn gltf_corpus_imports_without_panics() {
     replay("gltf", ronray::fuzzing::gltf);
+}
+
+#[test]
+fn assemble_corpus_reads_pieces_without_panics() {
+    replay("assemble", ronray::fuzzing::assemble);
+}
+
+#[test]
+fn lsp_corpus_is_served_without_panics() {
+    replay("lsp", ronray::fuzzing::lsp);
+}
+
+#[test]
+fn envmap_corpus_builds_sky_maps_without_panics() {
+    replay("envmap", ronray::fuzzing::envmap);
 }

@@ -265,3 +265,28 @@ fn media_mistakes_are_located_errors() {
     assert!(err.contains("bad.vol") && err.contains("header"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// An index-matched boundary (a mesh with a medium and no material) is
+/// never shaded, so its OBJ groups taking the grey default earn no note;
+/// the same mesh as a plain object still gets one.
+#[test]
+fn null_boundary_meshes_take_no_grey_material_note() {
+    let notes = |object: &str| {
+        let text = format!(
+            r#"Scene(
+                camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+                integrator: Path(max_depth: 4),
+                media: {{ "m": Homogeneous(sigma_t: (1, 1, 1)) }},
+                lights: [Environment(radiance: (1, 1, 1))],
+                objects: [{object}],
+            )"#
+        );
+        load_in(&root().join("tests/fixtures/media"), &text, &Overrides::default())
+            .stats
+            .notes
+    };
+    let null = notes(r#"Mesh(file: "slab.obj", interior: "m")"#);
+    assert!(!null.iter().any(|n| n.contains("grey")), "notes: {null:?}");
+    let shaded = notes(r#"Mesh(file: "slab.obj")"#);
+    assert!(shaded.iter().any(|n| n.contains("grey")), "notes: {shaded:?}");
+}

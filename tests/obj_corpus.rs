@@ -226,6 +226,9 @@ fn mtl_ke_lights_the_cornell_box_with_no_light_in_the_scene() {
         .iter()
         .map(|l| match l {
             Light::Mesh(m) => (m.radiance, m.area()),
+            // The lamp is one rectangle of two triangles: a quad light
+            // (`MeshLight::as_parallelogram`).
+            Light::Quad(q) => (q.radiance, q.area),
             other => panic!("expected an emissive mesh, got {other:?}"),
         })
         .collect();

@@ -1,7 +1,11 @@
-//! The README tells the truth: every RON example loads (a whole scene as a
-//! file in `scenes/`, scene fields beside a camera, a lone object inside a
-//! minimal scene), the annotated scene is the shipped file it says it is,
-//! and the shell examples name files of the clone only.
+//! The README and the guide pages of `docs/` tell the truth: every RON
+//! example loads (a whole scene as a file in `scenes/`, scene fields beside
+//! a camera, a lone object inside a minimal scene), the annotated scene is
+//! the shipped file it says it is, the shell examples name files of the
+//! clone only, every relative link and its anchor lead somewhere, every
+//! page of `docs/` is linked from the README, the change checklists of
+//! `docs/design.md` name every file a new variant touches, and every test
+//! `docs/claims.md` cites as a claim's backing exists.
 
 mod common;
 
@@ -37,12 +41,49 @@ fn readme() -> String {
     std::fs::read_to_string(root().join("README.md")).expect("README.md")
 }
 
+/// The README and every Markdown page of `docs/`, as (name relative to the
+/// clone, text), README first.
+fn pages() -> Vec<(String, String)> {
+    let mut names: Vec<String> = std::fs::read_dir(root().join("docs"))
+        .expect("docs/")
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".md"))
+        .map(|n| format!("docs/{n}"))
+        .collect();
+    names.sort();
+    names.insert(0, "README.md".to_string());
+    names
+        .into_iter()
+        .map(|n| {
+            let text = std::fs::read_to_string(root().join(&n)).expect("page");
+            (n, text)
+        })
+        .collect()
+}
+
+/// Pages whose RON blocks are fragments that cannot load alone: the
+/// material entries of `docs/textures.md` name image files the reader
+/// brings (`"albedo.png"`, `"window.exr"`).
+const FRAGMENT_PAGES: [&str; 1] = ["docs/textures.md"];
+
 #[test]
 fn readme_ron_examples_load() {
-    let readme = readme();
-    let ron = blocks(&readme, "ron");
-    assert!(ron.len() >= 3, "{} RON examples", ron.len());
-    for (line, text) in &ron {
+    let mut count = 0;
+    for (page, text) in pages() {
+        if FRAGMENT_PAGES.contains(&page.as_str()) {
+            continue;
+        }
+        let ron = blocks(&text, "ron");
+        count += ron.len();
+        ron_examples_load(&page, &ron);
+    }
+    assert!(count >= 6, "{count} RON examples in the README and docs/");
+}
+
+/// Each RON block of `page` loads as a scene written in `scenes/`.
+fn ron_examples_load(page: &str, ron: &[(usize, String)]) {
+    for (line, text) in ron {
         let body: String = text
             .lines()
             .filter(|l| !l.trim_start().starts_with("//"))
@@ -76,7 +117,7 @@ fn readme_ron_examples_load() {
         };
         if let Err(e) = load_str(&path, &scene, &Overrides::default()) {
             panic!(
-                "README.md:{line}: the example does not load:\n{}",
+                "{page}:{line}: the example does not load:\n{}",
                 common::message(&e)
             );
         }
@@ -95,36 +136,191 @@ fn readme_annotated_scene_is_the_shipped_file() {
     );
 }
 
-/// Paths in the shell examples exist in the clone (or are written by the
-/// example itself), and nothing reaches outside it.
+/// Folders of the clone whose files the shell examples may name.
+const CLONE_FOLDERS: [&str; 8] = [
+    "scenes/",
+    "assets/",
+    "examples/",
+    "tools/",
+    "scripts/",
+    ".ci/",
+    "tests/",
+    "schema/",
+];
+
+/// Options after which a shell example names a file it writes.
+const OUTPUT_OPTIONS: [&str; 5] = ["-o", "--out", ">", "--heatmap", "--keep-noisy"];
+
+/// Paths in the shell examples of the README and of `docs/` exist in the
+/// clone (or are written by the example itself), and nothing reaches
+/// outside it.
 #[test]
 fn readme_commands_need_nothing_outside_the_clone() {
-    let readme = readme();
-    for (line, text) in blocks(&readme, "sh") {
-        assert!(
-            !text.contains("../"),
-            "README.md:{line}: reaches outside the clone:\n{text}"
-        );
-        for word in text.split_whitespace() {
-            let looks_like_file = (word.starts_with("scenes/") || word.starts_with("assets/"))
-                && word.rsplit('/').next().is_some_and(|f| f.contains('.'));
-            if looks_like_file {
-                assert!(
-                    root().join(word).exists(),
-                    "README.md:{line}: `{word}` does not exist"
-                );
+    let mut checked = 0;
+    for (page, text) in pages() {
+        for (line, block) in blocks(&text, "sh") {
+            assert!(
+                !block.contains("../"),
+                "{page}:{line}: reaches outside the clone:\n{block}"
+            );
+            for command in block.lines() {
+                let command = command.split(" #").next().unwrap_or("");
+                let words: Vec<&str> = command.split_whitespace().collect();
+                for (i, raw) in words.iter().enumerate() {
+                    let word = raw.trim_matches(|c| "\"'$()`;,".contains(c));
+                    let in_clone = CLONE_FOLDERS.iter().any(|f| word.starts_with(f))
+                        && word.rsplit('/').next().is_some_and(|f| f.contains('.'))
+                        && !word.contains(['*', '{']);
+                    let written = i > 0 && OUTPUT_OPTIONS.contains(&words[i - 1]);
+                    if in_clone && !written {
+                        checked += 1;
+                        assert!(
+                            root().join(word).exists(),
+                            "{page}:{line}: `{word}` does not exist"
+                        );
+                    }
+                }
             }
-        }
-        if text.contains("--example") {
-            for ex in text.split("--example ").skip(1) {
+            for ex in block.split("--example ").skip(1) {
                 let name = ex.split_whitespace().next().unwrap_or("");
                 assert!(
                     root().join("examples").join(format!("{name}.rs")).exists(),
-                    "README.md:{line}: no example `{name}`"
+                    "{page}:{line}: no example `{name}`"
                 );
             }
         }
     }
+    assert!(
+        checked >= 10,
+        "only {checked} file names checked: is the reader broken?"
+    );
+}
+
+/// The anchor GitHub gives a heading: lower case, punctuation other than
+/// `-` and `_` dropped, spaces turned into `-`.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || matches!(c, ' ' | '-' | '_'))
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+/// The anchors of a page's headings (outside code blocks).
+fn anchors(text: &str) -> Vec<String> {
+    let mut fenced = false;
+    let mut out = Vec::new();
+    for line in text.lines() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+        } else if !fenced && line.starts_with('#') {
+            out.push(anchor(line.trim_start_matches('#')));
+        }
+    }
+    out
+}
+
+/// The relative link targets of a page: `](target)` that is not a URL.
+fn links(text: &str) -> Vec<String> {
+    text.split("](")
+        .skip(1)
+        .filter_map(|rest| rest.split(')').next())
+        .filter(|t| !t.starts_with("http") && !t.starts_with("mailto:"))
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn anchor_follows_githubs_rule() {
+    assert_eq!(
+        anchor(" Versions and `ronray migrate`"),
+        "versions-and-ronray-migrate"
+    );
+    assert_eq!(
+        anchor(" Side by side after the realism merges (2026-12-05 02:13–02:22 UTC)"),
+        "side-by-side-after-the-realism-merges-2026-12-05-02130222-utc"
+    );
+    assert_eq!(
+        links("see [a](docs/a.md#x) and [b](https://x.org)"),
+        ["docs/a.md#x"]
+    );
+}
+
+/// Moved text stays reachable: every relative link of the README and of
+/// `docs/` leads to a file of the clone and, with `#anchor`, to a heading
+/// of that file.
+#[test]
+fn guide_links_lead_to_files_and_headings_that_exist() {
+    let pages = pages();
+    let mut checked = 0;
+    for (page, text) in &pages {
+        let folder = std::path::Path::new(page)
+            .parent()
+            .unwrap_or(std::path::Path::new(""));
+        for target in links(text) {
+            let (file, fragment) = match target.split_once('#') {
+                Some((f, a)) => (f, Some(a)),
+                None => (target.as_str(), None),
+            };
+            let path = if file.is_empty() {
+                root().join(page)
+            } else {
+                root().join(folder).join(file)
+            };
+            assert!(path.exists(), "{page}: the link `{target}` leads nowhere");
+            if let Some(fragment) = fragment {
+                let linked = std::fs::read_to_string(&path).expect("linked page");
+                assert!(
+                    anchors(&linked).iter().any(|a| a == fragment),
+                    "{page}: the link `{target}` names no heading of {}",
+                    path.display()
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 30, "only {checked} links checked");
+}
+
+/// No page of `docs/` is an orphan: the README links every one.
+#[test]
+fn readme_links_every_docs_page() {
+    let readme = readme();
+    for (page, _) in pages().iter().skip(1) {
+        assert!(
+            readme.contains(&format!("]({page}")),
+            "README.md does not link {page}"
+        );
+    }
+}
+
+/// Every test `docs/claims.md` cites (`file.rs::name`) exists: a `#[test]`
+/// function of that name in that file, so the table of claims cannot rot.
+#[test]
+fn claims_table_cites_tests_that_exist() {
+    let claims = std::fs::read_to_string(root().join("docs/claims.md")).expect("docs/claims.md");
+    let mut cited = 0;
+    for quoted in claims.split('`').skip(1).step_by(2) {
+        let Some((file, name)) = quoted.split_once(".rs::") else {
+            continue;
+        };
+        let path = root().join(format!("{file}.rs"));
+        let source = std::fs::read_to_string(&path)
+            .unwrap_or_else(|_| panic!("docs/claims.md cites `{quoted}`: no file {file}.rs"));
+        let is_test = source.match_indices(&format!("fn {name}(")).any(|(i, _)| {
+            source[..i]
+                .rsplit_once("#[test]")
+                .is_some_and(|(_, between)| between.lines().count() <= 4)
+        });
+        assert!(
+            is_test,
+            "docs/claims.md cites `{quoted}`: {file}.rs has no #[test] fn {name}"
+        );
+        cited += 1;
+    }
+    assert!(cited >= 100, "docs/claims.md cites only {cited} tests");
 }
 
 /// The variants of `pub enum name` in `file` (lines of four spaces and a
@@ -191,14 +387,14 @@ fn every_variant_sites(name: &str, variants: &[String]) -> Vec<String> {
     found
 }
 
-/// The README's change checklists ("Adding a material touches …") cannot
+/// The change checklists of `docs/design.md` ("Adding a material touches …") cannot
 /// go stale: each names every file that spells out all the variants of the
 /// kind's enums (so a new variant must be added there), and every file it
 /// names exists (`<model>` stands for any file of that folder).
 #[test]
 fn readme_change_checklists_name_every_file_a_new_variant_touches() {
-    let readme = readme();
-    let checklists = [
+    let readme = std::fs::read_to_string(root().join("docs/design.md")).expect("docs/design.md");
+    let checklists: [(&str, &[(&str, &str)]); 3] = [
         (
             "Adding a material touches",
             &[
@@ -210,11 +406,15 @@ fn readme_change_checklists_name_every_file_a_new_variant_touches() {
             "A light kind touches",
             &[("src/desc/light.rs", "LightDesc"), ("src/lights/mod.rs", "Light")],
         ),
+        (
+            "An output format touches",
+            &[("src/imageio/format.rs", "OutputFormat")],
+        ),
     ];
     for (opening, enums) in checklists {
         let at = readme
             .find(opening)
-            .unwrap_or_else(|| panic!("the README has no `{opening}`"));
+            .unwrap_or_else(|| panic!("docs/design.md has no `{opening}`"));
         let paragraph = readme[at..].split("\n\n").next().unwrap_or("");
         let named: Vec<&str> = paragraph.split('`').skip(1).step_by(2).collect();
         for n in &named {

@@ -12,42 +12,31 @@ use glam::Vec2;
 
 /// The albedo of `material` at surface coordinates `uv`, in [0, 1].
 pub fn first_hit_albedo(material: &Material, uv: Vec2, textures: &[Texture]) -> Rgb {
-    let tex = |c: &crate::materials::ColorTex| c.eval(uv, textures);
-    let a = match material {
-        Material::Lambert { albedo } | Material::OrenNayar { albedo, .. } => tex(albedo),
-        // Both lobes reflect: their sum, as the model caps it.
-        Material::Phong { kd, ks, .. } | Material::BlinnPhong { kd, ks, .. } => tex(kd) + tex(ks),
-        // The conductor's colour lives in its Fresnel term; OIDN allows 1.
-        Material::CookTorrance { .. } => Rgb::ONE,
-        // Diffuse colour for plastic, reflectance at normal incidence for metal.
-        Material::MetalPlastic { base_color, .. } => tex(base_color),
-        Material::Mirror { tint } => tex(tint),
-        Material::Glass { tint, .. } | Material::RoughGlass { tint, .. } => tex(tint),
-        Material::RoughPlastic { diffuse, .. } => tex(diffuse),
-        // Light sources reflect nothing.
-        Material::Emitter => Rgb::ZERO,
-    };
-    a.clamp(Rgb::ZERO, Rgb::ONE)
+    // Each model says what its albedo is (`MaterialModel::albedo`).
+    material.albedo(uv, textures).clamp(Rgb::ZERO, Rgb::ONE)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::materials::ColorTex;
+    use crate::materials::{ColorTex, Emitter, LambertMaterial, PhongMaterial};
 
     #[test]
     fn matte_albedo_is_its_colour_and_phong_sums_are_clamped() {
         let c = Rgb::new(0.2, 0.5, 0.7);
-        let m = Material::Lambert {
+        let m = Material::Lambert(LambertMaterial {
             albedo: ColorTex::Const(c),
-        };
+        });
         assert_eq!(first_hit_albedo(&m, Vec2::ZERO, &[]), c);
-        let p = Material::Phong {
+        let p = Material::Phong(PhongMaterial {
             kd: ColorTex::Const(Rgb::splat(0.7)),
             ks: ColorTex::Const(Rgb::splat(0.6)),
             exponent: crate::materials::Tex::Const(10.0),
-        };
+        });
         assert_eq!(first_hit_albedo(&p, Vec2::ZERO, &[]), Rgb::ONE);
-        assert_eq!(first_hit_albedo(&Material::Emitter, Vec2::ZERO, &[]), Rgb::ZERO);
+        assert_eq!(
+            first_hit_albedo(&Material::Emitter(Emitter), Vec2::ZERO, &[]),
+            Rgb::ZERO
+        );
     }
 }

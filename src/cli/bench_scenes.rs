@@ -5,8 +5,8 @@
 //! ronray-against-Mitsuba table are one command away.
 //!
 //! DIR holds `<name>_ref.exr` (or `.pfm`) references and, optionally,
-//! `<name>_emitter_mask.png` (255 where a pixel sees a light); the layout of
-//! `../shared/refs`. Each reference is matched to a ronray scene
+//! `<name>_emitter_mask.png` (255 where a pixel sees a light), for example
+//! Mitsuba 3 renders of ronray's reference scenes. Each reference is matched to a ronray scene
 //! `<name>.ron` looked up first in DIR, then in `--ronray-scenes` (default
 //! `scenes`), where `cornell_diffuse` is also found as `cornell.ron`.
 //! References without a ronray twin are listed as skipped. The renderer-

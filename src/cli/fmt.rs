@@ -57,6 +57,7 @@ fn fmt_one(p: &Path, o: FmtOptions, failed: &mut bool) -> Result<(), String> {
         } else {
             crate::load::canonical::to_ron(&desc)
         }?;
+        let t = crate::load::canonical::keep_number_spellings(&text, &t);
         let keeps_comments = is_json(&target) && !is_json(p);
         if crate::load::canonical::has_comments(&text)
             && !keeps_comments

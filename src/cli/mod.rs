@@ -189,7 +189,7 @@ pub enum Command {
         force: bool,
     },
     /// Render every scene of the folders given into one folder of PNGs and
-    /// print a Markdown gallery (what the README shows).
+    /// print a Markdown gallery (what `docs/gallery.md` shows).
     Gallery {
         /// Scene files or folders; default `scenes`.
         paths: Vec<PathBuf>,
@@ -257,8 +257,9 @@ pub enum Command {
         /// most 1024); with `--scenes`, the render's threads.
         #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
-        /// Folder of `<name>_ref.exr` references (and `<name>_emitter_mask.png`),
-        /// e.g. `../shared/refs`: render each one's ronray twin `<name>.ron`.
+        /// Folder of references: `<name>_ref.exr` or `<name>_ref.pfm` images
+        /// (and optionally `<name>_emitter_mask.png`, 255 where a pixel sees
+        /// a light); each one's ronray twin `<name>.ron` is rendered.
         #[arg(long, value_name = "DIR")]
         scenes: Option<PathBuf>,
         /// With `--scenes`: where the ronray twins are looked up after DIR.

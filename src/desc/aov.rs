@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 /// One layer of first-hit values, written to EXR outputs beside the RGB
-/// beauty pass (channel names in the README's "AOV layers").
+/// beauty pass (channel names in `docs/aov.md`).
 #[derive(Clone, Copy, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq, Eq, Hash)]
 pub enum AovDesc {
     /// Reflectance at the first hit, as Open Image Denoise wants its albedo

@@ -247,19 +247,32 @@ fn describe(
     if display.position != x::Vec2(0, 0) || position.0 < 0 || position.1 < 0 {
         return Err("its display window does not start at (0, 0) or its data window is outside it".into());
     }
-    let frame = (display.size.0 as u32, display.size.1 as u32);
-    let rect = PixelRect {
-        x0: position.0 as u32,
-        y0: position.1 as u32,
-        x1: position.0 as u32 + size.0 as u32,
-        y1: position.1 as u32 + size.1 as u32,
-    };
-    if !PixelRect::full(frame.0, frame.1).contains(&rect) {
+    // A frame is an image ronray could render, checked before any size is
+    // narrowed or added: a header may claim anything.
+    let max = crate::load::validate::MAX_RESOLUTION as usize;
+    if display.size.0.max(display.size.1) > max {
         return Err(format!(
-            "its data window ({rect}) is outside its {}×{} display window",
-            frame.0, frame.1
+            "its display window is {}×{}, above the limit of {max} pixels a side",
+            display.size.0, display.size.1
         ));
     }
+    let frame = (display.size.0 as u32, display.size.1 as u32);
+    let (x0, y0) = (position.0 as usize, position.1 as usize);
+    if x0.saturating_add(size.0) > display.size.0 || y0.saturating_add(size.1) > display.size.1 {
+        return Err(format!(
+            "its data window (x {x0}..{}, y {y0}..{}) is outside its {}×{} display window",
+            x0.saturating_add(size.0),
+            y0.saturating_add(size.1),
+            frame.0,
+            frame.1
+        ));
+    }
+    let rect = PixelRect {
+        x0: x0 as u32,
+        y0: y0 as u32,
+        x1: (x0 + size.0) as u32,
+        y1: (y0 + size.1) as u32,
+    };
     PieceMeta::from_lines(&lines, frame, rect)
 }
 
@@ -271,6 +284,41 @@ fn regular(path: &Path) -> Result<(), String> {
         Ok(_) => Err("not a regular file (a piece is an .exr file)".into()),
         Err(e) => Err(e.to_string()),
     }
+}
+
+/// How many times its file size a piece's channels may take once decoded:
+/// deflate cannot pass ~1,032×, so only a corrupt header reaches this (as
+/// for sky maps, `MAX_EXR_RATIO` in `src/load/light.rs`).
+const MAX_PIECE_RATIO: u64 = 16_384;
+
+/// What the header of the piece at `path` claims, checked before the
+/// decoder allocates it: every channel of every layer at 4 bytes a sample,
+/// within the memory available and [`MAX_PIECE_RATIO`] times the file's
+/// size. A 1 KB file claiming 16384² pixels of 40 channels asked for 43 GB.
+fn check_size(path: &Path) -> Result<(), String> {
+    let file_len = std::fs::metadata(path).map_err(|e| e.to_string())?.len();
+    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| e.to_string())?;
+    let mut bytes = 0u64;
+    for h in meta.headers.iter() {
+        let pixels = h.layer_size.width() as u64 * h.layer_size.height() as u64;
+        bytes = bytes.saturating_add(pixels.saturating_mul(4 * h.channels.list.len() as u64));
+    }
+    if bytes > MAX_PIECE_RATIO.saturating_mul(file_len.max(1)) {
+        return Err(format!(
+            "its header claims {} MB of samples but the file holds {file_len} bytes: truncated or corrupt",
+            bytes >> 20
+        ));
+    }
+    if let Some(free) = crate::memory::available()
+        && bytes > free
+    {
+        return Err(format!(
+            "its samples need {} MB, more than the {} MB of memory available",
+            bytes >> 20,
+            free >> 20
+        ));
+    }
+    Ok(())
 }
 
 /// Reads only a piece's header.
@@ -303,6 +351,7 @@ pub fn read_piece(path: &Path) -> Result<Piece, PieceError> {
         ));
     }
     regular(path).map_err(err)?;
+    check_size(path).map_err(err)?;
     let image = x::read()
         .no_deep_data()
         .largest_resolution_level()

@@ -16,7 +16,7 @@
 //! chase a relative error nobody can see. The scene's `spp` stays the most
 //! any pixel takes.
 //!
-//! Caveats, documented in the README: the estimate sees only the samples a
+//! Caveats, documented in `docs/film.md`: the estimate sees only the samples a
 //! pixel took, so a pixel whose first `min_spp` samples all missed a rare
 //! bright path (a caustic seen through glass) may stop early — raise
 //! `min_spp` for such scenes; the stopping rule makes the estimate very

@@ -8,7 +8,7 @@
 //! <https://pbr-book.org/4ed/Primitives_and_Intersection_Acceleration/Object_Instancing_and_Primitives_in_Motion>).
 
 use super::mesh::{Mesh, MeshHit};
-use super::moving::{InstanceMotion, Placement};
+use super::moving::InstanceMotion;
 use super::{Hit, NO_LIGHT};
 use crate::accel::Aabb;
 use crate::math::Ray;
@@ -55,8 +55,10 @@ impl Instance {
         }
     }
 
-    /// This instance moving by `motion` (it must not emit: its lights
-    /// would be sampled where the static transforms put it).
+    /// This instance moving by `motion`. Its lights, if it emits, must be
+    /// built in the mesh's space with the same motion
+    /// ([`crate::lights::MeshLight::with_motion`]), so that they are
+    /// sampled where the instance is at each time.
     pub fn with_motion(mut self, motion: InstanceMotion) -> Self {
         self.identity = false;
         self.motion = Some(Box::new(motion));
@@ -66,6 +68,24 @@ impl Instance {
     /// Whether the instance moves while the shutter is open.
     pub fn moves(&self) -> bool {
         self.motion.is_some()
+    }
+
+    /// Its motion, when it moves while the shutter is open.
+    pub fn motion(&self) -> Option<&InstanceMotion> {
+        self.motion.as_deref()
+    }
+
+    /// `world_from_object` and `normal_from_object` at the time traced: the
+    /// static transforms, or the motion's at the thread's clock.
+    #[inline]
+    fn to_world(&self) -> (Affine3A, Mat3A) {
+        match &self.motion {
+            Some(m) => {
+                let p = m.now();
+                (p.world_from_object, p.normal_from_object)
+            }
+            None => (self.world_from_object, self.normal_from_object),
+        }
     }
 
     /// The placement at the time traced (moving instances only).
@@ -118,19 +138,12 @@ impl Instance {
         hit.material = self.materials.get(slot).copied().unwrap_or(0);
         hit.light = self.lights.get(slot).copied().unwrap_or(NO_LIGHT);
         if !self.identity {
-            let p = match &self.motion {
-                Some(m) => m.now(),
-                None => Placement {
-                    world_from_object: self.world_from_object,
-                    object_from_world: self.object_from_world,
-                    normal_from_object: self.normal_from_object,
-                },
-            };
+            let (world_from_object, normal_from_object) = self.to_world();
             let p_err = mesh.point_error(h.tri, h.bc);
-            let p_err = transform_point_error(&p.world_from_object, hit.p, p_err);
-            hit.p = p.world_from_object.transform_point3a(hit.p);
-            hit.ng = (p.normal_from_object * hit.ng).normalize_or(hit.ng);
-            hit.ns = (p.normal_from_object * hit.ns).normalize_or(hit.ng);
+            let p_err = transform_point_error(&world_from_object, hit.p, p_err);
+            hit.p = world_from_object.transform_point3a(hit.p);
+            hit.ng = (normal_from_object * hit.ng).normalize_or(hit.ng);
+            hit.ns = (normal_from_object * hit.ns).normalize_or(hit.ng);
             hit.p_error = error_along(hit.ng, p_err);
         }
         // A point on the world-space ray is more accurate far from the origin.
@@ -139,20 +152,18 @@ impl Instance {
     }
 
     /// The mesh's tangent at hit `h` (see [`Mesh::tangent`]) in world
-    /// space: `xyz` carried by `world_from_object` (tangents are vectors in
-    /// the surface), `w` negated by a mirroring transform (the bitangent is
-    /// `w·(n × t)` and the cross product of transformed vectors turns).
+    /// space: `xyz` carried by `world_from_object` at the time traced
+    /// (tangents are vectors in the surface), `w` negated by a mirroring
+    /// transform (the bitangent is `w·(n × t)` and the cross product of
+    /// transformed vectors turns).
     pub fn tangent(&self, h: MeshHit, frame: super::TangentFrame, meshes: &[Mesh]) -> Option<glam::Vec4> {
         let t = meshes.get(self.mesh as usize)?.tangent(h.tri, h.bc, frame)?;
         if self.identity {
             return Some(t);
         }
-        let xyz = self.world_from_object.matrix3 * Vec3A::from(t.truncate());
-        let w = if self.world_from_object.matrix3.determinant() < 0.0 {
-            -t.w
-        } else {
-            t.w
-        };
+        let m = self.to_world().0.matrix3;
+        let xyz = m * Vec3A::from(t.truncate());
+        let w = if m.determinant() < 0.0 { -t.w } else { t.w };
         Some(glam::Vec3::from(xyz).extend(w))
     }
 

@@ -57,9 +57,9 @@
 use super::{Counters, light_point_error, offset_origin, spawn};
 use crate::camera::Camera;
 use crate::geometry::Hit;
-use crate::lights::{CausticEmitters, Light};
+use crate::lights::{CausticEmitters, LightOrigin};
 use crate::materials::Bxdf;
-use crate::math::sampling::{cosine_hemisphere, uniform_sphere};
+use crate::math::sampling::cosine_hemisphere;
 use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -109,22 +109,7 @@ pub fn trace(
     let u_cone = sampler.next_f32();
     // A point, its emitting normal, L_e / (pmf · p_A), and whether the back
     // emits too.
-    let (p, n, le, two_sided) = match &scene.lights[li as usize] {
-        Light::Quad(q) => (
-            q.corner + u_point.x * q.u + u_point.y * q.v,
-            q.n,
-            q.radiance_at(u_point) * (q.area / pmf),
-            q.two_sided,
-        ),
-        Light::Sphere(s) => {
-            let n = uniform_sphere(u_point);
-            let area = 4.0 * PI * s.radius * s.radius;
-            (s.center + s.radius * n, n, s.radiance_at(n) * (area / pmf), false)
-        }
-        Light::Point(_) | Light::Spot(_) | Light::Mesh(_) | Light::Sdf(_) | Light::Environment(_) => {
-            return None;
-        }
-    };
+    let LightOrigin { p, n, le, two_sided } = scene.lights[li as usize].caustic_origin(u_point, pmf)?;
     // A direction and its density: toward the specular objects' bounding
     // spheres when they can be aimed at from here, else cosine-weighted.
     let (d, pdf) = match em.aim(p, u_cone, u_dir) {

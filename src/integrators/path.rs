@@ -26,7 +26,7 @@
 //! the error per camera sample by more than it adds instructions on rooms
 //! lit indirectly, but at equal error its wall time was within 4% of one
 //! path per sample on the reference scenes and worse on one lit mostly
-//! directly (README, *Integrator*), so one path is the default.
+//! directly (`docs/integrators.md`), so one path is the default.
 
 use super::caustic::max_chain;
 use super::{Counters, emitted, escaped, shadow_ray, spawn};

@@ -40,17 +40,13 @@ impl CausticEmitters {
         };
         let mut pmf: Vec<f32> = lights
             .iter()
-            .map(|l| match l {
-                Light::Quad(_) => luminance(l.power()).max(0.0),
-                Light::Sphere(s) if !s.two_sided => luminance(l.power()).max(0.0),
-                // Two-sided spheres, points, spots, meshes, SDFs and the sky
-                // are not traced from.
-                Light::Sphere(_)
-                | Light::Point(_)
-                | Light::Spot(_)
-                | Light::Mesh(_)
-                | Light::Sdf(_)
-                | Light::Environment(_) => 0.0,
+            // Each light says whether it is traced from (`LightModel::emits_caustics`).
+            .map(|l| {
+                if l.emits_caustics() {
+                    luminance(l.power()).max(0.0)
+                } else {
+                    0.0
+                }
             })
             .map(|p| if p.is_finite() { p } else { 0.0 })
             .collect();

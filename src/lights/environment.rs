@@ -11,7 +11,7 @@
 //! the seam is at −z; columns wrap across the seam, row 0 is exactly the
 //! zenith and row H − 1 the nadir. This is what Mitsuba 3.9.1's `envmap`
 //! evaluates (probed through its Python API: a map whose row j holds j
-//! returns `v·(H − 1)`); `shared/refs/README.md` gives row centres at
+//! returns `v·(H − 1)`); the Mitsuba reference set's notes give row centres at
 //! `(j + ½)/H`, which stretches the sky's rows by H/(H − 1) less and left
 //! the floor of `env_spheres` 0.35% darker than Mitsuba's. The environment's
 //! frame is the world's turned by `rotation` about +y (right-handed).
@@ -32,10 +32,11 @@
 //! (transmitting surfaces, media). Mitsuba 3's `constant` samples the
 //! sphere uniformly: half its shadow rays from a floor go into the floor.
 
-use super::LightSample;
 use super::env_map::EnvMap;
 use super::env_table::EnvTable;
 use super::irradiance::{ShSum, SkyIrradiance};
+use super::tree::LightBounds;
+use super::{LightModel, LightSample};
 use crate::math::Frame;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
 use crate::math::trig::sin_cos_turns;
@@ -374,4 +375,15 @@ fn map_irradiance(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyIrradi
         })
         .reduce(ShSum::default, ShSum::merge);
     sum.irradiance()
+}
+
+impl LightModel for EnvironmentLight {
+    /// None: the sky is infinitely far; the tree weighs it beside its root
+    /// by its irradiance instead.
+    fn bounds(&self, _phi: f32) -> Option<LightBounds> {
+        None
+    }
+    fn as_environment(&self) -> Option<&EnvironmentLight> {
+        Some(self)
+    }
 }

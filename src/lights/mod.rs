@@ -7,7 +7,7 @@
 //! | `Point`, `Spot` | a point (delta) | its position |
 //! | `Quad` | a `Quad`/`Rect` light, or an emissive `Quad`/`Rect` object | rectangles uniformly in solid angle (spherical rectangles), other parallelograms by area |
 //! | `Sphere` | an emissive sphere | uniformly in the cone it subtends |
-//! | `Mesh` | the emissive triangles of a placed mesh (one material slot) | by area: a triangle by an alias table, then a uniform point |
+//! | `Mesh` | the emissive triangles of a placed mesh (one material slot), moving with a keyed instance | by area: a triangle by an alias table, then a uniform point (placed at the path's time when it moves) |
 //! | `Sdf` | an emissive implicit surface | uniformly in its bounding sphere's cone, then marched |
 //! | `Environment` | the sky at infinity (at most one) | an image by its bilinear luminance × sin θ; a constant sky by the cosine about the shading normal |
 //!
@@ -37,6 +37,8 @@ pub mod spot;
 pub mod tree;
 
 #[cfg(test)]
+mod moving_tests;
+#[cfg(test)]
 mod tests;
 
 pub use caustic::CausticEmitters;
@@ -55,6 +57,7 @@ pub use tree::LightTree;
 use crate::geometry::{Geometry, Hit};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
+use tree::LightBounds;
 
 /// A light source of the runtime scene, in world space; a closed set, so an `enum`
 /// forwarded by `match`.
@@ -75,6 +78,69 @@ pub enum Light {
     Sdf(SdfLight),
     /// The environment, at infinity.
     Environment(Box<EnvironmentLight>),
+}
+
+/// What every light answers beyond sampling and emission, written beside
+/// its model: a new light is its description (`desc/light.rs`), its loader
+/// entry (`load/light.rs` or the emitting object's) and its model file, plus
+/// one line in [`Light`], one in `forward_light!` and one in each of
+/// [`Light::sample`], [`Light::emitted`] and [`Light::pdf`] (whose arguments
+/// differ by kind). The defaults are those of most lights.
+pub trait LightModel {
+    /// What the light tree knows of it (`tree.rs`), `phi` being its power
+    /// (luminance, W); `None` for a light without a position (the sky).
+    fn bounds(&self, phi: f32) -> Option<LightBounds>;
+    /// True for lights without area (point, spot): sampled exactly, never
+    /// hit by rays.
+    fn is_delta(&self) -> bool {
+        false
+    }
+    /// Whether the caustic light tracer (`integrators/caustic.rs`) starts
+    /// paths on it; [`LightModel::caustic_origin`] then gives their start.
+    fn emits_caustics(&self) -> bool {
+        false
+    }
+    /// Where a caustic light path starts for `u` ∈ [0, 1)², the light
+    /// having been picked with probability `pmf`; `None` when
+    /// [`LightModel::emits_caustics`] is false.
+    fn caustic_origin(&self, _u: Vec2, _pmf: f32) -> Option<LightOrigin> {
+        None
+    }
+    /// The sky, when this light is it.
+    fn as_environment(&self) -> Option<&EnvironmentLight> {
+        None
+    }
+}
+
+/// The start of a light path: a point, its emitting normal, the emitted
+/// radiance over the point's density (`L_e / (pmf · p_A)`), and whether the
+/// back emits too.
+#[derive(Clone, Copy, Debug)]
+pub struct LightOrigin {
+    /// A point on the light.
+    pub p: Vec3A,
+    /// Unit normal of its emitting side.
+    pub n: Vec3A,
+    /// `L_e / (pmf · p_A)`, W/(m²·sr) over the area density.
+    pub le: Rgb,
+    /// Whether the back emits too.
+    pub two_sided: bool,
+}
+
+/// Forwards one [`LightModel`] method to the variant (the match is the
+/// checklist).
+macro_rules! forward_light {
+    ($self:ident, $l:ident => $call:expr) => {
+        match $self {
+            Light::Point($l) => $call,
+            Light::Spot($l) => $call,
+            Light::Quad($l) => $call,
+            Light::Sphere($l) => $call,
+            Light::Mesh($l) => $call,
+            Light::Sdf($l) => $call,
+            Light::Environment($l) => $call,
+        }
+    };
 }
 
 /// Light arriving at a shading point from one sampled point of a light.
@@ -165,8 +231,31 @@ impl Light {
 
     /// True for lights without area (point, spot): sampled exactly, never hit by
     /// rays.
+    #[inline]
     pub fn is_delta(&self) -> bool {
-        matches!(self, Light::Point(_) | Light::Spot(_))
+        forward_light!(self, l => l.is_delta())
+    }
+
+    /// What the light tree knows of it (see [`LightModel::bounds`]).
+    pub fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        forward_light!(self, l => l.bounds(phi))
+    }
+
+    /// Whether the caustic light tracer starts paths on it.
+    pub fn emits_caustics(&self) -> bool {
+        forward_light!(self, l => l.emits_caustics())
+    }
+
+    /// Where a caustic light path starts (see [`LightModel::caustic_origin`]).
+    #[inline]
+    pub fn caustic_origin(&self, u: Vec2, pmf: f32) -> Option<LightOrigin> {
+        forward_light!(self, l => l.caustic_origin(u, pmf))
+    }
+
+    /// The sky, when this light is it.
+    #[inline]
+    pub fn as_environment(&self) -> Option<&EnvironmentLight> {
+        forward_light!(self, l => l.as_environment())
     }
 }
 

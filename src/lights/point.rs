@@ -1,6 +1,7 @@
 //! Isotropic point light.
 
-use super::LightSample;
+use super::tree::LightBounds;
+use super::{LightModel, LightSample};
 use crate::math::Rgb;
 use glam::Vec3A;
 use std::f32::consts::PI;
@@ -38,5 +39,22 @@ impl PointLight {
     /// Φ = 4π I.
     pub fn power(&self) -> Rgb {
         4.0 * PI * self.intensity
+    }
+}
+
+impl LightModel for PointLight {
+    /// A point emitting in every direction.
+    fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        Some(LightBounds {
+            bounds: LightBounds::ball(self.position, 0.0),
+            w: Vec3A::Z,
+            phi,
+            cos_theta_o: -1.0,
+            cos_theta_e: 0.0,
+            two_sided: false,
+        })
+    }
+    fn is_delta(&self) -> bool {
+        true
     }
 }

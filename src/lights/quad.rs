@@ -7,9 +7,10 @@
 //! area. [`QuadLight::pdf`] makes the same choice from the same point, so MIS
 //! weighs each direction with the density that drew it.
 
-use super::LightSample;
 use super::emission::{Emission, EmissionTexture};
 use super::spherical_rect::SphericalRect;
+use super::tree::LightBounds;
+use super::{LightModel, LightOrigin, LightSample};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
@@ -185,5 +186,27 @@ impl QuadLight {
     pub fn power(&self) -> Rgb {
         let sides = if self.two_sided { 2.0 } else { 1.0 };
         sides * PI * self.area * self.radiance
+    }
+}
+
+impl LightModel for QuadLight {
+    /// The parallelogram's corners; one normal.
+    fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        let (c, u, v) = (self.corner, self.u, self.v);
+        let b = crate::accel::Aabb::from_points(&[c, c + u, c + v, c + u + v]);
+        Some(LightBounds::surface(b, self.n, 1.0, self.two_sided, phi))
+    }
+    fn emits_caustics(&self) -> bool {
+        true
+    }
+    /// A point uniform by area.
+    #[inline]
+    fn caustic_origin(&self, u: Vec2, pmf: f32) -> Option<LightOrigin> {
+        Some(LightOrigin {
+            p: self.corner + u.x * self.u + u.y * self.v,
+            n: self.n,
+            le: self.radiance_at(u) * (self.area / pmf),
+            two_sided: self.two_sided,
+        })
     }
 }

@@ -10,7 +10,8 @@
 //! strategy (the march from the surface stops at once); BSDF sampling in
 //! `Path` still finds such light.
 
-use super::LightSample;
+use super::tree::LightBounds;
+use super::{LightModel, LightSample};
 use crate::geometry::Geometry;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
 use crate::math::{Frame, Ray, Rgb, ray_epsilon};
@@ -94,5 +95,13 @@ impl SdfLight {
     pub fn power(&self) -> Rgb {
         let sides = if self.two_sided { 2.0 } else { 1.0 };
         sides * PI * 4.0 * PI * self.radius * self.radius * self.radiance
+    }
+}
+
+impl LightModel for SdfLight {
+    /// Its bounding ball; normals in every direction.
+    fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        let b = LightBounds::ball(self.center, self.radius);
+        Some(LightBounds::surface(b, Vec3A::Z, -1.0, self.two_sided, phi))
     }
 }

@@ -1,8 +1,10 @@
 //! An emissive sphere, sampled by the cone of directions it subtends.
 
-use super::LightSample;
 use super::emission::{Emission, EmissionTexture};
+use super::tree::LightBounds;
+use super::{LightModel, LightOrigin, LightSample};
 use crate::geometry::Sphere;
+use crate::math::sampling::uniform_sphere;
 use crate::math::trig::sin_cos_turns;
 use crate::math::{Frame, Rgb};
 use glam::{Vec2, Vec3A};
@@ -173,5 +175,30 @@ impl SphereLight {
     pub fn power(&self) -> Rgb {
         let sides = if self.two_sided { 2.0 } else { 1.0 };
         sides * PI * self.area() * self.radiance
+    }
+}
+
+impl LightModel for SphereLight {
+    /// The ball; normals in every direction.
+    fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        let b = LightBounds::ball(self.center, self.radius);
+        Some(LightBounds::surface(b, Vec3A::Z, -1.0, self.two_sided, phi))
+    }
+    /// One-sided spheres only: a two-sided one also lights its inside,
+    /// which the tracer's aiming does not cover.
+    fn emits_caustics(&self) -> bool {
+        !self.two_sided
+    }
+    /// A point uniform over the sphere, emitting from its outside.
+    #[inline]
+    fn caustic_origin(&self, u: Vec2, pmf: f32) -> Option<LightOrigin> {
+        let n = uniform_sphere(u);
+        let area = 4.0 * PI * self.radius * self.radius;
+        Some(LightOrigin {
+            p: self.center + self.radius * n,
+            n,
+            le: self.radiance_at(n) * (area / pmf),
+            two_sided: false,
+        })
     }
 }

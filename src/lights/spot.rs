@@ -2,7 +2,8 @@
 //! falloff band (pbrt-v4 `SpotLight`). The cone is circular by construction:
 //! intensity depends only on the angle to the axis.
 
-use super::LightSample;
+use super::tree::LightBounds;
+use super::{LightModel, LightSample};
 use crate::math::Rgb;
 use glam::Vec3A;
 use std::f32::consts::PI;
@@ -84,6 +85,23 @@ impl SpotLight {
     /// smoothstep band integrates to exactly half its solid angle.
     pub fn power(&self) -> Rgb {
         self.intensity * 2.0 * PI * ((1.0 - self.cos_falloff) + 0.5 * (self.cos_falloff - self.cos_total))
+    }
+}
+
+impl LightModel for SpotLight {
+    /// The cone where the spot emits at all: θo + θe = its total half-angle.
+    fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        Some(LightBounds {
+            bounds: LightBounds::ball(self.position, 0.0),
+            w: self.direction.normalize_or(Vec3A::Z),
+            phi,
+            cos_theta_o: 1.0,
+            cos_theta_e: self.cos_total,
+            two_sided: false,
+        })
+    }
+    fn is_delta(&self) -> bool {
+        true
     }
 }
 

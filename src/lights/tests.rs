@@ -25,7 +25,7 @@ fn hit_of(ls: &LightSample) -> Hit {
 
 /// Irradiance at `p` (normal `n`) estimated from `n_samples` light samples,
 /// checking on the way that each sample's pdf is `Light::pdf`'s.
-fn irradiance(light: &Light, p: Vec3A, n: Vec3A, n_samples: u32) -> f64 {
+pub(super) fn irradiance(light: &Light, p: Vec3A, n: Vec3A, n_samples: u32) -> f64 {
     let geo = Geometry::default();
     let mut rng = Pcg32::new(11, 3);
     let mut sum = 0.0f64;
@@ -114,7 +114,7 @@ fn two_sided_sphere_lights_its_inside() {
 }
 
 /// Lambert's polygon formula, E = L/2 Σ βᵢ n·γᵢ.
-fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {
+pub(super) fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {
     let mut sum = 0.0;
     for i in 0..verts.len() {
         let a = (verts[i] - x).normalize();
@@ -565,5 +565,63 @@ fn textured_emitters_sample_what_they_emit() {
             ((sampled - traced) / traced).abs() < 0.02,
             "{name}: sampled {sampled:.4}, traced {traced:.4}"
         );
+    }
+}
+
+/// A rectangle written as two triangles (as an OBJ lamp is) becomes one
+/// quad light that lights a point exactly as the triangles did; shapes that
+/// are not one parallelogram stay triangles.
+#[test]
+fn a_rectangle_of_two_triangles_becomes_a_quad_light() {
+    let (a, b, c, d) = (
+        Vec3A::new(-0.5, 2.0, -0.4),
+        Vec3A::new(0.5, 2.0, -0.4),
+        Vec3A::new(0.5, 2.0, 0.4),
+        Vec3A::new(-0.5, 2.0, 0.4),
+    );
+    // Counter-clockwise seen from below: (b − a) × (c − a) points down.
+    let mesh = MeshLight::new(vec![[a, b, c], [a, c, d]], Rgb::splat(2.0), false).expect("area");
+    let quad = mesh.as_parallelogram().expect("a rectangle");
+    assert!((quad.area - mesh.area()).abs() < 1e-6);
+    assert!(quad.n.dot(Vec3A::NEG_Y) > 0.999_999, "emits downward: {}", quad.n);
+    assert!(!quad.two_sided);
+    assert_eq!(mesh.power(), Light::Quad(quad.clone()).power());
+    let quad = Light::Quad(quad);
+    for p in [Vec3A::ZERO, Vec3A::new(0.7, 0.5, -0.3), Vec3A::new(0.1, 1.8, 0.0)] {
+        let want = polygon_irradiance(p, Vec3A::Y, &[a, b, c, d], 2.0);
+        let got = irradiance(&quad, p, Vec3A::Y, 200_000);
+        assert!(
+            ((got - want as f64) / want as f64).abs() < 0.01,
+            "at {p}: {got} vs {want}"
+        );
+    }
+    // Seen from above (the back), nothing.
+    assert_eq!(
+        irradiance(&quad, Vec3A::new(0.0, 3.0, 0.0), Vec3A::NEG_Y, 1000),
+        0.0
+    );
+    // Either diagonal, and the triangles listed in either order.
+    for tris in [vec![[a, b, d], [b, c, d]], vec![[c, d, a], [a, b, c]]] {
+        let q = MeshLight::new(tris, Rgb::ONE, true)
+            .expect("area")
+            .as_parallelogram();
+        let q = q.expect("a rectangle");
+        assert!((q.area - 0.8).abs() < 1e-6 && q.two_sided);
+    }
+    // Not one parallelogram: a kite, triangles wound apart, three triangles,
+    // two triangles without a shared edge.
+    let kite = Vec3A::new(-0.8, 2.0, 0.4);
+    let not = [
+        vec![[a, b, c], [a, c, kite]],
+        vec![[a, b, c], [a, d, c]],
+        vec![[a, b, c], [a, c, d], [a, c, d]],
+        vec![
+            [a, b, c],
+            [a + Vec3A::X * 3.0, b + Vec3A::X * 3.0, c + Vec3A::X * 3.0],
+        ],
+    ];
+    for tris in not {
+        let m = MeshLight::new(tris.clone(), Rgb::ONE, false).expect("area");
+        assert!(m.as_parallelogram().is_none(), "{tris:?}");
     }
 }

@@ -130,52 +130,37 @@ fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
     )
 }
 
-/// Bounds of one light; `None` for the environment (infinitely far).
+/// Bounds of one light; `None` for the environment (infinitely far). Each
+/// light says what bounds it ([`Light::bounds`], beside its model); the
+/// power they weigh is the same for all.
 pub fn light_bounds(light: &Light) -> Option<LightBounds> {
     let phi = luminance(light.power()).max(0.0);
     let phi = if phi.is_finite() { phi } else { 0.0 };
-    let surface = |bounds: Aabb, w: Vec3A, cos_theta_o: f32, two_sided: bool| LightBounds {
-        bounds,
-        w,
-        phi,
-        cos_theta_o,
-        cos_theta_e: 0.0,
-        two_sided,
-    };
-    let ball = |c: Vec3A, r: f32| Aabb {
-        min: c - Vec3A::splat(r),
-        max: c + Vec3A::splat(r),
-    };
-    Some(match light {
-        Light::Point(l) => LightBounds {
-            bounds: ball(l.position, 0.0),
-            w: Vec3A::Z,
+    light.bounds(phi)
+}
+
+impl LightBounds {
+    /// An emitting surface: its points in `bounds`, its normals in the cone
+    /// (`w`, `cos_theta_o`), each emitting over its hemisphere (θe = π/2).
+    pub fn surface(bounds: Aabb, w: Vec3A, cos_theta_o: f32, two_sided: bool, phi: f32) -> Self {
+        LightBounds {
+            bounds,
+            w,
             phi,
-            cos_theta_o: -1.0,
+            cos_theta_o,
             cos_theta_e: 0.0,
-            two_sided: false,
-        },
-        // The cone where the spot emits at all: θo + θe = its total half-angle.
-        Light::Spot(l) => LightBounds {
-            bounds: ball(l.position, 0.0),
-            w: l.direction.normalize_or(Vec3A::Z),
-            phi,
-            cos_theta_o: 1.0,
-            cos_theta_e: l.cos_total,
-            two_sided: false,
-        },
-        Light::Quad(l) => {
-            let b = Aabb::from_points(&[l.corner, l.corner + l.u, l.corner + l.v, l.corner + l.u + l.v]);
-            surface(b, l.n, 1.0, l.two_sided)
+            two_sided,
         }
-        Light::Sphere(l) => surface(ball(l.center, l.radius), Vec3A::Z, -1.0, l.two_sided),
-        Light::Sdf(l) => surface(ball(l.center, l.radius), Vec3A::Z, -1.0, l.two_sided),
-        Light::Mesh(l) => {
-            let (b, w, cos_theta_o) = l.bounds_and_normal_cone();
-            surface(b, w, cos_theta_o, l.two_sided)
+    }
+
+    /// The box around the ball of centre `c` and radius `r` (a point when
+    /// `r` is 0).
+    pub fn ball(c: Vec3A, r: f32) -> Aabb {
+        Aabb {
+            min: c - Vec3A::splat(r),
+            max: c + Vec3A::splat(r),
         }
-        Light::Environment(_) => return None,
-    })
+    }
 }
 
 /// Children per node: four, in SIMD lanes, so a pick walks half the levels
@@ -357,7 +342,7 @@ impl LightTree {
                 bounds.filter(|lb| lb.phi > 0.0 && lb.bounds.min.is_finite() && lb.bounds.max.is_finite())
             {
                 items.push((i as u32, lb))
-            } else if let (Light::Environment(e), None) = (l, &bounds)
+            } else if let (Some(e), None) = (l.as_environment(), &bounds)
                 && luminance(e.power()) > 0.0
                 && env.is_none()
             {

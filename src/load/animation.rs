@@ -47,12 +47,7 @@ impl Checker {
         }
         self.camera_time(&scene.camera);
         for (i, o) in scene.objects.iter().enumerate() {
-            if let ObjectDesc::Instance {
-                keys,
-                transform,
-                emission,
-                ..
-            } = o
+            if let ObjectDesc::Instance { keys, transform, .. } = o
                 && !keys.is_empty()
             {
                 let path = format!("objects[{i}]");
@@ -63,17 +58,38 @@ impl Checker {
                         "move the steps into each key's `transform`",
                     );
                 }
-                if emission.is_some() {
-                    self.push(
-                        &format!("{path}.emission"),
-                        "a keyed instance cannot emit yet: its light would be sampled where it stood",
-                        "keep emitters still, or light the scene with other lights",
-                    );
-                }
                 self.key_times(&format!("{path}.keys"), keys.iter().map(|k| k.frame));
                 for (k, key) in keys.iter().enumerate() {
                     self.steps(&format!("{path}.keys[{k}].transform"), &key.transform);
                 }
+                self.mirror_flips(&path, keys);
+            }
+        }
+    }
+
+    /// Keys of which one mirrors and the next does not (their determinants
+    /// differ in sign): the stretch interpolated between them passes
+    /// through zero, where the instance is flat, cannot be inverted to
+    /// trace rays, and as an emitter has no area to sample.
+    fn mirror_flips(&mut self, path: &str, keys: &[TransformKeyDesc]) {
+        let sign = |k: &TransformKeyDesc| {
+            let d = compose(&k.transform).determinant();
+            (d.is_finite() && d != 0.0).then_some(d > 0.0)
+        };
+        for (k, w) in keys.windows(2).enumerate() {
+            if let (Some(a), Some(b)) = (sign(&w[0]), sign(&w[1]))
+                && a != b
+            {
+                self.push(
+                    &format!("{path}.keys[{}].transform", k + 1),
+                    format!(
+                        "key {} {} and key {k} {}: between them the instance turns inside out through a flat placement",
+                        k + 1,
+                        if b { "does not mirror" } else { "mirrors" },
+                        if a { "does not" } else { "does" },
+                    ),
+                    "give every key the same handedness (an even or an odd number of negative scale factors)",
+                );
             }
         }
     }

@@ -8,17 +8,26 @@
 //!
 //! Brackets inside strings and comments (`//`, nested `/* */`) do not count;
 //! a string or comment that runs to the end of the file is reported at its
-//! opening.
+//! opening. Brackets nested past the limit stop reading too, at the first
+//! bracket too deep.
 
 use super::slip::Slip;
 use crate::diagnostic::line_col;
 use crate::syntax::lex::{Kind, Literal, Unclosed};
+use crate::syntax::nesting::TooDeep;
 use crate::syntax::tree::{Fault, Read};
 
 /// The first unbalanced bracket (or unclosed string or comment) in `text`,
 /// read as `tree`: a bracket closed wrongly before the unclosed literal,
 /// else that literal, else the innermost bracket left open at the end.
 pub(super) fn check(text: &str, tree: &Read) -> Option<Slip> {
+    // Nothing was read past it (`source::read` refuses it before serde).
+    if let Some(deep) = tree.faults.iter().find_map(|f| match f {
+        Fault::TooDeep(deep) => Some(deep),
+        _ => None,
+    }) {
+        return Some(too_deep(deep));
+    }
     let wrong_close = tree.faults.iter().find_map(|f| match f {
         Fault::Mismatch { close, at, open } => Some(mismatch(text, open, *close, *at)),
         Fault::Stray {
@@ -46,6 +55,11 @@ pub(super) fn check(text: &str, tree: &Read) -> Option<Slip> {
             closer(o)
         )),
     ))
+}
+
+/// Brackets nested past the limit, at the first bracket too deep.
+pub(super) fn too_deep(deep: &TooDeep) -> Slip {
+    Slip::new(deep.at..deep.at + 1, deep.to_string(), Some(deep.help()))
 }
 
 fn closer(open: char) -> char {

@@ -17,7 +17,7 @@ use crate::geometry::{Geometry, Shape};
 use crate::lights::caustic::{self, CausticEmitters};
 use crate::lights::{Emission, Light, LightPicker, Selection};
 use crate::materials::Bxdf as _;
-use crate::materials::Material;
+use crate::materials::{Emitter, Material};
 use crate::scene::Scene;
 use crate::view::View;
 use std::path::{Path, PathBuf};
@@ -97,7 +97,7 @@ pub fn build_in(
         .collect();
     let (media, media_index) = super::medium::build_media(desc, base)?;
     let emitter = materials.len() as u32;
-    materials.push(Material::Emitter);
+    materials.push(Material::Emitter(Emitter));
     let mut ctx = BuildContext {
         desc,
         base,

@@ -28,6 +28,68 @@ pub fn to_json(desc: &SceneDesc) -> Result<String, String> {
         .map_err(|e| e.to_string())
 }
 
+/// `out`, the canonical text of the scene read from `src`, with each number
+/// spelled as `src` spells it at the same scene path when both read as the
+/// same `f32`. The canonical text prints the value the scene holds, so
+/// `1e-50` became `0.0` and `40.000001` became `40.0`: the same scene to
+/// ronray, but not the text its author wrote, and `fmt --canonical` ran
+/// twice must not drift. Only spellings valid in both RON and JSON are
+/// kept (`1e-50`, not `.5` or `1_000`).
+pub fn keep_number_spellings(src: &str, out: &str) -> String {
+    use crate::syntax::spans::Spans;
+    let (from, to) = (Spans::scan(src), Spans::scan(out));
+    let mut swaps: Vec<(std::ops::Range<usize>, &str)> = to
+        .iter()
+        .filter_map(|(path, r)| {
+            let written = &src[from.get(path)?];
+            let printed = &out[r.clone()];
+            let same = is_plain_number(written)
+                && is_plain_number(printed)
+                && written != printed
+                && written.parse::<f64>().ok()? as f32 == printed.parse::<f64>().ok()? as f32;
+            same.then_some((r, written))
+        })
+        .collect();
+    swaps.sort_by_key(|(r, _)| std::cmp::Reverse(r.start));
+    let mut text = out.to_string();
+    for (r, written) in swaps {
+        text.replace_range(r, written);
+    }
+    text
+}
+
+/// A JSON number (`-12`, `0.5`, `1e-50`), which RON reads too.
+fn is_plain_number(t: &str) -> bool {
+    let b = t.strip_prefix('-').unwrap_or(t).as_bytes();
+    let digits = |i: &mut usize| {
+        let s = *i;
+        while *i < b.len() && b[*i].is_ascii_digit() {
+            *i += 1;
+        }
+        *i > s
+    };
+    let mut i = 0;
+    if !digits(&mut i) || (b[0] == b'0' && i > 1) {
+        return false;
+    }
+    if b.get(i) == Some(&b'.') {
+        i += 1;
+        if !digits(&mut i) {
+            return false;
+        }
+    }
+    if matches!(b.get(i), Some(b'e' | b'E')) {
+        i += 1;
+        if matches!(b.get(i), Some(b'+' | b'-')) {
+            i += 1;
+        }
+        if !digits(&mut i) {
+            return false;
+        }
+    }
+    i == b.len()
+}
+
 /// Whether RON/JSON text has comments (outside strings).
 pub fn has_comments(text: &str) -> bool {
     let b = text.as_bytes();

@@ -37,7 +37,11 @@ impl Format {
             }
             rest = after.trim_start();
         }
-        Format::Ron(ron::Options::default().with_default_extension(ext))
+        Format::Ron(
+            ron::Options::default()
+                .with_default_extension(ext)
+                .with_recursion_limit(serde_depth()),
+        )
     }
 
     /// Deserialises `text[range]` on its own; an error is located in `text`.
@@ -58,7 +62,11 @@ impl Format {
                 (start..end, words::ron_error(&e.code, &slice[start..]))
             }
             Format::Json => {
-                let e = match serde_json::from_str::<T>(slice) {
+                let mut de = serde_json::Deserializer::from_str(slice);
+                // The text passed the nesting check (`source::read`); serde_json's
+                // own fixed limit of 128 would not follow a raised one.
+                de.disable_recursion_limit();
+                let e = match T::deserialize(&mut de).and_then(|v| de.end().map(|()| v)) {
                     Ok(v) => return Ok(v),
                     Err(e) => e,
                 };
@@ -70,6 +78,14 @@ impl Format {
         let help = words::odd_character(&text[span.start..]).or(help);
         Err(Slip::new(span, message, help))
     }
+}
+
+/// How deep `ron` may recurse: it counts an enum, its variant's struct and
+/// an implicit `Some` apart, up to three levels for one bracket, so four
+/// per bracket of the nesting limit keeps the bracket limit (checked first,
+/// with its own message) the one a file meets.
+fn serde_depth() -> usize {
+    4 * crate::syntax::nesting::limit()
 }
 
 /// Byte offset of serde_json's 1-based line and byte column (the last byte

@@ -15,7 +15,7 @@
 use super::document::Gaps;
 use super::source;
 use crate::desc::{IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
-use crate::diagnostic::{Diagnostic, Problem, Report};
+use crate::diagnostic::{Diagnostic, LineIndex, Problem, Report};
 use crate::syntax::spans::Spans;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -54,18 +54,23 @@ impl Composition {
     /// at the entry that wrote them. Problems inside a stand-in for a broken
     /// entry are dropped: that entry's parse error is already reported.
     pub fn locate(&self, problems: &[Problem]) -> Report {
+        // Each file scanned and line-indexed once, and origins found by
+        // hashing: per problem, either was a pass over a whole file or over
+        // every merged entry (quadratic in the number of mistakes).
         let spans: Vec<Spans> = self.sources.iter().map(|(_, t)| Spans::scan(t)).collect();
+        let lines: Vec<LineIndex> = self.sources.iter().map(|(_, t)| LineIndex::new(t)).collect();
+        let origins: HashMap<&str, &Origin> = self.origins.iter().map(|o| (o.merged.as_str(), o)).collect();
         let diagnostics = problems
             .iter()
             .filter_map(|p| {
-                let (file, path) = self.origin_of(&p.path);
+                let (file, path) = origin_of(&origins, &p.path);
                 let path = self
                     .gaps
                     .get(file)
                     .map_or(Some(path.clone()), |g| g.original(&path))?;
-                let (fpath, text) = &self.sources[file];
+                let fpath = &self.sources[file].0;
                 let p = Problem { path, ..p.clone() };
-                Some(source::locate(fpath, text, &spans[file], &p))
+                Some(source::locate(fpath, &lines[file], &spans[file], &p))
             })
             .collect();
         Report {
@@ -83,21 +88,25 @@ impl Composition {
             .and_then(|i| self.gaps.get(i))
             .is_some_and(|g| g.is_repaired(path))
     }
+}
 
-    fn origin_of(&self, path: &str) -> (usize, String) {
-        let best = self
-            .origins
-            .iter()
-            .filter(|o| {
-                path.strip_prefix(o.merged.as_str())
-                    .is_some_and(|rest| rest.is_empty() || rest.starts_with(['.', '[']))
-            })
-            .max_by_key(|o| o.merged.len());
-        match best {
-            Some(o) => (o.file, format!("{}{}", o.original, &path[o.merged.len()..])),
-            None => (0, path.to_string()),
+/// The file and the path as written there of `path` in the composed scene:
+/// the entry whose merged path is the longest prefix of `path` that ends
+/// where a path segment does (`objects[3]` for `objects[3].material`, not
+/// for `objects[31]`); file 0 when no entry names it.
+fn origin_of(origins: &HashMap<&str, &Origin>, path: &str) -> (usize, String) {
+    let ends = path
+        .char_indices()
+        .filter(|(_, c)| matches!(c, '.' | '['))
+        .map(|(i, _)| i)
+        .chain([path.len()]);
+    let ends: Vec<usize> = ends.collect();
+    for &end in ends.iter().rev() {
+        if let Some(o) = origins.get(&path[..end]) {
+            return (o.file, format!("{}{}", o.original, &path[end..]));
         }
     }
+    (0, path.to_string())
 }
 
 /// Merges `desc.include` (recursively) into `desc`. Mistakes inside an
@@ -173,9 +182,9 @@ pub fn compose(
             original: format!("objects[{i}]"),
         });
     }
-    for name in desc.materials.keys() {
-        c.origins.retain(|o| o.merged != format!("materials.{name}"));
-    }
+    // One pass: formatting every name against every origin was quadratic.
+    let own: HashSet<String> = desc.materials.keys().map(|n| format!("materials.{n}")).collect();
+    c.origins.retain(|o| !own.contains(&o.merged));
     merged.lights.append(&mut desc.lights);
     merged.objects.append(&mut desc.objects);
     desc.lights = merged.lights;
@@ -221,7 +230,7 @@ impl Composer {
         let (p, t) = &self.c.sources[at.file];
         let d = source::locate(
             p,
-            t,
+            &LineIndex::new(t),
             &Spans::scan(t),
             &Problem::new(at.path.clone(), msg).help(help),
         );
@@ -387,8 +396,12 @@ impl Composer {
             .help(format!(
                 "it is first defined at {first}; rename one, or define it in the including scene to choose"
             ));
-            self.errors
-                .push(source::locate(full, text, &Spans::scan(text), &p));
+            self.errors.push(source::locate(
+                full,
+                &LineIndex::new(text),
+                &Spans::scan(text),
+                &p,
+            ));
             return;
         }
         self.defined

@@ -307,6 +307,19 @@ fn repair_texels(m: &mut EnvMap) -> Option<String> {
     (!parts.is_empty()).then(|| parts.join(", "))
 }
 
+/// What the `envmap` fuzz target runs: the sky map at `path` read as the
+/// build step reads it (limits, repair of texels that are not radiance)
+/// and its sampling tables built; whether it was accepted.
+pub fn fuzz_sky_map(path: &Path) -> bool {
+    let Ok(mut m) = read_map(path) else {
+        return false;
+    };
+    let _ = repair_texels(&mut m);
+    let env = EnvironmentLight::from_map(m, 1.0, 0.0);
+    std::hint::black_box(&env);
+    true
+}
+
 /// Reads an environment map into linear RGB floats: `.exr` through the `exr`
 /// crate (blocks decompressed on all cores, pixels written straight into the
 /// map), `.hdr` through `image`.

@@ -11,10 +11,14 @@ use crate::desc::{
 };
 use crate::diagnostic::Problem;
 use crate::materials::{
+    BlinnPhongMaterial, CookTorranceMaterial, GlassMaterial, LambertMaterial, MetalPlasticMaterial,
+    Microfacet, MirrorMaterial, OrenNayarMaterial, PhongMaterial, RoughCoat, RoughGlassMaterial,
+    RoughPlasticMaterial,
+};
+use crate::materials::{
     Channel, ColorTex, Cutout, DielectricFresnel, Distribution, Fresnel, ImageLookup, Material, Metal,
     Pattern, Perturb, Roughness, ScalarTex, Surface, Tex, Texture, UvTransform,
 };
-use crate::materials::{Microfacet, RoughCoat};
 use crate::math::Rgb;
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -491,37 +495,37 @@ pub fn build_materials(
 fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut Surface) -> Material {
     let p = |field: &str| format!("{path}.{field}");
     match m {
-        MaterialDesc::Lambert { albedo } => Material::Lambert {
+        MaterialDesc::Lambert { albedo } => Material::Lambert(LambertMaterial {
             albedo: b.color(albedo, &p("albedo"), true),
-        },
-        MaterialDesc::OrenNayar { albedo, sigma } => Material::OrenNayar {
+        }),
+        MaterialDesc::OrenNayar { albedo, sigma } => Material::OrenNayar(OrenNayarMaterial {
             albedo: b.color(albedo, &p("albedo"), true),
             sigma: b.scalar(sigma, &p("sigma")),
-        },
+        }),
         MaterialDesc::Phong {
             diffuse,
             specular,
             exponent,
-        } => Material::Phong {
+        } => Material::Phong(PhongMaterial {
             kd: b.color(diffuse, &p("diffuse"), true),
             ks: b.color(specular, &p("specular"), true),
             exponent: b.scalar(exponent, &p("exponent")),
-        },
+        }),
         MaterialDesc::BlinnPhong {
             diffuse,
             specular,
             exponent,
-        } => Material::BlinnPhong {
+        } => Material::BlinnPhong(BlinnPhongMaterial {
             kd: b.color(diffuse, &p("diffuse"), true),
             ks: b.color(specular, &p("specular"), true),
             exponent: b.scalar(exponent, &p("exponent")),
-        },
+        }),
         MaterialDesc::CookTorrance {
             distribution,
             roughness,
             roughness_unit,
             fresnel,
-        } => Material::CookTorrance {
+        } => Material::CookTorrance(CookTorranceMaterial {
             distribution: distribution_of(*distribution),
             roughness: b.roughness(roughness, *roughness_unit, &p("roughness")),
             fresnel: match fresnel {
@@ -532,28 +536,28 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
                 FresnelDesc::Metal(m) => metal(*m).fresnel(),
                 FresnelDesc::Schlick { f0 } => Fresnel::Schlick { f0: (*f0).into() },
             },
-        },
+        }),
         MaterialDesc::MetalPlastic {
             base_color,
             roughness,
             roughness_unit,
             metalness,
-        } => Material::MetalPlastic {
+        } => Material::MetalPlastic(MetalPlasticMaterial {
             base_color: b.color(base_color, &p("base_color"), true),
             roughness: b.roughness(roughness, *roughness_unit, &p("roughness")),
             metalness: b.scalar(metalness, &p("metalness")),
-        },
-        MaterialDesc::Mirror { tint } => Material::Mirror {
+        }),
+        MaterialDesc::Mirror { tint } => Material::Mirror(MirrorMaterial {
             tint: b.color(tint, &p("tint"), true),
-        },
-        MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass {
+        }),
+        MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass(GlassMaterial {
             ior: b.scalar(ior, &p("ior")),
             tint: b.color(tint, &p("tint"), true),
             fresnel: match fresnel {
                 DielectricFresnelDesc::Exact => DielectricFresnel::Exact,
                 DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
             },
-        },
+        }),
         MaterialDesc::RoughPlastic {
             diffuse,
             specular,
@@ -570,11 +574,11 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
                 }
                 RoughnessUnitDesc::Alpha => Microfacet::from_alpha(distribution_of(*distribution), r),
             };
-            Material::RoughPlastic {
+            Material::RoughPlastic(RoughPlasticMaterial {
                 diffuse: b.color(diffuse, &p("diffuse"), true),
                 specular: b.color(specular, &p("specular"), true),
                 coat: b.coat(microfacet, ior.constant().unwrap_or(1.5)),
-            }
+            })
         }
         MaterialDesc::RoughGlass {
             ior,
@@ -582,12 +586,12 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
             distribution,
             roughness,
             roughness_unit,
-        } => Material::RoughGlass {
+        } => Material::RoughGlass(RoughGlassMaterial {
             distribution: distribution_of(*distribution),
             roughness: b.roughness(roughness, *roughness_unit, &p("roughness")),
             ior: b.scalar(ior, &p("ior")),
             tint: b.color(tint, &p("tint"), true),
-        },
+        }),
         MaterialDesc::NormalMap {
             map,
             strength,

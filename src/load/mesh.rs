@@ -10,7 +10,8 @@
 //! MTL material when the group keeps that material (a scene material that
 //! replaces it replaces its emission too). Each emitting group of each
 //! placed mesh is one [`MeshLight`] with its own world-space copy of the
-//! group's triangles.
+//! group's triangles; a moving instance's light keeps them in the mesh's
+//! space with the instance's motion.
 //!
 //! The check step only makes sure each OBJ file exists (`Checker::file`);
 //! parsing the file is the build's work, and its problems are reported at
@@ -27,7 +28,7 @@ use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::ObjData;
 use crate::geometry::{Instance, MeshQuad, MeshTriangle, NO_LIGHT, Shape};
 use crate::lights::{Emission, Light, MeshLight};
-use crate::materials::{ColorTex, Material};
+use crate::materials::{ColorTex, LambertMaterial, Material};
 use crate::math::Rgb;
 use glam::{Affine3A, Mat4, Vec2, Vec3};
 use std::collections::BTreeMap;
@@ -67,7 +68,11 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         _ => return,
     };
     let overrides = o.material_overrides().cloned().unwrap_or_default();
-    let materials = resolve(ctx, &path, &loaded, o.material(), &overrides);
+    // An index-matched medium boundary (a medium and no material) is never
+    // shaded: its grey slots are placeholders, not worth a note.
+    let (interior, exterior) = o.media();
+    let null = (interior.is_some() || exterior.is_some()) && o.material().is_none() && overrides.is_empty();
+    let materials = resolve(ctx, &path, &loaded, o.material(), &overrides, null);
     let emission = slot_emission(ctx, o, &path, &loaded, &materials);
     let id = ctx.geometry.instances.len() as u32;
     let mut instance = Instance::new(loaded.mesh, transform, materials.into_boxed_slice());
@@ -77,7 +82,7 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         let placed = Affine3A::from_mat4(track.at(shutter.0));
         instance = Instance::new(loaded.mesh, placed, instance.materials);
         if track.moves_between(shutter.0, shutter.1) {
-            instance = instance.with_motion(crate::geometry::moving::InstanceMotion { track, shutter });
+            instance = instance.with_motion(crate::geometry::moving::InstanceMotion::new(track, shutter));
         }
     }
     if emission.iter().any(Option::is_some) {
@@ -164,13 +169,21 @@ pub(super) fn mesh_light(
 ) -> u32 {
     let mesh = &ctx.geometry.meshes[instance.mesh as usize];
     let in_slot = || (0..mesh.triangle_count() as u32).filter(|&t| mesh.slot(t) as usize == slot);
+    // A moving instance's light keeps the triangles in the mesh's space
+    // and places them at each time (`lights/mesh.rs`).
     let tris: Vec<_> = in_slot()
-        .map(|t| instance.world_triangle(t, &ctx.geometry.meshes))
+        .map(|t| match instance.motion() {
+            None => instance.world_triangle(t, &ctx.geometry.meshes),
+            Some(_) => {
+                let (a, b, c) = mesh.corners(t);
+                [a, b, c]
+            }
+        })
         .collect();
     // Corner UVs as a hit interpolates them (`Mesh::hit`: barycentric
     // (0, 0), (1, 0), (0, 1) without UVs), in `world_triangle`'s order,
     // which swaps two corners under a mirroring transform.
-    let mirrored = instance.world_from_object.matrix3.determinant() < 0.0;
+    let mirrored = instance.motion().is_none() && instance.world_from_object.matrix3.determinant() < 0.0;
     let uvs: Vec<[Vec2; 3]> = if emission.is_textured() {
         in_slot()
             .map(|t| {
@@ -185,9 +198,16 @@ pub(super) fn mesh_light(
     } else {
         Vec::new()
     };
-    match MeshLight::new(tris, emission.radiance, two_sided).map(|l| l.with_emission(emission, uvs)) {
+    let light = MeshLight::new(tris, emission.radiance, two_sided).map(|l| l.with_emission(emission, uvs));
+    match light.map(|l| match instance.motion() {
+        Some(m) => l.with_motion(m.clone()),
+        None => l,
+    }) {
         Some(light) => {
-            ctx.lights.push(Light::Mesh(light));
+            ctx.lights.push(match light.as_parallelogram() {
+                Some(quad) => Light::Quad(quad),
+                None => Light::Mesh(light),
+            });
             ctx.lights.len() as u32 - 1
         }
         None => NO_LIGHT,
@@ -238,11 +258,15 @@ fn load(ctx: &mut BuildContext, file: &str, smooth: bool, at: &str) -> Option<Ob
 fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> LoadedMesh {
     let obj = ctx.base.join(file);
     let dir = obj.parent().unwrap_or(ctx.base);
+    // The MTL's notes say which object's OBJ they come from.
+    let mut notes = Vec::new();
     let mtl = data
         .materials
         .iter()
-        .map(|m| ctx.mtl.add(m, dir, &mut ctx.notes))
+        .map(|m| ctx.mtl.add(m, dir, &mut notes))
         .collect();
+    ctx.notes
+        .extend(notes.into_iter().map(|n| format!("{at} ({file}): {n}")));
     for why in std::mem::take(&mut ctx.mtl.refused) {
         let help = "an untrusted scene may read only files inside --root";
         ctx.problems.push(Problem::new(at, why).help(help));
@@ -266,6 +290,7 @@ fn resolve(
     l: &LoadedMesh,
     material: Option<&str>,
     overrides: &BTreeMap<String, String>,
+    null: bool,
 ) -> Vec<u32> {
     let mtl_names: Vec<Option<String>> = l
         .groups
@@ -300,22 +325,26 @@ fn resolve(
             if let Some(m) = g.material {
                 return l.mtl[m];
             }
-            grey(ctx, path, &g.name)
+            grey(ctx, path, &g.name, null)
         })
         .collect()
 }
 
-/// The grey default for a group that has no material from anywhere.
-fn grey(ctx: &mut BuildContext, path: &str, group: &str) -> u32 {
+/// The grey default for a group that has no material from anywhere, with
+/// a note the first time a shaded (not `null`) group takes it.
+fn grey(ctx: &mut BuildContext, path: &str, group: &str, null: bool) -> u32 {
+    if !null && !ctx.mesh_state.grey_noted {
+        ctx.mesh_state.grey_noted = true;
+        ctx.notes.push(format!(
+            "{path}: OBJ group `{group}` has no material and the scene gives none; using grey Lambert (0.5)"
+        ));
+    }
     if let Some(g) = ctx.mesh_state.grey {
         return g;
     }
-    ctx.notes.push(format!(
-        "{path}: OBJ group `{group}` has no material and the scene gives none; using grey Lambert (0.5)"
-    ));
-    let g = ctx.mtl.push(Material::Lambert {
+    let g = ctx.mtl.push(Material::Lambert(LambertMaterial {
         albedo: ColorTex::Const(Rgb::splat(0.5)),
-    });
+    }));
     ctx.mesh_state.grey = Some(g);
     g
 }

@@ -21,4 +21,7 @@ pub(super) struct MeshState {
     pub shared: HashMap<String, Option<LoadedMesh>>,
     /// The grey default material, created on first use.
     pub grey: Option<u32>,
+    /// Whether the note about the grey default was given (once per scene,
+    /// and never for index-matched boundaries, which are never shaded).
+    pub grey_noted: bool,
 }

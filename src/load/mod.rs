@@ -41,4 +41,6 @@ mod view;
 pub mod warnings;
 mod words;
 
+#[doc(hidden)]
+pub use light::fuzz_sky_map;
 pub use pipeline::{LoadError, Loaded, Overrides, load, load_str, load_with};

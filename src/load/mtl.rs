@@ -17,8 +17,9 @@
 //! `Cutout`. `map_Bump`/`bump`/`norm` are not used yet — mesh hits carry no
 //! tangent frame from their UVs — and each gives a note naming the statement.
 //!
-//! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), not
-//! clamped) makes the groups that use the material emit from the
+//! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), at
+//! most [`MAX_MTL_RADIANCE`]; NaN, infinite and negative channels of any
+//! colour read as 0, each repair with a note) makes the groups that use the material emit from the
 //! counter-clockwise front of their triangles (see `mesh.rs`); `map_Ke` (sRGB)
 //! is an emission texture, times `Ke` when both are given, alone when `Ke` is
 //! not. The material itself is mapped as above, so the surface also reflects
@@ -26,8 +27,9 @@
 
 use crate::lights::Emission;
 use crate::materials::{
-    Channel, ColorTex, Cutout, DielectricFresnel, ImageLookup, Material, Roughness, ScalarTex, Surface, Tex,
-    Texture, UvTransform,
+    Channel, ColorTex, Cutout, DielectricFresnel, GlassMaterial, ImageLookup, LambertMaterial, Material,
+    MetalPlasticMaterial, MirrorMaterial, PhongMaterial, Roughness, ScalarTex, Surface, Tex, Texture,
+    UvTransform,
 };
 use crate::math::Rgb;
 use std::collections::HashMap;
@@ -59,6 +61,53 @@ pub struct MtlMaterials {
 
 fn rgb(c: Option<[f32; 3]>, default: f32) -> Rgb {
     Rgb::from(c.unwrap_or([default; 3])).clamp(Rgb::ZERO, Rgb::ONE)
+}
+
+/// Largest `Ke` channel read, in W/(m²·sr): a hundred thousand times the
+/// sun's disc (~2·10⁷), and far enough below `f32::MAX` (3.4·10³⁸) that a
+/// light's power (radiance × area × π, summed over its triangles) stays
+/// finite; `Ke 1e38 1e38 1e38` on two triangles made it infinite and the
+/// light sampling weights NaN.
+pub const MAX_MTL_RADIANCE: f32 = 1e12;
+
+/// An MTL colour statement (`key`, of material `name`) with the channels
+/// that are no colour repaired, and a note saying which: NaN, infinite and
+/// negative read as 0, above `max` as `max`. Before, they were dropped or
+/// clamped without a word (a NaN `Ke` turned the light off, a `Ke` of
+/// 1e38 whitened the image).
+fn repaired(name: &str, key: &str, c: [f32; 3], max: f32, notes: &mut Vec<String>) -> [f32; 3] {
+    let mut found: Vec<&str> = Vec::new();
+    let out = c.map(|x| {
+        let (v, what) = if x.is_nan() {
+            (0.0, "NaN")
+        } else if x.is_infinite() {
+            (0.0, "infinite")
+        } else if x < 0.0 {
+            (0.0, "negative")
+        } else if x > max {
+            (max, "above the largest value read")
+        } else {
+            return x;
+        };
+        if !found.contains(&what) {
+            found.push(what);
+        }
+        v
+    });
+    if !found.is_empty() {
+        notes.push(format!(
+            "MTL material `{name}`: `{key} {} {} {}` has a channel that is {}; read as `{key} {} {} {}` \
+             (NaN, infinite and negative as 0, at most {max:e}); fix the MTL file to silence this",
+            c[0],
+            c[1],
+            c[2],
+            found.join(", "),
+            out[0],
+            out[1],
+            out[2]
+        ));
+    }
+    out
 }
 
 impl MtlMaterials {
@@ -139,8 +188,11 @@ impl MtlMaterials {
 
     /// Maps one MTL material (textures relative to `dir`).
     pub fn add(&mut self, m: &tobj::Material, dir: &Path, notes: &mut Vec<String>) -> u32 {
-        let kd = rgb(m.diffuse, 0.8);
-        let ks = rgb(m.specular, 0.0);
+        let colour = |key: &str, c: Option<[f32; 3]>, notes: &mut Vec<String>| {
+            c.map(|c| repaired(&m.name, key, c, 1.0, notes))
+        };
+        let kd = rgb(colour("Kd", m.diffuse, notes), 0.8);
+        let ks = rgb(colour("Ks", m.specular, notes), 0.0);
         let illum = m.illumination_model.unwrap_or(2);
         let tr = m
             .unknown_param
@@ -155,7 +207,7 @@ impl MtlMaterials {
         // `map_Ke` alone glows at the map's value; with `Ke` it is scaled by it.
         let ke = m
             .emissive
-            .map(|e| Rgb::from(e).max(Rgb::ZERO))
+            .map(|e| Rgb::from(repaired(&m.name, "Ke", e, MAX_MTL_RADIANCE, notes)))
             .or(ke_map.map(|_| Rgb::ONE))
             .filter(|e| e.is_finite() && e.max_element() > 0.0)
             .map(|ke| match ke_map {
@@ -239,7 +291,7 @@ impl MtlMaterials {
                     (v.len() == 3).then(|| [v[0], v[1], v[2]])
                 })
                 .map_or(Rgb::ONE, |c| rgb(Some(c), 1.0));
-            Material::Glass {
+            Material::Glass(GlassMaterial {
                 ior: Tex::Const(
                     m.optical_density
                         .filter(|n| n.is_finite() && *n >= 1.0)
@@ -247,33 +299,33 @@ impl MtlMaterials {
                 ),
                 tint: ColorTex::Const(tint),
                 fresnel: DielectricFresnel::Exact,
-            }
+            })
         } else if illum == 3 {
             let tint = if ks.max_element() > 0.0 {
                 ks
             } else {
                 Rgb::splat(0.9)
             };
-            Material::Mirror {
+            Material::Mirror(MirrorMaterial {
                 tint: ColorTex::Const(tint),
-            }
+            })
         } else if pr.is_some() || pm.is_some() || pr_map.is_some() || pm_map.is_some() {
-            Material::MetalPlastic {
+            Material::MetalPlastic(MetalPlasticMaterial {
                 base_color: albedo,
                 roughness: Roughness {
                     tex: pr_map.unwrap_or(Tex::Const(pr.unwrap_or(0.5).clamp(0.0, 1.0))),
                     is_alpha: false,
                 },
                 metalness: pm_map.unwrap_or(Tex::Const(pm.unwrap_or(0.0).clamp(0.0, 1.0))),
-            }
+            })
         } else if ks.max_element() > 0.0 || ks_map.is_some() {
-            Material::Phong {
+            Material::Phong(PhongMaterial {
                 kd: albedo,
                 ks: ks_map.unwrap_or(ColorTex::Const(ks)),
                 exponent: ns_map.unwrap_or(Tex::Const(ns.unwrap_or(10.0))),
-            }
+            })
         } else {
-            Material::Lambert { albedo }
+            Material::Lambert(LambertMaterial { albedo })
         };
         let i = self.push(material);
         if let Some(opacity) = opacity {

@@ -22,9 +22,10 @@ pub struct Loaded {
     pub desc: SceneDesc,
     /// What building cost, and its notes.
     pub stats: BuildStats,
-    /// Every file the scene depends on (itself, its includes, OBJ files, the
-    /// MTL files they name and those files' textures, textures, environment
-    /// maps), for watch mode and `validate -v`.
+    /// Every file the scene depends on (itself first, its includes, OBJ
+    /// files, the MTL files they name and those files' textures, textures,
+    /// environment maps, glTF assets with their buffers and images, `.vol`
+    /// grids), for watch mode, `validate -v` and the farm's scene hash.
     pub files: Vec<PathBuf>,
     /// Located [`Severity::Warning`](crate::diagnostic::Severity) diagnostics
     /// for a scene that loads but will surprise (`load::warnings`), with the
@@ -250,6 +251,12 @@ pub fn load_str_with_meshes(
     }
     files.extend(desc.meshes.values().map(|m| base.join(&m.file)));
     files.extend(stats.mesh_inputs.iter().cloned());
+    // Density grids: read by the build like the rest, missing from this
+    // list until farm pieces were found merged across two grids.
+    files.extend(desc.media.values().filter_map(|m| match m {
+        crate::desc::MediumDesc::Grid { file, .. } => Some(base.join(file)),
+        crate::desc::MediumDesc::Homogeneous { .. } => None,
+    }));
     Ok(Loaded {
         scene,
         view,

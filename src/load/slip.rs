@@ -2,8 +2,8 @@
 //! diagnostic: what the bracket check (`brackets.rs`), the section reader
 //! (`sections.rs`) and [`super::format::Format::read`] report.
 
-use crate::diagnostic::Diagnostic;
-use crate::syntax::spans::Spans;
+use crate::diagnostic::{Diagnostic, LineIndex};
+use crate::syntax::spans::Nesting;
 use std::ops::Range;
 use std::path::Path;
 
@@ -25,9 +25,10 @@ impl Slip {
     }
 
     /// The located diagnostic, with the scene path of the value it is in.
-    pub(super) fn diagnostic(self, file: &Path, text: &str, spans: &Spans) -> Diagnostic {
-        let mut d = Diagnostic::new(file, text, Some(widen(text, self.span)), self.message);
-        d.path = spans.path_at(d.span.as_ref().map_or(0, |s| s.start));
+    pub(super) fn diagnostic(self, file: &Path, lines: &LineIndex, spans: &Nesting) -> Diagnostic {
+        let span = widen(lines.text(), self.span);
+        let mut d = Diagnostic::indexed(file, lines, Some(span.clone()), self.message);
+        d.path = spans.path_at(span.start);
         d.help = self.help;
         d
     }

@@ -2,12 +2,13 @@
 //! included files alike, and the one place a problem becomes a located
 //! diagnostic.
 //!
-//! A file that parses as a whole is done in one step. One that does not is
-//! read once as a [`crate::syntax::tree`] ([`parser::read`]) and checked for unbalanced
-//! brackets (`brackets.rs`), the only mistake that stops reading; otherwise
-//! it is read section by section along the tree's outline (`sections.rs`)
-//! so that every mistake in it is reported at once, in the user's words
-//! (`words.rs`).
+//! Text nested past the limit ([`nesting`]) is refused before anything
+//! recursive reads it. A file that parses as a whole is done in one step.
+//! One that does not is read once as a [`crate::syntax::tree`]
+//! ([`parser::read`]) and checked for unbalanced brackets (`brackets.rs`),
+//! the only mistake that stops reading; otherwise it is read section by
+//! section along the tree's outline (`sections.rs`) so that every mistake
+//! in it is reported at once, in the user's words (`words.rs`).
 
 use super::brackets;
 use super::document::{Document, Gaps};
@@ -16,10 +17,10 @@ use super::sections;
 use super::set::SetProblem;
 pub use super::slip::Slip;
 use crate::desc::SceneDesc;
-use crate::diagnostic::{Diagnostic, Problem, Report};
+use crate::diagnostic::{Diagnostic, LineIndex, Problem, Report};
 use crate::syntax::outline::Outline;
-use crate::syntax::parser;
 use crate::syntax::spans::Spans;
+use crate::syntax::{nesting, parser};
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -82,6 +83,15 @@ pub fn read_text(path: &Path) -> std::io::Result<String> {
 /// is in [`Parsed::diagnostics`], beside what could be read.
 pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
     let clean = without_bom(text);
+    // Before serde, which recurses per bracket (serde_json with no limit of
+    // its own); the tree read below checks its own tokens again.
+    if let Err(deep) = nesting::check(&clean, nesting::limit()) {
+        let slip = brackets::too_deep(&deep);
+        return Err(Report {
+            diagnostics: vec![slip.diagnostic(path, &LineIndex::new(text), &Spans::default().nesting())],
+            sources: vec![(path.to_path_buf(), text.to_string())],
+        });
+    }
     let format = Format::of(path, &clean);
     let mut whole = match format.read::<T>(&clean, 0..clean.len()) {
         Ok(desc) => {
@@ -99,13 +109,15 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
         whole = Slip::new(0..0, "the file is empty".into(), help);
     }
     // One read of the text's structure serves the bracket check, the
-    // outline and the location of every mistake.
+    // outline and the location of every mistake (through the line index and
+    // the sorted values: linear in the number of mistakes).
     let tree = parser::read(&clean);
     let spans = Spans::of(&tree);
+    let (lines, values) = (LineIndex::new(text), spans.nesting());
     let located = |slips: Vec<Slip>| -> Vec<Diagnostic> {
         slips
             .into_iter()
-            .map(|s| s.diagnostic(path, text, &spans))
+            .map(|s| s.diagnostic(path, &lines, &values))
             .collect()
     };
     let stop = |slip: Slip| Report {
@@ -140,8 +152,8 @@ pub fn parse(path: &Path, text: &str) -> Result<SceneDesc, Report> {
 }
 
 /// A problem found in a parsed file, located by its scene path.
-pub fn locate(file: &Path, text: &str, spans: &Spans, p: &Problem) -> Diagnostic {
-    let mut d = Diagnostic::new(file, text, spans.find(&p.path), p.message.clone());
+pub fn locate(file: &Path, lines: &LineIndex, spans: &Spans, p: &Problem) -> Diagnostic {
+    let mut d = Diagnostic::indexed(file, lines, spans.find(&p.path), p.message.clone());
     d.path = Some(p.path.clone());
     d.help = p.help.clone();
     d
@@ -150,8 +162,9 @@ pub fn locate(file: &Path, text: &str, spans: &Spans, p: &Problem) -> Diagnostic
 /// Semantic problems → diagnostics located through the file's text.
 pub fn located(path: &Path, text: &str, problems: &[Problem]) -> Report {
     let spans = Spans::scan(text);
+    let lines = LineIndex::new(text);
     Report {
-        diagnostics: problems.iter().map(|p| locate(path, text, &spans, p)).collect(),
+        diagnostics: problems.iter().map(|p| locate(path, &lines, &spans, p)).collect(),
         sources: vec![(path.to_path_buf(), text.to_string())],
     }
 }

@@ -25,7 +25,7 @@ pub const MAX_COORD: f32 = 1e15;
 pub const MAX_RR_DEPTH: u32 = 1024;
 /// Largest accepted number of paths a camera sample splits into: each
 /// continuation costs most of a path, and the gain is in the indirect light
-/// alone (see the README's *Integrator* section).
+/// alone (see `docs/integrators.md`).
 pub const MAX_SPLITS: u32 = 16;
 /// Largest accepted Whitted recursion depth.
 pub const MAX_DEPTH: u32 = 64;

@@ -3,8 +3,8 @@
 //! help lines, run on the unsaved text under the document's real path (so
 //! includes and OBJ files resolve), grouped by the file they point into.
 
-use super::text::range;
-use crate::diagnostic::{Diagnostic, Severity};
+use super::text::range_in;
+use crate::diagnostic::{Diagnostic, LineIndex, Severity};
 use crate::load::{LoadError, Overrides, pipeline::load_str_with_meshes};
 use crate::watch::mesh_cache::MeshCache;
 use lsp_types::{DiagnosticSeverity, Position, Range};
@@ -32,13 +32,17 @@ pub fn check(path: &Path, text: &str, meshes: &MeshCache) -> BTreeMap<PathBuf, V
             return out;
         }
     };
+    // Each file's lines indexed once for all its diagnostics.
+    let mut lines: Vec<(&Path, LineIndex)> = report
+        .sources
+        .iter()
+        .map(|(p, s)| (p.as_path(), LineIndex::new(s)))
+        .collect();
+    if !lines.iter().any(|(p, _)| *p == path) {
+        lines.push((path, LineIndex::new(text)));
+    }
     for d in &report.diagnostics {
-        let source = report
-            .sources
-            .iter()
-            .find(|(p, _)| *p == d.file)
-            .map(|(_, s)| s.as_str())
-            .or((d.file == path).then_some(text));
+        let source = lines.iter().find(|(p, _)| *p == d.file).map(|(_, l)| l);
         // `--set` problems and the like have no file of their own.
         let file = if d.file.extension().is_some() {
             d.file.clone()
@@ -62,9 +66,9 @@ fn plain(range: Range, message: String) -> lsp_types::Diagnostic {
 
 /// One loader diagnostic: its span (or line and column), severity, scene
 /// path, message and help.
-pub fn convert(d: &Diagnostic, source: Option<&str>) -> lsp_types::Diagnostic {
+pub fn convert(d: &Diagnostic, source: Option<&LineIndex>) -> lsp_types::Diagnostic {
     let r = match (&d.span, source) {
-        (Some(span), Some(src)) => range(src, span.clone()),
+        (Some(span), Some(lines)) => range_in(lines, span.clone()),
         _ if d.line > 0 => {
             let p = Position::new(d.line as u32 - 1, d.column.saturating_sub(1) as u32);
             Range::new(p, p)
@@ -103,5 +107,6 @@ fn include_errors(path: &Path, text: &str) -> Vec<lsp_types::Diagnostic> {
         Ok(parsed) => parsed.diagnostics,
         Err(report) => report.diagnostics,
     };
-    diagnostics.iter().map(|d| convert(d, Some(text))).collect()
+    let lines = LineIndex::new(text);
+    diagnostics.iter().map(|d| convert(d, Some(&lines))).collect()
 }

@@ -21,6 +21,7 @@ pub mod hover;
 pub mod names;
 pub mod schema;
 pub mod text;
+pub mod transport;
 
 use crate::syntax::lex::tokenize_lenient;
 use crate::watch::mesh_cache::MeshCache;
@@ -57,8 +58,11 @@ struct Server {
 }
 
 /// Serves on standard input and output until the client says `exit`.
-pub fn run() -> Result<()> {
-    let (conn, io) = Connection::stdio();
+/// `Ok(true)` when a `shutdown` request came first: the protocol asks the
+/// server to exit with status 0 then, and 1 on an `exit` without one (or
+/// when the client goes away without either).
+pub fn run() -> Result<bool> {
+    let (conn, io) = transport::stdio();
     let caps = ServerCapabilities {
         text_document_sync: Some(TextDocumentSyncCapability::Kind(TextDocumentSyncKind::FULL)),
         hover_provider: Some(HoverProviderCapability::Simple(true)),
@@ -70,38 +74,90 @@ pub fn run() -> Result<()> {
         ..Default::default()
     };
     conn.initialize(serde_json::to_value(caps)?)?;
-    let mut s = Server {
-        conn,
-        docs: HashMap::new(),
-        dirty: BTreeSet::new(),
-        schema: schema::Schema::new(),
-        meshes: MeshCache::default(),
-    };
-    s.serve()?;
+    let mut s = Server::new(conn);
+    let shut_down = s.serve()?;
     drop(s);
     io.join()?;
-    Ok(())
+    Ok(shut_down)
+}
+
+/// What the `lsp` fuzz target runs: `data` read as a client's framed
+/// messages ([`transport::read_message`]) and handled by the server's
+/// message loop, with the diagnostics published when the messages run out.
+/// Whether every byte was read as a message.
+pub fn replay(data: &[u8]) -> bool {
+    let (server, client) = Connection::memory();
+    let mut input = data;
+    let whole = loop {
+        match transport::read_message(&mut input) {
+            Ok(Some(m)) => {
+                if client.sender.send(m).is_err() {
+                    break false;
+                }
+            }
+            Ok(None) => break true,
+            Err(_) => break false,
+        }
+    };
+    // The server's replies pile up in `_replies` until it returns: once the
+    // messages run out, the closed channel ends its loop.
+    let Connection {
+        sender,
+        receiver: _replies,
+    } = client;
+    drop(sender);
+    let _ = Server::new(server).serve();
+    whole
 }
 
 impl Server {
-    fn serve(&mut self) -> Result<()> {
+    fn new(conn: Connection) -> Self {
+        Server {
+            conn,
+            docs: HashMap::new(),
+            dirty: BTreeSet::new(),
+            schema: schema::Schema::new(),
+            meshes: MeshCache::default(),
+        }
+    }
+
+    /// Answers until `exit` (or the end of input); whether `shutdown` came
+    /// first. After `shutdown` requests are refused and notifications other
+    /// than `exit` ignored, as the protocol says. (`lsp-server`'s
+    /// `handle_shutdown` could not tell `exit` alone from `shutdown` then
+    /// `exit`: both ended in status 0.)
+    fn serve(&mut self) -> Result<bool> {
+        let mut shut_down = false;
         while let Ok(msg) = self.conn.receiver.recv() {
             match msg {
                 Message::Request(r) => {
-                    if self.conn.handle_shutdown(&r)? {
-                        return Ok(());
-                    }
-                    let resp = self.request(r);
+                    let resp = if shut_down {
+                        Response::new_err(
+                            r.id,
+                            lsp_server::ErrorCode::InvalidRequest as i32,
+                            "the server is shutting down".into(),
+                        )
+                    } else if r.method == req::Shutdown::METHOD {
+                        shut_down = true;
+                        Response::new_ok(r.id, ())
+                    } else {
+                        self.request(r)
+                    };
                     self.conn.sender.send(Message::Response(resp))?;
                 }
-                Message::Notification(n) => self.notification(n),
+                Message::Notification(n) if n.method == note::Exit::METHOD => return Ok(shut_down),
+                Message::Notification(n) => {
+                    if !shut_down {
+                        self.notification(n);
+                    }
+                }
                 Message::Response(_) => {}
             }
-            if self.conn.receiver.is_empty() {
+            if !shut_down && self.conn.receiver.is_empty() {
                 self.publish_dirty()?;
             }
         }
-        Ok(())
+        Ok(false)
     }
 
     fn notification(&mut self, n: Notification) {
@@ -238,7 +294,7 @@ impl Server {
         let mut extra = Vec::new();
         let base = doc.path.parent().unwrap_or(std::path::Path::new("."));
         for inc in names::includes(&doc.text, &toks, base) {
-            if let Ok(t) = std::fs::read_to_string(&inc) {
+            if let Ok(t) = crate::load::source::read_text(&inc) {
                 let it = tokenize_lenient(&t);
                 for map in ["materials", "meshes"] {
                     extra.extend(names::defined(&t, &it, map).into_iter().map(|(n, _)| (map, n)));
@@ -262,7 +318,7 @@ impl Server {
         let loc = match file {
             None => Location::new(uri, text::range(&doc.text, span)),
             Some(f) => {
-                let t = std::fs::read_to_string(&f).unwrap_or_default();
+                let t = crate::load::source::read_text(&f).unwrap_or_default();
                 let Some(u) = text::uri_of(&f) else {
                     return Ok(serde_json::Value::Null);
                 };

@@ -101,7 +101,7 @@ pub fn find(src: &str, path: &Path, map: &str, name: &str) -> Option<(Option<Pat
         if seen > 64 {
             break;
         }
-        let Ok(text) = std::fs::read_to_string(&file) else {
+        let Ok(text) = crate::load::source::read_text(&file) else {
             continue;
         };
         let toks = tokenize_lenient(&text);

@@ -1,23 +1,36 @@
 //! Positions and file names as the protocol writes them: lines and UTF-16
 //! columns (the protocol's default encoding), `file://` URIs.
 
+use crate::diagnostic::LineIndex;
 use lsp_types::{Position, Range, Uri};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 /// The protocol position of byte `offset`.
 pub fn position(text: &str, offset: usize) -> Position {
-    let offset = text.floor_char_boundary(offset.min(text.len()));
-    let before = &text[..offset];
-    let line = before.matches('\n').count();
-    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-    let character = text[line_start..offset].encode_utf16().count();
-    Position::new(line as u32, character as u32)
+    position_in(&LineIndex::new(text), offset)
 }
 
 /// The protocol range of a byte range.
 pub fn range(text: &str, span: std::ops::Range<usize>) -> Range {
-    Range::new(position(text, span.start), position(text, span.end))
+    range_in(&LineIndex::new(text), span)
+}
+
+/// [`position`] through a line index built once: converting each of many
+/// diagnostics by scanning the text from its start was quadratic.
+pub fn position_in(lines: &LineIndex, offset: usize) -> Position {
+    let (line, before, ascii) = lines.line_prefix(offset);
+    let character = if ascii {
+        before.len()
+    } else {
+        before.encode_utf16().count()
+    };
+    Position::new(line as u32, character as u32)
+}
+
+/// [`range`] through a line index built once.
+pub fn range_in(lines: &LineIndex, span: std::ops::Range<usize>) -> Range {
+    Range::new(position_in(lines, span.start), position_in(lines, span.end))
 }
 
 /// The byte offset of a protocol position (clamped to its line).

@@ -22,7 +22,7 @@
 //! (n+1)/(2π) cos^n θh / (4 wo·h).
 
 use super::phong::{conserve, lobe_pdf, sample_lobe};
-use super::{BsdfSample, Bxdf, reflect};
+use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, ScalarTex, Texture, reflect};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -95,6 +95,37 @@ impl Bxdf for BlinnPhong {
             Vec3A::new(w.x, w.y, w.z.copysign(wo.z))
         };
         BsdfSample::from_f(wi, self.eval(wo, wi), self.pdf(wo, wi))
+    }
+}
+
+/// A Blinn–Phong material as the scene gives it: what
+/// [`super::Material::BlinnPhong`] holds; `kd + ks` is capped per channel
+/// as for Phong.
+#[derive(Clone, Debug)]
+pub struct BlinnPhongMaterial {
+    /// Diffuse reflectance per channel.
+    pub kd: ColorTex,
+    /// Specular reflectance per channel.
+    pub ks: ColorTex,
+    /// Sharpness n of the `cosⁿθh` lobe, ≥ 0.
+    pub exponent: ScalarTex,
+}
+
+impl MaterialModel for BlinnPhongMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::BlinnPhong(BlinnPhong::new(
+            self.kd.eval(uv, textures),
+            self.ks.eval(uv, textures),
+            self.exponent.eval(uv, textures),
+        ))
+    }
+    /// Both lobes reflect: their sum (the AOV clamps it as the model caps it).
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.kd.eval(uv, textures) + self.ks.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.kd.is_textured() || self.ks.is_textured() || self.exponent.is_textured()
     }
 }
 

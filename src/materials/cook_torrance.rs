@@ -7,7 +7,10 @@
 //! Sampling draws `wm` from the distribution (see [`super::microfacet`]) and
 //! reflects `wo` about it; `pdf(wi) = pdf(wm) / (4 |wo·wm|)`.
 
-use super::{BsdfSample, Bxdf, Fresnel, Microfacet, flip_up, reflect};
+use super::{
+    Bsdf, BsdfSample, Bxdf, Distribution, Fresnel, MaterialModel, Microfacet, Roughness, Texture, flip_up,
+    reflect,
+};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -78,6 +81,35 @@ impl Bxdf for CookTorrance {
             wi
         };
         BsdfSample::from_f(wi, f, pdf)
+    }
+}
+
+/// A microfacet conductor as the scene gives it (Smith height-correlated
+/// masking-shadowing): what [`super::Material::CookTorrance`] holds.
+#[derive(Clone, Debug)]
+pub struct CookTorranceMaterial {
+    /// Microfacet normal distribution.
+    pub distribution: Distribution,
+    /// Perceptual roughness in [0, 1] (`alpha = roughness²`) or α.
+    pub roughness: Roughness,
+    /// Reflectance of the conductor.
+    pub fresnel: Fresnel,
+}
+
+impl MaterialModel for CookTorranceMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::CookTorrance(CookTorrance {
+            distribution: self.roughness.microfacet(self.distribution, uv, textures),
+            fresnel: self.fresnel,
+        })
+    }
+    /// The conductor's colour lives in its Fresnel term; OIDN allows 1.
+    fn albedo(&self, _uv: Vec2, _textures: &[Texture]) -> Rgb {
+        Rgb::ONE
+    }
+    fn is_textured(&self) -> bool {
+        self.roughness.tex.is_textured()
     }
 }
 

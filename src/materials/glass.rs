@@ -17,7 +17,7 @@
 //! * **Tint** colours transmitted light only, once per refraction (a cheap
 //!   stand-in for absorption inside); reflection off glass stays white.
 
-use super::{BsdfSample, Bxdf, DielectricFresnel};
+use super::{Bsdf, BsdfSample, Bxdf, ColorTex, DielectricFresnel, MaterialModel, ScalarTex, Texture};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -76,6 +76,40 @@ impl Bxdf for Glass {
 
     fn is_delta(&self) -> bool {
         true
+    }
+
+    fn transmits(&self) -> bool {
+        true
+    }
+}
+
+/// A smooth dielectric boundary (glass, water) as the scene gives it: what
+/// [`super::Material::Glass`] holds.
+#[derive(Clone, Debug)]
+pub struct GlassMaterial {
+    /// Index of refraction η(inside)/η(outside), > 0.
+    pub ior: ScalarTex,
+    /// Colour of transmitted light, applied once per refraction.
+    pub tint: ColorTex,
+    /// Which Fresnel formula chooses between reflection and refraction.
+    pub fresnel: DielectricFresnel,
+}
+
+impl MaterialModel for GlassMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::Glass(Glass {
+            ior: self.ior.eval(uv, textures),
+            tint: self.tint.eval(uv, textures),
+            fresnel: self.fresnel,
+        })
+    }
+    /// 1 times the absorption tint, as OIDN asks of dielectrics.
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.tint.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.tint.is_textured() || self.ior.is_textured()
     }
 }
 

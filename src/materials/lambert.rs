@@ -1,7 +1,7 @@
 //! Ideal diffuse reflection, `f = albedo / π`, sampled by cosine weighting
 //! (so the sample weight is exactly the albedo).
 
-use super::{BsdfSample, Bxdf};
+use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, Texture};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -39,6 +39,31 @@ impl Bxdf for Lambert {
         let pdf = sampling::cosine_hemisphere_pdf(wi.z.abs());
         // (albedo/π)·cos / (cos/π) = albedo exactly: pass the weight, not f.
         BsdfSample::from_weight(wi, self.albedo, pdf)
+    }
+}
+
+/// A Lambert material as the scene gives it, its albedo possibly a
+/// texture: what [`super::Material::Lambert`] holds. It resolves to a
+/// [`Lambert`] lobe at each hit.
+#[derive(Clone, Debug)]
+pub struct LambertMaterial {
+    /// Diffuse reflectance per channel, in [0, 1].
+    pub albedo: ColorTex,
+}
+
+impl MaterialModel for LambertMaterial {
+    // Inline: the material dispatch inlines this one (see `Material::bsdf`).
+    #[inline(always)]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::Lambert(Lambert {
+            albedo: self.albedo.eval(uv, textures),
+        })
+    }
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.albedo.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.albedo.is_textured()
     }
 }
 

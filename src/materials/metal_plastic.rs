@@ -23,7 +23,10 @@
 //! Sampling: GGX visible normals with probability ∝ luminance of
 //! F(cos θo), else cosine; the pdf is the mixture's.
 
-use super::{BsdfSample, Bxdf, Distribution, Microfacet, fresnel, reflect};
+use super::{
+    Bsdf, BsdfSample, Bxdf, ColorTex, Distribution, MaterialModel, Microfacet, Roughness, ScalarTex, Texture,
+    fresnel, reflect,
+};
 use crate::math::{Rgb, luminance, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -111,6 +114,37 @@ impl Bxdf for MetalPlastic {
             wi
         };
         BsdfSample::from_f(wi, self.eval(wo, wi), self.pdf(wo, wi))
+    }
+}
+
+/// glTF's metallic–roughness material as the scene gives it (a diffuse base
+/// under a GGX coat): what [`super::Material::MetalPlastic`] holds.
+#[derive(Clone, Debug)]
+pub struct MetalPlasticMaterial {
+    /// Diffuse colour (plastic) or reflectance at normal incidence (metal),
+    /// per channel in [0, 1].
+    pub base_color: ColorTex,
+    /// Perceptual roughness in [0, 1] (GGX `alpha = roughness²`) or α.
+    pub roughness: Roughness,
+    /// 0 is plastic, 1 is metal, in [0, 1].
+    pub metalness: ScalarTex,
+}
+
+impl MaterialModel for MetalPlasticMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::MetalPlastic(MetalPlastic::new(
+            self.base_color.eval(uv, textures),
+            self.roughness.perceptual_at(uv, textures),
+            self.metalness.eval(uv, textures),
+        ))
+    }
+    /// Diffuse colour for plastic, reflectance at normal incidence for metal.
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.base_color.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.base_color.is_textured() || self.roughness.tex.is_textured() || self.metalness.is_textured()
     }
 }
 

@@ -3,7 +3,7 @@
 //! `sample` returns the reflected direction with weight `tint`, pdf 1.
 //! For a coloured metal with physical Fresnel use a smooth `CookTorrance`.
 
-use super::{BsdfSample, Bxdf};
+use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, Texture};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -33,6 +33,29 @@ impl Bxdf for Mirror {
 
     fn is_delta(&self) -> bool {
         true
+    }
+}
+
+/// A perfect mirror as the scene gives it: what [`super::Material::Mirror`]
+/// holds.
+#[derive(Clone, Debug)]
+pub struct MirrorMaterial {
+    /// Colour multiplying the reflection, per channel in [0, 1].
+    pub tint: ColorTex,
+}
+
+impl MaterialModel for MirrorMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::Mirror(Mirror {
+            tint: self.tint.eval(uv, textures),
+        })
+    }
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.tint.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.tint.is_textured()
     }
 }
 

@@ -15,6 +15,12 @@
 //!
 //! A [`Material`] is what the scene says (colours may be textures); at a hit
 //! point it resolves to a [`Bsdf`], a plain value with every parameter fixed.
+//! Each model file holds both halves, as pbrt-v4 keeps `DiffuseMaterial`
+//! beside `DiffuseBxDF`: the lobe (`Lambert`, a [`Bxdf`]) and the scene's
+//! parameters (`LambertMaterial`, a [`MaterialModel`]: its lobe at a hit,
+//! its albedo for the denoiser, whether it is textured). The lobe keeps the
+//! model's name because tests, χ² harness and integrators speak of lobes;
+//! the parameters take pbrt's `Material` suffix.
 //!
 //! # Models
 //! | file | model | sampling |
@@ -27,9 +33,11 @@
 //! | `mirror.rs`, `glass.rs` | smooth conductor / dielectric | delta |
 //! | `rough_plastic.rs` (+ `rough_coat.rs`) | Mitsuba's `roughplastic`: diffuse under a rough dielectric coat | mixture |
 //! | `rough_glass.rs` | rough dielectric (Walter 2007) | visible normals / D·cos, then F |
+//! | `emitter.rs` | an area light's own surface: black, reflects nothing | (a black Lambert lobe) |
 
 pub mod blinn_phong;
 pub mod cook_torrance;
+pub mod emitter;
 pub mod fresnel;
 pub mod glass;
 pub mod lambert;
@@ -48,20 +56,21 @@ pub mod texture;
 #[cfg(test)]
 mod tests;
 
-pub use blinn_phong::BlinnPhong;
-pub use cook_torrance::CookTorrance;
+pub use blinn_phong::{BlinnPhong, BlinnPhongMaterial};
+pub use cook_torrance::{CookTorrance, CookTorranceMaterial};
+pub use emitter::Emitter;
 pub use fresnel::{DielectricFresnel, Fresnel, Metal};
-pub use glass::Glass;
-pub use lambert::Lambert;
-pub use metal_plastic::MetalPlastic;
+pub use glass::{Glass, GlassMaterial};
+pub use lambert::{Lambert, LambertMaterial};
+pub use metal_plastic::{MetalPlastic, MetalPlasticMaterial};
 pub use microfacet::{Distribution, Microfacet, Roughness};
-pub use mirror::Mirror;
-pub use oren_nayar::OrenNayar;
+pub use mirror::{Mirror, MirrorMaterial};
+pub use oren_nayar::{OrenNayar, OrenNayarMaterial};
 pub use pattern::Pattern;
-pub use phong::Phong;
+pub use phong::{Phong, PhongMaterial};
 pub use rough_coat::RoughCoat;
-pub use rough_glass::RoughGlass;
-pub use rough_plastic::RoughPlastic;
+pub use rough_glass::{RoughGlass, RoughGlassMaterial};
+pub use rough_plastic::{RoughPlastic, RoughPlasticMaterial};
 pub use surface::{Cutout, Perturb, Surface};
 pub use texture::{Channel, ColorTex, ImageLookup, ScalarTex, Tex, Texture, UvTransform};
 
@@ -161,6 +170,11 @@ pub trait Bxdf {
     fn is_delta(&self) -> bool {
         false
     }
+    /// Whether light can pass through the surface (some `wi` below it has a
+    /// non-zero value): light sampling then looks at both sides of it.
+    fn transmits(&self) -> bool {
+        false
+    }
 }
 
 /// A BSDF with all its parameters resolved at one hit point.
@@ -257,26 +271,13 @@ impl Bxdf for Bsdf<'_> {
     fn is_delta(&self) -> bool {
         forward!(self, b => b.is_delta())
     }
+    #[inline]
+    fn transmits(&self) -> bool {
+        forward!(self, b => b.transmits())
+    }
 }
 
 impl Bsdf<'_> {
-    /// Whether light can pass through the surface (some `wi` below it has a
-    /// non-zero value): light sampling then looks at both sides of it.
-    #[inline]
-    pub fn transmits(&self) -> bool {
-        match self {
-            Bsdf::Glass(_) | Bsdf::RoughGlass(_) => true,
-            Bsdf::Lambert(_)
-            | Bsdf::OrenNayar(_)
-            | Bsdf::Phong(_)
-            | Bsdf::BlinnPhong(_)
-            | Bsdf::CookTorrance(_)
-            | Bsdf::MetalPlastic(_)
-            | Bsdf::Mirror(_)
-            | Bsdf::RoughPlastic(_) => false,
-        }
-    }
-
     /// The unit normal on the side a light sample from this surface is
     /// wanted (toward `wo`, local `wo.z` along `n`), or zero for both sides
     /// when the surface transmits: what [`crate::lights::Light::sample`]
@@ -310,207 +311,118 @@ impl Bsdf<'_> {
     }
 }
 
-/// A material as the scene describes it, with textured parameters.
+/// What every material's parameters answer, written beside its model (as
+/// pbrt's `DiffuseMaterial` sits beside its `DiffuseBxDF`): a new material is
+/// its description (`desc/material.rs`), its loader entry
+/// (`load/material.rs`) and its model file, plus one line in [`Material`]
+/// and one in [`forward_material`].
+pub trait MaterialModel {
+    /// The lobe at surface coordinates `uv`, every texture resolved.
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_>;
+    /// The albedo a first hit shows (the denoiser's `albedo` input, see
+    /// `aov/albedo.rs`), before clamping to [0, 1].
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb;
+    /// Whether any parameter is a texture (so shading needs `uv`).
+    fn is_textured(&self) -> bool;
+}
+
+/// A material as the scene describes it, with textured parameters; each
+/// variant's data and rules live in its model file.
 ///
 /// Units: `roughness` ∈ [0, 1] with microfacet
 /// `alpha = roughness²`, `exponent` ≥ 0, `ior` relative to the outside (> 0).
 #[derive(Clone, Debug)]
 pub enum Material {
     /// Ideal diffuse, `f = albedo/π`.
-    Lambert {
-        /// Diffuse reflectance per channel, in [0, 1].
-        albedo: ColorTex,
-    },
-    /// `sigma`: Fujii's **unitless** roughness ≥ 0 (0 = Lambert, useful up
-    /// to 1); not an angle — see [`OrenNayar`] for why.
-    OrenNayar {
-        /// Diffuse reflectance per channel, in [0, 1].
-        albedo: ColorTex,
-        /// Roughness, unitless, ≥ 0.
-        sigma: ScalarTex,
-    },
-    /// `kd + ks` is scaled down per channel to at most 1 (see [`Phong`]).
-    Phong {
-        /// Diffuse reflectance per channel.
-        kd: ColorTex,
-        /// Specular reflectance per channel.
-        ks: ColorTex,
-        /// Sharpness n of the `cosⁿα` lobe, ≥ 0.
-        exponent: ScalarTex,
-    },
-    /// Energy-normalised Blinn–Phong; `kd + ks` is capped per channel as for `Phong`.
-    BlinnPhong {
-        /// Diffuse reflectance per channel.
-        kd: ColorTex,
-        /// Specular reflectance per channel.
-        ks: ColorTex,
-        /// Sharpness n of the `cosⁿθh` lobe, ≥ 0.
-        exponent: ScalarTex,
-    },
-    /// Microfacet conductor (Smith height-correlated masking-shadowing).
-    CookTorrance {
-        /// Microfacet normal distribution.
-        distribution: Distribution,
-        /// Perceptual roughness in [0, 1] (`alpha = roughness²`) or α.
-        roughness: Roughness,
-        /// Reflectance of the conductor.
-        fresnel: Fresnel,
-    },
+    Lambert(LambertMaterial),
+    /// Rough diffuse (Fujii's Oren–Nayar).
+    OrenNayar(OrenNayarMaterial),
+    /// Energy-normalised Phong.
+    Phong(PhongMaterial),
+    /// Energy-normalised Blinn–Phong.
+    BlinnPhong(BlinnPhongMaterial),
+    /// Microfacet conductor.
+    CookTorrance(CookTorranceMaterial),
     /// glTF metallic–roughness: a diffuse base under a GGX coat.
-    MetalPlastic {
-        /// Diffuse colour (plastic) or reflectance at normal incidence (metal), per
-        /// channel in [0, 1].
-        base_color: ColorTex,
-        /// Perceptual roughness in [0, 1] (GGX `alpha = roughness²`) or α.
-        roughness: Roughness,
-        /// 0 is plastic, 1 is metal, in [0, 1].
-        metalness: ScalarTex,
-    },
+    MetalPlastic(MetalPlasticMaterial),
     /// Perfect specular reflection.
-    Mirror {
-        /// Colour multiplying the reflection, per channel in [0, 1].
-        tint: ColorTex,
-    },
-    /// Smooth dielectric boundary (glass, water).
-    Glass {
-        /// Index of refraction η(inside)/η(outside), > 0.
-        ior: ScalarTex,
-        /// Colour of transmitted light, applied once per refraction.
-        tint: ColorTex,
-        /// Which Fresnel formula chooses between reflection and refraction.
-        fresnel: DielectricFresnel,
-    },
-    /// The surface of an area light: black and non-reflecting, as in the
-    /// Mitsuba references.
-    Emitter,
-    /// Mitsuba's `roughplastic` (`nonlinear = false`); `coat` holds the tables
-    /// integrated at load (shared by materials with the same distribution,
-    /// α and η).
-    RoughPlastic {
-        /// Reflectance of the diffuse base per channel, in [0, 1].
-        diffuse: ColorTex,
-        /// Factor on the coat's reflection per channel (1 for a physical coat).
-        specular: ColorTex,
-        /// The coat: distribution, α, η and its t(μ) and R_int tables.
-        coat: std::sync::Arc<RoughCoat>,
-    },
-    /// Rough dielectric boundary (Walter et al. 2007), sides as for `Glass`.
-    RoughGlass {
-        /// Microfacet normal distribution.
-        distribution: Distribution,
-        /// Perceptual roughness in [0, 1] (`alpha = roughness²`) or α.
-        roughness: Roughness,
-        /// Index of refraction η(inside)/η(outside), > 0 and ≠ 1.
-        ior: ScalarTex,
-        /// Colour of transmitted light, applied once per refraction.
-        tint: ColorTex,
-    },
+    Mirror(MirrorMaterial),
+    /// Smooth dielectric boundary.
+    Glass(GlassMaterial),
+    /// The surface of an area light: black and non-reflecting.
+    Emitter(Emitter),
+    /// Diffuse base under a rough dielectric coat (Mitsuba's `roughplastic`).
+    RoughPlastic(RoughPlasticMaterial),
+    /// Rough dielectric boundary.
+    RoughGlass(RoughGlassMaterial),
+}
+
+/// Forwards one [`MaterialModel`] method to the variant (the match is the
+/// checklist).
+macro_rules! forward_material {
+    ($self:ident, $m:ident => $call:expr) => {
+        match $self {
+            Material::Lambert($m) => $call,
+            Material::OrenNayar($m) => $call,
+            Material::Phong($m) => $call,
+            Material::BlinnPhong($m) => $call,
+            Material::CookTorrance($m) => $call,
+            Material::MetalPlastic($m) => $call,
+            Material::Mirror($m) => $call,
+            Material::Glass($m) => $call,
+            Material::Emitter($m) => $call,
+            Material::RoughPlastic($m) => $call,
+            Material::RoughGlass($m) => $call,
+        }
+    };
 }
 
 impl Material {
+    /// The material dispatched inline by [`Material::bsdf`], `None` for the
+    /// out-of-line ones: as [`Bsdf::inline_lobe`], the one place that says
+    /// which side each variant is on.
+    #[inline(always)]
+    fn inline_material(&self) -> Option<&LambertMaterial> {
+        match self {
+            Material::Lambert(m) => Some(m),
+            Material::OrenNayar(_)
+            | Material::Phong(_)
+            | Material::BlinnPhong(_)
+            | Material::CookTorrance(_)
+            | Material::MetalPlastic(_)
+            | Material::Mirror(_)
+            | Material::Glass(_)
+            | Material::Emitter(_)
+            | Material::RoughPlastic(_)
+            | Material::RoughGlass(_) => None,
+        }
+    }
+
     /// Whether any parameter is a texture (so shading needs `uv`).
     pub fn is_textured(&self) -> bool {
-        match self {
-            Material::Lambert { albedo } => albedo.is_textured(),
-            Material::OrenNayar { albedo, sigma } => albedo.is_textured() || sigma.is_textured(),
-            Material::Phong { kd, ks, exponent } | Material::BlinnPhong { kd, ks, exponent } => {
-                kd.is_textured() || ks.is_textured() || exponent.is_textured()
-            }
-            Material::CookTorrance { roughness, .. } => roughness.tex.is_textured(),
-            Material::MetalPlastic {
-                base_color,
-                roughness,
-                metalness,
-            } => base_color.is_textured() || roughness.tex.is_textured() || metalness.is_textured(),
-            Material::Mirror { tint } => tint.is_textured(),
-            Material::Glass { tint, ior, .. } => tint.is_textured() || ior.is_textured(),
-            Material::RoughPlastic {
-                diffuse, specular, ..
-            } => diffuse.is_textured() || specular.is_textured(),
-            Material::RoughGlass {
-                tint, roughness, ior, ..
-            } => tint.is_textured() || roughness.tex.is_textured() || ior.is_textured(),
-            Material::Emitter => false,
-        }
+        forward_material!(self, m => m.is_textured())
+    }
+
+    /// The albedo a first hit shows, unclamped (see [`MaterialModel::albedo`]).
+    pub fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        forward_material!(self, m => m.albedo(uv, textures))
     }
 
     /// Resolves textures at surface coordinates `uv`. Inline for the
     /// diffuse material (see [`Bsdf`]'s dispatch), a call for the others.
     #[inline(always)]
     pub fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
-        match self {
-            Material::Lambert { albedo } => Bsdf::Lambert(Lambert {
-                albedo: albedo.eval(uv, textures),
-            }),
-            Material::OrenNayar { .. }
-            | Material::Phong { .. }
-            | Material::BlinnPhong { .. }
-            | Material::CookTorrance { .. }
-            | Material::MetalPlastic { .. }
-            | Material::Mirror { .. }
-            | Material::Glass { .. }
-            | Material::RoughPlastic { .. }
-            | Material::RoughGlass { .. }
-            | Material::Emitter => self.bsdf_other(uv, textures),
+        match self.inline_material() {
+            Some(m) => m.bsdf(uv, textures),
+            None => self.bsdf_other(uv, textures),
         }
     }
 
-    /// [`Material::bsdf`] for every material but the inline one.
+    /// [`Material::bsdf`] for every material but the inline one (which it
+    /// also handles, for the exhaustive match).
     #[inline(never)]
     fn bsdf_other(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
-        let tex = |c: &ColorTex| c.eval(uv, textures);
-        let num = |c: &ScalarTex| c.eval(uv, textures);
-        match self {
-            Material::Lambert { albedo } => Bsdf::Lambert(Lambert { albedo: tex(albedo) }),
-            Material::OrenNayar { albedo, sigma } => Bsdf::OrenNayar(OrenNayar::new(tex(albedo), num(sigma))),
-            Material::Phong { kd, ks, exponent } => Bsdf::Phong(Phong::new(tex(kd), tex(ks), num(exponent))),
-            Material::BlinnPhong { kd, ks, exponent } => {
-                Bsdf::BlinnPhong(BlinnPhong::new(tex(kd), tex(ks), num(exponent)))
-            }
-            Material::CookTorrance {
-                distribution,
-                roughness,
-                fresnel,
-            } => Bsdf::CookTorrance(CookTorrance {
-                distribution: roughness.microfacet(*distribution, uv, textures),
-                fresnel: *fresnel,
-            }),
-            Material::MetalPlastic {
-                base_color,
-                roughness,
-                metalness,
-            } => Bsdf::MetalPlastic(MetalPlastic::new(
-                tex(base_color),
-                roughness.perceptual_at(uv, textures),
-                num(metalness),
-            )),
-            Material::Mirror { tint } => Bsdf::Mirror(Mirror { tint: tex(tint) }),
-            Material::Glass { ior, tint, fresnel } => Bsdf::Glass(Glass {
-                ior: num(ior),
-                tint: tex(tint),
-                fresnel: *fresnel,
-            }),
-            Material::Emitter => Bsdf::Lambert(Lambert { albedo: Rgb::ZERO }),
-            Material::RoughPlastic {
-                diffuse,
-                specular,
-                coat,
-            } => Bsdf::RoughPlastic(RoughPlastic {
-                diffuse: tex(diffuse),
-                specular: tex(specular),
-                coat,
-            }),
-            Material::RoughGlass {
-                distribution,
-                roughness,
-                ior,
-                tint,
-            } => Bsdf::RoughGlass(RoughGlass {
-                microfacet: roughness.microfacet(*distribution, uv, textures),
-                ior: num(ior),
-                tint: tex(tint),
-            }),
-        }
+        forward_material!(self, m => m.bsdf(uv, textures))
     }
 }
 
@@ -594,30 +506,30 @@ mod material_tests {
             scale: 4.0,
             uv: UvTransform::default(),
         };
-        let plain = Material::Lambert {
+        let plain = Material::Lambert(LambertMaterial {
             albedo: ColorTex::Const(Rgb::ONE),
-        };
+        });
         assert!(!plain.is_textured());
         assert!(
-            Material::Lambert {
+            Material::Lambert(LambertMaterial {
                 albedo: checker.clone()
-            }
+            })
             .is_textured()
         );
         assert!(
-            Material::Phong {
+            Material::Phong(PhongMaterial {
                 kd: ColorTex::Const(Rgb::ONE),
                 ks: ColorTex::image(0),
                 exponent: Tex::Const(10.0)
-            }
+            })
             .is_textured()
         );
         assert!(
-            Material::Glass {
+            Material::Glass(GlassMaterial {
                 ior: Tex::Const(1.5),
                 tint: checker,
                 fresnel: DielectricFresnel::Exact
-            }
+            })
             .is_textured()
         );
     }
@@ -637,42 +549,42 @@ mod material_tests {
             alpha: Vec::new(),
         }];
         let materials = [
-            Material::Lambert {
+            Material::Lambert(LambertMaterial {
                 albedo: checker.clone(),
-            },
-            Material::OrenNayar {
+            }),
+            Material::OrenNayar(OrenNayarMaterial {
                 albedo: ColorTex::image(0),
                 sigma: Tex::Const(0.3),
-            },
-            Material::Phong {
+            }),
+            Material::Phong(PhongMaterial {
                 kd: checker.clone(),
                 ks: ColorTex::Const(Rgb::ONE),
                 exponent: Tex::Const(10.0),
-            },
-            Material::BlinnPhong {
+            }),
+            Material::BlinnPhong(BlinnPhongMaterial {
                 kd: checker.clone(),
                 ks: checker.clone(),
                 exponent: Tex::Const(10.0),
-            },
-            Material::CookTorrance {
+            }),
+            Material::CookTorrance(CookTorranceMaterial {
                 distribution: Distribution::Ggx,
                 roughness: Roughness::perceptual(0.5),
                 fresnel: Metal::Gold.fresnel(),
-            },
-            Material::MetalPlastic {
+            }),
+            Material::MetalPlastic(MetalPlasticMaterial {
                 base_color: checker.clone(),
                 roughness: Roughness::perceptual(0.5),
                 metalness: Tex::Const(0.5),
-            },
-            Material::Mirror {
+            }),
+            Material::Mirror(MirrorMaterial {
                 tint: ColorTex::image(0),
-            },
-            Material::Glass {
+            }),
+            Material::Glass(GlassMaterial {
                 ior: Tex::Const(1.5),
                 tint: checker,
                 fresnel: DielectricFresnel::Exact,
-            },
-            Material::Emitter,
+            }),
+            Material::Emitter(Emitter),
         ];
         let (wo, wi) = (Vec3A::new(0.6, 0.0, 0.8), Vec3A::new(-0.6, 0.0, 0.8));
         for m in &materials {
@@ -681,7 +593,7 @@ mod material_tests {
             assert!(f.is_finite() && f.min_element() >= 0.0, "{m:?}: f = {f}");
             assert_eq!(
                 b.is_delta(),
-                matches!(m, Material::Mirror { .. } | Material::Glass { .. })
+                matches!(m, Material::Mirror(_) | Material::Glass(_))
             );
         }
         // The checker's `a` square at uv (0.25, 0.25) is white; (0.75, 0.25) black.
@@ -698,6 +610,9 @@ mod material_tests {
             Rgb::splat(0.25),
             "image texture must reach the mirror tint"
         );
-        assert_eq!(Material::Emitter.bsdf(Vec2::ZERO, &[]).eval(wo, wi), Rgb::ZERO);
+        assert_eq!(
+            Material::Emitter(Emitter).bsdf(Vec2::ZERO, &[]).eval(wo, wi),
+            Rgb::ZERO
+        );
     }
 }

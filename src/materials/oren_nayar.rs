@@ -22,7 +22,7 @@
 //!
 //! Cosine-sampled: the lobe is close to cosine, so the weight stays near R.
 
-use super::{BsdfSample, Bxdf, flip_up};
+use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, ScalarTex, Texture, flip_up};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
@@ -72,6 +72,34 @@ impl Bxdf for OrenNayar {
         let w = sampling::cosine_hemisphere(u);
         let wi = Vec3A::new(w.x, w.y, w.z.copysign(wo.z));
         BsdfSample::from_f(wi, self.eval(wo, wi), self.pdf(wo, wi))
+    }
+}
+
+/// An Oren–Nayar material as the scene gives it: what
+/// [`super::Material::OrenNayar`] holds. `sigma` is Fujii's **unitless**
+/// roughness ≥ 0 (0 = Lambert, useful up to 1); not an angle (see the
+/// module doc for why).
+#[derive(Clone, Debug)]
+pub struct OrenNayarMaterial {
+    /// Diffuse reflectance per channel, in [0, 1].
+    pub albedo: ColorTex,
+    /// Roughness, unitless, ≥ 0.
+    pub sigma: ScalarTex,
+}
+
+impl MaterialModel for OrenNayarMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::OrenNayar(OrenNayar::new(
+            self.albedo.eval(uv, textures),
+            self.sigma.eval(uv, textures),
+        ))
+    }
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.albedo.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.albedo.is_textured() || self.sigma.is_textured()
     }
 }
 

@@ -17,7 +17,7 @@
 //!   luminance of `kd` and `ks`; the pdf is the mixture's pdf. Lobe samples
 //!   below the horizon are rejected (`None`), so the pdf integrates to < 1.
 
-use super::{BsdfSample, Bxdf};
+use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, ScalarTex, Texture};
 use crate::math::{Frame, Rgb, luminance, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::{FRAC_1_PI, PI};
@@ -111,6 +111,37 @@ impl Bxdf for Phong {
             Vec3A::new(w.x, w.y, w.z.copysign(wo.z))
         };
         BsdfSample::from_f(wi, self.eval(wo, wi), self.pdf(wo, wi))
+    }
+}
+
+/// A Phong material as the scene gives it: what [`super::Material::Phong`]
+/// holds. `kd + ks` is scaled down per channel to at most 1 when the lobe
+/// is built (see [`Phong::new`]).
+#[derive(Clone, Debug)]
+pub struct PhongMaterial {
+    /// Diffuse reflectance per channel.
+    pub kd: ColorTex,
+    /// Specular reflectance per channel.
+    pub ks: ColorTex,
+    /// Sharpness n of the `cosⁿα` lobe, ≥ 0.
+    pub exponent: ScalarTex,
+}
+
+impl MaterialModel for PhongMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::Phong(Phong::new(
+            self.kd.eval(uv, textures),
+            self.ks.eval(uv, textures),
+            self.exponent.eval(uv, textures),
+        ))
+    }
+    /// Both lobes reflect: their sum (the AOV clamps it as the model caps it).
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.kd.eval(uv, textures) + self.ks.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.kd.is_textured() || self.ks.is_textured() || self.exponent.is_textured()
     }
 }
 

@@ -33,7 +33,7 @@
 //! outgoing G1 in the integrand is Walter's rational fit, as in Mitsuba.
 //!
 //! # Accuracy
-//! * Against Mitsuba (GGX α 0.1, η 1.5, `refs/roughplastic_tables.json`):
+//! * Against Mitsuba (GGX α 0.1, η 1.5, the tables its `roughplastic` builds):
 //!   every t(μ_j) within 1.7·10⁻⁵ (2.9·10⁻⁵ relative), R_int within 10⁻⁹
 //!   relative: the same rule, in f32 (test `rough_coat_matches_mitsuba_tables`).
 //!   Mitsuba 3.9.1's `roughplastic` evaluated directly (GGX α 0.1, 0.3) gives

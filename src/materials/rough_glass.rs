@@ -30,7 +30,10 @@
 //! both sides: equal to f32 rounding once its G1·G1 replaces our G2, and the
 //! GGX pdf equal too (`rough_glass_matches_mitsuba_up_to_its_shadowing_term`).
 
-use super::{BsdfSample, Bxdf, Microfacet, fresnel, reflect};
+use super::{
+    Bsdf, BsdfSample, Bxdf, ColorTex, Distribution, MaterialModel, Microfacet, Roughness, ScalarTex, Texture,
+    fresnel, reflect,
+};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -150,6 +153,42 @@ impl Bxdf for RoughGlass {
         }
         let wi = if wo.z < 0.0 { flip(wi) } else { wi };
         BsdfSample::from_f(wi, f, pdf).map(|s| BsdfSample { eta: etap, ..s })
+    }
+
+    fn transmits(&self) -> bool {
+        true
+    }
+}
+
+/// A rough dielectric boundary (Walter et al. 2007) as the scene gives it,
+/// sides as for smooth glass: what [`super::Material::RoughGlass`] holds.
+#[derive(Clone, Debug)]
+pub struct RoughGlassMaterial {
+    /// Microfacet normal distribution.
+    pub distribution: Distribution,
+    /// Perceptual roughness in [0, 1] (`alpha = roughness²`) or α.
+    pub roughness: Roughness,
+    /// Index of refraction η(inside)/η(outside), > 0 and ≠ 1.
+    pub ior: ScalarTex,
+    /// Colour of transmitted light, applied once per refraction.
+    pub tint: ColorTex,
+}
+
+impl MaterialModel for RoughGlassMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::RoughGlass(RoughGlass {
+            microfacet: self.roughness.microfacet(self.distribution, uv, textures),
+            ior: self.ior.eval(uv, textures),
+            tint: self.tint.eval(uv, textures),
+        })
+    }
+    /// 1 times the absorption tint, as OIDN asks of dielectrics.
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.tint.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.tint.is_textured() || self.roughness.tex.is_textured() || self.ior.is_textured()
     }
 }
 

@@ -27,7 +27,7 @@
 //! else the cosine-weighted hemisphere; the pdf is the mixture's. The means
 //! are this hit's colours (Mitsuba averages a texture over its whole image).
 
-use super::{BsdfSample, Bxdf, RoughCoat, flip_up, fresnel, reflect};
+use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, RoughCoat, Texture, flip_up, fresnel, reflect};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -127,6 +127,38 @@ impl Bxdf for RoughPlastic<'_> {
             wi
         };
         BsdfSample::from_f(wi, f, pdf)
+    }
+}
+
+/// Mitsuba's `roughplastic` (`nonlinear = false`) as the scene gives it:
+/// what [`super::Material::RoughPlastic`] holds. `coat` holds the tables
+/// integrated at load (shared by materials with the same distribution, α
+/// and η).
+#[derive(Clone, Debug)]
+pub struct RoughPlasticMaterial {
+    /// Reflectance of the diffuse base per channel, in [0, 1].
+    pub diffuse: ColorTex,
+    /// Factor on the coat's reflection per channel (1 for a physical coat).
+    pub specular: ColorTex,
+    /// The coat: distribution, α, η and its t(μ) and R_int tables.
+    pub coat: std::sync::Arc<RoughCoat>,
+}
+
+impl MaterialModel for RoughPlasticMaterial {
+    #[inline]
+    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+        Bsdf::RoughPlastic(RoughPlastic {
+            diffuse: self.diffuse.eval(uv, textures),
+            specular: self.specular.eval(uv, textures),
+            coat: &self.coat,
+        })
+    }
+    /// The base of the layered surface (OIDN ignores a clear coat).
+    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
+        self.diffuse.eval(uv, textures)
+    }
+    fn is_textured(&self) -> bool {
+        self.diffuse.is_textured() || self.specular.is_textured()
     }
 }
 

@@ -25,7 +25,7 @@ pub fn concentric_disk(u: Vec2) -> Vec2 {
 /// denormal floats, and each operation on one took a microcode assist: on
 /// 40% of the diffuse bounces of the Cornell box (MXCSR's denormal and
 /// underflow flags, probed around each step of the path loop), 4–5% of the
-/// render's wall time in alternated pairs (README, *Benchmark*).
+/// render's wall time in alternated pairs (`docs/benchmarks.md`).
 #[inline(always)]
 fn concentric_lanes(u: Vec2) -> f32x4 {
     let o = f32x4::new([u.x, u.y, 0.0, 0.0]) * f32x4::splat(2.0) - f32x4::new([1.0, 1.0, 0.0, 0.0]);

@@ -7,7 +7,7 @@
 //! texel centres), interpolated trilinearly with indices clamped to the grid,
 //! and σ_t = 0 outside the box. σ_t(p) = `scale` × the interpolated value;
 //! σ_s = `albedo` σ_t. These are Mitsuba 3's conventions, probed against it
-//! (`refs/README.md`, *Grid media*).
+//! (the Mitsuba reference set's notes on grid media; `src/media/vol.rs` reads the format).
 //!
 //! The majorant is the largest σ_t of the grid, one for the whole box, as
 //! Mitsuba's default (`majorant_resolution_factor = 0`). Delta tracking

@@ -1,9 +1,10 @@
 //! A mistake in the structure of scene text, as the tree builder meets it:
 //! the formatter stops at the first ([`super::parser::parse`]), the loader
 //! records each and reads on ([`super::parser::read`]) and words the bracket
-//! ones itself (`load/brackets.rs`).
+//! ones itself (`load/brackets.rs`). Nesting past the limit stops both.
 
 use super::lex::{Kind, LexError};
+use super::nesting::TooDeep;
 
 /// A mistake in the structure. [`parse`] stops at the first; [`read`]
 /// records each and reads on as the scanners before it did.
@@ -48,6 +49,9 @@ pub enum Fault {
         /// Its offset.
         at: usize,
     },
+    /// Brackets nested past the limit: nothing is read (the tree is empty),
+    /// since reading them would recurse that deep.
+    TooDeep(TooDeep),
 }
 
 impl Fault {
@@ -64,6 +68,7 @@ impl Fault {
             Fault::MissingComma { at } | Fault::StrayColon { at } => {
                 (*at, "expected `,` between two values".into())
             }
+            Fault::TooDeep(deep) => (deep.at, deep.to_string()),
         };
         LexError { at, message }
     }

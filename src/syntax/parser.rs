@@ -1,22 +1,36 @@
 //! Builds the [`super::tree`] from tokens: comments attached by line,
 //! entries split at commas, groups at brackets. Groups nest through one
-//! function, `Parser::group`, which keeps the stack of open brackets: its
-//! length is the depth, so a depth limit is one check there.
+//! function, `Parser::group`, which recurses once per bracket; so both
+//! entry points first count the depth of the tokens they were given
+//! ([`super::nesting::within`], a loop) and build nothing from text nested
+//! past the limit.
 
 use super::fault::Fault;
 use super::lex::{Kind, LexError, Recovered, Token, tokenize, tokenize_recovering};
+use super::nesting;
 use super::tree::{Atom, Comment, Document, Entry, Group, Piece, Read};
 
-/// Parses `src` into a [`Document`]; an unbalanced bracket or a comma
-/// outside any bracket is an error at that byte.
+/// Parses `src` into a [`Document`]; an unbalanced bracket, a comma
+/// outside any bracket or nesting past [`nesting::limit`] is an error at
+/// that byte.
 pub fn parse(src: &str) -> Result<Document, LexError> {
     let toks = tokenize(src)?;
+    nesting::within(&toks, nesting::limit()).map_err(|deep| Fault::TooDeep(deep).lex_error())?;
     Parser::new(src, toks, true).document()
 }
 
-/// Reads `src` as far as it goes, whatever it holds (see [`Read`]).
+/// Reads `src` as far as it goes, whatever it holds (see [`Read`]); text
+/// nested past [`nesting::limit`] reads as an empty tree with that one
+/// fault.
 pub fn read(src: &str) -> Read {
     let Recovered { tokens, unclosed } = tokenize_recovering(src);
+    if let Err(deep) = nesting::within(&tokens, nesting::limit()) {
+        return Read {
+            doc: Document::default(),
+            faults: vec![Fault::TooDeep(deep)],
+            unclosed,
+        };
+    }
     let mut p = Parser::new(src, tokens, false);
     let doc = p.document().unwrap_or_default();
     Read {
@@ -165,7 +179,8 @@ impl<'a> Parser<'a> {
     }
 
     /// The group opening at the current token. Groups nest through here
-    /// alone: `self.open.len()` is the depth.
+    /// alone: `self.open.len()` is the depth, at most the limit `parse` and
+    /// `read` checked.
     fn group(&mut self, open: char) -> Result<Group, LexError> {
         let open_at = self.toks[self.pos].span.start;
         self.open.push((open, open_at));

@@ -102,7 +102,7 @@ impl Printer {
     }
 
     fn group(&mut self, g: &Group, indent: usize) {
-        if let Some(flat) = flat_group(g, self.json)
+        if let Some(flat) = flat_group(g, self.json, 4 * WIDTH.saturating_sub(self.column()))
             && (g.one_line || is_short_vector(g))
             && self.column() + flat.chars().count() < WIDTH
         // room for a comma
@@ -172,7 +172,7 @@ impl Printer {
         let Some(mut line) = rest
             .iter()
             .chain([&head])
-            .map(|e| flat_entry(e, self.json))
+            .map(|e| flat_entry(e, self.json, 4 * WIDTH))
             .collect::<Option<Vec<_>>>()
             .map(|v| v.join(", "))
         else {
@@ -206,14 +206,21 @@ fn is_short_vector(g: &Group) -> bool {
             .all(|e| matches!(e.pieces.as_slice(), [Piece::Atom(_)]))
 }
 
-/// `g` on one line, or `None` when a comment forbids it.
-fn flat_group(g: &Group, json: bool) -> Option<String> {
+/// `g` on one line, or `None` when a comment forbids it or it is longer
+/// than `budget` bytes (four per character of room left on the line: then
+/// it cannot fit). The budget keeps the work per group within a line's
+/// width: building every group's whole flat text made formatting quadratic
+/// in the nesting depth (10,000 deep took over 20 s).
+fn flat_group(g: &Group, json: bool, budget: usize) -> Option<String> {
     if !g.open_trailing.is_empty() || !g.closing.is_empty() {
         return None;
     }
     let mut parts = Vec::with_capacity(g.entries.len());
+    let mut used = 0;
     for e in &g.entries {
-        parts.push(flat_entry(e, json)?);
+        let part = flat_entry(e, json, budget.checked_sub(used)?)?;
+        used += part.len() + 2;
+        parts.push(part);
     }
     let body = parts.join(", ");
     // `(x,)` keeps its comma: in RON a one-element tuple may need it.
@@ -228,7 +235,8 @@ fn flat_group(g: &Group, json: bool) -> Option<String> {
     })
 }
 
-fn flat_entry(e: &Entry, json: bool) -> Option<String> {
+/// `e` on one line, within `budget` bytes (see [`flat_group`]).
+fn flat_entry(e: &Entry, json: bool, budget: usize) -> Option<String> {
     if !e.leading.is_empty() || !e.trailing.is_empty() {
         return None;
     }
@@ -245,7 +253,10 @@ fn flat_entry(e: &Entry, json: bool) -> Option<String> {
             Piece::Colon(_) => s.push(':'),
             Piece::Comment(c) if !c.ends_line => s += &c.text,
             Piece::Comment(_) => return None,
-            Piece::Group(g) => s += &flat_group(g, json)?,
+            Piece::Group(g) => s += &flat_group(g, json, budget.checked_sub(s.len())?)?,
+        }
+        if s.len() > budget {
+            return None;
         }
         prev = Some(p);
     }

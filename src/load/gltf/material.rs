@@ -23,7 +23,8 @@
 
 use super::document::{Files, view_bytes};
 use crate::materials::{
-    Channel, Cutout, ImageLookup, Material, Perturb, Roughness, Surface, Tex, UvTransform,
+    Channel, Cutout, ImageLookup, Material, MetalPlasticMaterial, Perturb, Roughness, Surface, Tex,
+    UvTransform,
 };
 use crate::math::Rgb;
 use glam::{Affine2, Mat2, Vec2};
@@ -77,11 +78,11 @@ pub(crate) fn map(
     m: Option<gltf::Material>,
 ) -> Mapped {
     let Some(m) = m else {
-        let index = sink.mtl.push(Material::MetalPlastic {
+        let index = sink.mtl.push(Material::MetalPlastic(MetalPlasticMaterial {
             base_color: Tex::Const(Rgb::ONE),
             roughness: Roughness::perceptual(1.0),
             metalness: Tex::Const(1.0),
-        });
+        }));
         return Mapped {
             index,
             uv_set: 0,
@@ -202,14 +203,14 @@ pub(crate) fn map(
         ));
     }
     let index = sink.mtl.push_with_surface(
-        Material::MetalPlastic {
+        Material::MetalPlastic(MetalPlasticMaterial {
             base_color,
             roughness: Roughness {
                 tex: roughness,
                 is_alpha: false,
             },
             metalness,
-        },
+        }),
         surface,
     );
     Mapped {

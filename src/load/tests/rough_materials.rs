@@ -2,7 +2,7 @@
 //! and a render.
 
 use crate::load::{Overrides, load_str};
-use crate::materials::{ColorTex, Distribution, Material};
+use crate::materials::{ColorTex, Distribution, Material, RoughGlassMaterial, RoughPlasticMaterial};
 use std::path::Path;
 
 /// Defaults fill in, equal coats are integrated once and shared, and a
@@ -31,16 +31,16 @@ fn rough_materials_load_with_defaults_share_coats_and_render() {
         load_str(Path::new("rough.ron"), text, &Overrides::default()).unwrap_or_else(|e| panic!("{e}"));
     let mut coats = Vec::new();
     for m in &loaded.scene.materials {
-        if let Material::RoughPlastic { coat, specular, .. } = m {
+        if let Material::RoughPlastic(RoughPlasticMaterial { coat, specular, .. }) = m {
             assert!(
                 matches!(specular, ColorTex::Const(c) if *c == crate::math::Rgb::ONE),
                 "specular defaults to 1: {specular:?}"
             );
             coats.push(coat.clone());
         }
-        if let Material::RoughGlass {
+        if let Material::RoughGlass(RoughGlassMaterial {
             distribution, ior, ..
-        } = m
+        }) = m
         {
             assert_eq!(
                 (*distribution, ior),

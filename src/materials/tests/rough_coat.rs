@@ -5,7 +5,7 @@ use super::*;
 use crate::math::Pcg32;
 
 /// Mitsuba 3.9.1's tables for GGX α 0.1, int_ior 1.5, ext_ior 1, extracted
-/// from `roughplastic` (`../shared/refs/roughplastic_tables.json`, rounded to
+/// from `roughplastic` (the tables Mitsuba's plugin builds for that coat, rounded to
 /// 10 decimals): t(μ_j) at μ_j = max(10⁻⁶, j/63), and R_int.
 pub(crate) const MITSUBA_T: [f64; TABLE_POINTS] = [
     0.5719763816,

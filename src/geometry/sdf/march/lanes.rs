@@ -16,7 +16,7 @@
 //! [`super::trace`] and [`super::occluded`] (hit threshold, overshoot,
 //! ball past the end), so hits agree within the threshold; the points
 //! visited differ, so hits move within it and the fractal's sub-pixel
-//! detail shades a little differently (measured in the README).
+//! detail shades a little differently (measured in `docs/benchmarks.md`).
 
 use super::{MarchParams, SdfTrace, bisect};
 use crate::geometry::sdf::tree::Sdf;
