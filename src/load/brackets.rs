@@ -8,29 +8,44 @@
 //!
 //! Brackets inside strings and comments (`//`, nested `/* */`) do not count;
 //! a string or comment that runs to the end of the file is reported at its
-//! opening.
+//! opening. Brackets nested past the limit stop reading too, at the first
+//! bracket too deep.
 
 use super::slip::Slip;
-use super::tokens::{Tok, tokenize};
 use crate::diagnostic::line_col;
+use crate::syntax::lex::{Kind, Literal, Unclosed};
+use crate::syntax::nesting::TooDeep;
+use crate::syntax::tree::{Fault, Read};
 
-/// The first unbalanced bracket (or unclosed string or comment) in `text`.
-pub(super) fn check(text: &str) -> Option<Slip> {
-    let mut open: Vec<(char, usize)> = Vec::new();
-    for (tok, at) in tokenize(text) {
-        match tok {
-            Tok::Unclosed(what) => return Some(unclosed_literal(what, at.start)),
-            Tok::Open(c) => open.push((c, at.start)),
-            Tok::Close(c) => match open.last() {
-                Some(&(o, _)) if closer(o) == c => {
-                    open.pop();
-                }
-                _ => return Some(mismatch(text, &open, c, at.start)),
-            },
-            _ => {}
-        }
+/// The first unbalanced bracket (or unclosed string or comment) in `text`,
+/// read as `tree`: a bracket closed wrongly before the unclosed literal,
+/// else that literal, else the innermost bracket left open at the end.
+pub(super) fn check(text: &str, tree: &Read) -> Option<Slip> {
+    // Nothing was read past it (`source::read` refuses it before serde).
+    if let Some(deep) = tree.faults.iter().find_map(|f| match f {
+        Fault::TooDeep(deep) => Some(deep),
+        _ => None,
+    }) {
+        return Some(too_deep(deep));
     }
-    let &(o, at) = open.last()?;
+    let wrong_close = tree.faults.iter().find_map(|f| match f {
+        Fault::Mismatch { close, at, open } => Some(mismatch(text, open, *close, *at)),
+        Fault::Stray {
+            kind: Kind::Close(c),
+            at,
+        } => Some(mismatch(text, &[], *c, *at)),
+        _ => None,
+    });
+    if wrong_close.is_some() {
+        return wrong_close;
+    }
+    if let Some(u) = &tree.unclosed {
+        return Some(unclosed_literal(u));
+    }
+    let (o, at) = tree.faults.iter().find_map(|f| match f {
+        Fault::NeverClosed { open, at } => Some((*open, *at)),
+        _ => None,
+    })?;
     let (line, col) = line_col(text, text.len());
     Some(Slip::new(
         at..at + 1,
@@ -40,6 +55,11 @@ pub(super) fn check(text: &str) -> Option<Slip> {
             closer(o)
         )),
     ))
+}
+
+/// Brackets nested past the limit, at the first bracket too deep.
+pub(super) fn too_deep(deep: &TooDeep) -> Slip {
+    Slip::new(deep.at..deep.at + 1, deep.to_string(), Some(deep.help()))
 }
 
 fn closer(open: char) -> char {
@@ -95,15 +115,15 @@ fn mismatch(text: &str, open: &[(char, usize)], c: char, at: usize) -> Slip {
     }
 }
 
-fn unclosed_literal(what: &'static str, at: usize) -> Slip {
-    let (kind, end) = match what {
-        "/*" => ("comment", "`*/`"),
-        "'" => ("character", "`'`"),
-        "r#\"" => ("raw string", "`\"#`"),
-        _ => ("string", "`\"`"),
+fn unclosed_literal(u: &Unclosed) -> Slip {
+    let (kind, end) = match u.what {
+        Literal::Comment => ("comment", "`*/`"),
+        Literal::Char => ("character", "`'`"),
+        Literal::RawString => ("raw string", "`\"#`"),
+        Literal::String => ("string", "`\"`"),
     };
     Slip::new(
-        at..at + what.len(),
+        u.span.clone(),
         format!("{kind} opened here is never closed"),
         Some(format!(
             "everything after it is read as part of the {kind}; end it with {end}"
@@ -114,16 +134,25 @@ fn unclosed_literal(what: &'static str, at: usize) -> Slip {
 #[cfg(test)]
 mod tests {
     use super::check;
+    use crate::syntax::parser::read;
+
+    fn check_text(text: &str) -> Option<super::Slip> {
+        check(text, &read(text))
+    }
 
     fn at(text: &str) -> (usize, String) {
-        let s = check(text).unwrap_or_else(|| panic!("no structure error in {text:?}"));
+        let s = check_text(text).unwrap_or_else(|| panic!("no structure error in {text:?}"));
         (s.span.start, s.message)
     }
 
     #[test]
     fn brackets_balanced_in_strings_and_comments_pass() {
         let text = "Scene( // a ( in a comment\n /* nested /* ( */ [ */ a: \"(]\", b: r#\")\"#, c: '(')";
-        assert!(check(text).is_none(), "{:?}", check(text).map(|s| s.message));
+        assert!(
+            check_text(text).is_none(),
+            "{:?}",
+            check_text(text).map(|s| s.message)
+        );
     }
 
     #[test]
@@ -138,7 +167,7 @@ mod tests {
 
     #[test]
     fn brackets_mismatched_closer_names_both() {
-        let s = check("Scene(a: (1, 2]").expect("a mismatch");
+        let s = check_text("Scene(a: (1, 2]").expect("a mismatch");
         assert_eq!(s.span.start, 14);
         assert_eq!(s.message, "`]` where `)` was expected");
         assert!(s.help.unwrap_or_default().contains("1:10"));
@@ -156,7 +185,7 @@ mod tests {
             (12, "comment opened here is never closed".into())
         );
         assert!(
-            check("{\"é\": [1, 2}").is_some(),
+            check_text("{\"é\": [1, 2}").is_some(),
             "non-ASCII does not confuse offsets"
         );
     }

@@ -36,7 +36,7 @@ pub fn to_json(desc: &SceneDesc) -> Result<String, String> {
 /// twice must not drift. Only spellings valid in both RON and JSON are
 /// kept (`1e-50`, not `.5` or `1_000`).
 pub fn keep_number_spellings(src: &str, out: &str) -> String {
-    use super::spans::Spans;
+    use crate::syntax::spans::Spans;
     let (from, to) = (Spans::scan(src), Spans::scan(out));
     let mut swaps: Vec<(std::ops::Range<usize>, &str)> = to
         .iter()

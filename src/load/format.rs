@@ -3,9 +3,9 @@
 //! mistake located in the whole file.
 
 use super::slip::{Slip, widen};
-use super::tokens::{Tok, tokenize};
 use super::words;
 use crate::diagnostic::offset_of;
+use crate::syntax::lex::{Kind, tokenize_recovering};
 use serde::de::DeserializeOwned;
 use std::ops::Range;
 use std::path::Path;
@@ -101,8 +101,9 @@ fn json_offset(text: &str, line: usize, col: usize) -> usize {
 
 /// The token holding byte `at`, or the character there.
 fn token_at(text: &str, at: usize) -> Range<usize> {
-    tokenize(text)
+    tokenize_recovering(text)
+        .tokens
         .into_iter()
-        .find(|(t, r)| r.contains(&at) && !matches!(t, Tok::Unclosed(_)))
-        .map_or(at..at, |(_, r)| r)
+        .find(|t| t.span.contains(&at) && !t.is_comment() && t.kind != Kind::Attribute)
+        .map_or(at..at, |t| t.span)
 }

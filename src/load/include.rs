@@ -14,9 +14,9 @@
 
 use super::document::Gaps;
 use super::source;
-use super::spans::Spans;
 use crate::desc::{IncludeDesc, MaterialDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::{Diagnostic, LineIndex, Problem, Report};
+use crate::syntax::spans::Spans;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 

@@ -12,7 +12,7 @@
 
 use super::format::Format;
 use super::slip::Slip;
-use super::spans::Spans;
+use crate::syntax::spans::Spans;
 use serde::de::DeserializeOwned;
 use std::ops::Range;
 

@@ -11,9 +11,9 @@
 
 use super::document::{Document, Gaps, Sections, stand_in_material, stand_in_medium, stand_in_mesh};
 use super::format::Format;
-use super::outline::{Entry, Outline};
 use super::slip::Slip;
 use crate::desc::{AnimationDesc, TestDesc};
+use crate::syntax::outline::{Entry, Outline};
 use serde::de::DeserializeOwned;
 use std::collections::BTreeMap;
 use std::ops::Range;

@@ -2,8 +2,8 @@
 //! diagnostic: what the bracket check (`brackets.rs`), the section reader
 //! (`sections.rs`) and [`super::format::Format::read`] report.
 
-use super::spans::Nesting;
 use crate::diagnostic::{Diagnostic, LineIndex};
+use crate::syntax::spans::Nesting;
 use std::ops::Range;
 use std::path::Path;
 

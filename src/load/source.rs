@@ -2,22 +2,25 @@
 //! included files alike, and the one place a problem becomes a located
 //! diagnostic.
 //!
-//! A file that parses as a whole is done in one step. One that does not is
-//! checked for unbalanced brackets (`brackets.rs`), the only mistake
-//! that stops reading; otherwise it is read section by section
-//! (`sections.rs`) so that every mistake in it is reported at once,
-//! in the user's words (`words.rs`).
+//! Text nested past the limit ([`nesting`]) is refused before anything
+//! recursive reads it. A file that parses as a whole is done in one step.
+//! One that does not is read once as a [`crate::syntax::tree`]
+//! ([`parser::read`]) and checked for unbalanced brackets (`brackets.rs`),
+//! the only mistake that stops reading; otherwise it is read section by
+//! section along the tree's outline (`sections.rs`) so that every mistake
+//! in it is reported at once, in the user's words (`words.rs`).
 
 use super::brackets;
 use super::document::{Document, Gaps};
 pub use super::format::Format;
-use super::outline::Outline;
 use super::sections;
 use super::set::SetProblem;
 pub use super::slip::Slip;
-use super::spans::Spans;
 use crate::desc::SceneDesc;
 use crate::diagnostic::{Diagnostic, LineIndex, Problem, Report};
+use crate::syntax::outline::Outline;
+use crate::syntax::spans::Spans;
+use crate::syntax::{nesting, parser};
 use std::borrow::Cow;
 use std::path::Path;
 
@@ -80,12 +83,12 @@ pub fn read_text(path: &Path) -> std::io::Result<String> {
 /// is in [`Parsed::diagnostics`], beside what could be read.
 pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
     let clean = without_bom(text);
-    // Before any parser, all of which recurse per bracket.
-    if let Err(deep) = crate::syntax::nesting::check(&clean, crate::syntax::nesting::limit()) {
-        let slip = Slip::new(deep.at..deep.at + 1, deep.to_string(), Some(deep.help()));
-        let spans = Spans::default();
+    // Before serde, which recurses per bracket (serde_json with no limit of
+    // its own); the tree read below checks its own tokens again.
+    if let Err(deep) = nesting::check(&clean, nesting::limit()) {
+        let slip = brackets::too_deep(&deep);
         return Err(Report {
-            diagnostics: vec![slip.diagnostic(path, &LineIndex::new(text), &spans.nesting())],
+            diagnostics: vec![slip.diagnostic(path, &LineIndex::new(text), &Spans::default().nesting())],
             sources: vec![(path.to_path_buf(), text.to_string())],
         });
     }
@@ -105,22 +108,26 @@ pub fn read<T: Document>(path: &Path, text: &str) -> Result<Parsed<T>, Report> {
         let help = Some("a scene is written `Scene(camera: (…), objects: […])`".to_string());
         whole = Slip::new(0..0, "the file is empty".into(), help);
     }
-    let spans = Spans::scan(&clean);
-    let (lines, nesting) = (LineIndex::new(text), spans.nesting());
+    // One read of the text's structure serves the bracket check, the
+    // outline and the location of every mistake (through the line index and
+    // the sorted values: linear in the number of mistakes).
+    let tree = parser::read(&clean);
+    let spans = Spans::of(&tree);
+    let (lines, values) = (LineIndex::new(text), spans.nesting());
     let located = |slips: Vec<Slip>| -> Vec<Diagnostic> {
         slips
             .into_iter()
-            .map(|s| s.diagnostic(path, &lines, &nesting))
+            .map(|s| s.diagnostic(path, &lines, &values))
             .collect()
     };
     let stop = |slip: Slip| Report {
         diagnostics: located(vec![slip]),
         sources: vec![(path.to_path_buf(), text.to_string())],
     };
-    if let Some(broken) = brackets::check(&clean) {
+    if let Some(broken) = brackets::check(&clean, &tree) {
         return Err(stop(broken));
     }
-    let Some(outline) = Outline::of(&clean) else {
+    let Some(outline) = Outline::of(&tree) else {
         return Err(stop(whole));
     };
     let (desc, gaps, slips) = sections::read::<T>(&format, &clean, &outline, whole);

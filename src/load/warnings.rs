@@ -31,9 +31,9 @@
 mod facing;
 
 use super::include::Composition;
-use super::spans::Spans;
 use crate::desc::{CameraDesc, ColorDesc, IntegratorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc};
 use crate::diagnostic::{Diagnostic, Problem, Report, Severity};
+use crate::syntax::spans::Spans;
 use std::collections::BTreeSet;
 
 /// Narrowest field of view that is not suspicious, in degrees. Real long

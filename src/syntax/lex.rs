@@ -60,24 +60,88 @@ pub struct LexError {
     pub message: String,
 }
 
+/// A string, character or block comment that runs to the end of the text.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Unclosed {
+    /// Its opening (`"`, `'`, `r#"`, `/*`).
+    pub span: Range<usize>,
+    /// What it is.
+    pub what: Literal,
+}
+
+/// The kinds of text that have an opening and an end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Literal {
+    /// `"…"`.
+    String,
+    /// `'…'`.
+    Char,
+    /// `r"…"`, `r#"…"#`.
+    RawString,
+    /// `/* … */`.
+    Comment,
+}
+
+/// The tokens of text the loader reads: every token before the first
+/// unclosed literal, and that literal.
+#[derive(Clone, Debug, Default)]
+pub struct Recovered {
+    /// The tokens, in order.
+    pub tokens: Vec<Token>,
+    /// The string or comment that swallowed the rest of the text.
+    pub unclosed: Option<Unclosed>,
+}
+
+/// How strict the tokenizer is; one scanner serves the formatter, the
+/// language server and the loader.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// The formatter: any doubt is an error, nothing is guessed.
+    Strict,
+    /// Text being typed: every doubt is resolved on the same line.
+    Lenient,
+    /// The loader's structure scan of text serde rejected: never fails.
+    /// A stray character joins the word around it (`a@b` is one value, so
+    /// no comma is reported missing inside it), Unicode spaces and a
+    /// byte-order mark separate tokens (the diagnostic names them), `#`
+    /// starts an attribute up to its `]`, and an unclosed literal ends the
+    /// tokens (it is [`Recovered::unclosed`]).
+    Recover,
+}
+
 /// Tokenizes `src`. Only an unterminated string, comment or attribute, or a
 /// byte that no scene file can hold, is an error.
 pub fn tokenize(src: &str) -> Result<Vec<Token>, LexError> {
-    lex(src, false)
+    lex(src, Mode::Strict).map(|r| r.tokens)
 }
 
 /// Tokenizes text being typed: an unterminated string or attribute ends at
 /// the end of its line, an unterminated comment at the end of the text, and
 /// a stray character is a word of its own.
 pub fn tokenize_lenient(src: &str) -> Vec<Token> {
-    lex(src, true).unwrap_or_default()
+    lex(src, Mode::Lenient).map(|r| r.tokens).unwrap_or_default()
 }
 
-fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
+/// Tokenizes a scene file that did not parse, to find where its parts are
+/// (see [`Mode::Recover`]). Never fails.
+pub fn tokenize_recovering(src: &str) -> Recovered {
+    lex(src, Mode::Recover).unwrap_or_default()
+}
+
+fn lex(src: &str, mode: Mode) -> Result<Recovered, LexError> {
+    let lenient = mode == Mode::Lenient;
+    let recover = mode == Mode::Recover;
     let b = src.as_bytes();
     let mut out = Vec::new();
     let mut i = 0;
     let mut newlines = 0;
+    let unclosed = |out: Vec<Token>, start: usize, len: usize, what: Literal| Recovered {
+        tokens: out,
+        unclosed: Some(Unclosed {
+            span: start..start + len,
+            what,
+        }),
+    };
     let line_end = |at: usize| src[at..].find('\n').map_or(src.len(), |n| at + n);
     // In lenient mode an error ends the token at `fallback` instead.
     let err = |at: usize, what: &str| LexError {
@@ -100,6 +164,10 @@ fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
             }
             b' ' | b'\t' | b'\r' => {
                 i += 1;
+                continue;
+            }
+            0x80.. if recover && odd_space(src, i) > 0 => {
+                i += odd_space(src, i);
                 continue;
             }
             b'(' | b'[' | b'{' => {
@@ -129,6 +197,9 @@ fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
                 Kind::LineComment
             }
             b'/' if b.get(i + 1) == Some(&b'*') => {
+                if recover && block_comment_end(b, i).is_none() {
+                    return Ok(unclosed(out, start, 2, Literal::Comment));
+                }
                 i = or_lenient(
                     block_comment_end(b, i),
                     start,
@@ -136,6 +207,14 @@ fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
                     "unterminated `/*` comment",
                 )?;
                 Kind::BlockComment
+            }
+            b'#' if recover => {
+                // As serde would skip it: up to the attribute's end, else
+                // its first `]`.
+                i = attribute_end(b, i)
+                    .or_else(|| b[i..].iter().position(|&x| x == b']').map(|k| i + k + 1))
+                    .unwrap_or(b.len());
+                Kind::Attribute
             }
             b'#' if b.get(i + 1) == Some(&b'!') => {
                 i = or_lenient(
@@ -145,6 +224,17 @@ fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
                     "unterminated `#![` attribute",
                 )?;
                 Kind::Attribute
+            }
+            b'"' | b'\'' if recover && quoted_end(b, i).is_none() => {
+                let what = if c == b'"' { Literal::String } else { Literal::Char };
+                return Ok(unclosed(out, start, 1, what));
+            }
+            b'r' | b'b' if recover && raw_or_byte_string(b, i) && prefixed_string_end(b, i).is_none() => {
+                let hashes = b[i + 1..].iter().take_while(|&&c| c == b'#').count();
+                return Ok(match c {
+                    b'r' => unclosed(out, start, hashes + 2, Literal::RawString),
+                    _ => unclosed(out, start + 1, 1, Literal::String),
+                });
             }
             b'"' | b'\'' => {
                 // While typing, a string does not run on past its line.
@@ -160,6 +250,18 @@ fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
                     "unterminated string",
                 )?;
                 Kind::Str
+            }
+            // A lone `/` is a word of its own.
+            b'/' if recover => {
+                i += 1;
+                Kind::Word
+            }
+            _ if recover => {
+                i += src[i..].chars().next().map_or(1, char::len_utf8);
+                while i < b.len() && is_recovered_word_byte(src, i, start) {
+                    i += 1;
+                }
+                Kind::Word
             }
             _ if is_word_byte(c) => {
                 while i < b.len()
@@ -185,7 +287,26 @@ fn lex(src: &str, lenient: bool) -> Result<Vec<Token>, LexError> {
         });
         newlines = 0;
     }
-    Ok(out)
+    Ok(Recovered {
+        tokens: out,
+        unclosed: None,
+    })
+}
+
+/// In [`Mode::Recover`], a word runs to the next delimiter or space
+/// (`r#name` is one word).
+fn is_recovered_word_byte(src: &str, i: usize, start: usize) -> bool {
+    let b = src.as_bytes();
+    let raw_ident = b[i] == b'#' && i == start + 1 && b[start] == b'r';
+    raw_ident || (!b" \t\r\n()[]{}:,\"'/#".contains(&b[i]) && (b[i] < 0x80 || odd_space(src, i) == 0))
+}
+
+/// Bytes of Unicode whitespace or a byte-order mark at `i`, 0 if none.
+fn odd_space(src: &str, i: usize) -> usize {
+    src.get(i..)
+        .and_then(|s| s.chars().next())
+        .filter(|c| c.is_whitespace() || *c == '\u{feff}')
+        .map_or(0, char::len_utf8)
 }
 
 /// Letters, digits and the signs, dots and underscores of numbers; any
@@ -195,8 +316,8 @@ fn is_word_byte(c: u8) -> bool {
 }
 
 /// The index just after the nested block comment starting at `i`, or
-/// `None` when it runs to the end (the loader's tokenizer uses it too).
-pub(crate) fn block_comment_end(b: &[u8], mut i: usize) -> Option<usize> {
+/// `None` when it runs to the end.
+fn block_comment_end(b: &[u8], mut i: usize) -> Option<usize> {
     let mut depth = 0;
     while i < b.len() {
         if b[i] == b'/' && b.get(i + 1) == Some(&b'*') {

@@ -1,12 +1,20 @@
-//! Scene text as text: a lossless tokenizer ([`lex`]), the tokens grouped
-//! with their comments ([`tree`]), a layout printer ([`print`]) for
-//! `ronray fmt`, and the position queries of the language server
-//! ([`cursor`]). Nothing here knows the scene types; the loader does.
+//! Scene text as text: the one lossless tokenizer ([`lex`]), the one tree of
+//! its tokens grouped with their comments and spans ([`tree`], built by
+//! [`parser`]), the limit on how deep its brackets nest ([`nesting`]), and
+//! views of it: a layout printer ([`print`]) for `ronray fmt`, the values
+//! by scene path ([`spans`]) and the fields and entries ([`outline`]) for
+//! the loader's diagnostics and recovery, and the position queries of the
+//! language server ([`cursor`]). Nothing here knows the scene types; the
+//! loader does.
 
 pub mod cursor;
+pub mod fault;
 pub mod lex;
 pub mod nesting;
+pub mod outline;
+pub mod parser;
 pub mod print;
+pub mod spans;
 pub mod tree;
 
 use lex::{Kind, tokenize};
@@ -32,12 +40,9 @@ pub enum FormatError {
 /// hold the same tokens as `src` (trailing commas aside) before it is
 /// returned.
 pub fn format(src: &str, json: bool) -> Result<String, FormatError> {
-    // The tree and its printer recurse per bracket.
-    nesting::check(src, nesting::limit()).map_err(|e| FormatError::Syntax {
-        at: e.at,
-        message: e.to_string(),
-    })?;
-    let doc = tree::parse(src).map_err(|e| FormatError::Syntax {
+    // `parse` refuses text nested past the limit before building the
+    // tree, which (like its printer) recurses per bracket.
+    let doc = parser::parse(src).map_err(|e| FormatError::Syntax {
         at: e.at,
         message: e.message,
     })?;

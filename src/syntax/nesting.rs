@@ -1,12 +1,21 @@
-//! How deeply brackets may nest in a scene file, checked once over the
-//! tokens before any parser sees the text.
+//! How deeply brackets may nest in a scene file, checked over the tokens
+//! before anything recursive sees the text.
 //!
 //! Why: every reader of scene text recurses once per bracket (serde through
-//! `ron` and `serde_json`, the loader's span and outline scans, the
-//! formatter's tree and printer, dropping what they built), so a 60 KB file
-//! nested 30,000 deep overflowed the stack of `validate`, `fmt` and `lsp`.
-//! This scan is a loop: the text is refused at the first bracket past the
-//! limit, with its location, and nothing recursive runs on it.
+//! `ron` and `serde_json`, the syntax tree's builder and its views, the
+//! formatter's printer, dropping what they built), so a 60 KB file nested
+//! 30,000 deep overflowed the stack of `validate`, `fmt` and `lsp`. This
+//! scan is a loop: the text is refused at the first bracket past the limit,
+//! with its location, and nothing recursive runs on it. The loader runs it
+//! before serde ([`check`]); the tree's builder runs it on the tokens it
+//! builds from ([`within`]), so no caller of [`super::parser`] can forget.
+//!
+//! It counts the tokens of the loader's mode ([`tokenize_recovering`]):
+//! those the tree is built from, and the mode that reads strings and
+//! comments as serde does (a string may span lines; text after an unclosed
+//! one is never read, by serde or the tree). The language server's lenient
+//! mode ends a string at its line, so a file that passes its count could
+//! still nest deeper for serde and the tree.
 //!
 //! Hand-written scenes nest about ten deep (`Scene(objects: [Sdf(shape:
 //! Union(of: [Transform(of: …`); [`MAX_NESTING`] leaves room for generated
@@ -14,7 +23,7 @@
 //! environment variable [`NESTING_VAR`] (every command reads it, the
 //! language server too).
 
-use super::lex::{Kind, tokenize_lenient};
+use super::lex::{Kind, Token, tokenize_recovering};
 
 /// Brackets that may be open at once, by default.
 pub const MAX_NESTING: usize = 128;
@@ -77,8 +86,13 @@ pub fn limit() -> usize {
 /// Whether `src` nests at most `limit` brackets deep; brackets in strings
 /// and comments do not count. Linear in the text, no recursion.
 pub fn check(src: &str, limit: usize) -> Result<(), TooDeep> {
+    within(&tokenize_recovering(src).tokens, limit)
+}
+
+/// Whether `tokens` nest at most `limit` brackets deep (see [`check`]).
+pub fn within(tokens: &[Token], limit: usize) -> Result<(), TooDeep> {
     let mut depth = 0usize;
-    for t in tokenize_lenient(src) {
+    for t in tokens {
         match t.kind {
             Kind::Open(_) => {
                 depth += 1;

@@ -86,14 +86,14 @@ impl Printer {
         let mut prev: Option<&Piece> = None;
         for p in pieces {
             match (prev, p) {
-                (None, _) | (_, Piece::Colon) => {}
+                (None, _) | (_, Piece::Colon(_)) => {}
                 (Some(Piece::Comment(c)), _) if c.ends_line => self.newline(indent + 4),
-                (Some(Piece::Atom(a)), Piece::Group(_)) if is_ident(a) => {}
+                (Some(Piece::Atom(a)), Piece::Group(_)) if is_ident(&a.text) => {}
                 _ => self.space(),
             }
             match p {
-                Piece::Atom(a) => self.out += a,
-                Piece::Colon => self.out.push(':'),
+                Piece::Atom(a) => self.out += &a.text,
+                Piece::Colon(_) => self.out.push(':'),
                 Piece::Comment(c) => self.comment(c),
                 Piece::Group(g) => self.group(g, indent),
             }
@@ -184,7 +184,7 @@ impl Printer {
         {
             return false;
         }
-        if matches!(head.pieces.last(), Some(Piece::Colon)) {
+        if matches!(head.pieces.last(), Some(Piece::Colon(_))) {
             line.push(' ');
         }
         self.out.push(g.open);
@@ -244,13 +244,13 @@ fn flat_entry(e: &Entry, json: bool, budget: usize) -> Option<String> {
     let mut prev: Option<&Piece> = None;
     for p in &e.pieces {
         match (prev, p) {
-            (None, _) | (_, Piece::Colon) => {}
-            (Some(Piece::Atom(a)), Piece::Group(_)) if is_ident(a) => {}
+            (None, _) | (_, Piece::Colon(_)) => {}
+            (Some(Piece::Atom(a)), Piece::Group(_)) if is_ident(&a.text) => {}
             _ => s.push(' '),
         }
         match p {
-            Piece::Atom(a) => s += a,
-            Piece::Colon => s.push(':'),
+            Piece::Atom(a) => s += &a.text,
+            Piece::Colon(_) => s.push(':'),
             Piece::Comment(c) if !c.ends_line => s += &c.text,
             Piece::Comment(_) => return None,
             Piece::Group(g) => s += &flat_group(g, json, budget.checked_sub(s.len())?)?,

@@ -3,8 +3,16 @@
 //! (after its comma) trails it, a comment on its own line leads the next
 //! one (or closes the group). Nothing is interpreted: atoms keep their
 //! spelling, so laying the tree out again cannot change what a scene means.
+//!
+//! Every atom and group keeps its byte span, so the same tree serves the
+//! formatter ([`super::parser::parse`], which refuses any [`Fault`]) and
+//! the loader ([`super::parser::read`], which records the faults and reads
+//! on: [`super::spans`] and [`super::outline`] are views of it). The types
+//! are here; `parser.rs` builds them.
 
-use super::lex::{Kind, LexError, Token, tokenize};
+pub use super::fault::Fault;
+use super::lex::Unclosed;
+use std::ops::Range;
 
 /// A comment, with what its placement needs.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,13 +29,22 @@ pub struct Comment {
     pub gap: usize,
 }
 
+/// A word or string, as written, and where.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Atom {
+    /// The text as written (quotes included).
+    pub text: String,
+    /// Its bytes in the source.
+    pub span: Range<usize>,
+}
+
 /// A part of an entry, in source order.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Piece {
     /// A word or string, as written.
-    Atom(String),
-    /// `:` between a key and its value.
-    Colon,
+    Atom(Atom),
+    /// `:` between a key and its value, and where.
+    Colon(Range<usize>),
     /// A bracketed group.
     Group(Group),
     /// A comment in the middle of an entry (`key: /* why */ value`).
@@ -47,6 +64,54 @@ pub struct Entry {
     pub trailing: Vec<Comment>,
     /// A comma followed it in the source.
     pub comma: bool,
+    /// Where a comma was missing after it (only in [`read`]'s trees): the
+    /// token that began the next entry.
+    pub missing_comma: Option<Range<usize>>,
+}
+
+impl Entry {
+    /// The pieces that are not comments.
+    fn significant(&self) -> impl Iterator<Item = &Piece> {
+        self.pieces.iter().filter(|p| !matches!(p, Piece::Comment(_)))
+    }
+
+    /// The key of `key: value`: an atom followed by `:`.
+    pub fn key(&self) -> Option<&Atom> {
+        let mut it = self.significant();
+        match (it.next(), it.next()) {
+            (Some(Piece::Atom(a)), Some(Piece::Colon(_))) => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The value's pieces (after `key:` when there is one), comments left
+    /// out.
+    pub fn value(&self) -> Vec<&Piece> {
+        let skip = if self.key().is_some() { 2 } else { 0 };
+        self.significant().skip(skip).collect()
+    }
+
+    /// The bytes of the value, from its first piece to its last; an empty
+    /// range after the colon when nothing follows it.
+    pub fn value_span(&self) -> Option<Range<usize>> {
+        let v = self.value();
+        match (v.first(), v.last()) {
+            (Some(a), Some(b)) => Some(a.span().start..b.span().end),
+            _ => self.significant().nth(1).map(|c| c.span().end..c.span().end),
+        }
+    }
+}
+
+impl Piece {
+    /// Its bytes in the source (a comment's are not kept: it is empty).
+    pub fn span(&self) -> Range<usize> {
+        match self {
+            Piece::Atom(a) => a.span.clone(),
+            Piece::Colon(r) => r.clone(),
+            Piece::Group(g) => g.span.clone(),
+            Piece::Comment(_) => 0..0,
+        }
+    }
 }
 
 /// A bracketed group and its entries.
@@ -67,6 +132,32 @@ pub struct Group {
     /// Written hugging its last entry: `of: [` on the opening line, the
     /// entries of the last value below, `])` closing both on one line.
     pub hug: bool,
+    /// From the opening bracket to the closing one (to the last token read
+    /// when it is never closed).
+    pub span: Range<usize>,
+}
+
+/// A tree read from text that may be broken: what could be read, the faults
+/// met on the way, and the literal that swallowed the end, if any.
+#[derive(Clone, Debug, Default)]
+pub struct Read {
+    /// What could be read.
+    pub doc: Document,
+    /// The faults, in the order of the text.
+    pub faults: Vec<Fault>,
+    /// A string or comment running to the end of the text.
+    pub unclosed: Option<Unclosed>,
+}
+
+impl Read {
+    /// The top-level values, past comments and `#![…]` attributes (a
+    /// scene file holds one).
+    pub fn values(&self) -> impl Iterator<Item = &Entry> {
+        self.doc.items.iter().filter(|e| {
+            !e.pieces.is_empty()
+                && !matches!(e.pieces.as_slice(), [Piece::Atom(a)] if a.text.starts_with('#'))
+        })
+    }
 }
 
 /// A whole file: comments, attributes and the value, each on its own lines.
@@ -74,279 +165,4 @@ pub struct Group {
 pub struct Document {
     /// Top-level items: comments, `#![...]` attributes and the value.
     pub items: Vec<Entry>,
-}
-
-/// Parses `src` into a [`Document`]; an unbalanced bracket or a comma
-/// outside any bracket is an error at that byte.
-pub fn parse(src: &str) -> Result<Document, LexError> {
-    let toks = tokenize(src)?;
-    let mut p = Parser { src, toks, pos: 0 };
-    p.document()
-}
-
-struct Parser<'a> {
-    src: &'a str,
-    toks: Vec<Token>,
-    pos: usize,
-}
-
-impl Parser<'_> {
-    fn peek(&self) -> Option<&Token> {
-        self.toks.get(self.pos)
-    }
-
-    fn comment(&self, t: &Token) -> Comment {
-        let text = t.text(self.src);
-        let prev_end = self.toks[..self.pos]
-            .iter()
-            .rev()
-            .find(|p| p.span.end <= t.span.start);
-        let gap = match prev_end {
-            Some(p) if t.newlines_before == 0 => self.src[p.span.end..t.span.start].chars().count(),
-            _ => 0,
-        };
-        Comment {
-            text: text.trim_end().to_string(),
-            blank_before: t.newlines_before >= 2,
-            ends_line: t.kind == Kind::LineComment || text.contains('\n'),
-            gap,
-        }
-    }
-
-    fn error(&self, at: usize, message: &str) -> LexError {
-        LexError {
-            at,
-            message: message.into(),
-        }
-    }
-
-    fn document(&mut self) -> Result<Document, LexError> {
-        let mut doc = Document::default();
-        while let Some(t) = self.peek().cloned() {
-            match t.kind {
-                Kind::LineComment | Kind::BlockComment => {
-                    let c = self.comment(&t);
-                    self.pos += 1;
-                    match doc.items.last_mut() {
-                        Some(last) if t.newlines_before == 0 => last.trailing.push(c),
-                        _ => doc.items.push(Entry {
-                            blank_before: c.blank_before,
-                            leading: vec![c],
-                            ..Entry::default()
-                        }),
-                    }
-                }
-                Kind::Attribute => {
-                    self.pos += 1;
-                    doc.items.push(Entry {
-                        blank_before: t.newlines_before >= 2,
-                        pieces: vec![Piece::Atom(t.text(self.src).to_string())],
-                        ..Entry::default()
-                    });
-                }
-                Kind::Close(_) | Kind::Comma | Kind::Colon => {
-                    return Err(self.error(t.span.start, "unexpected token outside any bracket"));
-                }
-                _ => {
-                    let blank_before = t.newlines_before >= 2;
-                    let pieces = self.value_pieces()?;
-                    doc.items.push(Entry {
-                        blank_before,
-                        pieces,
-                        ..Entry::default()
-                    });
-                }
-            }
-        }
-        Ok(doc)
-    }
-
-    /// A top-level value: `Name(...)`, `(...)`, `{...}`, a word or a string.
-    fn value_pieces(&mut self) -> Result<Vec<Piece>, LexError> {
-        let mut pieces = Vec::new();
-        loop {
-            let Some(t) = self.peek().cloned() else {
-                return Ok(pieces);
-            };
-            match t.kind {
-                Kind::Open(c) => {
-                    pieces.push(Piece::Group(self.group(c)?));
-                    return Ok(pieces);
-                }
-                Kind::Word | Kind::Str if pieces.is_empty() => {
-                    self.pos += 1;
-                    pieces.push(Piece::Atom(t.text(self.src).to_string()));
-                    if !matches!(self.peek().map(|t| t.kind), Some(Kind::Open(_))) {
-                        return Ok(pieces);
-                    }
-                }
-                _ => return Ok(pieces),
-            }
-        }
-    }
-
-    /// The group opening at the current token.
-    fn group(&mut self, open: char) -> Result<Group, LexError> {
-        let open_at = self.toks[self.pos].span.start;
-        self.pos += 1;
-        let close = match open {
-            '(' => ')',
-            '[' => ']',
-            _ => '}',
-        };
-        let mut g = Group {
-            open,
-            close,
-            open_trailing: Vec::new(),
-            entries: Vec::new(),
-            closing: Vec::new(),
-            one_line: true,
-            hug: false,
-        };
-        let first_on_open_line = self
-            .peek()
-            .is_some_and(|t| t.newlines_before == 0 && !t.is_comment());
-        // Still on the line of the opening bracket or of the last comma.
-        let mut trailing_line = true;
-        let mut leading: Vec<Comment> = Vec::new();
-        let mut blank_before = false;
-        loop {
-            let Some(t) = self.peek().cloned() else {
-                return Err(self.error(open_at, &format!("`{open}` is never closed")));
-            };
-            if t.newlines_before > 0 {
-                g.one_line = false;
-                trailing_line = false;
-            }
-            match t.kind {
-                Kind::LineComment | Kind::BlockComment => {
-                    self.pos += 1;
-                    let c = self.comment(&t);
-                    if trailing_line {
-                        match g.entries.last_mut() {
-                            Some(e) => e.trailing.push(c),
-                            None => g.open_trailing.push(c),
-                        }
-                    } else {
-                        if leading.is_empty() {
-                            blank_before = c.blank_before;
-                        }
-                        leading.push(c);
-                    }
-                }
-                Kind::Close(c) if c == close => {
-                    self.pos += 1;
-                    g.hug = first_on_open_line
-                        && !g.one_line
-                        && t.newlines_before == 0
-                        && matches!(g.entries.last(), Some(e) if !e.comma && matches!(e.pieces.last(), Some(Piece::Group(_))));
-                    g.closing = leading;
-                    return Ok(g);
-                }
-                Kind::Close(c) => {
-                    return Err(self.error(t.span.start, &format!("`{c}` closes `{open}`")));
-                }
-                // `value // why` + newline + `,`: the comment trails the value.
-                Kind::Comma if g.entries.last().is_some_and(|e| !e.comma) => {
-                    self.pos += 1;
-                    if let Some(e) = g.entries.last_mut() {
-                        e.comma = true;
-                        e.trailing.append(&mut leading);
-                    }
-                }
-                Kind::Comma => return Err(self.error(t.span.start, "a comma with nothing before it")),
-                _ => {
-                    if leading.is_empty() {
-                        blank_before = t.newlines_before >= 2;
-                    }
-                    let mut e = Entry {
-                        blank_before,
-                        leading: std::mem::take(&mut leading),
-                        ..Entry::default()
-                    };
-                    self.entry(&mut e, &mut g.one_line)?;
-                    if let Some(t) = self.peek()
-                        && t.kind == Kind::Comma
-                    {
-                        g.one_line &= t.newlines_before == 0;
-                        self.pos += 1;
-                        e.comma = true;
-                    }
-                    trailing_line = true;
-                    g.entries.push(e);
-                }
-            }
-        }
-    }
-
-    /// Whether only comments stand between here and the next comma or
-    /// closing bracket.
-    fn only_comments_before_end(&self) -> bool {
-        self.toks[self.pos..]
-            .iter()
-            .find(|t| !t.is_comment())
-            .is_none_or(|t| matches!(t.kind, Kind::Comma | Kind::Close(_)))
-    }
-
-    /// The pieces of one entry, up to (not including) its comma or the
-    /// closing bracket. Comments after the last piece trail the entry.
-    fn entry(&mut self, e: &mut Entry, one_line: &mut bool) -> Result<(), LexError> {
-        // What the entry holds so far: nothing, a word (a key, a variant or
-        // a value), `key:`, `key: word`, or a complete value.
-        #[derive(PartialEq)]
-        enum Seen {
-            Nothing,
-            Word,
-            Key,
-            KeyWord,
-            Value,
-        }
-        let mut seen = Seen::Nothing;
-        let missing_comma = |p: &Self, at: usize| p.error(at, "expected `,` between two values");
-        while let Some(t) = self.peek().cloned() {
-            seen = match (&seen, t.kind) {
-                (_, Kind::LineComment | Kind::BlockComment | Kind::Comma | Kind::Close(_)) => seen,
-                (Seen::Nothing, Kind::Word | Kind::Str | Kind::Attribute) => Seen::Word,
-                (Seen::Key, Kind::Word | Kind::Str) => Seen::KeyWord,
-                (Seen::Nothing | Seen::Word | Seen::Key | Seen::KeyWord, Kind::Open(_)) => Seen::Value,
-                (Seen::Word, Kind::Colon) => Seen::Key,
-                _ => return Err(missing_comma(self, t.span.start)),
-            };
-            if t.newlines_before > 0 {
-                *one_line = false;
-            }
-            match t.kind {
-                Kind::Comma | Kind::Close(_) => break,
-                Kind::Open(c) => {
-                    let g = self.group(c)?;
-                    *one_line &= g.one_line;
-                    e.pieces.push(Piece::Group(g));
-                }
-                Kind::Colon => {
-                    self.pos += 1;
-                    e.pieces.push(Piece::Colon);
-                }
-                Kind::LineComment | Kind::BlockComment => {
-                    // Comments on their own lines before the comma or the
-                    // closing bracket belong to the group, not this entry.
-                    if t.newlines_before > 0 && !e.pieces.is_empty() && self.only_comments_before_end() {
-                        break;
-                    }
-                    self.pos += 1;
-                    e.pieces.push(Piece::Comment(self.comment(&t)));
-                }
-                Kind::Word | Kind::Str | Kind::Attribute => {
-                    self.pos += 1;
-                    e.pieces.push(Piece::Atom(t.text(self.src).to_string()));
-                }
-            }
-        }
-        while let Some(Piece::Comment(_)) = e.pieces.last() {
-            // A comment after the value, on its line: it trails the entry.
-            if let Some(Piece::Comment(c)) = e.pieces.pop() {
-                e.trailing.insert(0, c);
-            }
-        }
-        Ok(())
-    }
 }

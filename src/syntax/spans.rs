@@ -1,13 +1,16 @@
 //! Where each value of a RON document sits, by scene path.
 //!
 //! serde forgets positions once a value is parsed, yet a semantic error must
-//! point at the line that caused it. This is a small structural scan of the
-//! RON text (it does not interpret values) that records the byte range of
-//! every value under the same path syntax [`crate::diagnostic::Problem`] uses:
-//! `objects[3].material`, `materials.white.albedo`. Enum variant and struct
-//! names are transparent, as they are in the paths.
+//! point at the line that caused it. This view of the [`super::tree`] (read
+//! from RON or JSON, broken or not; values are not interpreted) records the
+//! byte range of every value under the path syntax
+//! [`crate::diagnostic::Problem`] uses: `objects[3].material`,
+//! `materials.white.albedo`. Enum variant and struct names are transparent,
+//! as they are in the paths.
 
-use super::tokens::{Tok, skip_value, tokenize};
+use super::lex::unquote;
+use super::parser::read;
+use super::tree::{Group, Piece, Read};
 use std::collections::HashMap;
 use std::ops::Range;
 
@@ -18,17 +21,19 @@ pub struct Spans {
 }
 
 impl Spans {
-    /// Scans `src`; a malformed document yields whatever was scanned before
-    /// the malformation (serde reports the syntax error itself).
+    /// Scans `src`; a malformed document yields what could be read of it
+    /// (serde reports the syntax error itself).
     pub fn scan(src: &str) -> Self {
-        let toks = tokenize(src);
-        let mut s = Scanner {
-            toks,
-            pos: 0,
-            map: HashMap::new(),
-        };
-        s.value("");
-        Spans { map: s.map }
+        Self::of(&read(src))
+    }
+
+    /// The spans of a tree already read.
+    pub fn of(tree: &Read) -> Self {
+        let mut s = Spans::default();
+        if let Some(top) = tree.values().next() {
+            s.value("", &top.value());
+        }
+        s
     }
 
     /// The span of `path`, or of its closest located ancestor.
@@ -55,6 +60,7 @@ impl Spans {
 
     /// The path of the innermost value whose text holds byte `offset` (a
     /// field's key counts as part of the value around it); `None` at the top.
+    /// It looks at every value: for many offsets, ask [`Spans::nesting`].
     pub fn path_at(&self, offset: usize) -> Option<String> {
         self.values()
             .filter(|(_, r)| r.contains(&offset))
@@ -101,6 +107,57 @@ impl Spans {
             spans: self,
         }
     }
+
+    /// One value at `path` (its pieces, comments left out); records its span.
+    fn value(&mut self, path: &str, pieces: &[&Piece]) {
+        let (Some(first), Some(last)) = (pieces.first(), pieces.last()) else {
+            return;
+        };
+        // A variant or struct name (`Sphere(`) is transparent in paths.
+        match pieces {
+            [Piece::Atom(_), Piece::Group(g)] | [Piece::Group(g)] => self.group(path, g),
+            [Piece::Atom(_)] => {}
+            // A colon where a value should be: nothing to locate.
+            _ => return,
+        }
+        let (start, end) = (first.span().start, last.span().end);
+        // A value seen again under the same path is either its own outer
+        // layer (JSON's `{"Sphere": {…}}`: the whole wins) or a repeated
+        // field (the first wins).
+        let span = self.map.entry(path.to_string()).or_insert(start..end);
+        if start <= span.start && end >= span.end {
+            *span = start..end;
+        }
+    }
+
+    /// The entries of `( … )`, `[ … ]` or `{ … }`.
+    fn group(&mut self, path: &str, g: &Group) {
+        let mut index = 0;
+        for e in &g.entries {
+            match e.key() {
+                Some(key) if g.open != '[' => {
+                    let text = unquote(&key.text);
+                    // JSON writes enum variants as `{"Sphere": {...}}`: a lone
+                    // capitalised key is a variant name, transparent in paths.
+                    let variant = g.open == '{'
+                        && text.starts_with(|c: char| c.is_ascii_uppercase())
+                        && g.entries.len() == 1
+                        && !e.comma;
+                    let child = if variant {
+                        path.to_string()
+                    } else {
+                        join(path, text)
+                    };
+                    self.map.insert(format!("{child}#key"), key.span.clone());
+                    self.value(&child, &e.value());
+                }
+                _ => {
+                    self.value(&format!("{path}[{index}]"), &e.value());
+                    index += 1;
+                }
+            }
+        }
+    }
 }
 
 /// The values of a [`Spans`] in document order with their parents; see
@@ -109,7 +166,8 @@ pub struct Nesting<'a> {
     entries: Vec<(&'a str, &'a Range<usize>)>,
     parent: Vec<Option<usize>>,
     /// Whether no two values overlap without one holding the other (always,
-    /// for the scanner's spans; otherwise lookups fall back to `path_at`).
+    /// for spans read from one tree; otherwise lookups fall back to
+    /// `path_at`).
     nested: bool,
     spans: &'a Spans,
 }
@@ -129,110 +187,6 @@ impl Nesting<'_> {
             at = self.parent[i];
         }
         None
-    }
-}
-
-struct Scanner {
-    toks: Vec<(Tok, Range<usize>)>,
-    pos: usize,
-    map: HashMap<String, Range<usize>>,
-}
-
-impl Scanner {
-    fn peek(&self, k: usize) -> Option<&Tok> {
-        self.toks.get(self.pos + k).map(|t| &t.0)
-    }
-
-    fn end_of_prev(&self) -> usize {
-        self.pos
-            .checked_sub(1)
-            .and_then(|p| self.toks.get(p))
-            .map_or(0, |t| t.1.end)
-    }
-
-    /// One value at `path`; records its span.
-    fn value(&mut self, path: &str) {
-        let Some(start) = self.toks.get(self.pos).map(|t| t.1.start) else {
-            return;
-        };
-        match self.peek(0).cloned() {
-            Some(Tok::Atom { ident: true, .. }) if self.peek(1) == Some(&Tok::Open('(')) => {
-                self.pos += 1; // variant or struct name: transparent in paths
-                self.group(path, ')');
-            }
-            Some(Tok::Open(c)) => {
-                let close = match c {
-                    '(' => ')',
-                    '[' => ']',
-                    _ => '}',
-                };
-                self.group(path, close);
-            }
-            Some(Tok::Atom { .. }) => self.pos += 1,
-            _ => {
-                self.pos += 1;
-                return;
-            }
-        }
-        let end = self.end_of_prev();
-        // A value seen again under the same path is either its own outer
-        // layer (JSON's `{"Sphere": {…}}`: the whole wins) or a repeated
-        // field (the first wins).
-        let span = self.map.entry(path.to_string()).or_insert(start..end);
-        if start <= span.start && end >= span.end {
-            *span = start..end;
-        }
-    }
-
-    /// The inside of `( … )`, `[ … ]` or `{ … }`, opening token current.
-    fn group(&mut self, path: &str, close: char) {
-        self.pos += 1;
-        let mut index = 0;
-        loop {
-            match self.peek(0).cloned() {
-                None => return,
-                Some(Tok::Close(_)) => {
-                    self.pos += 1;
-                    return;
-                }
-                Some(Tok::Comma) => {
-                    self.pos += 1;
-                    continue;
-                }
-                _ => {}
-            }
-            let keyed = matches!(self.peek(0), Some(Tok::Atom { .. })) && self.peek(1) == Some(&Tok::Colon);
-            if keyed && close != ']' {
-                let Some((Tok::Atom { text, .. }, key_span)) = self.toks.get(self.pos).cloned() else {
-                    return;
-                };
-                // JSON writes enum variants as `{"Sphere": {...}}`: a lone
-                // capitalised key is a variant name, transparent in paths.
-                let variant = close == '}'
-                    && text.starts_with(|c: char| c.is_ascii_uppercase())
-                    && self.pos > 0
-                    && self.toks.get(self.pos - 1).is_some_and(|t| t.0 == Tok::Open('{'))
-                    && self
-                        .toks
-                        .get(skip_value(&self.toks, self.pos + 2))
-                        .is_some_and(|t| matches!(t.0, Tok::Close(_)));
-                let child = if variant {
-                    path.to_string()
-                } else {
-                    join(path, &text)
-                };
-                self.pos += 2;
-                self.map.insert(format!("{child}#key"), key_span);
-                self.value(&child);
-            } else {
-                let before = self.pos;
-                self.value(&format!("{path}[{index}]"));
-                index += 1;
-                if self.pos == before {
-                    self.pos += 1;
-                }
-            }
-        }
     }
 }
 
@@ -282,6 +236,21 @@ Scene(
             .get("objects[0].radius")
             .expect("located through the variant layer");
         assert_eq!(&src[r], "-1");
+    }
+
+    /// The sorted lookup gives `path_at`'s answer at every byte, in RON, in
+    /// JSON (whose variant layers share a path) and in broken text.
+    #[test]
+    fn spans_nesting_agrees_with_path_at_everywhere() {
+        let json = r#"{"objects": [{"Sphere": {"center": [0, 0, 0], "radius": -1}}, {"Quad": {}}]}"#;
+        let broken = "Scene(objects: [Sphere(radius: 1) Sphere(radius: ), (a: [1 2]";
+        for src in [SRC, json, broken] {
+            let s = Spans::scan(src);
+            let n = s.nesting();
+            for offset in 0..=src.len() + 1 {
+                assert_eq!(n.path_at(offset), s.path_at(offset), "byte {offset} of {src}");
+            }
+        }
     }
 
     #[test]
