@@ -314,9 +314,15 @@ fn scene_text_has_one_tokenizer() {
         .into_iter()
         .filter(|(rel, _)| rel != "syntax/lex.rs")
         .filter(|(_, code)| {
-            ["fn tokenize", "fn lex(", "enum Tok ", "enum Tok{", "struct Token "]
-                .iter()
-                .any(|d| code.contains(d))
+            [
+                "fn tokenize",
+                "fn lex(",
+                "enum Tok ",
+                "enum Tok{",
+                "struct Token ",
+            ]
+            .iter()
+            .any(|d| code.contains(d))
         })
         .map(|(rel, _)| rel)
         .collect();

@@ -13,7 +13,7 @@
 //!   coordinate "beyond ±1e15"), and scales and strengths of 1e38 passed,
 //!   making a light's power infinite.
 
-mod common;
+use crate::common;
 
 use ronray::diagnostic::Severity;
 use ronray::load::{LoadError, Loaded, Overrides, load_str};
@@ -63,12 +63,16 @@ fn note_at(l: &Loaded, at: &str) -> (String, usize) {
 #[test]
 fn texels_that_are_no_value_in_parameter_textures_are_repaired_with_a_located_note() {
     let dir = tempfile::tempdir().expect("temp dir");
-    exr(&dir.path().join("rough.exr"), 0.3, [f32::NAN, f32::INFINITY, -1.0]);
+    exr(
+        &dir.path().join("rough.exr"),
+        0.3,
+        [f32::NAN, f32::INFINITY, -1.0],
+    );
     exr(&dir.path().join("albedo.exr"), 0.5, [0.5, f32::NAN, 0.5]);
     exr(&dir.path().join("glow.exr"), 2.0, [f32::NEG_INFINITY, 2.0, 2.0]);
     exr(&dir.path().join("clean.exr"), 0.5, [0.5, 0.5, 0.5]);
     let text = scene(
-        r#""rough": RoughPlastic(diffuse: Image(file: "albedo.exr"), roughness: Image(file: "rough.exr", channel: R), ior: 1.5),
+        r#""rough": MetalPlastic(base_color: Image(file: "albedo.exr"), roughness: Image(file: "rough.exr", channel: R), metalness: 0),
            "clean": Lambert(albedo: Image(file: "clean.exr"))"#,
         "Point(position: (0, 3, 2), intensity: (8, 8, 8))",
         r#"Sphere(center: (0, 0, 0), radius: 1, material: "rough"),
@@ -79,14 +83,19 @@ fn texels_that_are_no_value_in_parameter_textures_are_repaired_with_a_located_no
     let l = common::load_in(dir.path(), &text, &Overrides::default());
     let (m, line) = note_at(&l, "materials.rough.roughness.file");
     assert!(
-        m.contains("rough.exr has 1 NaN channel value, 1 infinite channel value, 1 negative channel value, read as 0"),
+        m.contains(
+            "rough.exr has 1 NaN channel value, 1 infinite channel value, 1 negative channel value, read as 0"
+        ),
         "{m}"
     );
     assert!(line > 0, "the roughness note is not located: {m}");
-    let (m, _) = note_at(&l, "materials.rough.diffuse.file");
+    let (m, _) = note_at(&l, "materials.rough.base_color.file");
     assert!(m.contains("albedo.exr has 1 NaN channel value, read as 0"), "{m}");
     let (m, _) = note_at(&l, "objects[2].emission.radiance.file");
-    assert!(m.contains("glow.exr has 1 infinite channel value, read as 0"), "{m}");
+    assert!(
+        m.contains("glow.exr has 1 infinite channel value, read as 0"),
+        "{m}"
+    );
     assert!(
         !notes(&l).iter().any(|(_, m, _)| m.contains("clean.exr")),
         "a clean image earned a note: {:#?}",
@@ -157,10 +166,18 @@ fn emitted_radiance_above_the_limit_is_refused_at_its_path() {
     exr(&dir.path().join("warm.exr"), 1.0, [5.0, 1.0, 1.0]);
     let black = r#""black": Lambert(albedo: (0, 0, 0))"#;
     let lamp = "Point(position: (0, 3, 2), intensity: (8, 8, 8))";
-    let sphere = |emission: &str| format!(r#"Sphere(center: (0, 0, 0), radius: 1, material: "black", emission: (radiance: {emission}))"#);
+    let sphere = |emission: &str| {
+        format!(
+            r#"Sphere(center: (0, 0, 0), radius: 1, material: "black", emission: (radiance: {emission}))"#
+        )
+    };
     let cases = [
         (
-            scene(black, "Quad(corner: (-1, 2, -1), edge_u: (2, 0, 0), edge_v: (0, 0, 2), radiance: (1e38, 1e38, 1e38))", ""),
+            scene(
+                black,
+                "Quad(corner: (-1, 2, -1), edge_u: (2, 0, 0), edge_v: (0, 0, 2), radiance: (1e38, 1e38, 1e38))",
+                "",
+            ),
             "lights[0].radiance",
         ),
         (
@@ -199,7 +216,11 @@ fn emitted_radiance_above_the_limit_is_refused_at_its_path() {
     }
     // At the limit, and with the ordinary values the cases vary, all load.
     for ok in [
-        scene(black, "Quad(corner: (-1, 2, -1), edge_u: (2, 0, 0), edge_v: (0, 0, 2), radiance: (1e12, 1, 1))", ""),
+        scene(
+            black,
+            "Quad(corner: (-1, 2, -1), edge_u: (2, 0, 0), edge_v: (0, 0, 2), radiance: (1e12, 1, 1))",
+            "",
+        ),
         scene(black, "Environment(map: \"warm.exr\", strength: 2)", ""),
         scene(black, lamp, &sphere(r#"Image(file: "warm.exr", scale: 3)"#)),
     ] {

@@ -434,7 +434,16 @@ const HANG: Duration = Duration::from_secs(120);
 /// (`--resume` reads what is at the output first); its output.
 fn render_small(dir: &Path, tile: &str, extra: &[&str]) -> Output {
     let s = scene();
-    let mut args = vec!["render", s.as_str(), "--size", "8x8", "--spp", "1", "--tile", tile];
+    let mut args = vec![
+        "render",
+        s.as_str(),
+        "--size",
+        "8x8",
+        "--spp",
+        "1",
+        "--tile",
+        tile,
+    ];
     args.extend_from_slice(extra);
     ronray_within_memory(dir, &args, HANG, 4)
 }
@@ -529,7 +538,9 @@ fn window(bytes: &[u8], name: &str) -> [i32; 4] {
         .unwrap_or_else(|| panic!("no `{name}` attribute"))
         + key.len()
         + 4;
-    std::array::from_fn(|i| i32::from_le_bytes(bytes[at + 4 * i..at + 4 * i + 4].try_into().unwrap_or_default()))
+    std::array::from_fn(|i| {
+        i32::from_le_bytes(bytes[at + 4 * i..at + 4 * i + 4].try_into().unwrap_or_default())
+    })
 }
 
 /// Issue 39: piece headers sized allocations. A piece of about a kilobyte
@@ -549,7 +560,11 @@ fn piece_headers_that_lie_about_their_size_are_refused_before_allocating() {
     let data = window(&good, "dataWindow");
 
     let mut wide = good.clone();
-    set_window(&mut wide, "dataWindow", [-(1 << 30) + 2, data[1], (1 << 30) - 3, data[3]]);
+    set_window(
+        &mut wide,
+        "dataWindow",
+        [-(1 << 30) + 2, data[1], (1 << 30) - 3, data[3]],
+    );
     std::fs::write(dir.path().join("wide.exr"), &wide).expect("write");
     let mut huge = good.clone();
     set_window(&mut huge, "displayWindow", [0, 0, 99_999, 99_999]);

@@ -414,11 +414,16 @@ fn gltf_emission_above_the_limit_is_clamped_with_a_note() {
         &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
     )
     .unwrap_or_else(|e| panic!("loads: {e}"));
-    let notes: Vec<&str> = loaded.warnings.diagnostics.iter().map(|d| d.message.as_str()).collect();
+    let notes: Vec<&str> = loaded
+        .warnings
+        .diagnostics
+        .iter()
+        .map(|d| d.message.as_str())
+        .collect();
     assert!(
-        notes
-            .iter()
-            .any(|n| n.contains("emissive strength") && n.contains("at most 1e12") && n.contains("read as [1000000000000, 1000000000000, 0]")),
+        notes.iter().any(|n| n.contains("emissive strength")
+            && n.contains("at most 1e12")
+            && n.contains("read as [1000000000000, 1000000000000, 0]")),
         "{notes:#?}"
     );
     assert!(!loaded.scene.lights.is_empty(), "the emission was dropped");

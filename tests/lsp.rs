@@ -2,8 +2,6 @@
 //! located diagnostics for a scene with mistakes, updated after an edit;
 //! hover, completion and go-to-definition answers.
 
-use crate::common;
-
 use serde_json::{Value, json};
 use std::io::{BufRead, BufReader, Read, Write};
 use std::path::Path;
@@ -463,5 +461,8 @@ fn lsp_refuses_a_content_length_past_the_limit_without_allocating_it() {
         err.contains("a message of 100000000000 bytes is above the limit of"),
         "stderr: {err}"
     );
-    assert!(out.contains("\"id\":1"), "the server never answered `initialize`: {out}");
+    assert!(
+        out.contains("\"id\":1"),
+        "the server never answered `initialize`: {out}"
+    );
 }

@@ -20,6 +20,7 @@ mod analytic;
 mod animation;
 mod aov;
 mod architecture;
+mod bad_values;
 mod baked_patterns;
 mod bvh_bunny;
 mod cameras;

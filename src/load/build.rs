@@ -328,14 +328,18 @@ fn bvh_and_leaf_order(
 /// plus its offset, is above [`MAX_RADIANCE`] (an EXR texel of 1e38 is a
 /// finite number, so neither the texel repair nor validation saw it), as a
 /// problem at `path`.
-fn too_bright(path: &str, tex: &crate::materials::ColorTex, textures: &[crate::materials::Texture]) -> Option<Problem> {
+fn too_bright(
+    path: &str,
+    tex: &crate::materials::ColorTex,
+    textures: &[crate::materials::Texture],
+) -> Option<Problem> {
     let crate::materials::Tex::Image(l) = tex else {
         return None;
     };
     let t = textures.get(l.index as usize)?;
     let texel = t.texels.iter().fold(0.0f32, |m, c| m.max(c.max_element()));
     let brightest = texel * l.scale.abs() + l.offset.abs();
-    (!(brightest <= MAX_RADIANCE)).then(|| {
+    (brightest.is_nan() || brightest > MAX_RADIANCE).then(|| {
         Problem::new(
             format!("{path}.file"),
             format!(

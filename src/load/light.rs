@@ -268,7 +268,7 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
                             ));
                         }
                         let brightest = m.rgb.iter().fold(0.0f32, |b, &x| b.max(x)) * *strength;
-                        if !(brightest <= MAX_RADIANCE) {
+                        if brightest.is_nan() || brightest > MAX_RADIANCE {
                             ctx.problems.push(
                                 Problem::new(
                                     format!("lights[{i}].map"),

@@ -25,13 +25,13 @@
 //! not. The material itself is mapped as above, so the surface also reflects
 //! its `Kd`.
 
+use super::validate::MAX_RADIANCE;
 use crate::lights::Emission;
 use crate::materials::{
     Channel, ColorTex, Cutout, DielectricFresnel, GlassMaterial, ImageLookup, LambertMaterial, Material,
     MetalPlasticMaterial, MirrorMaterial, PhongMaterial, Roughness, ScalarTex, Surface, Tex, Texture,
     UvTransform,
 };
-use super::validate::MAX_RADIANCE;
 use crate::math::Rgb;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

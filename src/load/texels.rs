@@ -109,7 +109,16 @@ mod tests {
 
     #[test]
     fn repair_reads_every_kind_of_non_value_as_zero_and_counts_it() {
-        let mut v = [1.0, f32::NAN, -0.0, f32::INFINITY, f32::NEG_INFINITY, -2.0, 3e38, f32::NAN];
+        let mut v = [
+            1.0,
+            f32::NAN,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            -2.0,
+            3e38,
+            f32::NAN,
+        ];
         let said = repair_values(&mut v).expect("repaired");
         assert_eq!(v, [1.0, 0.0, -0.0, 0.0, 0.0, 0.0, 3e38, 0.0]);
         assert_eq!(

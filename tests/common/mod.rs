@@ -81,7 +81,10 @@ fn run_within(mut cmd: Command, dir: &Path, args: &[&str], limit: std::time::Dur
         if start.elapsed() > limit {
             let _ = child.kill();
             let _ = child.wait();
-            panic!("`ronray {}` did not end within {limit:?}: it hangs", args.join(" "));
+            panic!(
+                "`ronray {}` did not end within {limit:?}: it hangs",
+                args.join(" ")
+            );
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
     };

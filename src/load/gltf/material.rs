@@ -21,12 +21,12 @@
 //! MikkTSpace and the normal-map frame assume), and images are read with
 //! the default bottom-left origin: the same texel either way.
 
+use super::super::validate::MAX_RADIANCE;
 use super::document::{Files, view_bytes};
 use crate::materials::{
     Channel, Cutout, ImageLookup, Material, MetalPlasticMaterial, Perturb, Roughness, Surface, Tex,
     UvTransform,
 };
-use super::super::validate::MAX_RADIANCE;
 use crate::math::Rgb;
 use glam::{Affine2, Mat2, Vec2};
 use std::collections::HashMap;
@@ -309,7 +309,9 @@ fn texture(
             let decoded = decode(asset, &image, srgb);
             let r = match decoded {
                 Ok(super::super::material::DecodedTexture {
-                    texture: tex, repaired, ..
+                    texture: tex,
+                    repaired,
+                    ..
                 }) => {
                     if let Some(what) = repaired {
                         note(format!(
