@@ -34,10 +34,30 @@ pub struct Files {
     root: Option<PathBuf>,
 }
 
+/// A GLB header's total length below the header's own 12 bytes: `gltf`
+/// 1.4.1 subtracts 12 from it unchecked (`Glb::from_slice`), an overflow
+/// panic wherever overflow checks are on (found by the `gltf` fuzz target,
+/// `fuzz/regressions/gltf/glb_length_below_header`).
+fn check_glb_length(bytes: &[u8]) -> Result<(), String> {
+    if let Some(len) = bytes
+        .strip_prefix(b"glTF")
+        .and_then(|rest| rest.get(4..8))
+        .and_then(|b| <[u8; 4]>::try_from(b).ok())
+        .map(u32::from_le_bytes)
+        && len < 12
+    {
+        return Err(format!(
+            "invalid glTF: the GLB header gives the file a length of {len} bytes, less than the header's own 12"
+        ));
+    }
+    Ok(())
+}
+
 /// Reads `path` and its buffers.
 pub fn read(path: &Path, root: Option<&Path>) -> Result<Asset, String> {
     let bytes =
         crate::files::read_regular(path, MAX_GLTF_BYTES).map_err(|e| format!("cannot read glTF: {e}"))?;
+    check_glb_length(&bytes)?;
     let gltf = gltf::Gltf::from_slice_without_validation(&bytes).map_err(describe)?;
     let json = gltf.document.into_json();
     // `gltf-json` 1.4.1's validation indexes `accessors` by POSITION's
@@ -237,5 +257,25 @@ mod tests {
     fn percent_escapes_decode() {
         assert_eq!(percent_decode("my%20file.bin"), "my file.bin");
         assert_eq!(percent_decode("100%"), "100%");
+    }
+
+    /// A GLB whose header claims fewer bytes than the header is refused
+    /// with a message, before `gltf` subtracts 12 from it (a panic in any
+    /// build with overflow checks, as the tests are).
+    #[test]
+    fn a_glb_length_below_its_header_is_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        for len in [0u32, 11] {
+            let mut glb = b"glTF".to_vec();
+            glb.extend(2u32.to_le_bytes());
+            glb.extend(len.to_le_bytes());
+            glb.extend(b"\x00\x00\x00\x00JSON{}");
+            let path = dir.path().join("short.glb");
+            std::fs::write(&path, &glb).expect("write");
+            let e = read(&path, None).err().expect("refused");
+            assert!(e.contains("less than the header's own 12"), "{e}");
+        }
+        // 12 and above go on to the crate's own checks.
+        assert!(check_glb_length(b"glTF\x02\x00\x00\x00\x0c\x00\x00\x00").is_ok());
     }
 }
