@@ -82,6 +82,75 @@ pub fn load_obj_data_in(path: &Path, root: Option<&Path>) -> Result<ObjData, Str
     parse_obj_data(path, &bytes, &mtl)
 }
 
+/// Refuses a face (or line) index that names no vertex, position, texture
+/// coordinate or normal of the file: a relative index `-k` past the `k`
+/// elements read so far, or an absolute one past all of them. tobj 4.0.5
+/// resolves a relative index against the count so far and multiplies it
+/// unchecked (`f 1/-356/1` after 109 `vt` lines overflowed, found by the
+/// `obj` fuzz target; caught by `catch_unwind`, but a panic all the same).
+/// tobj would refuse both as out of bounds where it does not overflow, so
+/// no file it reads is refused here; the message says which index and line.
+fn check_face_indices(bytes: &[u8]) -> Result<(), String> {
+    const KINDS: [&str; 3] = ["position", "texture coordinate", "normal"];
+    let lines = || {
+        bytes
+            .split(|&b| b == b'\n')
+            .map(|l| std::str::from_utf8(l).unwrap_or(""))
+    };
+    let element = |word: Option<&str>| match word {
+        Some("v") => Some(0),
+        Some("vt") => Some(1),
+        Some("vn") => Some(2),
+        _ => None,
+    };
+    let mut total = [0usize; 3];
+    for line in lines() {
+        if let Some(k) = element(line.split_whitespace().next()) {
+            total[k] += 1;
+        }
+    }
+    let mut so_far = [0usize; 3];
+    for (n, line) in lines().enumerate() {
+        let mut words = line.split_whitespace();
+        let first = words.next();
+        if let Some(k) = element(first) {
+            so_far[k] += 1;
+            continue;
+        }
+        if !matches!(first, Some("f" | "l")) {
+            continue;
+        }
+        for vertex in words {
+            for (k, index) in vertex.split('/').enumerate().take(3) {
+                let Ok(x) = index.parse::<i64>() else {
+                    continue; // empty (`v//vn`) or not a number: tobj's to refuse
+                };
+                if k > 0 && total[k] == 0 {
+                    continue; // tobj ignores texture and normal indices then
+                }
+                let names = if x < 0 {
+                    x.unsigned_abs() > so_far[k] as u64
+                } else {
+                    x as u64 > total[k] as u64
+                };
+                if names {
+                    let (what, count) = if x < 0 {
+                        ("were read before it", so_far[k])
+                    } else {
+                        ("are in the file", total[k])
+                    };
+                    return Err(format!(
+                        "line {}: the face names {} {x}, but only {count} {what}",
+                        n + 1,
+                        KINDS[k]
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Parses OBJ text (`bytes`, named `path` in messages), reading each MTL
 /// file it names through `mtl`. The one OBJ parser of ronray: files,
 /// watch mode's cache and the fuzz target all come through here.
@@ -90,6 +159,7 @@ pub fn parse_obj_data(
     bytes: &[u8],
     mtl: &dyn Fn(&Path) -> Result<Vec<u8>, String>,
 ) -> Result<ObjData, String> {
+    check_face_indices(bytes).map_err(|e| format!("invalid OBJ file {}: {e}", path.display()))?;
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -280,7 +350,41 @@ pub fn texture_file(spec: &str) -> Option<&str> {
 
 #[cfg(test)]
 mod tests {
-    use super::texture_file;
+    use super::{check_face_indices, texture_file};
+
+    /// Face indices naming nothing are refused with their line before tobj
+    /// sees them (it overflowed on a relative one); every index tobj reads
+    /// without overflow is still left to it.
+    #[test]
+    fn face_indices_that_name_nothing_are_refused_with_their_line() {
+        let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
+        let refused = |face: &str| check_face_indices(format!("{head}{face}\n").as_bytes()).err();
+        let e = refused("f 1/-356/1 2/1/1 3/1/1").expect("relative texcoord past the start");
+        assert!(
+            e.contains("line 6") && e.contains("texture coordinate -356") && e.contains("only 1"),
+            "{e}"
+        );
+        let e = refused("f -4 -2 -1").expect("relative position past the start");
+        assert!(e.contains("position -4"), "{e}");
+        let e = refused("f 1//9223372036854775807 2//1 3//1").expect("absolute normal past the end");
+        assert!(
+            e.contains("normal 9223372036854775807") && e.contains("are in the file"),
+            "{e}"
+        );
+        for fine in [
+            "f 1/1/1 2/1/1 3/1/1",
+            "f -3/-1/-1 -2/-1/-1 -1/-1/-1",
+            "f 1//1 2//1 3//1",
+            "l 1 2",
+        ] {
+            assert_eq!(refused(fine), None, "{fine}");
+        }
+        // Without any `vt`, tobj ignores texture indices: so does the check.
+        assert_eq!(
+            check_face_indices(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/-9 2/7 3/1\n").err(),
+            None
+        );
+    }
 
     /// Running out of memory for a mesh is an error, not an abort (here a
     /// request no machine can meet).
