@@ -75,6 +75,24 @@ pub fn read(path: &Path, root: Option<&Path>) -> Result<Asset, String> {
             }
         }
     }
+    // `gltf` 1.4.1's `Image::source` unwraps the image's `uri` when it has
+    // no `bufferView`, and its `mimeType` when it has one; validation checks
+    // neither (found by the `gltf` fuzz target): checked here.
+    for (i, image) in json.images.iter().enumerate() {
+        match (&image.buffer_view, &image.uri, &image.mime_type) {
+            (None, None, _) => {
+                return Err(format!(
+                    "invalid glTF: images[{i}] has neither a uri nor a bufferView"
+                ));
+            }
+            (Some(_), _, None) => {
+                return Err(format!(
+                    "invalid glTF: images[{i}] is in a bufferView without a mimeType (image/png or image/jpeg)"
+                ));
+            }
+            _ => {}
+        }
+    }
     let doc = gltf::Document::from_json(json).map_err(describe)?;
     let mut asset = Asset {
         doc,
@@ -276,6 +294,26 @@ mod tests {
             assert!(e.contains("less than the header's own 12"), "{e}");
         }
         // 12 and above go on to the crate's own checks.
+    }
+
+    /// An image with neither a uri nor a bufferView, or in a bufferView
+    /// without a mimeType, is refused: `gltf` unwrapped both.
+    #[test]
+    fn images_without_a_source_or_a_mime_type_are_refused() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let path = dir.path().join("bad.gltf");
+        for (image, says) in [
+            (r#"{"name": "nothing"}"#, "neither a uri nor a bufferView"),
+            (r#"{"bufferView": 0}"#, "without a mimeType"),
+        ] {
+            let text = format!(
+                r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": 4, "uri": "data:application/octet-stream;base64,AAAAAA=="}}],
+                   "bufferViews": [{{"buffer": 0, "byteLength": 4}}], "images": [{image}]}}"#
+            );
+            std::fs::write(&path, text).expect("write");
+            let e = read(&path, None).err().expect("refused");
+            assert!(e.contains("images[0]") && e.contains(says), "{e}");
+        }
         assert!(check_glb_length(b"glTF\x02\x00\x00\x00\x0c\x00\x00\x00").is_ok());
     }
 }
