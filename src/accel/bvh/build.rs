@@ -142,13 +142,16 @@ fn build_with_limits(bounds: &[Aabb], limits: Limits) -> (Vec<Node>, Vec<u32>) {
         "a BVH indexes primitives with u32"
     );
     // Empty bounds can never be hit: drop them so no node box is empty.
-    // Padding here makes every node box padded (see `Aabb::padded`).
-    // In parallel (rayon's collect keeps the order): a serial pass here was
-    // a fixed cost no thread count shortened.
+    // Nor can bounds that are not finite (a NaN or infinite vertex): their
+    // centroids are no point, and one NaN in the centroid bounds put a
+    // centroid below its node's minimum, an index past the bins (found by
+    // the `gltf` fuzz target). Padding here makes every node box padded
+    // (see `Aabb::padded`). In parallel (rayon's collect keeps the order): a
+    // serial pass here was a fixed cost no thread count shortened.
     let mut refs: Vec<PrimRef> = bounds
         .par_iter()
         .enumerate()
-        .filter(|(_, b)| !b.is_empty())
+        .filter(|(_, b)| !b.is_empty() && b.min.is_finite() && b.max.is_finite())
         .map(|(index, b)| PrimRef::new(b.padded(), index as u32))
         .collect();
     let mut nodes = Vec::new();

@@ -75,6 +75,18 @@ fn read_primitive(
     let pos = p.get(&Semantic::Positions).ok_or("no POSITION attribute")?;
     let positions: Vec<[f32; 3]> =
         read_f32(doc, buffers, pos.index(), Dimensions::Vec3, &f32_only, "POSITION")?;
+    // As OBJ vertices: a position that is no number is refused, not built
+    // into the BVH (the `gltf` fuzz target's NaN vertex).
+    if let Some((k, p)) = positions
+        .iter()
+        .enumerate()
+        .find(|(_, p)| !p.iter().all(|x| x.is_finite()))
+    {
+        return Err(format!(
+            "POSITION {k} is not finite: ({}, {}, {})",
+            p[0], p[1], p[2]
+        ));
+    }
     let n = positions.len();
     let same = |len: usize, what: &str| {
         if len == n {

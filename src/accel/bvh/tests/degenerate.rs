@@ -149,3 +149,44 @@ fn bvh_axis_parallel_rays() {
     assert_matches_brute_force("axis-parallel", &tris, &rs, true);
     assert_occluded_matches_brute_force("axis-parallel", &tris, &rs);
 }
+
+/// Boxes that are no boxes (a NaN or an infinite vertex) are left out of
+/// the tree: one NaN among the centroid bounds once put a centroid below
+/// its node's minimum and a bin index past the end (the `gltf` fuzz target,
+/// a NaN vertex in a 12-triangle cube). The finite ones are found as before.
+#[test]
+fn bvh_leaves_out_bounds_that_are_not_finite() {
+    let good = soup(7, 300, 1.0, Vec3A::ZERO, false);
+    let mut bounds: Vec<Aabb> = good.iter().map(Tri::bounds).collect();
+    let bad = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY];
+    for (k, &x) in bad.iter().cycle().take(30).enumerate() {
+        let mut b = bounds[k * 7];
+        // A NaN at the min on one axis, as `min` of a NaN vertex gives.
+        b.min[k % 3] = x;
+        bounds.insert(k * 11, b);
+    }
+    let bvh = Bvh::build(&bounds);
+    let ids: Vec<usize> = {
+        let mut g = 0;
+        let mut map = Vec::new();
+        for b in &bounds {
+            let finite = b.min.is_finite() && b.max.is_finite();
+            map.push(if finite {
+                g += 1;
+                g - 1
+            } else {
+                usize::MAX
+            });
+        }
+        map
+    };
+    for ray in rays(7, 1000, &good) {
+        let want = brute(&good, &ray, f32::INFINITY);
+        let got = bvh.intersect(&ray, f32::INFINITY, |i, r, t| {
+            let g = ids[i as usize];
+            assert_ne!(g, usize::MAX, "primitive {i} has bounds that are not finite");
+            good[g].hit(r, t)
+        });
+        assert_eq!(got.map(|(_, t)| t), want.map(|(_, t)| t), "{ray:?}");
+    }
+}
