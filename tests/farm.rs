@@ -517,27 +517,27 @@ fn resume_redoes_a_truncated_piece_and_fifos_do_not_hang() {
 /// `bytes` (an EXR file) with its `box2i` attribute `name` set to
 /// `[x_min, y_min, x_max, y_max]` (inclusive, as EXR stores a window).
 fn set_window(bytes: &mut [u8], name: &str, b: [i32; 4]) {
-    let key = format!("{name}\0box2i\0");
-    let at = bytes
-        .windows(key.len())
-        .position(|w| w == key.as_bytes())
-        .unwrap_or_else(|| panic!("no `{name}` attribute"))
-        + key.len()
-        + 4;
+    let at = window_at(bytes, name);
     for (i, v) in b.iter().enumerate() {
         bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
     }
 }
 
-/// The `box2i` attribute `name` of an EXR file.
-fn window(bytes: &[u8], name: &str) -> [i32; 4] {
+/// Where the value of the `box2i` attribute `name` starts in an EXR file
+/// (after its name, type and 4-byte size).
+fn window_at(bytes: &[u8], name: &str) -> usize {
     let key = format!("{name}\0box2i\0");
-    let at = bytes
+    bytes
         .windows(key.len())
         .position(|w| w == key.as_bytes())
         .unwrap_or_else(|| panic!("no `{name}` attribute"))
         + key.len()
-        + 4;
+        + 4
+}
+
+/// The `box2i` attribute `name` of an EXR file.
+fn window(bytes: &[u8], name: &str) -> [i32; 4] {
+    let at = window_at(bytes, name);
     std::array::from_fn(|i| {
         i32::from_le_bytes(bytes[at + 4 * i..at + 4 * i + 4].try_into().unwrap_or_default())
     })
