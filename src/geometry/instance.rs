@@ -65,6 +65,12 @@ impl Instance {
         self
     }
 
+    /// Whether the instance leaves its mesh where it is (the identity, not
+    /// moving): a baked mesh's.
+    pub fn is_identity(&self) -> bool {
+        self.identity
+    }
+
     /// Whether the instance moves while the shutter is open.
     pub fn moves(&self) -> bool {
         self.motion.is_some()

@@ -16,6 +16,7 @@
 //! two boxes together — the condition under which one entry cannot cost
 //! more traversal than two.
 
+use super::flat_shade::FlatShade;
 use super::triangle::WatertightRay4;
 use super::{Geometry, Hit, MeshHit};
 use crate::accel::Aabb;
@@ -38,6 +39,10 @@ pub struct MeshQuad {
     /// `r` of its corners (top 2 bits): the mesh's corner `(k + r) mod 3`
     /// is the pair's `k`-th corner of that triangle.
     tris: [u32; 2],
+    /// Each triangle's whole shading record when the mesh has neither
+    /// vertex normals nor UVs (`flat_shade.rs`); `None`: through the
+    /// instance.
+    flat: Option<[FlatShade; 2]>,
 }
 
 impl MeshQuad {
@@ -53,7 +58,32 @@ impl MeshQuad {
             rows: [0, 1, 2].map(|a| Vec4::new(v[0][a], v[1][a], v[2][a], v[3][a])),
             instance,
             tris: [tris[0] | rot[0] << 30, tris[1] | rot[1] << 30],
+            flat: None,
         })
+    }
+
+    /// This pair shaded from `flat` alone (triangle `k`'s record
+    /// `flat[k]`), which must be what its instance gives (a static,
+    /// untransformed mesh without vertex normals or UVs).
+    pub fn with_flat(self, flat: [FlatShade; 2]) -> Self {
+        Self {
+            flat: Some(flat),
+            ..self
+        }
+    }
+
+    /// The corners of triangle `k` (0 or 1) in its mesh's order.
+    #[inline]
+    pub fn mesh_corners(&self, k: u32) -> [Vec3A; 3] {
+        let v = self.corners();
+        let pair = if k & 1 == 0 {
+            [v[0], v[1], v[2]]
+        } else {
+            [v[0], v[2], v[3]]
+        };
+        // Mesh corner m is the pair's corner (m − r) mod 3.
+        let r = (self.tris[k as usize & 1] >> 30) as usize;
+        [0, 1, 2].map(|m| pair[(m + 3 - r) % 3])
     }
 
     /// World-space corners v0…v3.
@@ -80,6 +110,9 @@ impl MeshQuad {
     /// triangle hit on its own.
     pub fn hit(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry) -> Hit {
         let h = self.mesh_hit(t, k, bc);
+        if let Some(f) = &self.flat {
+            return f[k as usize & 1].hit(self.mesh_corners(k), t, h.bc);
+        }
         geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
     }
 

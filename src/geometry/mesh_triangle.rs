@@ -9,6 +9,7 @@
 //! Handing the top level whole four-triangle leaves instead was measured
 //! slower: their boxes are much looser than single triangles'.
 
+use super::flat_shade::FlatShade;
 use super::triangle::{WatertightRay4, corners_of_rows, rows_of_corners};
 use super::{Geometry, Hit, MeshHit};
 use crate::accel::Aabb;
@@ -29,6 +30,9 @@ pub struct MeshTriangle {
     pub instance: u32,
     /// Index of the triangle in that instance's mesh.
     pub tri: u32,
+    /// Its whole shading record when the mesh has neither vertex normals
+    /// nor UVs (`flat_shade.rs`); `None`: through the instance.
+    flat: Option<FlatShade>,
 }
 
 impl MeshTriangle {
@@ -38,6 +42,17 @@ impl MeshTriangle {
             rows: rows_of_corners(p),
             instance,
             tri,
+            flat: None,
+        }
+    }
+
+    /// This triangle shaded from `flat` alone, which must be what its
+    /// instance gives (a static, untransformed mesh without vertex normals
+    /// or UVs).
+    pub fn with_flat(self, flat: FlatShade) -> Self {
+        Self {
+            flat: Some(flat),
+            ..self
         }
     }
 
@@ -55,6 +70,9 @@ impl MeshTriangle {
 
     /// Shading record for a hit found by [`MeshTriangle::intersect`].
     pub fn hit(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry) -> Hit {
+        if let Some(f) = &self.flat {
+            return f.hit(self.corners(), t, bc);
+        }
         let h = MeshHit { t, tri: self.tri, bc };
         geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
     }

@@ -8,6 +8,7 @@
 //! only very small baked meshes put their triangles in the top level
 //! (`mesh_triangle.rs`).
 
+pub mod flat_shade;
 pub mod instance;
 pub mod mesh;
 pub mod mesh_quad;
@@ -179,3 +180,7 @@ impl Shape {
         }
     }
 }
+
+// The flattened triangles' shading records (`flat_shade.rs`) fit in the
+// room the largest shape already takes: the scene's shape list is no larger.
+const _: () = assert!(size_of::<Shape>() <= 128);

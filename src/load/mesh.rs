@@ -23,6 +23,7 @@ use super::mesh_state::LoadedMesh;
 use super::validate::Checker;
 use crate::desc::{MeshDesc, ObjectDesc};
 use crate::diagnostic::Problem;
+use crate::geometry::flat_shade::FlatShade;
 use crate::geometry::mesh_quad::pairing;
 use crate::geometry::mesh_triangle::FLATTEN_MAX;
 use crate::geometry::obj::ObjData;
@@ -109,6 +110,18 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
             let (a, b, c) = mesh.corners(tri);
             [a, b, c]
         };
+        // Flat-shaded and untextured: each triangle's record is fixed here
+        // (`geometry/flat_shade.rs`) instead of read through the instance.
+        let instance = &ctx.geometry.instances[id as usize];
+        let plain = mesh.normals.is_empty() && mesh.uvs.is_empty() && instance.is_identity();
+        let flat = |tri: u32| {
+            let slot = mesh.slot(tri) as usize;
+            FlatShade::new(
+                corners(tri),
+                instance.materials.get(slot).copied().unwrap_or(0),
+                instance.lights.get(slot).copied().unwrap_or(NO_LIGHT),
+            )
+        };
         let mut taken = vec![false; n as usize];
         for tri in 0..n {
             if taken[tri as usize] {
@@ -122,11 +135,18 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
             match pair {
                 Some((o, q)) => {
                     taken[o as usize] = true;
+                    let q = if plain {
+                        q.with_flat([flat(tri), flat(o)])
+                    } else {
+                        q
+                    };
                     ctx.shapes.push(Shape::MeshQuad(q));
                 }
-                None => ctx
-                    .shapes
-                    .push(Shape::Triangle(MeshTriangle::new(corners(tri), id, tri))),
+                None => {
+                    let t = MeshTriangle::new(corners(tri), id, tri);
+                    let t = if plain { t.with_flat(flat(tri)) } else { t };
+                    ctx.shapes.push(Shape::Triangle(t));
+                }
             }
         }
     } else {
