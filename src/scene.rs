@@ -79,7 +79,13 @@ impl Scene {
         self.lights[i as usize].as_environment().map(|e| (i, e))
     }
 
-    /// Closest hit in `(0, t_max)`.
+    /// Closest hit in `(0, t_max)`. Inlined into the integrators: returned
+    /// from a call, the caller copied the hit record out of the callee's
+    /// stores with wider loads, which cannot be forwarded from them (a stall
+    /// perf put at 10% of `Path::trace`'s samples); inlined, the fields
+    /// stay where they are made. 1–2.5% faster on the Cornell boxes and the
+    /// sphere scenes (256², alternated runs).
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         self.closest(ray, t_max).map(|(hit, _)| hit)
     }
