@@ -234,14 +234,14 @@ impl Scene {
                         (h.t, Nearest::Mesh(i, *k, h))
                     }
                     Shape::Triangle(tr) => {
-                        let wt = wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray));
+                        let wt = WatertightRay4::lazily(&mut wt, ray);
                         let Some((t, bc)) = tr.intersect(wt, t_best) else {
                             continue;
                         };
                         (t, Nearest::Triangle(i, bc))
                     }
                     Shape::MeshQuad(q) => {
-                        let wt = wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray));
+                        let wt = WatertightRay4::lazily(&mut wt, ray);
                         let Some((t, k, bc)) = q.intersect(wt, t_best) else {
                             continue;
                         };
@@ -363,13 +363,13 @@ impl Scene {
                 .any(|s| match s {
                     Shape::Triangle(tr) => tr
                         .intersect(
-                            wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray)),
+                            WatertightRay4::lazily(&mut wt, ray),
                             t_max,
                         )
                         .is_some(),
                     Shape::MeshQuad(q) => q
                         .intersect(
-                            wt.get_or_insert_with(|| WatertightRay4::new_out_of_line(ray)),
+                            WatertightRay4::lazily(&mut wt, ray),
                             t_max,
                         )
                         .is_some(),

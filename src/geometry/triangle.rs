@@ -162,6 +162,26 @@ impl WatertightRay4 {
         Self::new(ray)
     }
 
+    /// The setup for `ray` in `slot`, made there on first use (out of line,
+    /// as [`WatertightRay4::new_out_of_line`]). It is written in place:
+    /// returned by value, its 160 bytes were copied out of the callee's
+    /// stores with wider loads than the stores, which store forwarding
+    /// cannot serve (8% of the traversal's samples on the Cornell box as
+    /// one OBJ, perf).
+    #[inline(always)]
+    pub fn lazily<'a>(slot: &'a mut Option<Self>, ray: &Ray) -> &'a Self {
+        if slot.is_none() {
+            Self::fill(slot, ray);
+        }
+        // Filled just above: the closure never runs.
+        slot.get_or_insert_with(|| Self::new_out_of_line(ray))
+    }
+
+    #[inline(never)]
+    fn fill(slot: &mut Option<Self>, ray: &Ray) {
+        *slot = Some(Self::new(ray));
+    }
+
     /// The lanes of `block` hit in `(0, t_max)`, their distances and the
     /// barycentrics `(b1, b2)` as two 4-lane vectors. Every lane computes
     /// exactly what [`WatertightRay::intersect`] does for its triangle, in
