@@ -108,11 +108,19 @@ impl MeshQuad {
     /// [`MeshQuad::intersect`]: the barycentrics are turned back to the
     /// mesh's corner order, so normals and UVs interpolate as for a
     /// triangle hit on its own.
+    #[inline(always)]
     pub fn hit(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry) -> Hit {
-        let h = self.mesh_hit(t, k, bc);
-        if let Some(f) = &self.flat {
-            return f[k as usize & 1].hit(self.mesh_corners(k), t, h.bc);
+        match &self.flat {
+            // Inline: a record returned from a call is copied out of the
+            // callee's stores by wider loads, a store-forwarding stall.
+            Some(f) => f[k as usize & 1].hit(self.mesh_corners(k), t, self.mesh_hit(t, k, bc).bc),
+            None => self.hit_through_instance(ray, t, k, bc, geo),
         }
+    }
+
+    #[inline(never)]
+    fn hit_through_instance(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry) -> Hit {
+        let h = self.mesh_hit(t, k, bc);
         geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
     }
 

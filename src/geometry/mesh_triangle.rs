@@ -69,10 +69,17 @@ impl MeshTriangle {
     }
 
     /// Shading record for a hit found by [`MeshTriangle::intersect`].
+    #[inline(always)]
     pub fn hit(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry) -> Hit {
-        if let Some(f) = &self.flat {
-            return f.hit(self.corners(), t, bc);
+        match &self.flat {
+            // Inline: see `MeshQuad::hit`.
+            Some(f) => f.hit(self.corners(), t, bc),
+            None => self.hit_through_instance(ray, t, bc, geo),
         }
+    }
+
+    #[inline(never)]
+    fn hit_through_instance(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry) -> Hit {
         let h = MeshHit { t, tri: self.tri, bc };
         geo.instances[self.instance as usize].hit(ray, h, &geo.meshes)
     }

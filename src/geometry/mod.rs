@@ -75,7 +75,7 @@ pub struct Geometry {
 }
 
 /// A ray–surface intersection with what shading needs.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Hit {
     /// Ray parameter of the hit: distance along the ray in units of its direction's
     /// length (world units for the unit-length rays integrators trace).

@@ -134,9 +134,10 @@ impl Path {
         let mut l = Rgb::ZERO;
         let split = self.split_caustics && scene.caustics.is_some();
         let max_chain = max_chain(self.max_depth);
+        let mut hit = Hit::default();
         loop {
             counters.rays += 1;
-            let Some(hit) = scene.intersect(&st.ray, f32::INFINITY) else {
+            if !scene.intersect_into(&st.ray, f32::INFINITY, &mut hit) {
                 // The environment, reached by the previous BSDF sample.
                 // After a non-delta vertex (never the camera ray) the radiance
                 // and the MIS density share one mapping of the direction.
@@ -159,7 +160,7 @@ impl Path {
                     }
                 }
                 break;
-            };
+            }
             st.segments += 1;
 
             // Emission reached by the previous BSDF sample.
