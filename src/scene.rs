@@ -71,6 +71,74 @@ enum Nearest {
     Quad(u32, Vec2),
 }
 
+/// A [`Nearest`] as three 64-bit words, the form the traversal's leaf test
+/// stores it in. `Path::trace` reads the nearest hit back a moment after
+/// the traversal wrote it; as the enum, the writer stored its fields one
+/// by one (4 bytes each) and the reader copied it by 8-byte words across
+/// two of those stores, which store forwarding cannot serve (8% of
+/// `Path::trace`'s samples on the Cornell box, perf). Words written whole
+/// are read back whole.
+#[derive(Clone, Copy)]
+struct NearestWords([u64; 3]);
+
+impl NearestWords {
+    /// No hit.
+    const NONE: Self = Self([0; 3]);
+}
+
+/// Two floats as one word, `x` in the low half.
+#[inline(always)]
+fn pack(v: Vec2) -> u64 {
+    u64::from(v.x.to_bits()) | (u64::from(v.y.to_bits()) << 32)
+}
+
+#[inline(always)]
+fn unpack(w: u64) -> Vec2 {
+    Vec2::new(f32::from_bits(w as u32), f32::from_bits((w >> 32) as u32))
+}
+
+impl Nearest {
+    /// Word 0: the variant (1 to 5) and the shape index; word 1: the
+    /// instance or the half of a pair, and a mesh triangle; word 2: the
+    /// two floats.
+    #[inline(always)]
+    fn encode(self) -> NearestWords {
+        let head = |kind: u64, i: u32| kind | (u64::from(i) << 32);
+        let pair = |a: u32, b: u32| u64::from(a) | (u64::from(b) << 32);
+        NearestWords(match self {
+            Nearest::Shape(i) => [head(1, i), 0, 0],
+            Nearest::Mesh(i, k, h) => [head(2, i), pair(k, h.tri), pack(h.bc)],
+            Nearest::Triangle(i, bc) => [head(3, i), 0, pack(bc)],
+            Nearest::MeshQuad(i, k, bc) => [head(4, i), pair(k, 0), pack(bc)],
+            Nearest::Quad(i, uv) => [head(5, i), 0, pack(uv)],
+        })
+    }
+
+    /// The hit `w` holds, at distance `t` (a mesh hit's own `t`), or `None`.
+    #[inline(always)]
+    fn decode(w: NearestWords, t: f32) -> Option<Self> {
+        let [head, pair, floats] = w.0;
+        let i = (head >> 32) as u32;
+        let (a, b) = (pair as u32, (pair >> 32) as u32);
+        Some(match head as u32 {
+            1 => Nearest::Shape(i),
+            2 => Nearest::Mesh(
+                i,
+                a,
+                MeshHit {
+                    t,
+                    tri: b,
+                    bc: unpack(floats),
+                },
+            ),
+            3 => Nearest::Triangle(i, unpack(floats)),
+            4 => Nearest::MeshQuad(i, a, unpack(floats)),
+            5 => Nearest::Quad(i, unpack(floats)),
+            _ => return None,
+        })
+    }
+}
+
 impl Scene {
     /// The environment and its index in `lights`, if the scene has one.
     #[inline]
@@ -235,7 +303,7 @@ impl Scene {
         let shapes = &self.shapes;
         // Kept with the nearest hit so the hit record needs no second trace
         // (the BVH only asks for hits below the current best).
-        let mut nearest = None;
+        let mut nearest = NearestWords::NONE;
         // The watertight triangle setup (an axis choice and three divisions)
         // is made on the first triangle the ray meets: many rays meet none.
         let mut wt = None;
@@ -286,7 +354,7 @@ impl Scene {
                 };
                 t_best = t;
                 found = Some(t);
-                nearest = Some(n);
+                nearest = n.encode();
             }
             found
         });
@@ -294,10 +362,10 @@ impl Scene {
         for i in self.bounded..self.shapes.len() as u32 {
             if let Some(t) = shapes[i as usize].intersect_t(ray, t_best, geo) {
                 t_best = t;
-                nearest = Some(Nearest::Shape(i));
+                nearest = Nearest::Shape(i).encode();
             }
         }
-        Some((nearest?, t_best))
+        Some((Nearest::decode(nearest, t_best)?, t_best))
     }
 
     /// [`Scene::resolve`]'s record written into `out`, each arm but the
