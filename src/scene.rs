@@ -169,7 +169,9 @@ impl Scene {
             self.nearest(ray, t_max)
                 .map(|(nearest, t)| self.resolve_into(ray, nearest, t, out))
         } else {
-            self.closest_with_surfaces(ray, t_max).map(|(hit, _)| *out = hit)
+            self.nearest(ray, t_max)
+                .and_then(|(nearest, t)| self.apply_surface(ray, t_max, nearest, t, true, out))
+                .map(|_| ())
         };
         found.is_some()
     }
@@ -200,7 +202,9 @@ impl Scene {
     #[inline(never)]
     fn closest_with_surfaces(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
         let (nearest, t) = self.nearest(ray, t_max)?;
-        self.apply_surface(ray, t_max, nearest, t, true)
+        let mut hit = Hit::default();
+        let shape = self.apply_surface(ray, t_max, nearest, t, true, &mut hit)?;
+        Some((hit, shape))
     }
 
     /// The material's effect on the surface at `hit` (shape index `shape`)
@@ -219,8 +223,10 @@ impl Scene {
         mut nearest: Nearest,
         t: f32,
         shading: bool,
-    ) -> Option<(Hit, u32)> {
-        let (mut hit, mut shape) = self.resolve(ray, nearest, t);
+        hit: &mut Hit,
+    ) -> Option<u32> {
+        let mut shape;
+        (*hit, shape) = self.resolve(ray, nearest, t);
         let (mut r, mut traveled) = (*ray, 0.0);
         for _ in 0..64 {
             let Some(s) = self.surfaces.get(hit.material as usize) else {
@@ -234,11 +240,11 @@ impl Scene {
                 r = Ray::new(offset_along_normal(hit.p, hit.ng, hit.p_error, r.d), r.d);
                 let t;
                 (nearest, t) = self.nearest(&r, t_max - traveled)?;
-                (hit, shape) = self.resolve(&r, nearest, t);
+                (*hit, shape) = self.resolve(&r, nearest, t);
                 continue;
             }
             if shading && let Some(p) = &s.normal {
-                let (dpdu, dpdv, sign) = self.derivatives(&hit, shape, nearest, p);
+                let (dpdu, dpdv, sign) = self.derivatives(hit, shape, nearest, p);
                 let ns = p.normal(hit.ns, dpdu, dpdv, sign, hit.uv, &self.textures);
                 if !surface::valid_for(ray.d, hit.ns, ns) {
                     hit.material = self.black;
@@ -248,7 +254,7 @@ impl Scene {
             break;
         }
         hit.t += traveled;
-        Some((hit, shape))
+        Some(shape)
     }
 
     /// ∂p/∂u, ∂p/∂v and the tangent's handedness at the shape hit:
@@ -459,7 +465,9 @@ impl Scene {
         if !self.surfaces.is_empty() && self.surfaces.iter().any(|s| s.cutout.is_some()) {
             return self
                 .nearest(ray, t_max)
-                .and_then(|(nearest, t)| self.apply_surface(ray, t_max, nearest, t, false))
+                .and_then(|(nearest, t)| {
+                    self.apply_surface(ray, t_max, nearest, t, false, &mut Hit::default())
+                })
                 .is_some();
         }
         let geo = &self.geometry;

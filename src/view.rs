@@ -86,7 +86,7 @@ impl View {
     /// filter weight: its place in the pixel drawn from the filter (`Box`:
     /// the sampler's two numbers themselves), then the lens. The beauty pass
     /// and the AOV pass both draw here, so the layers see the beauty's rays.
-    #[inline]
+    #[inline(always)]
     pub fn camera_ray(&self, x: u32, y: u32, sampler: &mut Sampler) -> (Ray, f32) {
         let (w, h) = (self.film.width as f32, self.film.height as f32);
         let (offset, weight) = self.filter.sample(sampler.next_vec2());
