@@ -98,6 +98,18 @@ fn unpack(w: u64) -> Vec2 {
 }
 
 impl Nearest {
+    /// The index in `shapes` of the shape hit.
+    #[inline(always)]
+    fn shape(self) -> u32 {
+        match self {
+            Nearest::Shape(i)
+            | Nearest::Mesh(i, ..)
+            | Nearest::Triangle(i, _)
+            | Nearest::MeshQuad(i, ..)
+            | Nearest::Quad(i, _) => i,
+        }
+    }
+
     /// Word 0: the variant (1 to 5) and the shape index; word 1: the
     /// instance or the half of a pair, and a mesh triangle; word 2: the
     /// two floats.
@@ -181,6 +193,21 @@ impl Scene {
     pub fn intersect_object(&self, ray: &Ray, t_max: f32) -> Option<(Hit, u32)> {
         self.closest(ray, t_max)
             .map(|(hit, shape)| (hit, self.objects.get(shape as usize).copied().unwrap_or(0)))
+    }
+
+    /// [`Scene::intersect_object`] with the hit record written into `out`
+    /// (see [`Scene::intersect_into`]): the object id, or `None` (and `out`
+    /// unspecified) when nothing is hit.
+    #[inline(always)]
+    pub fn intersect_object_into(&self, ray: &Ray, t_max: f32, out: &mut Hit) -> Option<u32> {
+        let (nearest, t) = self.nearest(ray, t_max)?;
+        let shape = if self.surfaces.is_empty() {
+            self.resolve_into(ray, nearest, t, out);
+            nearest.shape()
+        } else {
+            self.apply_surface(ray, t_max, nearest, t, true, out)?
+        };
+        Some(self.objects.get(shape as usize).copied().unwrap_or(0))
     }
 
     /// Closest hit in `(0, t_max)` and the index in `shapes` of the shape

@@ -37,7 +37,7 @@
 //! caustic emitters).
 
 use super::{Counters, Path, emitted, escaped, light_point_error, offset_origin};
-use crate::geometry::NO_LIGHT;
+use crate::geometry::{Hit, NO_LIGHT};
 use crate::lights::{LightPicker, LightSample};
 use crate::materials::Bxdf;
 use crate::math::sampling::power_heuristic;
@@ -84,10 +84,12 @@ pub(super) fn li(
         side: Vec3A::ZERO,
     };
     let (mut segments, mut crossings, mut eta_scale) = (0u32, 0u32, 1.0f32);
+    let mut hit = Hit::default();
     loop {
         counters.rays += 1;
-        let found = scene.intersect_object(&ray, f32::INFINITY);
-        let t_hit = found.as_ref().map_or(f32::INFINITY, |(h, _)| h.t);
+        // Written in place (`Scene::intersect_into` says why).
+        let found = scene.intersect_object_into(&ray, f32::INFINITY, &mut hit);
+        let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
 
         // The medium along the segment: a scattering vertex, or on to the surface.
         if let Some(m) = media.get(medium) {
@@ -140,7 +142,7 @@ pub(super) fn li(
             }
         }
 
-        let Some((hit, object)) = found else {
+        let Some(object) = found else {
             // Out of the scene: the environment, as in `path.rs`.
             match scene.environment() {
                 Some((i, env)) if !prev.delta => {
@@ -299,6 +301,7 @@ fn transmittance(
     counters: &mut Counters,
 ) -> Rgb {
     let mut tr = Rgb::ONE;
+    let mut hit = Hit::default();
     if !media.any_null {
         counters.rays += 1;
         if scene.occluded(&ray, extent) {
@@ -311,15 +314,15 @@ fn transmittance(
     }
     for _ in 0..=MAX_NULL_CROSSINGS {
         counters.rays += 1;
-        let found = scene.intersect_object(&ray, extent);
-        let t = found.as_ref().map_or(extent, |(h, _)| h.t);
+        let found = scene.intersect_object_into(&ray, extent, &mut hit);
+        let t = if found.is_some() { hit.t } else { extent };
         if let Some(m) = media.get(medium) {
             tr *= m.transmittance(&ray, t, &mut || sampler.next_f32());
             if tr == Rgb::ZERO {
                 return tr;
             }
         }
-        let Some((hit, object)) = found else {
+        let Some(object) = found else {
             return tr;
         };
         match media.boundary(object) {
