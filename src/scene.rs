@@ -532,3 +532,53 @@ fn cutout_number(r: &Ray, t: f32, shape: u32) -> f32 {
     h ^= h >> 16;
     (h >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every variant comes back from its words as it went in, bit for bit
+    /// (a mesh hit's `t` is the distance the words are read with), and the
+    /// empty words are no hit.
+    #[test]
+    fn nearest_words_hold_every_variant() {
+        let v = Vec2::new(0.25, -0.0);
+        let odd = Vec2::new(f32::from_bits(1), 1.0 - f32::EPSILON);
+        let t = 3.5;
+        let cases = [
+            Nearest::Shape(7),
+            Nearest::Shape(u32::MAX),
+            Nearest::Mesh(
+                1,
+                u32::MAX,
+                MeshHit {
+                    t,
+                    tri: 123_456,
+                    bc: odd,
+                },
+            ),
+            Nearest::Triangle(0, v),
+            Nearest::MeshQuad(9, 1, odd),
+            Nearest::Quad(u32::MAX - 1, v),
+        ];
+        let bits = |v: Vec2| v.to_array().map(f32::to_bits);
+        for n in cases {
+            let back = Nearest::decode(n.encode(), t).expect("a hit");
+            let same = match (n, back) {
+                (Nearest::Shape(a), Nearest::Shape(b)) => a == b,
+                (Nearest::Mesh(a, k, h), Nearest::Mesh(b, l, g)) => {
+                    (a, k, h.tri, h.t.to_bits(), bits(h.bc)) == (b, l, g.tri, g.t.to_bits(), bits(g.bc))
+                }
+                (Nearest::Triangle(a, x), Nearest::Triangle(b, y))
+                | (Nearest::Quad(a, x), Nearest::Quad(b, y)) => a == b && bits(x) == bits(y),
+                (Nearest::MeshQuad(a, k, x), Nearest::MeshQuad(b, l, y)) => {
+                    (a, k, bits(x)) == (b, l, bits(y))
+                }
+                _ => false,
+            };
+            assert!(same, "variant {} changed on the way", n.shape());
+            assert_eq!(back.shape(), n.shape());
+        }
+        assert!(Nearest::decode(NearestWords::NONE, t).is_none());
+    }
+}
