@@ -303,13 +303,6 @@ impl Texture {
         }
     }
 
-    #[inline]
-    fn texel(&self, x: i64, y: i64) -> Rgb {
-        let x = x.rem_euclid(self.width as i64) as usize;
-        let y = y.rem_euclid(self.height as i64) as usize;
-        self.texels[y * self.width as usize + x]
-    }
-
     /// Bilinear lookup with repeat wrapping, v = 0 at the bottom row; texel
     /// centres sit at half-integer positions, so a 1×1 image is constant.
     pub fn bilinear(&self, uv: Vec2) -> Rgb {
@@ -324,9 +317,30 @@ impl Texture {
             return Rgb::ZERO;
         }
         let (x0, y0, fx, fy) = self.footprint(uv, rows_down);
-        let top = self.texel(x0, y0).lerp(self.texel(x0 + 1, y0), fx);
-        let bottom = self.texel(x0, y0 + 1).lerp(self.texel(x0 + 1, y0 + 1), fx);
+        let ([xa, xb], [ya, yb]) = self.wrap_block(x0, y0);
+        let w = self.width as usize;
+        let t = |x: usize, y: usize| self.texels[y * w + x];
+        let top = t(xa, ya).lerp(t(xb, ya), fx);
+        let bottom = t(xa, yb).lerp(t(xb, yb), fx);
         top.lerp(bottom, fy)
+    }
+
+    /// The columns and rows of the 2×2 block whose top-left texel is
+    /// `(x0, y0)`, wrapped into the image (repeat). Two wraps, not one per
+    /// texel and axis: each `rem_euclid` was a 64-bit division, eight per
+    /// lookup, the largest cost of a texture lookup (perf); and none when
+    /// the block's corner is inside the image already. The same indices as
+    /// wrapping each texel on its own.
+    #[inline]
+    fn wrap_block(&self, x0: i64, y0: i64) -> ([usize; 2], [usize; 2]) {
+        let wrap = |v: i64, n: u32| {
+            let n = i64::from(n);
+            (if (0..n).contains(&v) { v } else { v.rem_euclid(n) }) as usize
+        };
+        let (x, y) = (wrap(x0, self.width), wrap(y0, self.height));
+        let x1 = if x + 1 == self.width as usize { 0 } else { x + 1 };
+        let y1 = if y + 1 == self.height as usize { 0 } else { y + 1 };
+        ([x, x1], [y, y1])
     }
 
     /// Bilinear RGB and alpha (1 where the image has none).
@@ -336,13 +350,11 @@ impl Texture {
             return (rgb, 1.0);
         }
         let (x0, y0, fx, fy) = self.footprint(uv, rows_down);
-        let a = |x: i64, y: i64| {
-            let x = x.rem_euclid(self.width as i64) as usize;
-            let y = y.rem_euclid(self.height as i64) as usize;
-            self.alpha[y * self.width as usize + x]
-        };
-        let top = a(x0, y0) + (a(x0 + 1, y0) - a(x0, y0)) * fx;
-        let bottom = a(x0, y0 + 1) + (a(x0 + 1, y0 + 1) - a(x0, y0 + 1)) * fx;
+        let ([xa, xb], [ya, yb]) = self.wrap_block(x0, y0);
+        let w = self.width as usize;
+        let a = |x: usize, y: usize| self.alpha[y * w + x];
+        let top = a(xa, ya) + (a(xb, ya) - a(xa, ya)) * fx;
+        let bottom = a(xa, yb) + (a(xb, yb) - a(xa, yb)) * fx;
         (rgb, top + (bottom - top) * fy)
     }
 
