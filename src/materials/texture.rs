@@ -375,6 +375,36 @@ impl Texture {
 mod tests {
     use super::*;
 
+    /// The block wrapped once gives, bit for bit, what wrapping each of the
+    /// four texels on its own gives, inside the image, across its edges and
+    /// far outside it (tiled, negative), for images of odd sizes.
+    #[test]
+    fn wrapped_block_matches_texel_by_texel_wrapping() {
+        let (w, h) = (5u32, 3u32);
+        let srgb: Vec<u8> = (0..w * h * 3).map(|k| (k * 37 % 251) as u8).collect();
+        let t = Texture::from_srgb8(w, h, &srgb);
+        let texel = |x: i64, y: i64| {
+            let x = x.rem_euclid(i64::from(w)) as usize;
+            let y = y.rem_euclid(i64::from(h)) as usize;
+            t.texels[y * w as usize + x]
+        };
+        let mut rng = crate::math::rng::Pcg32::new(3, 1);
+        for k in 0..4000 {
+            let uv = Vec2::new(rng.next_f32(), rng.next_f32()) * 14.0 - Vec2::splat(7.0);
+            let rows_down = k % 2 == 0;
+            let (x0, y0, fx, fy) = t.footprint(uv, rows_down);
+            let top = texel(x0, y0).lerp(texel(x0 + 1, y0), fx);
+            let bottom = texel(x0, y0 + 1).lerp(texel(x0 + 1, y0 + 1), fx);
+            let want = top.lerp(bottom, fy);
+            let got = t.bilinear_rows(uv, rows_down);
+            assert_eq!(
+                got.to_array().map(f32::to_bits),
+                want.to_array().map(f32::to_bits),
+                "uv {uv}"
+            );
+        }
+    }
+
     #[test]
     fn texture_srgb_decode_endpoints_and_mid_grey() {
         let t = Texture::from_srgb8(3, 1, &[255, 255, 255, 0, 0, 0, 128, 128, 128]);
