@@ -32,6 +32,7 @@ use super::caustic::max_chain;
 use super::{Counters, emitted, escaped, shadow_ray, spawn};
 use crate::geometry::{Hit, NO_LIGHT};
 use crate::lights::LightPicker;
+use crate::lights::tree::Top;
 use crate::materials::{BsdfSample, Bxdf};
 use crate::math::sampling::power_heuristic;
 use crate::math::{Frame, Ray, Rgb};
@@ -111,12 +112,16 @@ impl Path {
             traced: false,
             chain: 0,
         };
-        let l = self.trace(scene, start, self.splits, sampler, counters);
+        let l = self.trace(scene, start, self.splits, None, sampler, counters);
         debug_assert!(l.is_finite(), "non-finite radiance {l}");
         l
     }
 
-    /// Radiance the path in `st` gathers from its next vertex on. With
+    /// Radiance the path in `st` gathers from its next vertex on; `prev_top`
+    /// is the light tree's first step at the vertex `st.ray` left (as its
+    /// light sample was picked; `None` when it was not), which the density
+    /// of an emitter the ray reaches starts from (`LightTree::top`: made
+    /// once a vertex, not again for that density). With
     /// `splits > 1` the path splits at its first non-delta vertex: after
     /// the one light sample there, it goes on `splits` times, each
     /// continuation along its own BSDF sample (its numbers from
@@ -127,6 +132,7 @@ impl Path {
         scene: &Scene,
         mut st: State,
         splits: u32,
+        mut prev_top: Option<Top>,
         sampler: &mut Sampler,
         counters: &mut Counters,
     ) -> Rgb {
@@ -147,7 +153,8 @@ impl Path {
                         if le != Rgb::ZERO {
                             let w = power_heuristic(
                                 st.prev_pdf,
-                                picker.pmf(st.prev_p, st.prev_n, i as usize) * env_pdf,
+                                picker.pmf_from(prev_top.as_ref(), st.prev_p, st.prev_n, i as usize)
+                                    * env_pdf,
                             );
                             l += st.beta * le * w;
                         }
@@ -174,8 +181,9 @@ impl Path {
                         if theirs { 0.0 } else { 1.0 }
                     } else {
                         let light = &scene.lights[hit.light as usize];
-                        let light_pdf = picker.pmf(st.prev_p, st.prev_n, hit.light as usize)
-                            * light.pdf(st.prev_p, st.ray.d, &hit);
+                        let light_pdf =
+                            picker.pmf_from(prev_top.as_ref(), st.prev_p, st.prev_n, hit.light as usize)
+                                * light.pdf(st.prev_p, st.ray.d, &hit);
                         power_heuristic(st.prev_pdf, light_pdf)
                     };
                     l += st.beta * le * w;
@@ -213,7 +221,8 @@ impl Path {
 
             // Next-event estimation: one light, picked as the scene says (by
             // the light tree unless told otherwise).
-            if !delta && let Some((li, pmf)) = picker.pick(hit.p, hit.ns, u_pick) {
+            let top = if delta { None } else { picker.top(hit.p, hit.ns) };
+            if !delta && let Some((li, pmf)) = picker.pick_from(top.as_ref(), hit.p, hit.ns, u_pick) {
                 let light = &scene.lights[li];
                 if let Some(ls) = light.sample(hit.p, side, u_light, &scene.geometry) {
                     let wi = frame.to_local(ls.wi);
@@ -248,7 +257,7 @@ impl Path {
                     if let Some(bs) = bs
                         && self.advance(&mut next, &bs, &hit, &frame, (delta, side), split, sampler)
                     {
-                        sum += self.trace(scene, next, 1, sampler, counters);
+                        sum += self.trace(scene, next, 1, top, sampler, counters);
                     }
                 }
                 return l + sum * (1.0 / splits as f32);
@@ -261,6 +270,7 @@ impl Path {
             if !self.advance(&mut st, &bs, &hit, &frame, (delta, side), split, sampler) {
                 break;
             }
+            prev_top = top;
         }
         l
     }

@@ -3,6 +3,7 @@
 //! light tree ([`LightTree`]), which also weighs distance and orientation
 //! from the shading point.
 
+use super::tree::Top;
 use super::{Light, LightTree};
 use crate::math::luminance;
 use glam::Vec3A;
@@ -92,6 +93,32 @@ impl LightPicker {
         let i = self.cdf.partition_point(|&c| c <= u).min(self.cdf.len() - 1);
         // Skip zero-probability entries that share a cdf value.
         Some((i, self.pmf[i])).filter(|&(_, p)| p > 0.0)
+    }
+
+    /// The tree's first step at `p`, `n` ([`LightTree::top`]), for
+    /// [`Self::pick_from`] and, from the next vertex, [`Self::pmf_from`];
+    /// `None` without a tree.
+    #[inline]
+    pub fn top(&self, p: Vec3A, n: Vec3A) -> Option<Top> {
+        self.tree.as_ref().map(|t| t.top(p, n))
+    }
+
+    /// [`Self::pick`] with `top` = [`Self::top`]`(p, n)`.
+    #[inline]
+    pub fn pick_from(&self, top: Option<&Top>, p: Vec3A, n: Vec3A, u: f32) -> Option<(usize, f32)> {
+        match (&self.tree, top) {
+            (Some(t), Some(top)) => t.pick_from(top, p, n, u),
+            _ => self.pick(p, n, u),
+        }
+    }
+
+    /// [`Self::pmf`] with `top` = [`Self::top`]`(p, n)` (or `None`: made here).
+    #[inline]
+    pub fn pmf_from(&self, top: Option<&Top>, p: Vec3A, n: Vec3A, i: usize) -> f32 {
+        match (&self.tree, top) {
+            (Some(t), Some(top)) => t.pmf_from(top, p, n, i),
+            _ => self.pmf(p, n, i),
+        }
     }
 
     /// Probability that [`Self::pick`] at `p`, `n` picks light `i`: what a
