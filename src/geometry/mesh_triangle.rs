@@ -5,7 +5,9 @@
 //! repay (flattening made the Cornell render 7% faster). Meshes of at most [`FLATTEN_MAX`] triangles that are
 //! baked into world space (a scene's `Mesh` object, not a shared
 //! `Instance`) therefore put each triangle in the top level, and keep their
-//! [`super::Instance`] only for shading (normals, UVs, material slots).
+//! [`super::Instance`] only for shading (normals, UVs, material slots) —
+//! and not even for that when the mesh has neither vertex normals nor UVs:
+//! such a triangle carries its whole shading record (`flat_shade.rs`).
 //! Handing the top level whole four-triangle leaves instead was measured
 //! slower: their boxes are much looser than single triangles'.
 
