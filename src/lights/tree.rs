@@ -662,31 +662,6 @@ mod tests {
         }
     }
 
-    /// A first step made once and handed on gives the picks and densities
-    /// of making it anew, bit for bit (the path keeps its vertex's step for
-    /// the next emitter's density).
-    #[test]
-    fn a_kept_first_step_picks_and_weighs_as_a_new_one() {
-        let lights = lights();
-        let tree = LightTree::new(&lights).expect("a tree");
-        let mut rng = Pcg32::new(2, 7);
-        for _ in 0..300 {
-            let (p, n) = shading_point(&mut rng);
-            let top = tree.top(p, n);
-            for _ in 0..10 {
-                let u = rng.next_f32();
-                let (a, b) = (tree.pick(p, n, u), tree.pick_from(&top, p, n, u));
-                assert_eq!(a.map(|(i, q)| (i, q.to_bits())), b.map(|(i, q)| (i, q.to_bits())));
-            }
-            for i in 0..lights.len() {
-                assert_eq!(
-                    tree.pmf(p, n, i).to_bits(),
-                    tree.pmf_from(&top, p, n, i).to_bits()
-                );
-            }
-        }
-    }
-
     /// A light that reaches a point is never given probability zero there:
     /// the estimate would lose it (bias).
     #[test]
