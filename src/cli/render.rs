@@ -364,8 +364,8 @@ fn print_stats(loaded: &Loaded, stats: &RenderStats) {
             map.width,
             map.height,
             b.env_read_time.as_secs_f64() * 1e3,
-            (map.rgb.len() * 4) as f64 / 1048576.0,
-            (map.rgb.len() * 4) as f64 / px,
+            size_of_val(map.texels.as_slice()) as f64 / 1048576.0,
+            size_of_val(map.texels.as_slice()) as f64 / px,
             b.env_table_time.as_secs_f64() * 1e3,
             env.table_bytes() as f64 / 1048576.0,
             env.table_bytes() as f64 / px

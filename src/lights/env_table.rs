@@ -22,14 +22,14 @@
 //! are `W × (H − 1)` cells. Corner weights are `luminance × sin θ_j` of the
 //! pixel, zero at the poles; every point the interpolated image lights
 //! (away from the poles' measure-zero rows) has a non-zero density. Memory:
-//! the corner weights (4 bytes a pixel) beside the CDF tables (~5).
+//! the CDF tables (~5 bytes a pixel); the corner weights live in the map's
+//! pixels, beside their radiance (`env_map.rs`, 4 bytes a pixel), so the
+//! table's functions take the map.
 
 use super::env_map::{EnvMap, Footprint};
 use crate::math::piecewise::PiecewiseConstant2d;
-use crate::math::{Rgb, luminance};
 use glam::Vec2;
 use rayon::prelude::*;
-use std::f32::consts::PI;
 
 /// See the module docs.
 #[derive(Clone, Debug)]
@@ -37,8 +37,6 @@ pub struct EnvTable {
     width: usize,
     /// Rows of pixels (H); cells have `max(H − 1, 1)` rows.
     height: usize,
-    /// `luminance × sin θ` per pixel, row-major.
-    corners: Vec<f32>,
     /// Chooses the cell, by the mean of its corners.
     cells: PiecewiseConstant2d,
     /// `W·(H − 1) / Σ cell means`: the density at a point is its
@@ -81,33 +79,19 @@ fn bilerp(w: [f32; 4], p: Vec2) -> f32 {
 }
 
 impl EnvTable {
-    /// The table of `map`, rows in parallel.
-    pub fn new(map: &EnvMap) -> Self {
+    /// The table of `map`, rows in parallel; writes the map's pixel
+    /// weights first ([`EnvMap::fill_weights`]).
+    pub fn new(map: &mut EnvMap) -> Self {
+        map.fill_weights();
         let (w, h) = (map.width as usize, map.height as usize);
-        let sin_row = |j: usize| {
-            if h > 1 {
-                (PI * j as f32 / (h - 1) as f32).sin().max(0.0)
-            } else {
-                1.0
-            }
-        };
-        let mut corners = vec![0.0f32; w * h];
-        corners.par_chunks_mut(w).enumerate().for_each(|(j, row)| {
-            let s = sin_row(j);
-            let src = &map.rgb[3 * w * j..3 * w * (j + 1)];
-            for (c, px) in row.iter_mut().zip(src.chunks_exact(3)) {
-                let rgb = Rgb::new(px[0].max(0.0), px[1].max(0.0), px[2].max(0.0));
-                let l = luminance(rgb) * s;
-                *c = if l.is_finite() { l } else { 0.0 };
-            }
-        });
+        let corners = |k: usize| map.texels[k][3];
         // A map of one row: its cells are that row against itself.
         let rows = (h - 1).max(1);
         let cells = PiecewiseConstant2d::new(w, rows, |j, out| {
             let (r0, r1) = (j * w, (j + 1).min(h - 1) * w);
             for (i, o) in out.iter_mut().enumerate() {
                 let i1 = if i + 1 == w { 0 } else { i + 1 };
-                *o = 0.25 * (corners[r0 + i] + corners[r0 + i1] + corners[r1 + i] + corners[r1 + i1]);
+                *o = 0.25 * (corners(r0 + i) + corners(r0 + i1) + corners(r1 + i) + corners(r1 + i1));
             }
         });
         // Σ of the cell means, the integral of the interpolant over the
@@ -119,7 +103,7 @@ impl EnvTable {
                 (0..w)
                     .map(|i| {
                         let i1 = if i + 1 == w { 0 } else { i + 1 };
-                        0.25 * (corners[r0 + i] + corners[r0 + i1] + corners[r1 + i] + corners[r1 + i1])
+                        0.25 * (corners(r0 + i) + corners(r0 + i1) + corners(r1 + i) + corners(r1 + i1))
                             as f64
                     })
                     .sum::<f64>()
@@ -129,7 +113,6 @@ impl EnvTable {
         Self {
             width: w,
             height: h,
-            corners,
             cells,
             inv_mean: if inv_mean.is_finite() && sum > 0.0 {
                 inv_mean as f32
@@ -139,18 +122,14 @@ impl EnvTable {
         }
     }
 
-    /// Corner weights of cell `(i, j)`.
+    /// The footprint of cell `(i, j)`'s corners, at `f` inside it.
     #[inline]
-    fn corners_of(&self, i: usize, j: usize) -> [f32; 4] {
-        let w = self.width;
-        let i1 = if i + 1 == w { 0 } else { i + 1 };
-        let (r0, r1) = (j * w, (j + 1).min(self.height - 1) * w);
-        [
-            self.corners[r0 + i],
-            self.corners[r0 + i1],
-            self.corners[r1 + i],
-            self.corners[r1 + i1],
-        ]
+    fn cell(&self, i: usize, j: usize, f: Vec2) -> Footprint {
+        Footprint {
+            i: [i as u32, if i + 1 == self.width { 0 } else { i as u32 + 1 }],
+            j: [j as u32, (j + 1).min(self.height - 1) as u32],
+            f,
+        }
     }
 
     /// Cell rows.
@@ -159,11 +138,12 @@ impl EnvTable {
         (self.height - 1).max(1)
     }
 
-    /// Image coordinates `(u, v)` ∈ [0, 1)² for `u` ∈ [0, 1)², their
-    /// density with respect to area on [0, 1)², and their footprint (for
-    /// the radiance there without a second search).
+    /// Image coordinates `(u, v)` ∈ [0, 1)² of `map` (the one the table was
+    /// built from) for `u` ∈ [0, 1)², their density with respect to area on
+    /// [0, 1)², and their footprint (for the radiance there without a
+    /// second search).
     #[inline]
-    pub fn sample(&self, u: Vec2) -> (Vec2, f32, Footprint) {
+    pub fn sample(&self, map: &EnvMap, u: Vec2) -> (Vec2, f32, Footprint) {
         let (q, cell_pdf) = self.cells.sample(u);
         let (w, rows) = (self.width as f32, self.rows() as f32);
         // The cell, and where in it: uniform, as the inversion left it.
@@ -173,7 +153,8 @@ impl EnvTable {
             (y as usize).min(self.rows() - 1),
         );
         let (fx, fy) = ((x - i as f32).clamp(0.0, 1.0), (y - j as f32).clamp(0.0, 1.0));
-        let c = self.corners_of(i, j);
+        let mut at = self.cell(i, j, Vec2::ZERO);
+        let c = map.weights(&at);
         let by = sample_linear(fy, c[0] + c[1], c[2] + c[3]);
         let bx = sample_linear(fx, (1.0 - by) * c[0] + by * c[2], (1.0 - by) * c[1] + by * c[3]);
         let f = Vec2::new(bx, by);
@@ -189,11 +170,7 @@ impl EnvTable {
         }
         // (A map of one row is constant in v: its one cell row spans it all.)
         let vv = (j as f32 + by) / rows;
-        let at = Footprint {
-            i: [i as u32, if i + 1 == self.width { 0 } else { i as u32 + 1 }],
-            j: [j as u32, (j + 1).min(self.height - 1) as u32],
-            f,
-        };
+        at.f = f;
         (
             Vec2::new(uu.clamp(0.0, 1.0 - f32::EPSILON), vv.clamp(0.0, 1.0)),
             pdf,
@@ -202,18 +179,10 @@ impl EnvTable {
     }
 
     /// Density of [`Self::sample`] at the point of `at` (the footprint
-    /// [`EnvMap::footprint`] gives for its image coordinates).
+    /// [`EnvMap::footprint`] gives for its image coordinates) of `map`.
     #[inline]
-    pub fn pdf_at(&self, at: &Footprint) -> f32 {
-        let w = self.width;
-        let (r0, r1) = (at.j[0] as usize * w, at.j[1] as usize * w);
-        let (i0, i1) = (at.i[0] as usize, at.i[1] as usize);
-        let c = [
-            self.corners[r0 + i0],
-            self.corners[r0 + i1],
-            self.corners[r1 + i0],
-            self.corners[r1 + i1],
-        ];
+    pub fn pdf_at(&self, map: &EnvMap, at: &Footprint) -> f32 {
+        let c = map.weights(at);
         if self.inv_mean > 0.0 {
             bilerp(c, at.f) * self.inv_mean
         } else {
@@ -221,9 +190,9 @@ impl EnvTable {
         }
     }
 
-    /// Density of [`Self::sample`] at image coordinates `uv`.
+    /// Density of [`Self::sample`] at image coordinates `uv` of `map`.
     #[inline]
-    pub fn pdf(&self, uv: Vec2) -> f32 {
+    pub fn pdf(&self, map: &EnvMap, uv: Vec2) -> f32 {
         let (w, rows) = (self.width as f32, self.rows() as f32);
         let mut x = uv.x * w - 0.5;
         if x < 0.0 {
@@ -234,7 +203,7 @@ impl EnvTable {
         let y = (uv.y * rows).clamp(0.0, rows);
         let j = (y as usize).min(self.rows() - 1);
         let fy = (y - j as f32).clamp(0.0, 1.0);
-        let c = self.corners_of(i, j);
+        let c = map.weights(&self.cell(i, j, Vec2::ZERO));
         if self.inv_mean > 0.0 {
             return bilerp(c, Vec2::new(fx, fy)) * self.inv_mean;
         }
@@ -242,9 +211,9 @@ impl EnvTable {
         self.cells.pdf(cell) * bilinear_pdf(Vec2::new(fx, fy), c)
     }
 
-    /// Heap bytes of the tables.
+    /// Heap bytes of the tables (the weights are the map's).
     pub fn bytes(&self) -> usize {
-        4 * self.corners.len() + self.cells.bytes()
+        self.cells.bytes()
     }
 }
 
@@ -252,6 +221,7 @@ impl EnvTable {
 mod tests {
     use super::*;
     use crate::math::Pcg32;
+    use std::f32::consts::PI;
 
     fn map(w: u32, h: u32, f: impl Fn(u32, u32) -> f32) -> EnvMap {
         let mut rgb = Vec::new();
@@ -261,11 +231,7 @@ mod tests {
                 rgb.extend_from_slice(&[l, l, l]);
             }
         }
-        EnvMap {
-            width: w,
-            height: h,
-            rgb,
-        }
+        EnvMap::from_rgb(w, h, &rgb)
     }
 
     #[test]
@@ -291,15 +257,16 @@ mod tests {
                 0.1 + (i % 3) as f32
             }
         });
-        let t = EnvTable::new(&m);
+        let mut m = m;
+        let t = EnvTable::new(&mut m);
         for _ in 0..20_000 {
-            let (uv, pdf, _) = t.sample(rng.next_vec2());
+            let (uv, pdf, _) = t.sample(&m, rng.next_vec2());
             assert!(pdf > 0.0);
-            let again = t.pdf(uv);
+            let again = t.pdf(&m, uv);
             assert!((again - pdf).abs() <= 2e-3 * pdf, "{uv}: {pdf} vs {again}");
         }
         let n = 400_000;
-        let sum: f64 = (0..n).map(|_| t.pdf(rng.next_vec2()) as f64).sum();
+        let sum: f64 = (0..n).map(|_| t.pdf(&m, rng.next_vec2()) as f64).sum();
         assert!((sum / n as f64 - 1.0).abs() < 0.01, "∫ pdf = {}", sum / n as f64);
     }
 
@@ -311,9 +278,10 @@ mod tests {
     fn one_row_and_one_column_maps_cover_the_square() {
         let mut rng = Pcg32::new(5, 5);
         for (w, h) in [(1, 1), (1, 7), (9, 1)] {
-            let t = EnvTable::new(&map(w, h, |i, j| 1.0 + (i + 2 * j) as f32));
+            let mut m = map(w, h, |i, j| 1.0 + (i + 2 * j) as f32);
+            let t = EnvTable::new(&mut m);
             let n = 100_000;
-            let sum: f64 = (0..n).map(|_| t.pdf(rng.next_vec2()) as f64).sum();
+            let sum: f64 = (0..n).map(|_| t.pdf(&m, rng.next_vec2()) as f64).sum();
             assert!(
                 (sum / n as f64 - 1.0).abs() < 0.02,
                 "{w}×{h}: ∫ pdf = {}",
@@ -321,8 +289,8 @@ mod tests {
             );
             let (mut lo, mut hi) = (1.0f32, 0.0f32);
             for _ in 0..2000 {
-                let (uv, pdf, _) = t.sample(rng.next_vec2());
-                assert!((t.pdf(uv) - pdf).abs() <= 2e-3 * pdf, "{w}×{h} at {uv}");
+                let (uv, pdf, _) = t.sample(&m, rng.next_vec2());
+                assert!((t.pdf(&m, uv) - pdf).abs() <= 2e-3 * pdf, "{w}×{h} at {uv}");
                 lo = lo.min(uv.y);
                 hi = hi.max(uv.y);
             }
@@ -340,11 +308,12 @@ mod tests {
                 0.0
             }
         });
-        let t = EnvTable::new(&m);
+        let mut m = m;
+        let t = EnvTable::new(&mut m);
         let mut rng = Pcg32::new(1, 1);
         let (mut lo, mut hi) = (f32::INFINITY, 0.0f32);
         for _ in 0..10_000 {
-            let (uv, pdf, _) = t.sample(rng.next_vec2());
+            let (uv, pdf, _) = t.sample(&m, rng.next_vec2());
             let l = m.lookup(uv).x;
             let weight = l * (PI * uv.y).sin() / pdf;
             lo = lo.min(weight);

@@ -22,9 +22,9 @@
 //! cell between four pixel centres by its mean, then a point in it from
 //! the bilinear patch, so a sample's weight `L / pdf` hardly varies even
 //! across a sun a few pixels wide. A point `(u, v)` of density `p(u, v)` is
-//! the direction of density `p(u, v) / (2π² sin θ)`. The tables take about
-//! 9 bytes per pixel (the corner weights and the cells' CDFs with their
-//! guide tables, see `math/piecewise.rs`), the image 12 (f32 RGB).
+//! the direction of density `p(u, v) / (2π² sin θ)`. The image takes 16
+//! bytes per pixel (f32 RGB and the corner weight, `env_map.rs`), the
+//! cells' CDFs with their guide tables about 5 (`math/piecewise.rs`).
 //! A constant environment is sampled by the cosine about the shading
 //! normal when the integrator gives one (the hemisphere a reflecting
 //! surface sees: for an unoccluded Lambert surface every sample then
@@ -102,17 +102,18 @@ impl EnvironmentLight {
     /// builds the sampling tables on all cores.
     pub fn from_map(map: EnvMap, strength: f32, rotation_degrees: f32) -> Self {
         let (w, h) = (map.width as usize, map.height as usize);
-        let distribution = EnvTable::new(&map);
+        let mut map = map;
+        let distribution = EnvTable::new(&mut map);
         // ∫ L dω of the bilinear image, exactly: (2π/W) Σ_j ω_j Σ_i L(i, j),
         // with ω_j = ∫ sin θ of row j's hat function in θ (θj = πj/(H − 1)).
         let sum: [f64; 3] = map
-            .rgb
-            .par_chunks(3 * w)
+            .texels
+            .par_chunks(w)
             .enumerate()
             .map(|(j, row)| {
                 let s = row_weight(j, h);
                 let mut acc = [0.0f64; 3];
-                for px in row.chunks_exact(3) {
+                for px in row {
                     for c in 0..3 {
                         acc[c] += px[c].max(0.0) as f64 * s;
                     }
@@ -189,9 +190,9 @@ impl EnvironmentLight {
     /// every direction, for transmitting surfaces); the sample's distance is
     /// infinite (shadow rays are unbounded).
     pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2) -> Option<LightSample> {
-        let (wi, pdf, li) = match (&self.distribution, self.sampling) {
-            (Some(dist), EnvSampling::Importance) => {
-                let (uv, uv_pdf, at) = dist.sample(u);
+        let (wi, pdf, li) = match (&self.distribution, &self.map, self.sampling) {
+            (Some(dist), Some(m), EnvSampling::Importance) => {
+                let (uv, uv_pdf, at) = dist.sample(m, u);
                 // θ = π v is half a turn of v, φ = 2π u a turn of u.
                 let (sin_t, cos_t) = sin_cos_turns(0.5 * uv.y);
                 if sin_t <= 0.0 || uv_pdf <= 0.0 {
@@ -201,10 +202,10 @@ impl EnvironmentLight {
                 let d = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
                 // The image at the sampled point: no atan2/acos round trip,
                 // and the pixels the sample was drawn between.
-                let li = self.scale * self.map.as_ref().map_or(Rgb::ONE, |m| m.bilerp(&at));
+                let li = self.scale * m.bilerp(&at);
                 (self.to_world(d), uv_pdf / (2.0 * PI * PI * sin_t), li)
             }
-            (None, EnvSampling::Importance) if n != Vec3A::ZERO => {
+            (None, _, EnvSampling::Importance) if n != Vec3A::ZERO => {
                 let local = cosine_hemisphere(u);
                 if local.z <= 0.0 {
                     return None;
@@ -232,22 +233,17 @@ impl EnvironmentLight {
     /// normal `n` draws world direction `d`.
     #[inline]
     pub fn pdf(&self, d: Vec3A, n: Vec3A) -> f32 {
-        match (&self.distribution, self.sampling) {
-            (Some(dist), EnvSampling::Importance) => {
+        match (&self.distribution, &self.map, self.sampling) {
+            (Some(dist), Some(m), EnvSampling::Importance) => {
                 let e = self.to_env(d);
                 let sin_t = (e.x * e.x + e.z * e.z).sqrt();
                 if sin_t <= 0.0 {
                     return 0.0;
                 }
                 // Through the lookup's footprint, as `le_and_pdf` (bit for bit).
-                let uv = Self::uv(e);
-                let pdf = match &self.map {
-                    Some(m) => dist.pdf_at(&m.footprint(uv)),
-                    None => dist.pdf(uv),
-                };
-                pdf / (2.0 * PI * PI * sin_t)
+                dist.pdf_at(m, &m.footprint(Self::uv(e))) / (2.0 * PI * PI * sin_t)
             }
-            (None, EnvSampling::Importance) if n != Vec3A::ZERO => {
+            (None, _, EnvSampling::Importance) if n != Vec3A::ZERO => {
                 n.dot(d).max(0.0) * std::f32::consts::FRAC_1_PI
             }
             _ => UNIFORM_SPHERE_PDF,
@@ -274,7 +270,7 @@ impl EnvironmentLight {
                     return (le, 0.0);
                 }
                 // The lookup's footprint is the table's cell.
-                dist.pdf_at(&at) / (2.0 * PI * PI * sin_t)
+                dist.pdf_at(m, &at) / (2.0 * PI * PI * sin_t)
             }
             _ => UNIFORM_SPHERE_PDF,
         };
@@ -350,8 +346,8 @@ fn map_irradiance(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyIrradi
         })
         .collect();
     let sum = map
-        .rgb
-        .par_chunks(3 * w)
+        .texels
+        .par_chunks(w)
         .enumerate()
         .map(|(j, row)| {
             let d_omega = row_weight(j, h) as f32 * dphi;
@@ -362,9 +358,9 @@ fn map_irradiance(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyIrradi
             };
             let (sin_t, cos_t) = theta.sin_cos();
             let mut acc = ShSum::default();
-            for (block, &(sin_p, cos_p)) in row.chunks(3 * bw).zip(&blocks) {
+            for (block, &(sin_p, cos_p)) in row.chunks(bw).zip(&blocks) {
                 let l: f32 = block
-                    .chunks_exact(3)
+                    .iter()
                     .map(|px| luminance(Rgb::new(px[0], px[1], px[2])))
                     .sum();
                 // The image's direction (as `sample` maps it), turned into the world.

@@ -291,11 +291,7 @@ fn test_map() -> EnvMap {
             rgb.extend_from_slice(&[v, 0.5 * v, 0.25 * v]);
         }
     }
-    EnvMap {
-        width: w,
-        height: h,
-        rgb,
-    }
+    EnvMap::from_rgb(w, h, &rgb)
 }
 
 #[test]
@@ -307,16 +303,8 @@ fn environment_mapping_follows_the_reference_convention() {
     let (w, h) = (8u32, 4u32);
     let rgb = (0..h)
         .flat_map(|j| (0..w).flat_map(move |i| [i as f32, j as f32, 0.0]))
-        .collect();
-    let env = EnvironmentLight::from_map(
-        EnvMap {
-            width: w,
-            height: h,
-            rgb,
-        },
-        1.0,
-        0.0,
-    );
+        .collect::<Vec<f32>>();
+    let env = EnvironmentLight::from_map(EnvMap::from_rgb(w, h, &rgb), 1.0, 0.0);
     let centre = |i: f32, j: f32| {
         let (u, v) = ((i + 0.5) / w as f32, j / (h - 1) as f32);
         let (st, ct) = (PI * v).sin_cos();

@@ -261,13 +261,14 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             let env = match (radiance, map) {
                 (_, Some(file)) => match read_map(&ctx.base.join(file)) {
                     Ok(mut m) => {
-                        if let Some(what) = super::texels::repair_values(&mut m.rgb) {
+                        if let Some(what) = super::texels::repair_values(m.values_mut()) {
                             ctx.notes.push(format!(
                                 "lights[{i}].map: {file} has {what}, read as 0 (one NaN texel \
                                  darkened a whole image by 11%); fix the map to silence this"
                             ));
                         }
-                        let brightest = m.rgb.iter().fold(0.0f32, |b, &x| b.max(x)) * *strength;
+                        let brightest =
+                            m.texels.as_flattened().iter().fold(0.0f32, |b, &x| b.max(x)) * *strength;
                         if brightest.is_nan() || brightest > MAX_RADIANCE {
                             ctx.problems.push(
                                 Problem::new(
@@ -312,7 +313,7 @@ pub fn fuzz_sky_map(path: &Path) -> bool {
     let Ok(mut m) = read_map(path) else {
         return false;
     };
-    let _ = super::texels::repair_values(&mut m.rgb);
+    let _ = super::texels::repair_values(m.values_mut());
     let env = EnvironmentLight::from_map(m, 1.0, 0.0);
     std::hint::black_box(&env);
     true
@@ -332,8 +333,8 @@ pub fn read_map(path: &Path) -> Result<EnvMap, String> {
 }
 
 /// What a sky map's header may claim: each side at most
-/// [`MAX_IMAGE_SIDE`], and its pixels as f32 RGB within the memory
-/// available and no more than [`MAX_EXR_RATIO`] times the file's own size.
+/// [`MAX_IMAGE_SIDE`], its pixels as the map holds them within the memory
+/// available, and as f32 RGB no more than [`MAX_EXR_RATIO`] times the file's own size.
 /// Checked before anything is allocated: the decoder sizes its buffers
 /// from the header, and a few hundred bytes claiming 100,000² pixels
 /// aborted the process.
@@ -348,12 +349,14 @@ fn check_exr_header(path: &Path) -> Result<(), String> {
             ));
         }
         let bytes = 12 * w as u64 * ht as u64;
+        // As the map holds them: 16 bytes a pixel (`EnvMap::texels`).
+        let held = 16 * w as u64 * ht as u64;
         if let Some(free) = crate::memory::available()
-            && bytes > free
+            && held > free
         {
             return Err(format!(
                 "its {w}×{ht} pixels need {} MB, more than the {} MB of memory available",
-                bytes >> 20,
+                held >> 20,
                 free >> 20
             ));
         }
@@ -384,11 +387,10 @@ fn read_exr(path: &Path) -> Result<EnvMap, String> {
             |size, _| EnvMap {
                 width: size.width() as u32,
                 height: size.height() as u32,
-                rgb: vec![0.0; 3 * size.area()],
+                texels: vec![[0.0; 4]; size.area()],
             },
             |m: &mut EnvMap, pos, (r, g, b, _): (f32, f32, f32, f32)| {
-                let k = 3 * (pos.y() * m.width as usize + pos.x());
-                m.rgb[k..k + 3].copy_from_slice(&[r, g, b]);
+                m.texels[pos.y() * m.width as usize + pos.x()] = [r, g, b, 0.0];
             },
         )
         .first_valid_layer()
@@ -410,11 +412,7 @@ fn read_hdr(path: &Path) -> Result<EnvMap, String> {
         .map_err(|e| e.to_string())?
         .into_rgb32f();
     let (width, height) = img.dimensions();
-    Ok(EnvMap {
-        width,
-        height,
-        rgb: img.into_raw(),
-    })
+    Ok(EnvMap::from_rgb(width, height, img.as_raw()))
 }
 
 fn push_quad_light(ctx: &mut BuildContext, material: u32, q: QuadLight) {
