@@ -34,7 +34,7 @@
 
 use super::env_map::EnvMap;
 use super::env_table::EnvTable;
-use super::irradiance::{ShSum, SkyIrradiance};
+use super::irradiance::{ShSum, SkyWeight};
 use super::tree::LightBounds;
 use super::{LightModel, LightSample};
 use crate::math::Frame;
@@ -76,8 +76,9 @@ pub struct EnvironmentLight {
     pub scene_radius: f32,
     /// Power, ∫ L dω over the sphere, W/(m²) per channel (cached).
     radiant_exitance: Rgb,
-    /// Irradiance by surface normal, world frame (light selection).
-    irradiance: SkyIrradiance,
+    /// Irradiance and its second moment by surface normal, world frame
+    /// (light selection's weight for the sky).
+    weight: SkyWeight,
 }
 
 impl EnvironmentLight {
@@ -94,7 +95,7 @@ impl EnvironmentLight {
             background: Rgb::ZERO,
             scene_radius: 1.0,
             radiant_exitance: 4.0 * PI * radiance,
-            irradiance: SkyIrradiance::constant(radiance),
+            weight: SkyWeight::constant(radiance),
         }
     }
 
@@ -124,7 +125,7 @@ impl EnvironmentLight {
         let cell = 2.0 * std::f64::consts::PI / w as f64;
         let integral = Rgb::new(sum[0] as f32, sum[1] as f32, sum[2] as f32) * (cell as f32);
         let (s, c) = rotation_degrees.to_radians().sin_cos();
-        let irradiance = map_irradiance(&map, strength, (c, s));
+        let weight = map_weight(&map, strength, (c, s));
         Self {
             scale: Rgb::splat(strength),
             map: Some(map),
@@ -135,7 +136,7 @@ impl EnvironmentLight {
             background: Rgb::ZERO,
             scene_radius: 1.0,
             radiant_exitance: strength * integral,
-            irradiance,
+            weight,
         }
     }
 
@@ -283,10 +284,10 @@ impl EnvironmentLight {
         PI * self.scene_radius * self.scene_radius * self.radiant_exitance
     }
 
-    /// Its irradiance by surface normal, in the world (light selection's
-    /// weight for the sky).
-    pub fn irradiance(&self) -> &SkyIrradiance {
-        &self.irradiance
+    /// Its weight in light selection by surface normal, in the world
+    /// (from its irradiance and that of its square).
+    pub fn weight(&self) -> &SkyWeight {
+        &self.weight
     }
 
     /// The image, if the environment has one (not a constant).
@@ -328,9 +329,10 @@ fn row_weight(j: usize, h: usize) -> f64 {
 }
 
 /// The irradiance by world normal of `map` × `strength` turned by
-/// `cos_sin` about +y: every texel's luminance × solid angle projected on
-/// the first nine spherical harmonics, rows in parallel.
-fn map_irradiance(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyIrradiance {
+/// `cos_sin` about +y, and that of its square: every texel's luminance (and
+/// its square) × solid angle projected on the first nine spherical
+/// harmonics, rows in parallel.
+fn map_weight(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyWeight {
     let (w, h) = (map.width as usize, map.height as usize);
     let dphi = 2.0 * PI / w as f32;
     // Columns are summed in blocks of `bw` (at most 1,024 blocks a row) and
@@ -357,20 +359,29 @@ fn map_irradiance(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyIrradi
                 0.5 * PI
             };
             let (sin_t, cos_t) = theta.sin_cos();
-            let mut acc = ShSum::default();
+            let (mut acc, mut acc2) = (ShSum::default(), ShSum::default());
             for (block, &(sin_p, cos_p)) in row.chunks(bw).zip(&blocks) {
-                let l: f32 = block
-                    .iter()
-                    .map(|px| luminance(Rgb::new(px[0], px[1], px[2])))
-                    .sum();
+                let (mut l, mut l2) = (0.0f32, 0.0f32);
+                for px in block {
+                    let v = strength * luminance(Rgb::new(px[0], px[1], px[2])).max(0.0);
+                    l += v;
+                    l2 += v * v;
+                }
                 // The image's direction (as `sample` maps it), turned into the world.
-                let d = Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p);
-                acc.add(turn(cos_sin, d), strength * l * d_omega);
+                let d = turn(cos_sin, Vec3A::new(sin_t * sin_p, cos_t, -sin_t * cos_p));
+                acc.add(d, l * d_omega);
+                acc2.add(d, l2 * d_omega);
             }
-            acc
+            (acc, acc2)
         })
-        .reduce(ShSum::default, ShSum::merge);
-    sum.irradiance()
+        .reduce(
+            || (ShSum::default(), ShSum::default()),
+            |a, b| (a.0.merge(b.0), a.1.merge(b.1)),
+        );
+    SkyWeight {
+        irradiance: sum.0.irradiance(),
+        second: sum.1.irradiance(),
+    }
 }
 
 impl LightModel for EnvironmentLight {

@@ -43,12 +43,13 @@ impl PointLight {
 }
 
 impl LightModel for PointLight {
-    /// A point emitting in every direction.
+    /// A point emitting in every direction; its weight is π × its
+    /// intensity, a quarter of its power (see `tree::light_bounds`).
     fn bounds(&self, phi: f32) -> Option<LightBounds> {
         Some(LightBounds {
             bounds: LightBounds::ball(self.position, 0.0),
             w: Vec3A::Z,
-            phi,
+            phi: 0.25 * phi,
             cos_theta_o: -1.0,
             cos_theta_e: 0.0,
             two_sided: false,

@@ -89,12 +89,17 @@ impl SpotLight {
 }
 
 impl LightModel for SpotLight {
-    /// The cone where the spot emits at all: θo + θe = its total half-angle.
+    /// The cone where the spot emits at all: θo + θe = its total
+    /// half-angle. Its weight is π × its intensity inside the cone (see
+    /// `tree::light_bounds`): its power `phi` over the solid angle
+    /// [`SpotLight::power`] spreads it on, times π.
     fn bounds(&self, phi: f32) -> Option<LightBounds> {
+        let cone = 2.0 * ((1.0 - self.cos_falloff) + 0.5 * (self.cos_falloff - self.cos_total));
+        let weight = if cone > 0.0 { phi / cone } else { 0.0 };
         Some(LightBounds {
             bounds: LightBounds::ball(self.position, 0.0),
             w: self.direction.normalize_or(Vec3A::Z),
-            phi,
+            phi: if weight.is_finite() { weight } else { 0.0 },
             cos_theta_o: 1.0,
             cos_theta_e: self.cos_total,
             two_sided: false,

@@ -32,13 +32,17 @@
 //!
 //! The environment is not in the tree (it has no position): at each point
 //! it is weighed against the tree's root by its own importance in the same
-//! units, π × its unoccluded irradiance on the point's surface
-//! (`irradiance.rs`), times the share of the sky the camera's surfaces were
-//! measured to see (`integrators/sky_visibility.rs`). Its power through the scene's bounding disk, as
-//! pbrt-v4 weighs it, grows with the scene's size: a 40 × 40 floor under a
-//! dim sky sent ~90% of the shadow rays to the sky while one area light did
-//! nearly all the lighting, and the image was up to 2.2× noisier than
-//! Mitsuba 3's (issue 37).
+//! units, π × its unoccluded irradiance on the point's surface, times the
+//! share of that irradiance BSDF sampling would not find by itself (none of
+//! a constant sky, nearly all of a sun: `irradiance.rs`, [`SkyWeight`]),
+//! times the share of the sky the camera's surfaces were measured to see
+//! (`integrators/sky_visibility.rs`). Its power through the scene's
+//! bounding disk, as pbrt-v4 weighs it, grows with the scene's size: a
+//! 40 × 40 floor under a dim sky sent ~90% of the shadow rays to the sky
+//! while one area light did nearly all the lighting, and the image was up
+//! to 2.2× noisier than Mitsuba 3's (issue 37). The lights' weights are in
+//! the same units (what each sends one point, not its power:
+//! [`light_bounds`]).
 //!
 //! Every estimate here ignores occlusion and can be wrong (a sky over a
 //! closed room, a lamp behind a wall), so the pick is a defensive mixture:
@@ -50,7 +54,7 @@
 //! mixture costs little (see `docs/benchmarks.md`, open scenes).
 
 use super::Light;
-use super::irradiance::SkyIrradiance;
+use super::irradiance::SkyWeight;
 use crate::accel::Aabb;
 use crate::math::luminance;
 use glam::{BVec4A, Quat, Vec3A, Vec4};
@@ -63,7 +67,10 @@ pub struct LightBounds {
     pub bounds: Aabb,
     /// Axis of the cone holding every emitting normal.
     pub w: Vec3A,
-    /// Emitted power (luminance, W).
+    /// The light's weight in the tree: π × the largest radiant intensity
+    /// (luminance, W/sr) it sends one way, so that `phi · cos θ' / d²` is π
+    /// × the irradiance it can give a point facing it, in the units of the
+    /// sky's weight (see [`light_bounds`]). Sums over a node's lights.
     pub phi: f32,
     /// Cosine of the normal cone's half-angle θo (−1: any direction).
     pub cos_theta_o: f32,
@@ -131,22 +138,51 @@ fn cone_union(a: (Vec3A, f32), b: (Vec3A, f32)) -> (Vec3A, f32) {
 }
 
 /// Bounds of one light; `None` for the environment (infinitely far). Each
-/// light says what bounds it ([`Light::bounds`], beside its model); the
-/// power they weigh is the same for all.
+/// light says what bounds it ([`Light::bounds`], beside its model), given
+/// its power `Φ` (luminance), and turns it into its weight: what it sends
+/// toward one point, not in all directions. A one-sided flat emitter of
+/// area `A` sends its most, `L·A` W/sr, along its normal, and `Φ = π·L·A`:
+/// its weight is its power. A sphere's is a quarter of its power (`π·L·πr²`
+/// against `Φ = π·L·4πr²`: only the disk it shows a point sends), a
+/// point's too (`π·I` against `4π·I`), a two-sided surface's half. The sky
+/// is weighed by π × its irradiance at the point (at most), so the tree's
+/// weights must be in the same units: with powers, a sphere or a point
+/// lamp beside a sunny sky took four times its share of the shadow rays,
+/// and on an open ground lit by a sun and two small lamps the direct light
+/// was seven times as noisy as each part rendered alone (issue 37).
 pub fn light_bounds(light: &Light) -> Option<LightBounds> {
     let phi = luminance(light.power()).max(0.0);
     let phi = if phi.is_finite() { phi } else { 0.0 };
     light.bounds(phi)
 }
 
+/// The largest share of its area a surface whose normals fill a cone of
+/// half-angle θo (`cos_theta_o`) shows one direction, taking it to be a
+/// spherical cap: `(1 + cos θo) / 2` up to a hemisphere (1 for a flat
+/// emitter, ½ for a half sphere), then its outline's disk over its area,
+/// `1 / (2 (1 − cos θo))`, down to ¼ for a whole sphere (a convex closed
+/// surface shows a quarter of its area on average, Cauchy's formula).
+pub fn projected_share(cos_theta_o: f32) -> f32 {
+    let c = cos_theta_o.clamp(-1.0, 1.0);
+    if c >= 0.0 {
+        0.5 * (1.0 + c)
+    } else {
+        0.5 / (1.0 - c)
+    }
+}
+
 impl LightBounds {
-    /// An emitting surface: its points in `bounds`, its normals in the cone
-    /// (`w`, `cos_theta_o`), each emitting over its hemisphere (θe = π/2).
+    /// An emitting surface of power `phi`: its points in `bounds`, its
+    /// normals in the cone (`w`, `cos_theta_o`), each emitting over its
+    /// hemisphere (θe = π/2). Its weight is its power times the share of
+    /// its area it can show one point ([`projected_share`]), halved when
+    /// two-sided (the power counts both sides; a point sees one).
     pub fn surface(bounds: Aabb, w: Vec3A, cos_theta_o: f32, two_sided: bool, phi: f32) -> Self {
+        let sides = if two_sided { 0.5 } else { 1.0 };
         LightBounds {
             bounds,
             w,
-            phi,
+            phi: phi * sides * projected_share(cos_theta_o),
             cos_theta_o,
             cos_theta_e: 0.0,
             two_sided,
@@ -326,7 +362,7 @@ pub struct LightTree {
     trail: Vec<Option<(u64, u32)>>,
     /// The environment, if it has power: its light index and its irradiance
     /// by normal.
-    env: Option<(u32, SkyIrradiance)>,
+    env: Option<(u32, SkyWeight)>,
     /// The share of the sky's irradiance the scene's surfaces see
     /// (`integrators/sky_visibility.rs`); 1 until measured.
     sky_visibility: f32,
@@ -354,7 +390,7 @@ impl LightTree {
                 && luminance(e.power()) > 0.0
                 && env.is_none()
             {
-                env = Some((i as u32, *e.irradiance()))
+                env = Some((i as u32, *e.weight()))
             }
         }
         if items.is_empty() || (items.len() == 1 && env.is_none()) {
@@ -427,10 +463,7 @@ impl LightTree {
     /// bit for bit.
     #[inline]
     pub fn top(&self, p: Vec3A, n: Vec3A) -> Top {
-        let env = self
-            .env
-            .as_ref()
-            .map_or(0.0, |e| self.sky_visibility * PI * e.1.either_side(n));
+        let env = self.env.as_ref().map_or(0.0, |e| self.sky_visibility * e.1.at(n));
         let env = if env.is_finite() {
             env.min(f32::MAX / 8.0)
         } else {
@@ -718,9 +751,19 @@ mod tests {
     /// gets little beyond the uniform floor, far from every lamp nearly all.
     #[test]
     fn the_environment_is_weighed_by_what_it_sends_to_the_point() {
-        use crate::lights::EnvironmentLight;
+        use crate::lights::{EnvMap, EnvironmentLight};
+        // A small sun straight above (weighed in full, see `SkyWeight`).
+        let (w, h) = (64u32, 32u32);
+        let rgb: Vec<f32> = (0..w * h)
+            .flat_map(|k| [if k < 2 * w { 1.0 } else { 0.0 }; 3])
+            .collect();
+        let unit = EnvironmentLight::from_map(EnvMap::from_rgb(w, h, &rgb), 1.0, 0.0);
+        let unit = unit.weight().at(Vec3A::Y);
         for sky in [0.01f32, 0.2, 1.0] {
-            let mut env = EnvironmentLight::constant(Rgb::splat(sky));
+            // Sends π·sky to a point facing up, as a constant sky of
+            // radiance `sky` would: weighs π × that.
+            let strength = PI * PI * sky / unit;
+            let mut env = EnvironmentLight::from_map(EnvMap::from_rgb(w, h, &rgb), strength, 0.0);
             // A 400-unit scene: by power the sky would take nearly every pick.
             env.scene_radius = 400.0;
             let lights = vec![
@@ -730,6 +773,8 @@ mod tests {
             let tree = LightTree::new(&lights).expect("a tree");
             let floor = UNIFORM_SHARE / 2.0;
             let near = tree.pmf(Vec3A::ZERO, Vec3A::Y, 1);
+            let weight = tree.top(Vec3A::ZERO, Vec3A::Y).0;
+            assert!((weight - PI * PI * sky).abs() < 1e-3 * weight, "{weight}");
             let far = tree.pmf(Vec3A::new(300.0, 0.0, 0.0), Vec3A::Y, 1);
             // Under the lamp its irradiance is 50 · 0.04 / 1 = 2 against the sky's π·sky.
             let share = PI * sky / (PI * sky + 2.0);
@@ -743,6 +788,90 @@ mod tests {
             );
             let total = tree.pmf(Vec3A::ZERO, Vec3A::Y, 0) + near;
             assert!((total - 1.0).abs() < 1e-5, "{total}");
+        }
+    }
+
+    /// A constant sky is left to BSDF sampling, which finds it with no
+    /// variance on a surface it lights: beside a lamp, however dim the lamp
+    /// or far the point, it keeps the uniform share of the picks and no
+    /// more.
+    #[test]
+    fn a_constant_sky_keeps_only_the_uniform_share() {
+        use crate::lights::EnvironmentLight;
+        for sky in [0.01f32, 1.0, 100.0] {
+            let lights = vec![
+                quad(Vec3A::new(-0.1, 1.0, -0.1), true, 50.0),
+                Light::Environment(Box::new(EnvironmentLight::constant(Rgb::splat(sky)))),
+            ];
+            let tree = LightTree::new(&lights).expect("a tree");
+            for p in [Vec3A::ZERO, Vec3A::new(300.0, 0.0, 0.0)] {
+                let pmf = tree.pmf(p, Vec3A::Y, 1);
+                assert!(
+                    (pmf - UNIFORM_SHARE / 2.0).abs() < 1e-3,
+                    "sky {sky} at {p}: {pmf}"
+                );
+            }
+        }
+    }
+
+    /// Every kind of lamp beside a sun, each sending a point facing it
+    /// the same irradiance as the sky: each takes half the picks the
+    /// estimate makes. With powers, a sphere or a point lamp took four
+    /// fifths (its power is four times π × what it sends one way), a
+    /// two-sided quad two thirds, a spot `1/(1 − cos θ)` times its share.
+    #[test]
+    fn every_kind_of_lamp_is_weighed_in_the_skys_units() {
+        use crate::lights::{EnvMap, EnvironmentLight, SpotLight};
+        // A sun (about 6° across) straight above, and what it weighs at a
+        // point facing up: the irradiance `e` a lamp must match.
+        let (w, h) = (64u32, 32u32);
+        let rgb: Vec<f32> = (0..w * h)
+            .flat_map(|k| [if k < 2 * w { 1e3 } else { 0.0 }; 3])
+            .collect();
+        let sun = EnvironmentLight::from_map(EnvMap::from_rgb(w, h, &rgb), 1.0, 0.0);
+        let e = sun.weight().at(Vec3A::Y) / PI;
+        assert!(
+            e > 0.9 * sun.weight().irradiance.at(Vec3A::Y),
+            "a sun is weighed in full"
+        );
+        // A lamp 10 units above the point.
+        let (d, at) = (10.0f32, Vec3A::new(0.0, 10.0, 0.0));
+        let mut two_sided = QuadLight::new(
+            at - Vec3A::new(0.05, 0.0, 0.05),
+            Vec3A::new(0.1, 0.0, 0.0),
+            Vec3A::new(0.0, 0.0, 0.1),
+            Rgb::splat(e * d * d / 0.01),
+        );
+        two_sided.two_sided = true;
+        let lamps = [
+            // E = I / d².
+            Light::Point(PointLight {
+                position: at,
+                intensity: Rgb::splat(e * d * d),
+            }),
+            // E = L·πr² / d² for a small sphere.
+            Light::Sphere(SphereLight::new(at, 0.05, Rgb::splat(e * d * d / (PI * 0.0025)))),
+            // Facing down, E = L·A / d².
+            quad(at - Vec3A::new(0.1, 0.0, 0.1), true, e * d * d / 0.04),
+            Light::Quad(two_sided),
+            Light::Spot(SpotLight::new(
+                at,
+                Vec3A::NEG_Y,
+                Rgb::splat(e * d * d),
+                60.0,
+                10.0,
+            )),
+        ];
+        for lamp in lamps {
+            let what = format!("{lamp:?}");
+            let lights = vec![lamp, Light::Environment(Box::new(sun.clone()))];
+            let tree = LightTree::new(&lights).expect("a tree");
+            let sky_pmf = tree.pmf(Vec3A::ZERO, Vec3A::Y, 1);
+            let want = UNIFORM_SHARE / 2.0 + (1.0 - UNIFORM_SHARE) * 0.5;
+            assert!(
+                (sky_pmf - want).abs() < 0.01,
+                "sky {sky_pmf}, not {want}, beside {what}"
+            );
         }
     }
 
