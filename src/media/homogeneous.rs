@@ -75,10 +75,16 @@ impl Homogeneous {
     }
 }
 
-/// exp(−σ·d) per channel, 1 where σ = 0 (also for d = ∞).
+/// exp(−σ·d) per channel, 1 where σ = 0 (also for d = ∞). A grey medium
+/// (the same σ in every channel, the usual fog or smoke) takes one `expf`
+/// for all three: the same value bit for bit, and `expf` was 9% of
+/// `fog_box`'s time with three (perf).
 #[inline]
 pub fn transmittance(sigma_t: Vec3A, d: f32) -> Vec3A {
     let e = |s: f32| if s > 0.0 { (-s * d).exp() } else { 1.0 };
+    if sigma_t.x == sigma_t.y && sigma_t.y == sigma_t.z {
+        return Vec3A::splat(e(sigma_t.x));
+    }
     Vec3A::new(e(sigma_t.x), e(sigma_t.y), e(sigma_t.z))
 }
 
@@ -86,6 +92,28 @@ pub fn transmittance(sigma_t: Vec3A, d: f32) -> Vec3A {
 mod tests {
     use super::*;
     use crate::math::rng::Pcg32;
+
+    /// The grey shortcut is the per-channel value bit for bit.
+    #[test]
+    fn grey_transmittance_is_each_channels_exactly() {
+        for (s, d) in [
+            (0.5f32, 0.3f32),
+            (1e-3, 7.0),
+            (3.0, 1e-4),
+            (0.0, 2.0),
+            (2.0, f32::INFINITY),
+        ] {
+            let grey = transmittance(Vec3A::splat(s), d);
+            let each = if s > 0.0 { (-s * d).exp() } else { 1.0 };
+            assert_eq!(
+                grey.to_array().map(f32::to_bits),
+                [each.to_bits(); 3],
+                "σ {s}, d {d}"
+            );
+        }
+        let coloured = transmittance(Vec3A::new(0.5, 1.0, 0.0), 2.0);
+        assert_eq!(coloured, Vec3A::new((-1.0f32).exp(), (-2.0f32).exp(), 1.0));
+    }
 
     fn medium(sigma_t: Vec3A, albedo: Vec3A) -> Homogeneous {
         Homogeneous {
