@@ -91,13 +91,15 @@ pub enum LightSelectionDesc {
     /// Every light equally likely.
     Uniform,
     /// By a light tree: in proportion to what each light can send to the
-    /// shading point (power over squared distance, bounded by its extent
-    /// and orientation), so scenes of many lights spend their shadow rays
-    /// on the near ones that face the point. The sky is weighed by what it
-    /// sends to the point (its irradiance there), not by its power through
-    /// the scene, and a tenth of the picks stay uniform over all lights, so
-    /// no light is starved where the estimate is wrong. With one light of
-    /// finite extent and no sky it is `Power`: there is nothing to choose.
+    /// shading point (its irradiance there from its intensity, distance,
+    /// extent and orientation), so scenes of many lights spend their shadow
+    /// rays on the near ones that face the point. The sky is weighed by
+    /// what it sends to the point that BSDF sampling would not find alone
+    /// (all of a small sun's irradiance, none of a constant sky's), not by
+    /// its power through the scene, and a tenth of the picks stay uniform
+    /// over all lights, so no light is starved where the estimate is wrong.
+    /// With one light of finite extent and no sky it is `Power`: there is
+    /// nothing to choose.
     #[default]
     Tree,
 }
