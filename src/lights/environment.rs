@@ -378,10 +378,7 @@ fn map_weight(map: &EnvMap, strength: f32, cos_sin: (f32, f32)) -> SkyWeight {
             || (ShSum::default(), ShSum::default()),
             |a, b| (a.0.merge(b.0), a.1.merge(b.1)),
         );
-    SkyWeight {
-        irradiance: sum.0.irradiance(),
-        second: sum.1.irradiance(),
-    }
+    SkyWeight::new(sum.0.irradiance(), sum.1.irradiance())
 }
 
 impl LightModel for EnvironmentLight {

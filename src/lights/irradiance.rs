@@ -109,15 +109,29 @@ pub struct SkyWeight {
     pub irradiance: SkyIrradiance,
     /// Irradiance of its squared luminance, `E₂(n)`.
     pub second: SkyIrradiance,
+    /// A constant sky: its weight is 0 exactly, without the arithmetic
+    /// (which rounds to within an ulp of it).
+    flat: bool,
 }
 
 impl SkyWeight {
+    /// The weight of a sky of irradiance `irradiance` and squared
+    /// irradiance `second` (see the type's docs).
+    pub fn new(irradiance: SkyIrradiance, second: SkyIrradiance) -> Self {
+        Self {
+            irradiance,
+            second,
+            flat: false,
+        }
+    }
+
     /// A sky of radiance `radiance` in every direction (weight 0).
     pub fn constant(radiance: Rgb) -> Self {
         let l = luminance(radiance).max(0.0);
         Self {
             irradiance: SkyIrradiance::constant(radiance),
             second: SkyIrradiance::constant(Rgb::splat(l * l)),
+            flat: true,
         }
     }
 
@@ -127,6 +141,9 @@ impl SkyWeight {
     /// or above `π E`; 0 where either moment is 0 or not finite.
     #[inline]
     pub fn at(&self, n: Vec3A) -> f32 {
+        if self.flat {
+            return 0.0;
+        }
         let e = self.irradiance.either_side(n);
         let e2 = self.second.either_side(n);
         let (full, base) = if n == Vec3A::ZERO {
@@ -254,10 +271,10 @@ mod tests {
 
     /// `SkyWeight` of `f` from the grid, as `map_weight` projects a map.
     fn weight_of(f: impl Fn(Vec3A) -> f32) -> SkyWeight {
-        SkyWeight {
-            irradiance: SkyIrradiance::from_samples(grid(&f).into_iter()),
-            second: SkyIrradiance::from_samples(grid(|d| f(d) * f(d)).into_iter()),
-        }
+        SkyWeight::new(
+            SkyIrradiance::from_samples(grid(&f).into_iter()),
+            SkyIrradiance::from_samples(grid(|d| f(d) * f(d)).into_iter()),
+        )
     }
 
     /// The sky's weight is π E times the share of E a cosine-sampled BSDF
