@@ -279,10 +279,18 @@ impl MeshLight {
             let swept = Aabb::EMPTY.grow_point(lo.into()).grow_point(hi.into());
             return (swept, Vec3A::Z, -1.0);
         }
+        let (w, cos_o) = self.rest_normal_cone();
+        (bounds, w, cos_o)
+    }
+
+    /// The cone (axis, cos half-angle) around the triangles' area-weighted
+    /// mean normal holding all of them as they are stored (all directions
+    /// when they cancel).
+    fn rest_normal_cone(&self) -> (Vec3A, f32) {
         let normals = || self.tris.iter().map(|[a, b, c]| (*b - *a).cross(*c - *a));
         let w = normals().sum::<Vec3A>().normalize_or_zero();
         if w == Vec3A::ZERO {
-            return (bounds, Vec3A::Z, -1.0);
+            return (Vec3A::Z, -1.0);
         }
         let cos_o = normals()
             .filter_map(|n| n.try_normalize())
@@ -290,7 +298,7 @@ impl MeshLight {
             .fold(1.0f32, f32::min);
         // A little wider than the tightest: rounding must not leave a
         // normal outside (a wider cone is still a bound).
-        (bounds, w, (cos_o - 1e-4).max(-1.0))
+        (w, (cos_o - 1e-4).max(-1.0))
     }
 
     /// Φ = π·A·L, twice that when two-sided; for a moving light, with its
@@ -323,9 +331,18 @@ fn moving_area(m: &InstanceMotion, area: f32, n: Vec3A) -> f32 {
 }
 
 impl LightModel for MeshLight {
-    /// The triangles' box and their normal cone.
+    /// The triangles' box and their normal cone. A moving light's cone is
+    /// the whole sphere, but the motion turns its normals, not the share
+    /// of its area a point sees: its weight keeps its rest cone's share
+    /// (`tree::projected_share`), or a moving panel would weigh a quarter
+    /// of a still one.
     fn bounds(&self, phi: f32) -> Option<LightBounds> {
         let (b, w, cos_theta_o) = self.bounds_and_normal_cone();
-        Some(LightBounds::surface(b, w, cos_theta_o, self.two_sided, phi))
+        let mut lb = LightBounds::surface(b, w, cos_theta_o, self.two_sided, phi);
+        if self.motion.is_some() {
+            let sides = if self.two_sided { 0.5 } else { 1.0 };
+            lb.phi = phi * sides * super::tree::projected_share(self.rest_normal_cone().1);
+        }
+        Some(lb)
     }
 }

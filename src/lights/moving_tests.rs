@@ -161,8 +161,16 @@ fn moving_mesh_light_pdf_at_the_instance_hit_is_the_sample_pdf() {
 #[test]
 fn moving_mesh_light_tree_bounds_hold_it_over_the_shutter() {
     let (light, m) = moving_square(1.0, false);
+    let power = crate::math::luminance(light.power());
     let b = light_bounds(&Light::Mesh(light)).expect("a surface");
     assert_eq!(b.cos_theta_o, -1.0, "a turning light's normals go anywhere");
+    // Still a flat one-sided panel to a point: weighed by its whole power,
+    // not the quarter a sphere of normals would get.
+    assert!(
+        (b.phi - power).abs() < 1e-3 * power,
+        "weight {} of power {power}",
+        b.phi
+    );
     for s in 0..=400 {
         let t = s as f32 / 400.0;
         let w = m.placement_at(t).world_from_object;
