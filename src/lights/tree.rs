@@ -746,24 +746,28 @@ mod tests {
         assert!((28..=38).contains(&away), "picked {away} times in 1000");
     }
 
+    /// A sky map (64 × 32) whose two top rows, a sun about 6° across
+    /// straight above, hold radiance `strength`; black elsewhere.
+    fn overhead_sun(strength: f32) -> crate::lights::EnvironmentLight {
+        let (w, h) = (64u32, 32u32);
+        let rgb: Vec<f32> = (0..w * h)
+            .flat_map(|k| [if k < 2 * w { 1.0 } else { 0.0 }; 3])
+            .collect();
+        crate::lights::EnvironmentLight::from_map(crate::lights::EnvMap::from_rgb(w, h, &rgb), strength, 0.0)
+    }
+
     /// Area lights beside an environment: what the sky gets follows what it
     /// sends to the point, not the scene's size; near a bright lamp the sky
     /// gets little beyond the uniform floor, far from every lamp nearly all.
     #[test]
     fn the_environment_is_weighed_by_what_it_sends_to_the_point() {
-        use crate::lights::{EnvMap, EnvironmentLight};
         // A small sun straight above (weighed in full, see `SkyWeight`).
-        let (w, h) = (64u32, 32u32);
-        let rgb: Vec<f32> = (0..w * h)
-            .flat_map(|k| [if k < 2 * w { 1.0 } else { 0.0 }; 3])
-            .collect();
-        let unit = EnvironmentLight::from_map(EnvMap::from_rgb(w, h, &rgb), 1.0, 0.0);
-        let unit = unit.weight().at(Vec3A::Y);
+        let unit = overhead_sun(1.0).weight().at(Vec3A::Y);
         for sky in [0.01f32, 0.2, 1.0] {
             // Sends π·sky to a point facing up, as a constant sky of
             // radiance `sky` would: weighs π × that.
             let strength = PI * PI * sky / unit;
-            let mut env = EnvironmentLight::from_map(EnvMap::from_rgb(w, h, &rgb), strength, 0.0);
+            let mut env = overhead_sun(strength);
             // A 400-unit scene: by power the sky would take nearly every pick.
             env.scene_radius = 400.0;
             let lights = vec![
@@ -821,14 +825,10 @@ mod tests {
     /// two-sided quad two thirds, a spot `1/(1 − cos θ)` times its share.
     #[test]
     fn every_kind_of_lamp_is_weighed_in_the_skys_units() {
-        use crate::lights::{EnvMap, EnvironmentLight, SpotLight};
-        // A sun (about 6° across) straight above, and what it weighs at a
-        // point facing up: the irradiance `e` a lamp must match.
-        let (w, h) = (64u32, 32u32);
-        let rgb: Vec<f32> = (0..w * h)
-            .flat_map(|k| [if k < 2 * w { 1e3 } else { 0.0 }; 3])
-            .collect();
-        let sun = EnvironmentLight::from_map(EnvMap::from_rgb(w, h, &rgb), 1.0, 0.0);
+        use crate::lights::SpotLight;
+        // A sun straight above, and what it weighs at a point facing up:
+        // the irradiance `e` a lamp must match.
+        let sun = overhead_sun(1e3);
         let e = sun.weight().at(Vec3A::Y) / PI;
         assert!(
             e > 0.9 * sun.weight().irradiance.at(Vec3A::Y),
