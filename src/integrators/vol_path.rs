@@ -42,10 +42,10 @@ use crate::lights::{LightPicker, LightSample};
 use crate::materials::Bxdf;
 use crate::math::sampling::power_heuristic;
 use crate::math::{Frame, Ray, Rgb};
-use crate::media::Media;
+use crate::media::{Media, Medium};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
-use glam::Vec3A;
+use glam::{Vec2, Vec3A};
 
 /// Most index-matched boundaries a path or a shadow ray crosses: past
 /// this it ends (dark), so nested null shapes cannot loop a ray forever.
@@ -87,13 +87,30 @@ pub(super) fn li(
     let mut hit = Hit::default();
     loop {
         counters.rays += 1;
-        // Written in place (`Scene::intersect_into` says why).
-        let found = scene.intersect_object_into(&ray, f32::INFINITY, &mut hit);
-        let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
+        let current = media.get(medium);
+        // In a homogeneous medium the free-flight distance is drawn first
+        // (the same two numbers `Medium::sample` draws after the hit) and
+        // the surface looked for only up to it: a collision then costs a
+        // shorter traversal and no surface record. Same vertices, same
+        // weights (`media::homogeneous::tests::free_flight_is_where_sample_collides`).
+        let (found, collision) = match current {
+            Some(Medium::Homogeneous(h)) => {
+                let u = Vec2::new(sampler.next_f32(), sampler.next_f32());
+                // Written in place (`Scene::intersect_into` says why).
+                let found = scene.intersect_object_into(&ray, h.free_flight(u), &mut hit);
+                let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
+                (found, Some(h.sample(t_hit, u)))
+            }
+            Some(m) => {
+                let found = scene.intersect_object_into(&ray, f32::INFINITY, &mut hit);
+                let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
+                (found, Some(m.sample(&ray, t_hit, &mut || sampler.next_f32())))
+            }
+            None => (scene.intersect_object_into(&ray, f32::INFINITY, &mut hit), None),
+        };
 
         // The medium along the segment: a scattering vertex, or on to the surface.
-        if let Some(m) = media.get(medium) {
-            let c = m.sample(&ray, t_hit, &mut || sampler.next_f32());
+        if let (Some(m), Some(c)) = (current, collision) {
             beta *= c.weight;
             if beta == Rgb::ZERO || !beta.is_finite() {
                 break;

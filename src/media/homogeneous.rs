@@ -48,15 +48,7 @@ impl Homogeneous {
                 weight: self.transmittance(t_max),
             };
         }
-        let x = u.x * 3.0;
-        let c = (x as usize).min(2);
-        let sigma = self.sigma_t[c];
-        // −ln(1 − u) / σ: u < 1, so the logarithm is finite.
-        let t = if sigma > 0.0 {
-            -(1.0 - u.y).ln() / sigma
-        } else {
-            f32::INFINITY
-        };
+        let t = self.distance(u);
         if t < t_max {
             let tr = self.transmittance(t);
             let pdf = (self.sigma_t * tr).element_sum() / 3.0;
@@ -71,6 +63,34 @@ impl Homogeneous {
             let pdf = tr.element_sum() / 3.0;
             let weight = if pdf > 0.0 { tr / pdf } else { Vec3A::ZERO };
             Collision { t: None, weight }
+        }
+    }
+
+    /// The distance [`Self::sample`] collides at for `u` whatever `t_max`
+    /// is (it collides iff this is below `t_max`): infinite where the
+    /// medium never collides (no scattering, or a channel without
+    /// extinction picked). Known before the surface ahead is, so the path
+    /// tracer can look for that surface only up to here (Mitsuba 3's
+    /// `volpath` shortens its ray the same way): a collision then needs no
+    /// surface record at all.
+    #[inline]
+    pub fn free_flight(&self, u: Vec2) -> f32 {
+        if self.sigma_s == Vec3A::ZERO {
+            return f32::INFINITY;
+        }
+        self.distance(u)
+    }
+
+    /// The free-flight distance in channel `u.x` picks, drawn by `u.y`.
+    #[inline]
+    fn distance(&self, u: Vec2) -> f32 {
+        let c = ((u.x * 3.0) as usize).min(2);
+        let sigma = self.sigma_t[c];
+        // −ln(1 − u) / σ: u < 1, so the logarithm is finite.
+        if sigma > 0.0 {
+            -(1.0 - u.y).ln() / sigma
+        } else {
+            f32::INFINITY
         }
     }
 }
@@ -92,6 +112,40 @@ pub fn transmittance(sigma_t: Vec3A, d: f32) -> Vec3A {
 mod tests {
     use super::*;
     use crate::math::rng::Pcg32;
+
+    /// What lets the path tracer look for the surface only up to
+    /// `free_flight(u)`: `sample(t_max, u)` collides exactly when that
+    /// distance is below `t_max`, at it, and otherwise passes with a
+    /// weight that depends on `t_max` alone — for grey, coloured (one
+    /// channel without extinction) and purely absorbing media.
+    #[test]
+    fn free_flight_is_where_sample_collides() {
+        let mut rng = Pcg32::new(7, 2);
+        for m in [
+            medium(Vec3A::splat(0.5), Vec3A::splat(0.8)),
+            medium(Vec3A::new(0.5, 2.0, 0.0), Vec3A::new(0.9, 0.5, 0.0)),
+            medium(Vec3A::splat(1.5), Vec3A::ZERO),
+        ] {
+            for _ in 0..20_000 {
+                let u = rng.next_vec2();
+                let t_max = 4.0 * rng.next_f32();
+                let reach = m.free_flight(u);
+                let c = m.sample(t_max, u);
+                if reach < t_max {
+                    assert_eq!(c.t, Some(reach), "{m:?} u {u}");
+                    // Unbounded, the same collision and weight.
+                    let far = m.sample(f32::INFINITY, u);
+                    assert_eq!((far.t, far.weight), (c.t, c.weight));
+                } else {
+                    assert_eq!(c.t, None, "{m:?} u {u} t_max {t_max}");
+                    let other = m.sample(t_max, rng.next_vec2());
+                    if other.t.is_none() {
+                        assert_eq!(other.weight, c.weight);
+                    }
+                }
+            }
+        }
+    }
 
     /// The grey shortcut is the per-channel value bit for bit.
     #[test]

@@ -8,6 +8,7 @@
 //! `HenyeyGreenstein` writes the same function with `wo = −d`).
 
 use crate::math::Frame;
+use crate::math::sampling::UNIFORM_SPHERE_PDF;
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
 
@@ -53,9 +54,16 @@ impl HenyeyGreenstein {
 }
 
 /// The Henyey–Greenstein density at cosine `cos` between travel and
-/// scattered directions.
+/// scattered directions. Below [`ISOTROPIC_G`] it is the uniform density
+/// [`HenyeyGreenstein::sample`] draws from there: no division or square root (with
+/// them the density was 9% of a fog render's path loop, perf), the same
+/// float at g = 0, and for 0 < |g| < 10⁻³ the density of what is sampled
+/// rather than one up to 0.3% off it.
 #[inline]
 fn hg(cos: f32, g: f32) -> f32 {
+    if g.abs() < ISOTROPIC_G {
+        return UNIFORM_SPHERE_PDF;
+    }
     let denom = 1.0 + g * g - 2.0 * g * cos;
     (1.0 - g * g) / (4.0 * PI * denom * denom.max(0.0).sqrt().max(1e-20))
 }
