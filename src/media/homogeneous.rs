@@ -49,6 +49,22 @@ impl Homogeneous {
             };
         }
         let t = self.distance(u);
+        if self.sigma_t.x == self.sigma_t.y && self.sigma_t.y == self.sigma_t.z {
+            // Grey extinction: the density charged is σ_t·T(t) (or T(t_max) to
+            // pass), so the weights are σ_s/σ_t and 1 whatever the distance,
+            // without the `expf` that cancels out.
+            return if t < t_max {
+                Collision {
+                    t: Some(t),
+                    weight: self.sigma_s / self.sigma_t,
+                }
+            } else {
+                Collision {
+                    t: None,
+                    weight: Vec3A::ONE,
+                }
+            };
+        }
         if t < t_max {
             let tr = self.transmittance(t);
             let pdf = (self.sigma_t * tr).element_sum() / 3.0;
