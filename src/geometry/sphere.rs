@@ -111,8 +111,7 @@ impl Sphere {
 
     /// Mitsuba's spherical coordinates of unit normal `n`: the poles on the
     /// z axis (v = 0 at +z), u = atan2(y, x)/2π in [0, 1) (0 along +x, ¼
-    /// along +y).
-    /// Angles as in [`Sphere::uv`].
+    /// along +y). Angles as in [`Sphere::uv`].
     pub fn uv_mitsuba(n: Vec3A) -> Vec2 {
         let mut u = atan2(n.y, n.x) / (2.0 * PI);
         if u < 0.0 {

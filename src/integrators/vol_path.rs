@@ -91,8 +91,9 @@ pub(super) fn li(
         // In a homogeneous medium the free-flight distance is drawn first
         // (the same two numbers `Medium::sample` draws after the hit) and
         // the surface looked for only up to it: a collision then costs a
-        // shorter traversal and no surface record. Same vertices, same
-        // weights (`media::homogeneous::tests::free_flight_is_where_sample_collides`).
+        // shorter traversal and no surface record. The same vertices and
+        // weights as drawing it after the hit
+        // (`media::homogeneous::tests::free_flight_is_where_sample_collides`).
         let (found, collision) = match current {
             Some(Medium::Homogeneous(h)) => {
                 let u = Vec2::new(sampler.next_f32(), sampler.next_f32());

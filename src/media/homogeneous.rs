@@ -199,33 +199,39 @@ mod tests {
     /// with channels of different σ_t.
     #[test]
     fn homogeneous_sampling_is_unbiased_per_channel() {
-        let m = medium(Vec3A::new(0.5, 1.5, 3.0), Vec3A::new(0.9, 0.5, 0.2));
-        let t_max = 0.8;
-        let mut rng = Pcg32::new(3, 9);
-        let n = 400_000;
-        let (mut through, mut scattered) = (Vec3A::ZERO, Vec3A::ZERO);
-        for _ in 0..n {
-            let c = m.sample(t_max, rng.next_vec2());
-            match c.t {
-                Some(t) => {
-                    assert!(t < t_max);
-                    scattered += c.weight;
+        // Coloured extinction, and grey extinction under a coloured albedo
+        // (the shortcut without `expf`).
+        for m in [
+            medium(Vec3A::new(0.5, 1.5, 3.0), Vec3A::new(0.9, 0.5, 0.2)),
+            medium(Vec3A::splat(1.5), Vec3A::new(0.9, 0.5, 0.2)),
+        ] {
+            let t_max = 0.8;
+            let mut rng = Pcg32::new(3, 9);
+            let n = 400_000;
+            let (mut through, mut scattered) = (Vec3A::ZERO, Vec3A::ZERO);
+            for _ in 0..n {
+                let c = m.sample(t_max, rng.next_vec2());
+                match c.t {
+                    Some(t) => {
+                        assert!(t < t_max);
+                        scattered += c.weight;
+                    }
+                    None => through += c.weight,
                 }
-                None => through += c.weight,
             }
-        }
-        let (through, scattered) = (through / n as f32, scattered / n as f32);
-        let tr = m.transmittance(t_max);
-        let expect_s = m.sigma_s / m.sigma_t * (Vec3A::ONE - tr);
-        for ch in 0..3 {
-            assert!(
-                (through[ch] - tr[ch]).abs() < 0.01 * tr[ch],
-                "through {through} vs {tr}"
-            );
-            assert!(
-                (scattered[ch] - expect_s[ch]).abs() < 0.01 * expect_s[ch],
-                "scattered {scattered} vs {expect_s}"
-            );
+            let (through, scattered) = (through / n as f32, scattered / n as f32);
+            let tr = m.transmittance(t_max);
+            let expect_s = m.sigma_s / m.sigma_t * (Vec3A::ONE - tr);
+            for ch in 0..3 {
+                assert!(
+                    (through[ch] - tr[ch]).abs() < 0.01 * tr[ch],
+                    "{m:?}: through {through} vs {tr}"
+                );
+                assert!(
+                    (scattered[ch] - expect_s[ch]).abs() < 0.01 * expect_s[ch],
+                    "{m:?}: scattered {scattered} vs {expect_s}"
+                );
+            }
         }
     }
 
