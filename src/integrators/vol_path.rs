@@ -96,11 +96,11 @@ pub(super) fn li(
         // (`media::homogeneous::tests::free_flight_is_where_sample_collides`).
         let (found, collision) = match current {
             Some(Medium::Homogeneous(h)) => {
-                let u = Vec2::new(sampler.next_f32(), sampler.next_f32());
+                let reach = h.free_flight(Vec2::new(sampler.next_f32(), sampler.next_f32()));
                 // Written in place (`Scene::intersect_into` says why).
-                let found = scene.intersect_object_into(&ray, h.free_flight(u), &mut hit);
+                let found = scene.intersect_object_into(&ray, reach, &mut hit);
                 let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
-                (found, Some(h.sample(t_hit, u)))
+                (found, Some(h.collision(reach, t_hit)))
             }
             Some(m) => {
                 let found = scene.intersect_object_into(&ray, f32::INFINITY, &mut hit);

@@ -42,13 +42,20 @@ impl Homogeneous {
     /// rather than a 0-or-1 estimate of it.
     #[inline]
     pub fn sample(&self, t_max: f32, u: Vec2) -> Collision {
+        self.collision(self.free_flight(u), t_max)
+    }
+
+    /// What [`Self::sample`] returns for `u` when `t` is
+    /// [`Self::free_flight`]`(u)`: for a caller that drew the distance
+    /// first (the path tracer, which looks for the surface only up to it).
+    #[inline]
+    pub fn collision(&self, t: f32, t_max: f32) -> Collision {
         if self.sigma_s == Vec3A::ZERO {
             return Collision {
                 t: None,
                 weight: self.transmittance(t_max),
             };
         }
-        let t = self.distance(u);
         if self.sigma_t.x == self.sigma_t.y && self.sigma_t.y == self.sigma_t.z {
             // Grey extinction: the density charged is σ_t·T(t) (or T(t_max) to
             // pass), so the weights are σ_s/σ_t and 1 whatever the distance,
