@@ -94,20 +94,21 @@ pub(super) fn li(
         // shorter traversal and no surface record. The same vertices and
         // weights as drawing it after the hit
         // (`media::homogeneous::tests::free_flight_is_where_sample_collides`).
-        let (found, collision) = match current {
-            Some(Medium::Homogeneous(h)) => {
-                let reach = h.free_flight(Vec2::new(sampler.next_f32(), sampler.next_f32()));
-                // Written in place (`Scene::intersect_into` says why).
-                let found = scene.intersect_object_into(&ray, reach, &mut hit);
-                let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
-                (found, Some(h.collision(reach, t_hit)))
-            }
-            Some(m) => {
-                let found = scene.intersect_object_into(&ray, f32::INFINITY, &mut hit);
-                let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
-                (found, Some(m.sample(&ray, t_hit, &mut || sampler.next_f32())))
-            }
-            None => (scene.intersect_object_into(&ray, f32::INFINITY, &mut hit), None),
+        let drawn = match current {
+            Some(Medium::Homogeneous(h)) => Some((
+                h,
+                h.free_flight(Vec2::new(sampler.next_f32(), sampler.next_f32())),
+            )),
+            _ => None,
+        };
+        let reach = drawn.map_or(f32::INFINITY, |(_, reach)| reach);
+        // Written in place (`Scene::intersect_into` says why).
+        let found = scene.intersect_object_into(&ray, reach, &mut hit);
+        let t_hit = if found.is_some() { hit.t } else { f32::INFINITY };
+        let collision = match (drawn, current) {
+            (Some((h, reach)), _) => Some(h.collision(reach, t_hit)),
+            (None, Some(m)) => Some(m.sample(&ray, t_hit, &mut || sampler.next_f32())),
+            (None, None) => None,
         };
 
         // The medium along the segment: a scattering vertex, or on to the surface.
