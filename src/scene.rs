@@ -6,6 +6,7 @@
 
 use crate::accel::WideBvh;
 use crate::geometry::MeshHit;
+use crate::geometry::shape_lanes::{LaneHit, ShapeLanes};
 use crate::geometry::triangle::WatertightRay4;
 use crate::geometry::{Geometry, Hit, Shape};
 use crate::lights::{CausticEmitters, EnvironmentLight, Light, LightPicker};
@@ -50,6 +51,9 @@ pub struct Scene {
     pub geometry: Geometry,
     /// The top-level BVH over the bounded shapes.
     pub bvh: WideBvh,
+    /// The bounded shapes in SIMD lanes when they are a few spheres and
+    /// quads (see [`ShapeLanes`]): tested all at once, not through `bvh`.
+    pub lanes: Option<ShapeLanes>,
     /// The lights caustic connections emit from, when the scene has
     /// perfect-specular surfaces for them to matter.
     pub caustics: Option<CausticEmitters>,
@@ -340,57 +344,68 @@ impl Scene {
         // The watertight triangle setup (an axis choice and three divisions)
         // is made on the first triangle the ray meets: many rays meet none.
         let mut wt = None;
-        let best = self.bvh.intersect(ray, t_max, |first, count, mut t_best| {
-            let mut found = None;
-            for i in first..first + count {
-                let (t, n) = match &shapes[i as usize] {
-                    Shape::Instance(k) => {
-                        let Some(h) = geo.instances[*k as usize].closest(ray, t_best, &geo.meshes) else {
-                            continue;
-                        };
-                        (h.t, Nearest::Mesh(i, *k, h))
-                    }
-                    Shape::Triangle(tr) => {
-                        let wt = WatertightRay4::lazily(&mut wt, ray);
-                        let Some((t, bc)) = tr.intersect(wt, t_best) else {
-                            continue;
-                        };
-                        (t, Nearest::Triangle(i, bc))
-                    }
-                    Shape::MeshQuad(q) => {
-                        let wt = WatertightRay4::lazily(&mut wt, ray);
-                        let Some((t, k, bc)) = q.intersect(wt, t_best) else {
-                            continue;
-                        };
-                        (t, Nearest::MeshQuad(i, k, bc))
-                    }
-                    // The common analytic shapes inline (the shared match
-                    // in `intersect_t` stayed an out-of-line call).
-                    Shape::Quad(q) => {
-                        let Some((t, uv)) = q.intersect(ray, t_best) else {
-                            continue;
-                        };
-                        (t, Nearest::Quad(i, uv))
-                    }
-                    Shape::Sphere(sp) => {
-                        let Some(t) = sp.intersect(ray, t_best) else {
-                            continue;
-                        };
-                        (t, Nearest::Shape(i))
-                    }
-                    s => {
-                        let Some(t) = s.intersect_t(ray, t_best, geo) else {
-                            continue;
-                        };
-                        (t, Nearest::Shape(i))
-                    }
-                };
-                t_best = t;
-                found = Some(t);
-                nearest = n.encode();
-            }
-            found
-        });
+        let best = if let Some(lanes) = &self.lanes {
+            lanes.closest(ray, t_max).map(|(t, h)| {
+                nearest = match h {
+                    LaneHit::Sphere(i) => Nearest::Shape(i),
+                    LaneHit::Quad(i, uv) => Nearest::Quad(i, uv),
+                }
+                .encode();
+                t
+            })
+        } else {
+            self.bvh.intersect(ray, t_max, |first, count, mut t_best| {
+                let mut found = None;
+                for i in first..first + count {
+                    let (t, n) = match &shapes[i as usize] {
+                        Shape::Instance(k) => {
+                            let Some(h) = geo.instances[*k as usize].closest(ray, t_best, &geo.meshes) else {
+                                continue;
+                            };
+                            (h.t, Nearest::Mesh(i, *k, h))
+                        }
+                        Shape::Triangle(tr) => {
+                            let wt = WatertightRay4::lazily(&mut wt, ray);
+                            let Some((t, bc)) = tr.intersect(wt, t_best) else {
+                                continue;
+                            };
+                            (t, Nearest::Triangle(i, bc))
+                        }
+                        Shape::MeshQuad(q) => {
+                            let wt = WatertightRay4::lazily(&mut wt, ray);
+                            let Some((t, k, bc)) = q.intersect(wt, t_best) else {
+                                continue;
+                            };
+                            (t, Nearest::MeshQuad(i, k, bc))
+                        }
+                        // The common analytic shapes inline (the shared match
+                        // in `intersect_t` stayed an out-of-line call).
+                        Shape::Quad(q) => {
+                            let Some((t, uv)) = q.intersect(ray, t_best) else {
+                                continue;
+                            };
+                            (t, Nearest::Quad(i, uv))
+                        }
+                        Shape::Sphere(sp) => {
+                            let Some(t) = sp.intersect(ray, t_best) else {
+                                continue;
+                            };
+                            (t, Nearest::Shape(i))
+                        }
+                        s => {
+                            let Some(t) = s.intersect_t(ray, t_best, geo) else {
+                                continue;
+                            };
+                            (t, Nearest::Shape(i))
+                        }
+                    };
+                    t_best = t;
+                    found = Some(t);
+                    nearest = n.encode();
+                }
+                found
+            })
+        };
         let mut t_best = best.unwrap_or(t_max);
         for i in self.bounded..self.shapes.len() as u32 {
             if let Some(t) = shapes[i as usize].intersect_t(ray, t_best, geo) {
@@ -501,6 +516,9 @@ impl Scene {
         let shapes = &self.shapes;
         if (self.bounded..self.shapes.len() as u32).any(|i| shapes[i as usize].occludes(ray, t_max, geo)) {
             return true;
+        }
+        if let Some(lanes) = &self.lanes {
+            return lanes.occluded(ray, t_max);
         }
         let mut wt = None;
         self.bvh.occluded(ray, t_max, |first, count, t_max| {

@@ -272,3 +272,70 @@ fn small_baked_mesh_in_the_scene_bvh_matches_its_instance() {
     }
     assert!(hits > 500, "the rays reach the block: {hits}");
 }
+
+/// A few spheres and quads (and an unbounded plane) go into SIMD lanes, and
+/// the scene answers every query as through its BVH: the same hit records
+/// bit for bit and the same shadow answers.
+#[test]
+fn shape_lanes_answer_as_the_bvh() {
+    use ronray::load::{Overrides, load_str};
+    let scene = |extra: &str| {
+        let text = format!(
+            r#"Scene(
+                camera: (eye: (0, 1, 5), target: (0, 0.5, 0), up: (0, 1, 0), fov_y_degrees: 40),
+                film: (width: 8, height: 8, spp: 1),
+                materials: {{"a": Lambert(albedo: (0.8, 0.8, 0.8)), "b": Lambert(albedo: (0.2, 0.5, 0.8))}},
+                lights: [Rect(center: (0, 3, 0), half_u: (0.5, 0, 0), half_v: (0, 0, 0.5), radiance: (5, 5, 5))],
+                objects: [
+                    Rect(center: (0, 0, 0), half_u: (3, 0, 0), half_v: (0, 0, -3), material: "a"),
+                    Rect(center: (0, 1, -2), half_u: (1, 0, 0), half_v: (0, 1, 0), material: "b"),
+                    Sphere(center: (-1, 0.5, 0), radius: 0.5, material: "b"),
+                    Sphere(center: (0.2, 0.4, 0.3), radius: 0.4, material: "a"),
+                    Sphere(center: (1.1, 0.7, -0.5), radius: 0.7, material: "b"),
+                    Plane(point: (0, -1, 0), normal: (0, 1, 0), material: "a"),
+                    {extra}
+                ],
+            )"#
+        );
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/lanes.ron");
+        match load_str(&path, &text, &Overrides::default()) {
+            Ok(l) => l.scene,
+            Err(e) => panic!("lanes scene: {e}"),
+        }
+    };
+    let lanes = scene("");
+    assert!(lanes.lanes.is_some(), "five spheres and quads go into lanes");
+    let mut bvh = scene("");
+    bvh.lanes = None;
+    let many: String = (0..9)
+        .map(|i| format!("Sphere(center: ({i}, 5, 0), radius: 0.1, material: \"a\"),"))
+        .collect();
+    assert!(scene(&many).lanes.is_none(), "more than eight spheres: the BVH");
+    let mut rng = Pcg32::new(11, 3);
+    let mut hits = 0;
+    for i in 0..20000 {
+        let o = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 6.0 - 3.0;
+        let ray = Ray::new(o, sampling::uniform_sphere(rng.next_vec2()));
+        let t_max = if i % 3 == 0 { 2.0 } else { f32::INFINITY };
+        let (a, b) = (lanes.intersect(&ray, t_max), bvh.intersect(&ray, t_max));
+        let bits = |h: &ronray::geometry::Hit| {
+            (
+                h.t.to_bits(),
+                h.p.to_array().map(f32::to_bits),
+                h.ng.to_array().map(f32::to_bits),
+            )
+        };
+        assert_eq!(a.is_some(), b.is_some(), "ray {i}");
+        if let (Some(a), Some(b)) = (&a, &b) {
+            assert_eq!(bits(a), bits(b), "ray {i}");
+            assert_eq!(
+                (a.material, a.uv.to_array()),
+                (b.material, b.uv.to_array()),
+                "ray {i}"
+            );
+            hits += 1;
+        }
+        assert_eq!(lanes.occluded(&ray, t_max), bvh.occluded(&ray, t_max), "ray {i}");
+    }
+    assert!(hits > 8000, "the rays reach the shapes: {hits}");
+}

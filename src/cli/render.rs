@@ -342,6 +342,11 @@ fn print_stats(loaded: &Loaded, stats: &RenderStats) {
         bs.sah_cost,
         bs.bytes as f64 / 1024.0
     );
+    if loaded.scene.lanes.is_some() {
+        eprintln!(
+            "shapes: a few spheres and quads, tested together in SIMD lanes (the BVH is not traversed)"
+        );
+    }
     let geo = &loaded.scene.geometry;
     let unique: usize = geo.meshes.iter().map(|m| m.triangle_count()).sum();
     eprintln!(

@@ -20,6 +20,7 @@ pub mod quad;
 pub mod ray_sets;
 pub mod sdf;
 pub mod sdf_object;
+pub mod shape_lanes;
 pub mod sphere;
 pub mod tangents;
 pub mod triangle;

@@ -48,6 +48,12 @@ impl Quad {
         }
     }
 
+    /// The dual basis `(du, dv)`: `p · du`, `p · dv` are the `(s, t)` of an
+    /// in-plane offset `p` (for [`super::shape_lanes`]).
+    pub(crate) fn dual(&self) -> (Vec3A, Vec3A) {
+        (self.du, self.dv)
+    }
+
     /// Area in square scene units, `|u × v|`.
     pub fn area(&self) -> f32 {
         self.u.cross(self.v).length()

@@ -13,6 +13,7 @@ use crate::accel::{Aabb, Leaves, WideBvh};
 use crate::desc::{ColorDesc, IntegratorDesc, LightDesc, LightSelectionDesc, SceneDesc};
 use crate::diagnostic::Problem;
 use crate::geometry::obj::ObjData;
+use crate::geometry::shape_lanes::ShapeLanes;
 use crate::geometry::{Geometry, Shape};
 use crate::lights::caustic::{self, CausticEmitters};
 use crate::lights::{Emission, Light, LightPicker, Selection};
@@ -241,6 +242,7 @@ pub fn build_in(
     if surfaces.iter().all(crate::materials::Surface::is_plain) {
         surfaces.clear();
     }
+    let lanes = ShapeLanes::new(&shapes[..bounded as usize]);
     let mut scene = Scene {
         caustics,
         light_picker: LightPicker::new(&ctx.lights, selection),
@@ -253,6 +255,7 @@ pub fn build_in(
         shapes,
         objects,
         bounded,
+        lanes,
         geometry: ctx.geometry,
         bvh,
         media: None,
