@@ -180,6 +180,10 @@ impl ShapeLanes {
         let disc = s.r2 - dot(l, l);
         // The scalar test returns at `disc < 0`; a NaN goes on (and fails below).
         let go_on = !disc.simd_lt(f32x8::ZERO) & s.valid;
+        // Most rays pass every sphere by: no square root, no division.
+        if go_on.to_bitmask() == 0 {
+            return f32x8::splat(f32::INFINITY);
+        }
         // b.signum(): ±1 with b's sign bit (NaN stays NaN below either way).
         let sign = f32x8::ONE.flip_signs(b);
         let q = -b - sign * (a * disc).sqrt();
