@@ -175,20 +175,31 @@ impl ShapeLanes {
         let dot = |a: [f32x8; 3], b: [f32x8; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let a = dot(d, d);
         let b = dot(oc, d);
+        let oc2 = dot(oc, oc);
+        let c = oc2 - s.r2;
+        // Lanes the scalar test surely misses, found before its division:
+        // a sphere behind an origin outside it (b > 0 and c > 0 make both
+        // roots negative whatever the rounding: q < 0, q/a < 0, c/q < 0),
+        // and a line farther from the centre than r by a margin (a·|oc|² −
+        // b² is a·(its distance)²; in f32 it is off by a few ε·a·|oc|², and
+        // the scalar distance by as little, far below the 10⁻⁵ allowed).
+        let behind = b.simd_gt(f32x8::ZERO) & c.simd_gt(f32x8::ZERO);
+        let far = (oc2 * a - b * b).simd_gt(s.r2 * a + f32x8::splat(1e-5) * oc2 * a);
+        let maybe = s.valid & !(behind | far);
+        // Most rays pass every sphere by: no square root, no division.
+        if maybe.to_bitmask() == 0 {
+            return f32x8::splat(f32::INFINITY);
+        }
         let k = b / a;
         let l = [oc[0] - k * d[0], oc[1] - k * d[1], oc[2] - k * d[2]];
         let disc = s.r2 - dot(l, l);
         // The scalar test returns at `disc < 0`; a NaN goes on (and fails below).
-        let go_on = !disc.simd_lt(f32x8::ZERO) & s.valid;
-        // Most rays pass every sphere by: no square root, no division.
-        if go_on.to_bitmask() == 0 {
-            return f32x8::splat(f32::INFINITY);
-        }
+        let go_on = !disc.simd_lt(f32x8::ZERO) & maybe;
         // b.signum(): ±1 with b's sign bit (NaN stays NaN below either way).
         let sign = f32x8::ONE.flip_signs(b);
         let q = -b - sign * (a * disc).sqrt();
         let x = q / a;
-        let y = q.simd_ne(f32x8::ZERO).select((dot(oc, oc) - s.r2) / q, x);
+        let y = q.simd_ne(f32x8::ZERO).select(c / q, x);
         // `min`/`max` as f32's: a NaN lane takes the other operand.
         let (t0, t1) = (x.min(y), x.max(y));
         let in0 = t0.simd_gt(s.eps) & t0.simd_lt(t_max);
@@ -363,6 +374,57 @@ mod tests {
             }
         }
         assert!(hits > 3000, "only {hits} hits: the test rays miss too often");
+    }
+
+    /// The early rejection before the division never drops a hit: rays
+    /// grazing spheres far from their origin (up to 10⁵ radii away, where
+    /// the squared distances cancel most) and rays from inside, near the
+    /// surface, against spheres behind them; lanes and scalar agree bit
+    /// for bit.
+    #[test]
+    fn grazing_and_distant_rays_match_the_scalar_test() {
+        let mut rng = Rng::new(3, 5);
+        let mut hits = 0;
+        for case in 0..20000 {
+            let far = 10f32.powf(rng.next_f32() * 5.0);
+            let r = 0.01 + rng.next_f32();
+            let c = Vec3A::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5) * far;
+            let sp = Sphere {
+                center: c,
+                radius: r,
+                material: 0,
+                light: NO_LIGHT,
+                mitsuba_uv: false,
+            };
+            let lanes = ShapeLanes::new(&[Shape::Sphere(sp)]).expect("one sphere");
+            let o = if case % 4 == 0 {
+                // Inside, near the surface.
+                c + Vec3A::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5)
+                    .normalize_or(Vec3A::X)
+                    * r
+                    * (1.0 - 1e-3 * rng.next_f32())
+            } else {
+                Vec3A::ZERO
+            };
+            // Aimed at a point within ±2 % of the silhouette's radius.
+            let side = Vec3A::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, rng.next_f32() - 0.5);
+            let to = c - o;
+            let perp = (side - to * side.dot(to) / to.length_squared().max(1e-30)).normalize_or(Vec3A::Y);
+            let aim = c + perp * r * (0.98 + 0.04 * rng.next_f32());
+            let ray = Ray::new(o, (aim - o).normalize_or(Vec3A::X));
+            let want = sp.intersect(&ray, f32::INFINITY);
+            let got = lanes.closest(&ray, f32::INFINITY).map(|(t, _)| t);
+            assert_eq!(
+                got.map(f32::to_bits),
+                want.map(f32::to_bits),
+                "case {case}: {sp:?}, {ray:?}"
+            );
+            hits += usize::from(want.is_some());
+        }
+        assert!(
+            hits > 5000 && hits < 19000,
+            "{hits} of 20000 grazing rays hit: not grazing"
+        );
     }
 
     /// Only spheres and quads, at most eight of each, get lanes.
