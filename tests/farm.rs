@@ -113,6 +113,9 @@ fn seven_uneven_tiles_reassemble_byte_for_byte() {
 /// Samples 0..1, 1..3 and 3..4 of every pixel on three "machines". Per-pixel
 /// sums are exact (fixed point), so the merge is exact: the largest
 /// difference from the whole render is 0, in every channel of every pixel.
+/// It also holds the frame loop's two ways of running a sample to each
+/// other: the whole render runs samples 0–1 and 2–3 as pairs (first hits
+/// found back to back), the pieces run 0 and 3 alone and 1–2 as a pair.
 #[test]
 fn three_way_sample_split_merges_to_the_whole_render_exactly() {
     let dir = tempfile::tempdir().expect("temp dir");

@@ -15,6 +15,7 @@ use super::options::RenderOptions;
 use super::plan::{Plan, Sampling};
 use super::stats::{RenderStats, TileDone};
 use crate::film::{Adaptive, PixelNoise, Spread};
+use crate::geometry::Hit;
 use crate::imageio::sample_sums::two_pass_mean;
 use crate::imageio::{PixelRect, SampleSums};
 use crate::integrators::{Counters, Integrator};
@@ -439,6 +440,12 @@ impl<'a> Work<'a> {
                 if self.cancel.load(Ordering::Relaxed) {
                     return (tile, px, counters);
                 }
+                // The path tracer without media takes first hits found
+                // for it (see the sample loop).
+                let paired = match &self.integrator {
+                    Integrator::Path(p) if self.scene.media.is_none() => Some(p),
+                    _ => None,
+                };
                 for y in tile.y0..tile.y1 {
                     for x in tile.x0..tile.x1 {
                         let (s0, spp) = match self.samples {
@@ -454,10 +461,9 @@ impl<'a> Work<'a> {
                         let mut noise = PixelNoise::default();
                         let mut taken = spp;
                         pixel.set_pixel(x, y, s0..s0 + spp);
-                        for s in s0..s0 + spp {
-                            let mut sampler = pixel.sample(s);
-                            let (ray, weight) = self.view.camera_ray(x, y, &mut sampler);
-                            let li = self.integrator.li(self.scene, &ray, &mut sampler, &mut counters);
+                        // One sample's radiance into the pixel's sums;
+                        // `true` when the pixel has converged at it.
+                        let mut add = |s: u32, li: Rgb, weight: f32| {
                             // A non-finite sample (a numerical bug, caught by
                             // debug asserts) must not poison the pixel in release.
                             let c = if li.is_finite() {
@@ -479,9 +485,47 @@ impl<'a> Work<'a> {
                                 noise.add(c);
                                 if a.converged(&noise) {
                                     taken = s - s0 + 1;
-                                    break;
+                                    return true;
                                 }
                             }
+                            false
+                        };
+                        let end = s0 + spp;
+                        let mut s = s0;
+                        while s < end {
+                            // Two samples at a time when the path tracer
+                            // takes a first hit found for it: the two
+                            // searches run back to back, and the processor
+                            // overlaps them.
+                            if let Some(path) = paired
+                                && s + 1 < end
+                            {
+                                let (mut sa, mut sb) = (pixel.sample(s), pixel.sample(s + 1));
+                                let (ra, wa) = self.view.camera_ray(x, y, &mut sa);
+                                let (rb, wb) = self.view.camera_ray(x, y, &mut sb);
+                                let (mut ha, mut hb) = (Hit::default(), Hit::default());
+                                let fa = self.scene.intersect_into(&ra, f32::INFINITY, &mut ha);
+                                let fb = self.scene.intersect_into(&rb, f32::INFINITY, &mut hb);
+                                let la =
+                                    path.li_first_found(self.scene, &ra, (fa, &ha), &mut sa, &mut counters);
+                                if add(s, la, wa) {
+                                    break;
+                                }
+                                let lb =
+                                    path.li_first_found(self.scene, &rb, (fb, &hb), &mut sb, &mut counters);
+                                if add(s + 1, lb, wb) {
+                                    break;
+                                }
+                                s += 2;
+                                continue;
+                            }
+                            let mut sampler = pixel.sample(s);
+                            let (ray, weight) = self.view.camera_ray(x, y, &mut sampler);
+                            let li = self.integrator.li(self.scene, &ray, &mut sampler, &mut counters);
+                            if add(s, li, weight) {
+                                break;
+                            }
+                            s += 1;
                         }
                         counters.samples += taken as u64;
                         px.push(finish(&PixelSums {

@@ -99,6 +99,35 @@ impl Path {
         if let Some(media) = &scene.media {
             return super::vol_path::li(self, scene, media, ray, sampler, counters);
         }
+        self.li_from(scene, ray, None, sampler, counters)
+    }
+
+    /// [`Path::li`] in a scene without media, with the camera ray's first
+    /// hit found by the caller (`first`: whether it hits, and the record
+    /// when it does): the frame loop finds two camera samples' first hits
+    /// back to back, so the processor overlaps their two latency-bound
+    /// searches. The same numbers in the same order, the same image.
+    pub fn li_first_found(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        first: (bool, &Hit),
+        sampler: &mut Sampler,
+        counters: &mut Counters,
+    ) -> Rgb {
+        debug_assert!(scene.media.is_none(), "media take `vol_path`");
+        self.li_from(scene, ray, Some(first), sampler, counters)
+    }
+
+    #[inline(always)]
+    fn li_from(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        first: Option<(bool, &Hit)>,
+        sampler: &mut Sampler,
+        counters: &mut Counters,
+    ) -> Rgb {
         let start = State {
             ray: *ray,
             beta: Rgb::ONE,
@@ -112,7 +141,7 @@ impl Path {
             traced: false,
             chain: 0,
         };
-        let l = self.trace(scene, start, self.splits, None, sampler, counters);
+        let l = self.trace(scene, start, self.splits, None, first, sampler, counters);
         debug_assert!(l.is_finite(), "non-finite radiance {l}");
         l
     }
@@ -126,13 +155,16 @@ impl Path {
     /// the one light sample there, it goes on `splits` times, each
     /// continuation along its own BSDF sample (its numbers from
     /// [`Sampler::split`]) with weight 1/`splits`; continuations do not
-    /// split again.
+    /// split again. `first`: the camera ray's first hit when the caller
+    /// found it ([`Path::li_first_found`]).
+    #[allow(clippy::too_many_arguments)] // each is a different piece of the path's state
     fn trace(
         &self,
         scene: &Scene,
         mut st: State,
         splits: u32,
         mut prev_top: Option<Top>,
+        mut first: Option<(bool, &Hit)>,
         sampler: &mut Sampler,
         counters: &mut Counters,
     ) -> Rgb {
@@ -143,7 +175,16 @@ impl Path {
         let mut hit = Hit::default();
         loop {
             counters.rays += 1;
-            if !scene.intersect_into(&st.ray, f32::INFINITY, &mut hit) {
+            let found = match first.take() {
+                Some((found, h)) => {
+                    if found {
+                        hit = *h;
+                    }
+                    found
+                }
+                None => scene.intersect_into(&st.ray, f32::INFINITY, &mut hit),
+            };
+            if !found {
                 // The environment, reached by the previous BSDF sample.
                 // After a non-delta vertex (never the camera ray) the radiance
                 // and the MIS density share one mapping of the direction.
@@ -257,7 +298,7 @@ impl Path {
                     if let Some(bs) = bs
                         && self.advance(&mut next, &bs, &hit, &frame, (delta, side), split, sampler)
                     {
-                        sum += self.trace(scene, next, 1, top, sampler, counters);
+                        sum += self.trace(scene, next, 1, top, None, sampler, counters);
                     }
                 }
                 return l + sum * (1.0 / splits as f32);
