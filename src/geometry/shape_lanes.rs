@@ -19,7 +19,7 @@
 
 use super::{Quad, Shape, Sphere};
 use crate::math::Ray;
-use glam::Vec2;
+use glam::{Vec2, Vec3A};
 use wide::f32x8;
 
 /// Lanes per kind of shape.
@@ -75,6 +75,24 @@ fn or_inf(mask: f32x8, x: f32x8) -> f32x8 {
     mask.select(x, f32x8::splat(f32::INFINITY))
 }
 
+/// `f` of each item in its lane, `fill` in the lanes past the last.
+fn lanes_of<T>(items: &[(u32, T)], fill: f32, f: impl Fn(&T) -> f32) -> f32x8 {
+    let mut a = [fill; LANES];
+    for (x, (_, item)) in a.iter_mut().zip(items) {
+        *x = f(item);
+    }
+    f32x8::from(a)
+}
+
+/// The shape index of each item's lane.
+fn shapes_of<T>(items: &[(u32, T)]) -> [u32; LANES] {
+    let mut a = [0; LANES];
+    for (x, (i, _)) in a.iter_mut().zip(items) {
+        *x = *i;
+    }
+    a
+}
+
 /// Lanes as an array.
 #[inline(always)]
 fn lanes(x: f32x8) -> [f32; LANES] {
@@ -98,71 +116,34 @@ impl ShapeLanes {
         if s.len() > LANES || q.len() > LANES || shapes.is_empty() {
             return None;
         }
-        let splat_s = |f: &dyn Fn(&Sphere) -> f32, fill: f32| {
-            let mut a = [fill; LANES];
-            for (k, (_, sp)) in s.iter().enumerate() {
-                a[k] = f(sp);
-            }
-            f32x8::from(a)
-        };
-        let splat_q = |f: &dyn Fn(&Quad) -> f32| {
-            let mut a = [0.0; LANES];
-            for (k, (_, qd)) in q.iter().enumerate() {
-                a[k] = f(qd);
-            }
-            f32x8::from(a)
-        };
-        let valid = |n: usize| {
-            let mut a = [0.0f32; LANES];
-            for x in a.iter_mut().take(n) {
-                *x = f32::from_bits(u32::MAX);
-            }
-            f32x8::from(a)
-        };
-        let index = |v: &mut [u32; LANES], ids: &mut dyn Iterator<Item = u32>| {
-            for (slot, i) in v.iter_mut().zip(ids) {
-                *slot = i;
-            }
-        };
-        let mut spheres = SphereLanes {
+        let spheres = SphereLanes {
             c: [
-                splat_s(&|sp| sp.center.x, 0.0),
-                splat_s(&|sp| sp.center.y, 0.0),
-                splat_s(&|sp| sp.center.z, 0.0),
+                lanes_of(&s, 0.0, |sp| sp.center.x),
+                lanes_of(&s, 0.0, |sp| sp.center.y),
+                lanes_of(&s, 0.0, |sp| sp.center.z),
             ],
-            r2: splat_s(&|sp| sp.radius * sp.radius, -1.0),
-            eps: splat_s(&|sp| 1e-4 * sp.radius.max(1e-3), 0.0),
-            valid: valid(s.len()),
-            shape: [0; LANES],
+            r2: lanes_of(&s, -1.0, |sp| sp.radius * sp.radius),
+            eps: lanes_of(&s, 0.0, |sp| 1e-4 * sp.radius.max(1e-3)),
+            valid: lanes_of(&s, 0.0, |_| f32::from_bits(u32::MAX)),
+            shape: shapes_of(&s),
             len: s.len(),
         };
-        index(&mut spheres.shape, &mut s.iter().map(|(i, _)| *i));
-        let mut quads = QuadLanes {
-            corner: [
-                splat_q(&|qd| qd.corner.x),
-                splat_q(&|qd| qd.corner.y),
-                splat_q(&|qd| qd.corner.z),
-            ],
-            n: [
-                splat_q(&|qd| qd.n.x),
-                splat_q(&|qd| qd.n.y),
-                splat_q(&|qd| qd.n.z),
-            ],
-            du: [
-                splat_q(&|qd| qd.dual().0.x),
-                splat_q(&|qd| qd.dual().0.y),
-                splat_q(&|qd| qd.dual().0.z),
-            ],
-            dv: [
-                splat_q(&|qd| qd.dual().1.x),
-                splat_q(&|qd| qd.dual().1.y),
-                splat_q(&|qd| qd.dual().1.z),
-            ],
-            valid: valid(q.len()),
-            shape: [0; LANES],
+        let axes = |f: fn(&Quad) -> Vec3A| {
+            [
+                lanes_of(&q, 0.0, |qd| f(qd).x),
+                lanes_of(&q, 0.0, |qd| f(qd).y),
+                lanes_of(&q, 0.0, |qd| f(qd).z),
+            ]
+        };
+        let quads = QuadLanes {
+            corner: axes(|qd| qd.corner),
+            n: axes(|qd| qd.n),
+            du: axes(|qd| qd.dual().0),
+            dv: axes(|qd| qd.dual().1),
+            valid: lanes_of(&q, 0.0, |_| f32::from_bits(u32::MAX)),
+            shape: shapes_of(&q),
             len: q.len(),
         };
-        index(&mut quads.shape, &mut q.iter().map(|(i, _)| *i));
         Some(Self { spheres, quads })
     }
 
