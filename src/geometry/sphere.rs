@@ -4,8 +4,8 @@ use super::Hit;
 use crate::accel::Aabb;
 use crate::math::Ray;
 use crate::math::float_error::{error_along, gamma_offset};
-use crate::math::trig::atan2;
-use glam::{Vec2, Vec3A};
+use crate::math::trig::atan2_lanes;
+use glam::{Vec2, Vec3A, Vec4};
 use std::f32::consts::PI;
 
 /// An analytic sphere in world space.
@@ -99,26 +99,32 @@ impl Sphere {
     /// Spherical coordinates of unit normal `n`, y up: u around the axis,
     /// v from the bottom.
     ///
-    /// Both angles by [`atan2`] (the polynomial the sky's lookup uses, as
-    /// fast as libm's `atanf` and `acosf` here), θ as atan2(sin θ, cos θ),
+    /// Both angles by [`atan2_lanes`] (the polynomial the sky's lookup uses,
+    /// as fast as libm's `atanf` and `acosf` here, in two lanes of one
+    /// computation so that their latency chains overlap), θ as atan2(sin θ, cos θ),
     /// which unlike `acos` keeps its precision near the poles (acos(1 − ε)
     /// moves in steps of ~3·10⁻⁴ rad there).
     pub fn uv(n: Vec3A) -> Vec2 {
-        let u = 0.5 + atan2(n.z, n.x) / (2.0 * PI);
-        let v = atan2((n.x * n.x + n.z * n.z).sqrt(), n.y) / PI;
-        Vec2::new(u, 1.0 - v)
+        let a = angles(
+            Vec4::new(n.z, (n.x * n.x + n.z * n.z).sqrt(), 0.0, 0.0),
+            Vec4::new(n.x, n.y, 1.0, 1.0),
+        );
+        Vec2::new(0.5 + a.x, 1.0 - a.y)
     }
 
     /// Mitsuba's spherical coordinates of unit normal `n`: the poles on the
     /// z axis (v = 0 at +z), u = atan2(y, x)/2π in [0, 1) (0 along +x, ¼
     /// along +y). Angles as in [`Sphere::uv`].
     pub fn uv_mitsuba(n: Vec3A) -> Vec2 {
-        let mut u = atan2(n.y, n.x) / (2.0 * PI);
+        let a = angles(
+            Vec4::new(n.y, (n.x * n.x + n.y * n.y).sqrt(), 0.0, 0.0),
+            Vec4::new(n.x, n.z, 1.0, 1.0),
+        );
+        let mut u = a.x;
         if u < 0.0 {
             u += 1.0;
         }
-        let v = atan2((n.x * n.x + n.y * n.y).sqrt(), n.z) / PI;
-        Vec2::new(u, v)
+        Vec2::new(u, a.y)
     }
 
     /// ∂p/∂u and ∂p/∂v at unit normal `n`, for the UVs this sphere uses.
@@ -159,4 +165,11 @@ impl Sphere {
             max: self.center + Vec3A::splat(self.radius),
         }
     }
+}
+
+/// `atan2(y, x)` of the first two lanes in turns of 2π and of π (φ and θ
+/// of [`Sphere::uv`]): the scalar `atan2(y, x) / 2π` and `/ π`, bit for bit.
+#[inline]
+fn angles(y: Vec4, x: Vec4) -> Vec4 {
+    atan2_lanes(y, x) / Vec4::new(2.0 * PI, PI, 1.0, 1.0)
 }

@@ -1,6 +1,8 @@
 //! Walker's alias method (Vose's construction): one uniform number picks an
 //! entry of a discrete distribution in O(1), whatever its size. Emissive
-//! meshes pick a triangle by area with it.
+//! meshes pick a triangle by area with it, and sky maps a cell
+//! (`env_table.rs`, through [`fill_bins`] and [`pick`] on flat arrays of
+//! [`Bin`]s, one table per row).
 //!
 //! Vose, "A linear algorithm for generating random numbers with a given
 //! distribution", IEEE TSE 1991; pbrt-v4 §A.1.4
@@ -8,9 +10,64 @@
 
 /// One bin: keep its own entry with probability `keep`, else go to `alias`.
 #[derive(Clone, Copy, Debug)]
-struct Bin {
+pub struct Bin {
     keep: f32,
     alias: u32,
+}
+
+impl Default for Bin {
+    fn default() -> Self {
+        Bin { keep: 1.0, alias: 0 }
+    }
+}
+
+/// Fills `bins` with the alias table of `scaled`: each entry's probability
+/// times the entry count (they sum to the count; every one finite and
+/// ≥ 0). Consumes `scaled`.
+pub fn fill_bins(mut scaled: Vec<f64>, bins: &mut [Bin]) {
+    debug_assert_eq!(scaled.len(), bins.len());
+    let n = bins.len();
+    // Bins below 1 are filled up from bins above.
+    let (mut small, mut large): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| scaled[i] < 1.0);
+    while let (Some(&s), Some(&l)) = (small.last(), large.last()) {
+        small.pop();
+        bins[s] = Bin {
+            keep: scaled[s] as f32,
+            alias: l as u32,
+        };
+        // The large entry gives away what the small one lacked.
+        scaled[l] -= 1.0 - scaled[s];
+        if scaled[l] < 1.0 {
+            large.pop();
+            small.push(l);
+        }
+    }
+    // What is left is 1 up to rounding.
+    for i in small.into_iter().chain(large) {
+        bins[i] = Bin {
+            keep: 1.0,
+            alias: i as u32,
+        };
+    }
+}
+
+/// The entry of the table `bins` (not empty) for `u` ∈ [0, 1), and `u`
+/// remapped to a fresh uniform number in [0, 1) (the part of `u` the
+/// choice did not use): one load, no search.
+#[inline]
+pub fn pick(bins: &[Bin], u: f32) -> (usize, f32) {
+    let n = bins.len();
+    debug_assert!(n > 0, "sampling an empty alias table");
+    let x = u * n as f32;
+    let i = (x as usize).min(n - 1);
+    let frac = (x - i as f32).clamp(0.0, 1.0);
+    let b = bins[i];
+    let (k, rest) = if frac < b.keep {
+        (i, frac / b.keep)
+    } else {
+        (b.alias as usize, (frac - b.keep) / (1.0 - b.keep))
+    };
+    (k, rest.min(1.0 - f32::EPSILON / 2.0))
 }
 
 /// A discrete distribution over `0..n` sampled in constant time; 8 bytes per entry
@@ -36,30 +93,10 @@ impl AliasTable {
         } else {
             vec![1.0 / n.max(1) as f32; n]
         };
-        // Scaled probabilities n·p: bins below 1 are filled up from bins above.
-        let mut scaled: Vec<f64> = pmf.iter().map(|&p| p as f64 * n as f64).collect();
-        let mut bins = vec![Bin { keep: 1.0, alias: 0 }; n];
-        let (mut small, mut large): (Vec<usize>, Vec<usize>) = (0..n).partition(|&i| scaled[i] < 1.0);
-        while let (Some(&s), Some(&l)) = (small.last(), large.last()) {
-            small.pop();
-            bins[s] = Bin {
-                keep: scaled[s] as f32,
-                alias: l as u32,
-            };
-            // The large entry gives away what the small one lacked.
-            scaled[l] -= 1.0 - scaled[s];
-            if scaled[l] < 1.0 {
-                large.pop();
-                small.push(l);
-            }
-        }
-        // What is left is 1 up to rounding.
-        for i in small.into_iter().chain(large) {
-            bins[i] = Bin {
-                keep: 1.0,
-                alias: i as u32,
-            };
-        }
+        // Scaled probabilities n·p.
+        let scaled: Vec<f64> = pmf.iter().map(|&p| p as f64 * n as f64).collect();
+        let mut bins = vec![Bin::default(); n];
+        fill_bins(scaled, &mut bins);
         Self { bins, pmf }
     }
 
@@ -67,18 +104,8 @@ impl AliasTable {
     /// uniform number in [0, 1) (the part of `u` the choice did not use).
     #[inline]
     pub fn sample(&self, u: f32) -> (usize, f32, f32) {
-        let n = self.bins.len();
-        debug_assert!(n > 0, "sampling an empty alias table");
-        let x = u * n as f32;
-        let i = (x as usize).min(n - 1);
-        let frac = (x - i as f32).clamp(0.0, 1.0);
-        let b = self.bins[i];
-        let (k, rest) = if frac < b.keep {
-            (i, frac / b.keep)
-        } else {
-            (b.alias as usize, (frac - b.keep) / (1.0 - b.keep))
-        };
-        (k, self.pmf[k], rest.min(1.0 - f32::EPSILON / 2.0))
+        let (k, rest) = pick(&self.bins, u);
+        (k, self.pmf[k], rest)
     }
 
     /// Probability of entry `i`.

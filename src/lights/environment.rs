@@ -24,7 +24,7 @@
 //! across a sun a few pixels wide. A point `(u, v)` of density `p(u, v)` is
 //! the direction of density `p(u, v) / (2π² sin θ)`. The image takes 16
 //! bytes per pixel (f32 RGB and the corner weight, `env_map.rs`), the
-//! cells' CDFs with their guide tables about 5 (`math/piecewise.rs`).
+//! cells' alias tables 8 per cell (`env_table.rs`).
 //! A constant environment is sampled by the cosine about the shading
 //! normal when the integrator gives one (the hemisphere a reflecting
 //! surface sees: for an unoccluded Lambert surface every sample then
@@ -39,9 +39,9 @@ use super::tree::LightBounds;
 use super::{LightModel, LightSample};
 use crate::math::Frame;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
-use crate::math::trig::sin_cos_turns;
+use crate::math::trig::{atan2_lanes, sin_cos_turns};
 use crate::math::{Rgb, luminance};
-use glam::{Vec2, Vec3A};
+use glam::{Vec2, Vec3A, Vec4};
 use rayon::prelude::*;
 use std::f32::consts::PI;
 
@@ -157,16 +157,16 @@ impl EnvironmentLight {
     /// spherical camera (`camera/spherical.rs`) inverts it.
     #[inline]
     pub fn uv(d: Vec3A) -> Vec2 {
-        let mut u = crate::math::trig::atan2(d.x, -d.z) / (2.0 * PI);
+        // θ = atan2(sin θ, cos θ): acos(d.y) loses precision near the poles.
+        // Both angles in lanes of one computation (the scalar values).
+        let sin_t = (d.x * d.x + d.z * d.z).sqrt();
+        let turns = atan2_lanes(Vec4::new(d.x, sin_t, 0.0, 0.0), Vec4::new(-d.z, d.y, 1.0, 1.0))
+            / Vec4::new(2.0 * PI, PI, 1.0, 1.0);
+        let mut u = turns.x;
         if u < 0.0 {
             u += 1.0;
         }
-        // θ = atan2(sin θ, cos θ): acos(d.y) loses precision near the poles.
-        let sin_t = (d.x * d.x + d.z * d.z).sqrt();
-        Vec2::new(
-            u.min(1.0 - f32::EPSILON),
-            crate::math::trig::atan2(sin_t, d.y) / PI,
-        )
+        Vec2::new(u.min(1.0 - f32::EPSILON), turns.y)
     }
 
     /// Radiance arriving from world direction `d` (unit, pointing away from the
