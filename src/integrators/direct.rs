@@ -77,7 +77,8 @@ pub(crate) fn all_lights(
         let n = if delta { 1 } else { light_samples };
         let mut sum = Rgb::ZERO;
         for _ in 0..n {
-            let Some(ls) = light.sample(hit.p, side, sampler.next_vec2(), &scene.geometry) else {
+            let (u, draw) = sampler.next_vec2_draw();
+            let Some(ls) = light.sample(hit.p, side, u, draw, &scene.geometry) else {
                 continue;
             };
             let wi = frame.to_local(ls.wi);

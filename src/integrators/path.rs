@@ -36,7 +36,7 @@ use crate::lights::tree::Top;
 use crate::materials::{BsdfSample, Bxdf};
 use crate::math::sampling::power_heuristic;
 use crate::math::{Frame, Ray, Rgb};
-use crate::sampler::Sampler;
+use crate::sampler::{Draw, Sampler};
 use crate::scene::Scene;
 use glam::Vec3A;
 
@@ -252,10 +252,10 @@ impl Path {
             } else {
                 Vec3A::ZERO
             };
-            let (u_pick, u_light) = if delta {
-                (0.0, glam::Vec2::ZERO)
+            let (u_pick, (u_light, draw)) = if delta {
+                (0.0, (glam::Vec2::ZERO, Draw::Independent))
             } else {
-                (sampler.next_f32(), sampler.next_vec2())
+                (sampler.next_f32(), sampler.next_vec2_draw())
             };
             let mark = sampler.draws();
             let bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2());
@@ -265,7 +265,7 @@ impl Path {
             let top = if delta { None } else { picker.top(hit.p, hit.ns) };
             if !delta && let Some((li, pmf)) = picker.pick_from(top.as_ref(), hit.p, hit.ns, u_pick) {
                 let light = &scene.lights[li];
-                if let Some(ls) = light.sample(hit.p, side, u_light, &scene.geometry) {
+                if let Some(ls) = light.sample(hit.p, side, u_light, draw, &scene.geometry) {
                     let wi = frame.to_local(ls.wi);
                     let f = bsdf.eval(wo, wi) * wi.z.abs();
                     if f != Rgb::ZERO {

@@ -28,6 +28,7 @@ use super::shadow_ray;
 use crate::camera::Camera;
 use crate::materials::Bxdf;
 use crate::math::{Pcg32, luminance};
+use crate::sampler::Draw;
 use crate::scene::Scene;
 use glam::Vec2;
 
@@ -64,7 +65,7 @@ pub fn sky_visibility(scene: &Scene, camera: &Camera, aspect: f32) -> f32 {
             let wo_z = (-ray.d).dot(hit.ns);
             let side = bsdf.light_side(hit.ns, wo_z);
             for _ in 0..RAYS {
-                let Some(ls) = env.sample(hit.p, side, rng.next_vec2()) else {
+                let Some(ls) = env.sample(hit.p, side, rng.next_vec2(), Draw::Independent) else {
                     continue;
                 };
                 let cos = ls.wi.dot(hit.ns).abs();

@@ -43,7 +43,7 @@ use crate::materials::Bxdf;
 use crate::math::sampling::power_heuristic;
 use crate::math::{Frame, Ray, Rgb};
 use crate::media::{Media, Medium};
-use crate::sampler::Sampler;
+use crate::sampler::{Draw, Sampler};
 use crate::scene::Scene;
 use glam::{Vec2, Vec3A};
 
@@ -125,10 +125,10 @@ pub(super) fn li(
                 let p = ray.at(t);
                 let phase = m.phase();
                 let u_pick = sampler.next_f32();
-                let u_light = sampler.next_vec2();
+                let (u_light, draw) = sampler.next_vec2_draw();
                 let u_phase = sampler.next_vec2();
                 if let Some((i, pmf)) = picker.pick(p, Vec3A::ZERO, u_pick)
-                    && let Some(ls) = scene.lights[i].sample(p, Vec3A::ZERO, u_light, &scene.geometry)
+                    && let Some(ls) = scene.lights[i].sample(p, Vec3A::ZERO, u_light, draw, &scene.geometry)
                 {
                     let f = phase.eval(ray.d, ls.wi);
                     if f > 0.0 {
@@ -218,10 +218,10 @@ pub(super) fn li(
         } else {
             Vec3A::ZERO
         };
-        let (u_pick, u_light) = if delta {
-            (0.0, glam::Vec2::ZERO)
+        let (u_pick, (u_light, draw)) = if delta {
+            (0.0, (glam::Vec2::ZERO, Draw::Independent))
         } else {
-            (sampler.next_f32(), sampler.next_vec2())
+            (sampler.next_f32(), sampler.next_vec2_draw())
         };
         let bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2());
         // The medium on the side a direction leaves into.
@@ -229,7 +229,7 @@ pub(super) fn li(
 
         if !delta
             && let Some((i, pmf)) = picker.pick(hit.p, hit.ns, u_pick)
-            && let Some(ls) = scene.lights[i].sample(hit.p, side, u_light, &scene.geometry)
+            && let Some(ls) = scene.lights[i].sample(hit.p, side, u_light, draw, &scene.geometry)
         {
             let wi = frame.to_local(ls.wi);
             let f = bsdf.eval(wo, wi) * wi.z.abs();

@@ -62,12 +62,17 @@ pub fn pick(bins: &[Bin], u: f32) -> (usize, f32) {
     let i = (x as usize).min(n - 1);
     let frac = (x - i as f32).clamp(0.0, 1.0);
     let b = bins[i];
-    let (k, rest) = if frac < b.keep {
-        (i, frac / b.keep)
+    // Both outcomes' numbers, then one choice: the comparison goes either
+    // way at random, and as a branch it was mispredicted half the time
+    // (an eighth of a sky sample's time). The same operations either way.
+    let keep = frac < b.keep;
+    let k = if keep { i } else { b.alias as usize };
+    let (num, den) = if keep {
+        (frac, b.keep)
     } else {
-        (b.alias as usize, (frac - b.keep) / (1.0 - b.keep))
+        (frac - b.keep, 1.0 - b.keep)
     };
-    (k, rest.min(1.0 - f32::EPSILON / 2.0))
+    (k, (num / den).min(1.0 - f32::EPSILON / 2.0))
 }
 
 /// A discrete distribution over `0..n` sampled in constant time; 8 bytes per entry

@@ -10,8 +10,7 @@
 //! than Mitsuba (`tests/open_scenes.rs`' sun scenes, issue 37). Sampling the
 //! interpolant makes `L/pdf` nearly constant: the cell (between four
 //! neighbouring pixel centres) is chosen by its mean weight, the average of
-//! its corners (its row by an alias table over the rows, then the cell by
-//! the row's own alias table, see below), then the point inside it
+//! its corners (by CDFs or alias tables, see below), then the point inside it
 //! from the bilinear patch of the corners (pbrt-v4's `SampleBilinear`,
 //! <https://pbr-book.org/4ed/Monte_Carlo_Integration/Sampling_Using_the_Inversion_Method#Bilinear%20Functions>):
 //! a linear marginal in v, a linear conditional in u. The product of the
@@ -23,32 +22,42 @@
 //! are `W × (H − 1)` cells. Corner weights are `luminance × sin θ_j` of the
 //! pixel, zero at the poles; every point the interpolated image lights
 //! (away from the poles' measure-zero rows) has a non-zero density. Memory:
-//! the alias tables (8 bytes a cell); the corner weights live in the map's
+//! the CDFs with their guide tables (~5 bytes a cell) and the alias tables
+//! (8 bytes a cell); the corner weights live in the map's
 //! pixels, beside their radiance (`env_map.rs`, 4 bytes a pixel), so the
 //! table's functions take the map.
 //!
-//! # Alias tables rather than CDFs
-//! The cell was first found by inverting a marginal CDF over rows and a
+//! # Alias tables for independent numbers, CDFs for stratified ones
+//! The cell is found by inverting a marginal CDF over rows and a
 //! conditional CDF in the row (binary searches narrowed by guide tables,
-//! as pbrt-v4's `PiecewiseConstant2D`). Each search is a chain of
-//! dependent loads into tables of half a megabyte and more; on `env_spheres`
-//! (one sky sample per vertex) those chains were 11% of the render's wall
-//! time: the same sampling with two alias tables (Walker–Vose, `alias.rs`),
-//! one load each, renders it in 781 ms against 879 ms (nine alternated
-//! runs, 256², 64 spp). Each cell keeps its probability exactly as before
-//! (the density, [`EnvTable::pdf_at`], is unchanged); what changes is
-//! which numbers `u` lead to it: an alias table is not monotone in `u`,
-//! so a low-discrepancy sampler's points still reach the cells in
-//! proportion, but are no longer ordered across the sky. Measured at equal
-//! sample counts with the default sampler (Sobol), the error moved by
-//! +0.2% on `env_spheres` against Mitsuba's reference (64 spp, four seeds)
-//! and by +0.6% and +1.8% on two generated scenes under a small sun (32
-//! spp, six seeds, block by block within ±10%): far less than the time
-//! saved. The part of `u` the choice leaves (15 bits and more on maps up
-//! to 512 cells a row, 11 at 8,192) places the point in the cell.
+//! as pbrt-v4's `PiecewiseConstant2D`), or by two alias tables (Walker–Vose,
+//! `alias.rs`): one over the rows, then the row's own. Both give each cell
+//! exactly its probability (the density, [`EnvTable::pdf_at`], is the
+//! same); they differ in which numbers `u` lead to it.
+//!
+//! - Each search is a chain of dependent loads into tables of half a
+//!   megabyte and more, and on `env_spheres` (one sky sample per vertex)
+//!   those chains were 11% of the wall time: with the alias tables, one
+//!   load each, it renders in 758–781 ms against 867–879 ms (seven and
+//!   nine alternated runs, 256², 64 spp, `Independent`).
+//! - An alias table is not monotone in `u`: stratified numbers (`Sobol`'s
+//!   first draws, `Stratified`) reach the cells in proportion but no
+//!   longer ordered across the sky. Alias tables for every draw raised the
+//!   error of `env_spheres` with `Sobol` at 48 spp by 17% (0.0334 → 0.0390
+//!   off the light pixels, four seeds): the first vertex's light sample
+//!   is stratified over the sun's disc, and the penumbrae lost it.
+//!
+//! So the caller says which numbers it has ([`Draw`], from the sampler):
+//! stratified draws take the CDFs, independent ones the alias tables.
+//! `Sobol` keeps its error (0.0337 at 48 spp, four seeds) and is 2.5% faster
+//! (its later vertices' draws are independent); `Independent` renders
+//! gain the whole 12%. The point in the cell takes what the choice leaves
+//! of `u` (15 bits and more on maps up to 512 cells a row, 11 at 8,192).
 
 use super::alias::{Bin, fill_bins, pick};
 use super::env_map::{EnvMap, Footprint};
+use crate::math::piecewise::PiecewiseConstant2d;
+use crate::sampler::Draw;
 use glam::Vec2;
 use rayon::prelude::*;
 
@@ -58,7 +67,11 @@ pub struct EnvTable {
     width: usize,
     /// Rows of pixels (H); cells have `max(H − 1, 1)` rows.
     height: usize,
-    /// Chooses the cell row, by the sum of its cells' means (alias table).
+    /// Chooses the cell by the mean of its corners, monotone in the
+    /// numbers: for stratified draws.
+    cells: PiecewiseConstant2d,
+    /// Chooses the cell row, by the sum of its cells' means (alias table):
+    /// for independent draws.
     row_bins: Vec<Bin>,
     /// Row `j`'s cells at `j·W..(j + 1)·W`: the alias table that chooses
     /// a cell of the row by the mean of its corners.
@@ -125,22 +138,21 @@ impl EnvTable {
         let corners = |k: usize| map.texels[k][3];
         // A map of one row: its cells are that row against itself.
         let rows = (h - 1).max(1);
-        // Each row's alias table over its cells by their means (the
-        // average of the corners), and the row's sum, in f64.
+        // Cell (i, j)'s mean weight, the average of its corners (0 where
+        // that is not a positive number).
+        let mean = |i: usize, j: usize| {
+            let (r0, r1) = (j * w, (j + 1).min(h - 1) * w);
+            let i1 = if i + 1 == w { 0 } else { i + 1 };
+            let m = 0.25 * (corners(r0 + i) + corners(r0 + i1) + corners(r1 + i) + corners(r1 + i1));
+            if m.is_finite() && m > 0.0 { m } else { 0.0 }
+        };
+        // Each row's alias table over its cells, and the row's sum, in f64.
         let mut cell_bins = vec![Bin::default(); w * rows];
         let row_sums: Vec<f64> = cell_bins
             .par_chunks_mut(w)
             .enumerate()
             .map(|(j, bins)| {
-                let (r0, r1) = (j * w, (j + 1).min(h - 1) * w);
-                let means: Vec<f64> = (0..w)
-                    .map(|i| {
-                        let i1 = if i + 1 == w { 0 } else { i + 1 };
-                        let m =
-                            0.25 * (corners(r0 + i) + corners(r0 + i1) + corners(r1 + i) + corners(r1 + i1));
-                        if m.is_finite() && m > 0.0 { m as f64 } else { 0.0 }
-                    })
-                    .collect();
+                let means: Vec<f64> = (0..w).map(|i| mean(i, j) as f64).collect();
                 let sum: f64 = means.iter().sum();
                 fill_bins(scaled(means, sum), bins);
                 sum
@@ -152,21 +164,25 @@ impl EnvTable {
         let mut row_bins = vec![Bin::default(); rows];
         fill_bins(scaled(row_sums, sum), &mut row_bins);
         let inv_mean = ((w * rows) as f64 / sum) as f32;
-        let inv_mean = if sum > 0.0 && inv_mean.is_finite() {
-            inv_mean
-        } else {
-            // No light (or weights too small for the density's f32): every
-            // cell alike (a bin of the default keeps its own entry).
+        // No light (or weights too small for the density's f32): every cell
+        // alike (a bin of the default keeps its own entry).
+        let uniform = !(sum > 0.0 && inv_mean.is_finite());
+        if uniform {
             row_bins.fill(Bin::default());
             cell_bins.fill(Bin::default());
-            0.0
-        };
+        }
+        let cells = PiecewiseConstant2d::new(w, rows, |j, out| {
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = if uniform { 1.0 } else { mean(i, j) };
+            }
+        });
         Self {
             width: w,
             height: h,
+            cells,
             row_bins,
             cell_bins,
-            inv_mean,
+            inv_mean: if uniform { 0.0 } else { inv_mean },
         }
     }
 
@@ -191,11 +207,27 @@ impl EnvTable {
     /// [0, 1)², and their footprint (for the radiance there without a
     /// second search).
     #[inline]
-    pub fn sample(&self, map: &EnvMap, u: Vec2) -> (Vec2, f32, Footprint) {
-        // The cell, and where in it: uniform, as the alias tables left it.
-        let w = self.width;
-        let (j, fy) = pick(&self.row_bins, u.y);
-        let (i, fx) = pick(&self.cell_bins[j * w..(j + 1) * w], u.x);
+    pub fn sample(&self, map: &EnvMap, u: Vec2, draw: Draw) -> (Vec2, f32, Footprint) {
+        // The cell, and where in it: uniform, as the choice left it.
+        let (w, rows) = (self.width, self.rows());
+        let (i, j, fx, fy) = match draw {
+            Draw::Independent => {
+                let (j, fy) = pick(&self.row_bins, u.y);
+                let (i, fx) = pick(&self.cell_bins[j * w..(j + 1) * w], u.x);
+                (i, j, fx, fy)
+            }
+            Draw::Stratified => {
+                let (q, _) = self.cells.sample(u);
+                let (x, y) = (q.x * w as f32, q.y * rows as f32);
+                let (i, j) = ((x as usize).min(w - 1), (y as usize).min(rows - 1));
+                (
+                    i,
+                    j,
+                    (x - i as f32).clamp(0.0, 1.0),
+                    (y - j as f32).clamp(0.0, 1.0),
+                )
+            }
+        };
         let mut at = self.cell(i, j, Vec2::ZERO);
         let c = map.weights(&at);
         let by = sample_linear(fy, c[0] + c[1], c[2] + c[3]);
@@ -206,7 +238,7 @@ impl EnvTable {
         } else {
             bilinear_pdf(f, c)
         };
-        let (w, rows) = (w as f32, self.rows() as f32);
+        let (w, rows) = (w as f32, rows as f32);
         // Cells start half a pixel in; the last wraps across the seam.
         let mut uu = (i as f32 + 0.5 + bx) / w;
         if uu >= 1.0 {
@@ -259,7 +291,7 @@ impl EnvTable {
 
     /// Heap bytes of the tables (the weights are the map's).
     pub fn bytes(&self) -> usize {
-        std::mem::size_of::<Bin>() * (self.row_bins.len() + self.cell_bins.len())
+        self.cells.bytes() + std::mem::size_of::<Bin>() * (self.row_bins.len() + self.cell_bins.len())
     }
 }
 
@@ -268,6 +300,8 @@ mod tests {
     use super::*;
     use crate::math::Pcg32;
     use std::f32::consts::PI;
+
+    const DRAWS: [Draw; 2] = [Draw::Stratified, Draw::Independent];
 
     fn map(w: u32, h: u32, f: impl Fn(u32, u32) -> f32) -> EnvMap {
         let mut rgb = Vec::new();
@@ -305,11 +339,16 @@ mod tests {
         });
         let mut m = m;
         let t = EnvTable::new(&mut m);
-        for _ in 0..20_000 {
-            let (uv, pdf, _) = t.sample(&m, rng.next_vec2());
-            assert!(pdf > 0.0);
-            let again = t.pdf(&m, uv);
-            assert!((again - pdf).abs() <= 2e-3 * pdf, "{uv}: {pdf} vs {again}");
+        for draw in DRAWS {
+            for _ in 0..20_000 {
+                let (uv, pdf, _) = t.sample(&m, rng.next_vec2(), draw);
+                assert!(pdf > 0.0);
+                let again = t.pdf(&m, uv);
+                assert!(
+                    (again - pdf).abs() <= 2e-3 * pdf,
+                    "{draw:?} {uv}: {pdf} vs {again}"
+                );
+            }
         }
         let n = 400_000;
         let sum: f64 = (0..n).map(|_| t.pdf(&m, rng.next_vec2()) as f64).sum();
@@ -317,11 +356,17 @@ mod tests {
     }
 
     /// Each cell is drawn as often as its mean weight says (the alias
-    /// tables' frequencies, not only their density's agreement with the
-    /// sampled points), empty cells never, and the number left over for
-    /// the point in the cell is uniform.
+    /// tables' and the CDFs' frequencies, not only their density's
+    /// agreement with the sampled points), empty cells never, and the
+    /// number left over for the point in the cell is uniform.
     #[test]
     fn cells_are_drawn_in_proportion_to_their_means() {
+        for draw in DRAWS {
+            cells_drawn_in_proportion(draw);
+        }
+    }
+
+    fn cells_drawn_in_proportion(draw: Draw) {
         let (w, h) = (9u32, 7u32);
         let mut m = map(w, h, |i, j| match (i, j) {
             (0..=2, 0..=2) => 0.0,
@@ -343,7 +388,7 @@ mod tests {
         let n = 600_000;
         let mut f_sum = Vec2::ZERO;
         for _ in 0..n {
-            let (_, pdf, at) = t.sample(&m, rng.next_vec2());
+            let (_, pdf, at) = t.sample(&m, rng.next_vec2(), draw);
             assert!(pdf > 0.0);
             counts[at.j[0] as usize * w + at.i[0] as usize] += 1;
             f_sum += at.f;
@@ -356,7 +401,7 @@ mod tests {
                 let sigma = (want * (1.0 - want) / n as f64).sqrt();
                 assert!(
                     (got - want).abs() <= 4.0 * sigma + 1e-7,
-                    "cell ({i}, {j}): {got} vs {want}"
+                    "{draw:?} cell ({i}, {j}): {got} vs {want}"
                 );
                 if want == 0.0 {
                     assert_eq!(counts[j * w + i], 0, "empty cell ({i}, {j}) drawn");
@@ -389,14 +434,16 @@ mod tests {
                 "{w}×{h}: ∫ pdf = {}",
                 sum / n as f64
             );
-            let (mut lo, mut hi) = (1.0f32, 0.0f32);
-            for _ in 0..2000 {
-                let (uv, pdf, _) = t.sample(&m, rng.next_vec2());
-                assert!((t.pdf(&m, uv) - pdf).abs() <= 2e-3 * pdf, "{w}×{h} at {uv}");
-                lo = lo.min(uv.y);
-                hi = hi.max(uv.y);
+            for draw in DRAWS {
+                let (mut lo, mut hi) = (1.0f32, 0.0f32);
+                for _ in 0..2000 {
+                    let (uv, pdf, _) = t.sample(&m, rng.next_vec2(), draw);
+                    assert!((t.pdf(&m, uv) - pdf).abs() <= 2e-3 * pdf, "{w}×{h} at {uv}");
+                    lo = lo.min(uv.y);
+                    hi = hi.max(uv.y);
+                }
+                assert!(lo < 0.1 && hi > 0.9, "{draw:?} {w}×{h}: v from {lo} to {hi}");
             }
-            assert!(lo < 0.1 && hi > 0.9, "{w}×{h}: v from {lo} to {hi}");
         }
     }
 
@@ -413,14 +460,16 @@ mod tests {
         let mut m = m;
         let t = EnvTable::new(&mut m);
         let mut rng = Pcg32::new(1, 1);
-        let (mut lo, mut hi) = (f32::INFINITY, 0.0f32);
-        for _ in 0..10_000 {
-            let (uv, pdf, _) = t.sample(&m, rng.next_vec2());
-            let l = m.lookup(uv).x;
-            let weight = l * (PI * uv.y).sin() / pdf;
-            lo = lo.min(weight);
-            hi = hi.max(weight);
+        for draw in DRAWS {
+            let (mut lo, mut hi) = (f32::INFINITY, 0.0f32);
+            for _ in 0..10_000 {
+                let (uv, pdf, _) = t.sample(&m, rng.next_vec2(), draw);
+                let l = m.lookup(uv).x;
+                let weight = l * (PI * uv.y).sin() / pdf;
+                lo = lo.min(weight);
+                hi = hi.max(weight);
+            }
+            assert!(hi / lo < 1.1, "{draw:?}: weights from {lo} to {hi}");
         }
-        assert!(hi / lo < 1.1, "weights from {lo} to {hi}");
     }
 }

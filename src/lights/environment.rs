@@ -24,7 +24,7 @@
 //! across a sun a few pixels wide. A point `(u, v)` of density `p(u, v)` is
 //! the direction of density `p(u, v) / (2π² sin θ)`. The image takes 16
 //! bytes per pixel (f32 RGB and the corner weight, `env_map.rs`), the
-//! cells' alias tables 8 per cell (`env_table.rs`).
+//! cells' CDFs and alias tables about 13 (`env_table.rs`).
 //! A constant environment is sampled by the cosine about the shading
 //! normal when the integrator gives one (the hemisphere a reflecting
 //! surface sees: for an unoccluded Lambert surface every sample then
@@ -41,6 +41,7 @@ use crate::math::Frame;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
 use crate::math::trig::{atan2_lanes, sin_cos_turns};
 use crate::math::{Rgb, luminance};
+use crate::sampler::Draw;
 use glam::{Vec2, Vec3A, Vec4};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -189,11 +190,12 @@ impl EnvironmentLight {
     /// A direction toward the environment for `u` ∈ [0, 1)², seen from a
     /// surface of unit normal `n` on the side light is wanted from (zero:
     /// every direction, for transmitting surfaces); the sample's distance is
-    /// infinite (shadow rays are unbounded).
-    pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2) -> Option<LightSample> {
+    /// infinite (shadow rays are unbounded). `draw`: whether `u` is
+    /// stratified across the pixel's samples (`env_table.rs`).
+    pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2, draw: Draw) -> Option<LightSample> {
         let (wi, pdf, li) = match (&self.distribution, &self.map, self.sampling) {
             (Some(dist), Some(m), EnvSampling::Importance) => {
-                let (uv, uv_pdf, at) = dist.sample(m, u);
+                let (uv, uv_pdf, at) = dist.sample(m, u, draw);
                 // θ = π v is half a turn of v, φ = 2π u a turn of u.
                 let (sin_t, cos_t) = sin_cos_turns(0.5 * uv.y);
                 if sin_t <= 0.0 || uv_pdf <= 0.0 {

@@ -56,6 +56,7 @@ pub use tree::LightTree;
 
 use crate::geometry::{Geometry, Hit};
 use crate::math::Rgb;
+use crate::sampler::Draw;
 use glam::{Vec2, Vec3A};
 use tree::LightBounds;
 
@@ -173,9 +174,11 @@ impl Light {
     /// no light reaches `p` (behind an area light, outside a spot's cone, or at
     /// the light's own position). `n` is the unit normal at `p` on the side
     /// light is wanted from, or zero for every side (a transmitting surface):
-    /// only the environment reads it. `geo` is for SDF emitters, which are marched.
+    /// only the environment reads it, and `draw`, whether `u` is stratified
+    /// across the pixel's samples (a sky map then keeps its strata, see
+    /// `env_table.rs`). `geo` is for SDF emitters, which are marched.
     #[inline]
-    pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2, geo: &Geometry) -> Option<LightSample> {
+    pub fn sample(&self, p: Vec3A, n: Vec3A, u: Vec2, draw: Draw, geo: &Geometry) -> Option<LightSample> {
         match self {
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
@@ -183,7 +186,7 @@ impl Light {
             Light::Sphere(l) => l.sample(p, u),
             Light::Mesh(l) => l.sample(p, u),
             Light::Sdf(l) => l.sample(p, u, geo),
-            Light::Environment(l) => l.sample(p, n, u),
+            Light::Environment(l) => l.sample(p, n, u, draw),
         }
     }
 

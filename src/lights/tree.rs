@@ -706,8 +706,13 @@ mod tests {
             let (p, n) = shading_point(&mut rng);
             for (i, l) in lights.iter().enumerate() {
                 for _ in 0..4 {
-                    let Some(ls) = l.sample(p, n, rng.next_vec2(), &crate::geometry::Geometry::default())
-                    else {
+                    let Some(ls) = l.sample(
+                        p,
+                        n,
+                        rng.next_vec2(),
+                        crate::sampler::Draw::Independent,
+                        &crate::geometry::Geometry::default(),
+                    ) else {
                         continue;
                     };
                     let reaches = ls.li != Rgb::ZERO && ls.wi.dot(n).abs() > 1e-3 && ls.pdf > 0.0;

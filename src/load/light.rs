@@ -350,8 +350,8 @@ fn check_exr_header(path: &Path) -> Result<(), String> {
         }
         let bytes = 12 * w as u64 * ht as u64;
         // As the map holds them, 16 bytes a pixel (`EnvMap::texels`), and
-        // its sampling tables, 8 a cell (`EnvTable`).
-        let held = 24 * w as u64 * ht as u64;
+        // its sampling tables, about 13 a cell (`EnvTable`).
+        let held = 29 * w as u64 * ht as u64;
         if let Some(free) = crate::memory::available()
             && held > free
         {

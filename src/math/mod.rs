@@ -5,6 +5,7 @@
 pub mod exact_sum;
 pub mod float_error;
 pub mod frame;
+pub mod piecewise;
 pub mod ray;
 pub mod rng;
 pub mod sampling;

@@ -54,6 +54,19 @@ pub enum SamplerKind {
     Sobol,
 }
 
+/// Whether a draw's numbers are stratified across the pixel's samples (a
+/// `Sobol` point, a jittered stratum) or independent. A warp that is exact
+/// but not monotone in its numbers (an alias table: `lights/env_table.rs`)
+/// loses nothing on independent numbers and is cheaper; on stratified ones
+/// it would scatter the strata, so they take the monotone inversion.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Draw {
+    /// Spread evenly over the pixel's samples.
+    Stratified,
+    /// Uniform and independent of the other samples'.
+    Independent,
+}
+
 /// How many draws (1-D or 2-D) of a camera sample `Sobol` stratifies: pixel
 /// jitter and lens, then the first vertex's light pick, light point, BSDF
 /// lobe and direction; later ones come from the sample's random stream. See the module docs.
@@ -187,6 +200,21 @@ impl Sampler {
                 None => self.rng.next_vec2(),
             },
             SamplerKind::Stratified => self.stratified_vec2(),
+        }
+    }
+
+    /// [`Sampler::next_vec2`] and whether the pair is stratified across
+    /// the pixel's samples ([`Draw`]): `Sobol`'s first draws and every
+    /// `Stratified` draw are; `Independent`'s and `Sobol`'s later ones are not.
+    #[inline(always)]
+    pub fn next_vec2_draw(&mut self) -> (Vec2, Draw) {
+        match self.kind {
+            SamplerKind::Independent => (self.rng.next_vec2(), Draw::Independent),
+            SamplerKind::Sobol => match self.sobol_draw() {
+                Some(p) => (p, Draw::Stratified),
+                None => (self.rng.next_vec2(), Draw::Independent),
+            },
+            SamplerKind::Stratified => (self.stratified_vec2(), Draw::Stratified),
         }
     }
 
