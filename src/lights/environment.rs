@@ -44,7 +44,7 @@ use crate::math::{Rgb, luminance};
 use crate::sampler::Draw;
 use glam::{Vec2, Vec3A, Vec4};
 use rayon::prelude::*;
-use std::f32::consts::PI;
+use std::f32::consts::{FRAC_1_PI, PI};
 
 /// How next-event estimation picks directions toward the environment.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -161,8 +161,10 @@ impl EnvironmentLight {
         // θ = atan2(sin θ, cos θ): acos(d.y) loses precision near the poles.
         // Both angles in lanes of one computation (the scalar values).
         let sin_t = (d.x * d.x + d.z * d.z).sqrt();
+        // In turns by the reciprocals (a division was on the chain): π·(1/π)
+        // and π·(1/2π) round to exactly 1 and ½, so v stays in [0, 1].
         let turns = atan2_lanes(Vec4::new(d.x, sin_t, 0.0, 0.0), Vec4::new(-d.z, d.y, 1.0, 1.0))
-            / Vec4::new(2.0 * PI, PI, 1.0, 1.0);
+            * Vec4::new(0.5 * FRAC_1_PI, FRAC_1_PI, 1.0, 1.0);
         let mut u = turns.x;
         if u < 0.0 {
             u += 1.0;

@@ -22,12 +22,16 @@ pub fn atan2(y: f32, x: f32) -> f32 {
         let r = if x.is_sign_negative() { PI } else { 0.0 };
         return r.copysign(y);
     }
-    // a = tan of the angle to the nearer axis, in [0, 1].
-    let a = num / den;
-    let (base, t) = if a > 0.414_213_57 {
-        (FRAC_PI_4, (a - 1.0) / (a + 1.0))
+    // a = num/den is the tangent of the angle to the nearer axis, in
+    // [0, 1]; past tan π/8 the polynomial takes tan(angle − π/4) =
+    // (a − 1)/(a + 1), computed as (num − den)/(num + den): one division
+    // either way rather than two in a row (the angle's latency chain: a
+    // sphere's UVs and the sky's lookup wait on it).
+    let far = num > 0.414_213_57 * den;
+    let (base, t) = if far {
+        (FRAC_PI_4, (num - den) / (num + den))
     } else {
-        (0.0, a)
+        (0.0, num / den)
     };
     let z = t * t;
     let p = (((8.053_744_5e-2 * z - 1.387_768_6e-1) * z + 1.997_771_1e-1) * z - 3.333_295e-1) * z * t + t;
@@ -44,8 +48,8 @@ pub fn atan2(y: f32, x: f32) -> f32 {
 /// [`atan2`] of four pairs at once, lane by lane: the same operations in
 /// the same order (selects for its branches), so each lane is bit for bit
 /// the scalar value. A direction's two angles (a sphere's or the sky's `u`
-/// and `v`) are independent: in lanes their two latency chains (two
-/// divisions and a polynomial each) overlap, and the branches on the
+/// and `v`) are independent: in lanes their two latency chains (a
+/// division and a polynomial each) overlap, and the branches on the
 /// octant, which no predictor guesses for scattered rays, are gone.
 #[inline]
 pub fn atan2_lanes(y: Vec4, x: Vec4) -> Vec4 {
@@ -56,10 +60,9 @@ pub fn atan2_lanes(y: Vec4, x: Vec4) -> Vec4 {
     // Both zero: ±0 toward +x, ±π toward −x.
     let flat = den.cmpeq(Vec4::ZERO);
     let on_axis = Vec4::select(x.is_negative_mask(), Vec4::splat(PI), Vec4::ZERO);
-    let a = num / den;
-    let far = a.cmpgt(Vec4::splat(0.414_213_57));
+    let far = num.cmpgt(Vec4::splat(0.414_213_57) * den);
     let base = Vec4::select(far, Vec4::splat(FRAC_PI_4), Vec4::ZERO);
-    let t = Vec4::select(far, (a - 1.0) / (a + 1.0), a);
+    let t = Vec4::select(far, num - den, num) / Vec4::select(far, num + den, den);
     let z = t * t;
     let p = (((Vec4::splat(8.053_744_5e-2) * z - 1.387_768_6e-1) * z + 1.997_771_1e-1) * z - 3.333_295e-1)
         * z
