@@ -125,13 +125,12 @@ impl Perturb {
                 if t.x == 0.0 && t.y == 0.0 {
                     return n;
                 }
-                let Some(nt) = t.try_normalize() else {
-                    return n;
-                };
-                let (s, t) = tangent_frame(n, dpdu);
-                (nt.x * s + nt.y * sign * t + nt.z * n)
-                    .try_normalize()
-                    .unwrap_or(n)
+                // normalize(normalize(t) in the frame) is normalize(t in the
+                // frame): (s, ±n × s, n) is orthonormal, so the texel's own
+                // normalisation (a square root and a division on the
+                // shading chain) changes nothing but the rounding.
+                let (s, bt) = tangent_frame(n, dpdu);
+                (t.x * s + t.y * sign * bt + t.z * n).try_normalize().unwrap_or(n)
             }
             Perturb::Bump { height, scale } => {
                 const DU: f32 = 1.0 / 1024.0;

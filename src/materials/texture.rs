@@ -333,9 +333,18 @@ impl Texture {
     /// wrapping each texel on its own.
     #[inline]
     fn wrap_block(&self, x0: i64, y0: i64) -> ([usize; 2], [usize; 2]) {
+        // A power-of-two side (most textures) wraps by a mask, the same
+        // index as `rem_euclid` in two's complement, without its division:
+        // a floor whose UVs are scaled past 1 wraps every other lookup.
         let wrap = |v: i64, n: u32| {
             let n = i64::from(n);
-            (if (0..n).contains(&v) { v } else { v.rem_euclid(n) }) as usize
+            (if (0..n).contains(&v) {
+                v
+            } else if n & (n - 1) == 0 {
+                v & (n - 1)
+            } else {
+                v.rem_euclid(n)
+            }) as usize
         };
         let (x, y) = (wrap(x0, self.width), wrap(y0, self.height));
         let x1 = if x + 1 == self.width as usize { 0 } else { x + 1 };
@@ -377,10 +386,16 @@ mod tests {
 
     /// The block wrapped once gives, bit for bit, what wrapping each of the
     /// four texels on its own gives, inside the image, across its edges and
-    /// far outside it (tiled, negative), for images of odd sizes.
+    /// far outside it (tiled, negative), for images of odd sizes and of
+    /// powers of two (wrapped by a mask).
     #[test]
     fn wrapped_block_matches_texel_by_texel_wrapping() {
-        let (w, h) = (5u32, 3u32);
+        for (w, h) in [(5u32, 3u32), (8, 4), (1, 2), (16, 5)] {
+            block_wraps_as_texels(w, h);
+        }
+    }
+
+    fn block_wraps_as_texels(w: u32, h: u32) {
         let srgb: Vec<u8> = (0..w * h * 3).map(|k| (k * 37 % 251) as u8).collect();
         let t = Texture::from_srgb8(w, h, &srgb);
         let texel = |x: i64, y: i64| {
