@@ -165,11 +165,14 @@ impl EnvTable {
         fill_bins(scaled(row_sums, sum), &mut row_bins);
         let inv_mean = ((w * rows) as f64 / sum) as f32;
         // No light (or weights too small for the density's f32): every cell
-        // alike (a bin of the default keeps its own entry).
+        // alike (each bin keeps its own entry, and names itself as its
+        // alias for a number that rounds to the bin's top).
         let uniform = !(sum > 0.0 && inv_mean.is_finite());
         if uniform {
-            row_bins.fill(Bin::default());
-            cell_bins.fill(Bin::default());
+            fill_bins(vec![1.0; rows], &mut row_bins);
+            for bins in cell_bins.chunks_mut(w) {
+                fill_bins(vec![1.0; w], bins);
+            }
         }
         let cells = PiecewiseConstant2d::new(w, rows, |j, out| {
             for (i, o) in out.iter_mut().enumerate() {
