@@ -4,9 +4,9 @@ use super::Hit;
 use crate::accel::Aabb;
 use crate::math::Ray;
 use crate::math::float_error::{error_along, gamma_offset};
-use crate::math::trig::atan2_lanes;
+use crate::math::trig::turns_lanes;
 use glam::{Vec2, Vec3A, Vec4};
-use std::f32::consts::{FRAC_1_PI, PI};
+use std::f32::consts::PI;
 
 /// An analytic sphere in world space.
 #[derive(Clone, Copy, Debug)]
@@ -101,13 +101,13 @@ impl Sphere {
     /// Spherical coordinates of unit normal `n`, y up: u around the axis,
     /// v from the bottom.
     ///
-    /// Both angles by [`atan2_lanes`] (the polynomial the sky's lookup uses,
+    /// Both angles by [`turns_lanes`] (the polynomial the sky's lookup uses,
     /// as fast as libm's `atanf` and `acosf` here, in two lanes of one
     /// computation so that their latency chains overlap), θ as atan2(sin θ, cos θ),
     /// which unlike `acos` keeps its precision near the poles (acos(1 − ε)
     /// moves in steps of ~3·10⁻⁴ rad there).
     pub fn uv(n: Vec3A) -> Vec2 {
-        let a = angles(
+        let a = turns_lanes(
             Vec4::new(n.z, (n.x * n.x + n.z * n.z).sqrt(), 0.0, 0.0),
             Vec4::new(n.x, n.y, 1.0, 1.0),
         );
@@ -118,7 +118,7 @@ impl Sphere {
     /// z axis (v = 0 at +z), u = atan2(y, x)/2π in [0, 1) (0 along +x, ¼
     /// along +y). Angles as in [`Sphere::uv`].
     pub fn uv_mitsuba(n: Vec3A) -> Vec2 {
-        let a = angles(
+        let a = turns_lanes(
             Vec4::new(n.y, (n.x * n.x + n.y * n.y).sqrt(), 0.0, 0.0),
             Vec4::new(n.x, n.z, 1.0, 1.0),
         );
@@ -167,12 +167,4 @@ impl Sphere {
             max: self.center + Vec3A::splat(self.radius),
         }
     }
-}
-
-/// `atan2(y, x)` of the first two lanes in turns of 2π and of π (φ and θ
-/// of [`Sphere::uv`]), in [−½, ½] and [0, 1].
-#[inline]
-fn angles(y: Vec4, x: Vec4) -> Vec4 {
-    // By the reciprocals: π·(1/π) and π·(1/2π) round to exactly 1 and ½.
-    atan2_lanes(y, x) * Vec4::new(0.5 * FRAC_1_PI, FRAC_1_PI, 1.0, 1.0)
 }

@@ -39,12 +39,12 @@ use super::tree::LightBounds;
 use super::{LightModel, LightSample};
 use crate::math::Frame;
 use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
-use crate::math::trig::{atan2_lanes, sin_cos_turns};
+use crate::math::trig::{sin_cos_turns, turns_lanes};
 use crate::math::{Rgb, luminance};
 use crate::sampler::Draw;
 use glam::{Vec2, Vec3A, Vec4};
 use rayon::prelude::*;
-use std::f32::consts::{FRAC_1_PI, PI};
+use std::f32::consts::PI;
 
 /// How next-event estimation picks directions toward the environment.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -159,12 +159,9 @@ impl EnvironmentLight {
     #[inline]
     pub fn uv(d: Vec3A) -> Vec2 {
         // θ = atan2(sin θ, cos θ): acos(d.y) loses precision near the poles.
-        // Both angles in lanes of one computation (the scalar values).
+        // Both angles in lanes of one computation ([`turns_lanes`]).
         let sin_t = (d.x * d.x + d.z * d.z).sqrt();
-        // In turns by the reciprocals (a division was on the chain): π·(1/π)
-        // and π·(1/2π) round to exactly 1 and ½, so v stays in [0, 1].
-        let turns = atan2_lanes(Vec4::new(d.x, sin_t, 0.0, 0.0), Vec4::new(-d.z, d.y, 1.0, 1.0))
-            * Vec4::new(0.5 * FRAC_1_PI, FRAC_1_PI, 1.0, 1.0);
+        let turns = turns_lanes(Vec4::new(d.x, sin_t, 0.0, 0.0), Vec4::new(-d.z, d.y, 1.0, 1.0));
         let mut u = turns.x;
         if u < 0.0 {
             u += 1.0;

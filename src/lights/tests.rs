@@ -30,13 +30,7 @@ pub(super) fn irradiance(light: &Light, p: Vec3A, n: Vec3A, n_samples: u32) -> f
     let mut rng = Pcg32::new(11, 3);
     let mut sum = 0.0f64;
     for _ in 0..n_samples {
-        let Some(ls) = light.sample(
-            p,
-            Vec3A::ZERO,
-            rng.next_vec2(),
-            crate::sampler::Draw::Independent,
-            &geo,
-        ) else {
+        let Some(ls) = light.sample(p, Vec3A::ZERO, rng.next_vec2(), Draw::Independent, &geo) else {
             continue;
         };
         assert!(ls.pdf > 0.0 && ls.pdf.is_finite(), "pdf {}", ls.pdf);
@@ -118,7 +112,7 @@ fn two_sided_sphere_lights_its_inside() {
                 Vec3A::ZERO,
                 Vec3A::ZERO,
                 Vec2::splat(0.5),
-                crate::sampler::Draw::Independent,
+                Draw::Independent,
                 &Geometry::default()
             )
             .is_none()
@@ -375,13 +369,7 @@ fn environment_sampling_integrates_the_map() {
         for _ in 0..n {
             uniform += (env.le(uniform_sphere(rng.next_vec2())).x / UNIFORM_SPHERE_PDF) as f64;
             let ls = light
-                .sample(
-                    Vec3A::ZERO,
-                    Vec3A::ZERO,
-                    rng.next_vec2(),
-                    crate::sampler::Draw::Independent,
-                    &geo,
-                )
+                .sample(Vec3A::ZERO, Vec3A::ZERO, rng.next_vec2(), Draw::Independent, &geo)
                 .expect("a direction");
             assert!(ls.dist.is_infinite() && ls.pdf > 0.0);
             let again = env.pdf(ls.wi, Vec3A::ZERO);
@@ -449,13 +437,7 @@ fn constant_environment_from_a_surface_samples_the_cosine() {
             / m as f64;
         assert!((integral - 1.0).abs() < 0.03, "∫ pdf dω = {integral} for n {n}");
         for _ in 0..100 {
-            let Some(ls) = light.sample(
-                Vec3A::ZERO,
-                n,
-                rng.next_vec2(),
-                crate::sampler::Draw::Independent,
-                &geo,
-            ) else {
+            let Some(ls) = light.sample(Vec3A::ZERO, n, rng.next_vec2(), Draw::Independent, &geo) else {
                 continue;
             };
             let cos = ls.wi.dot(n);

@@ -6,7 +6,7 @@
 //! glibc's `sincosf`/`sinf`/`cosf` took 110–120 instructions a pair there.
 
 use glam::Vec4;
-use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI};
 
 /// `atan2(y, x)` in `[-π, π]`, within 3e-7 rad of the exact angle for
 /// finite inputs whose magnitudes add up to a finite number (each below
@@ -75,6 +75,16 @@ pub fn atan2_lanes(y: Vec4, x: Vec4) -> Vec4 {
     r = Vec4::select(steep, FRAC_PI_2 - r, r);
     r = Vec4::select(x.cmplt(Vec4::ZERO), PI - r, r);
     Vec4::select(flat, on_axis, r).copysign(y)
+}
+
+/// A direction's two angles in turns: lane 0 is `atan2(y, x) / 2π` (in
+/// [−½, ½]), lane 1 `atan2(y, x) / π` (in [0, 1] for y ≥ 0), by
+/// [`atan2_lanes`] and the reciprocals (a division was on the chain): π·(1/π)
+/// and π·(1/2π) round to exactly 1 and ½. The sky's lookup and a sphere's
+/// UVs take φ and θ from it.
+#[inline]
+pub fn turns_lanes(y: Vec4, x: Vec4) -> Vec4 {
+    atan2_lanes(y, x) * Vec4::new(0.5 * FRAC_1_PI, FRAC_1_PI, 1.0, 1.0)
 }
 
 /// `(sin a, cos a)` for |a| ≤ π/4 by Taylor polynomials (errors below 3e-7

@@ -193,14 +193,7 @@ impl Sampler {
     /// use it.
     #[inline(always)]
     pub fn next_vec2(&mut self) -> Vec2 {
-        match self.kind {
-            SamplerKind::Independent => self.rng.next_vec2(),
-            SamplerKind::Sobol => match self.sobol_draw() {
-                Some(p) => p,
-                None => self.rng.next_vec2(),
-            },
-            SamplerKind::Stratified => self.stratified_vec2(),
-        }
+        self.next_vec2_draw().0
     }
 
     /// [`Sampler::next_vec2`] and whether the pair is stratified across
