@@ -112,17 +112,26 @@ pub struct SkyWeight {
     /// A constant sky: its weight is 0 exactly, without the arithmetic
     /// (which rounds to within an ulp of it).
     flat: bool,
+    /// The weight for `n` zero (a point with no surface), made once here.
+    /// Computed in [`SkyWeight::at`], it depended on nothing that changes
+    /// along a path, so the compiler computed it ahead of the path loop
+    /// even for scenes without a light tree — from the bytes of the
+    /// picker's empty `Option<LightTree>`, which read as denormal floats:
+    /// a microcode assist per operation (`tests/denormals.rs`, on an AMD
+    /// EPYC).
+    whole: f32,
 }
 
 impl SkyWeight {
     /// The weight of a sky of irradiance `irradiance` and squared
     /// irradiance `second` (see the type's docs).
     pub fn new(irradiance: SkyIrradiance, second: SkyIrradiance) -> Self {
-        Self {
+        Self::with_whole(Self {
             irradiance,
             second,
             flat: false,
-        }
+            whole: 0.0,
+        })
     }
 
     /// A sky of radiance `radiance` in every direction (weight 0).
@@ -132,6 +141,15 @@ impl SkyWeight {
             irradiance: SkyIrradiance::constant(radiance),
             second: SkyIrradiance::constant(Rgb::splat(l * l)),
             flat: true,
+            whole: 0.0,
+        }
+    }
+
+    /// `w` with its weight for `n` zero filled in.
+    fn with_whole(w: Self) -> Self {
+        Self {
+            whole: w.weigh(Vec3A::ZERO),
+            ..w
         }
     }
 
@@ -141,6 +159,18 @@ impl SkyWeight {
     /// or above `π E`; 0 where either moment is 0 or not finite.
     #[inline]
     pub fn at(&self, n: Vec3A) -> f32 {
+        if self.flat {
+            return 0.0;
+        }
+        if n == Vec3A::ZERO {
+            return self.whole;
+        }
+        self.weigh(n)
+    }
+
+    /// [`SkyWeight::at`] computed, for any `n`.
+    #[inline]
+    fn weigh(&self, n: Vec3A) -> f32 {
         if self.flat {
             return 0.0;
         }
