@@ -235,6 +235,87 @@ fn gltf_hierarchy_and_instances_put_vertices_where_the_node_matrices_say() {
     }
 }
 
+/// Meshes placed once each by the same transform become one mesh under
+/// one BVH (`merge_single_placements`); a mesh placed twice stays shared,
+/// and one placed elsewhere stays apart. Each triangle keeps its own
+/// material through the merge: rays down onto each part meet that part's
+/// material, at the same point as before.
+#[test]
+fn gltf_parts_placed_together_share_one_mesh_and_keep_their_materials() {
+    let mut a = Asset::default();
+    // Four one-triangle meshes side by side along x (triangle k spans
+    // x ∈ [3k, 3k + 1]), each with its own material.
+    let meshes: Vec<Value> = (0..4)
+        .map(|k| {
+            let x = 3.0 * k as f32;
+            let pos = a.floats(&[x, 0.0, 0.0, x + 1.0, 0.0, 0.0, x, 1.0, 0.0], "VEC3");
+            json!({"primitives": [{"attributes": {"POSITION": pos}, "material": k}]})
+        })
+        .collect();
+    let materials: Vec<Value> = (0..4)
+        .map(|k| json!({"name": format!("m{k}"), "pbrMetallicRoughness": {"metallicFactor": 0.0}}))
+        .collect();
+    let gltf = a.gltf(json!({
+        "scene": 0,
+        // Meshes 0 and 1 at the identity, mesh 2 moved, mesh 3 placed twice.
+        "scenes": [{"nodes": [0, 1, 2, 3, 4]}],
+        "nodes": [
+            {"mesh": 0},
+            {"mesh": 1},
+            {"mesh": 2, "translation": [0.0, 0.0, -1.0]},
+            {"mesh": 3},
+            {"mesh": 3, "translation": [0.0, 0.0, -2.0]},
+        ],
+        "meshes": meshes,
+        "materials": materials,
+    }));
+    let overrides = (0..4)
+        .map(|k| format!("\"m{k}\": \"c{k}\""))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let mats = (0..4)
+        .map(|k| format!("\"c{k}\": Lambert(albedo: {})", 0.1 + 0.2 * k as f32))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(
+            &format!(r#"Gltf(file: "a.gltf", materials: {{ {overrides} }})"#),
+            &mats,
+        ),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let geo = &loaded.scene.geometry;
+    assert_eq!(geo.meshes.len(), 3, "meshes 0 and 1 joined; 2 and 3 apart");
+    assert_eq!(geo.instances.len(), 4, "the joined pair, mesh 2, mesh 3 twice");
+    assert_eq!(
+        geo.meshes.iter().map(|m| m.triangle_count()).max(),
+        Some(2),
+        "the joined mesh holds both triangles"
+    );
+    let scene = &loaded.scene;
+    // Each part from 5 units away (the second copy of mesh 3 from behind,
+    // as the first hides it from the front).
+    for (k, z, d) in [
+        (0, 0.0, -1.0),
+        (1, 0.0, -1.0),
+        (2, -1.0, -1.0),
+        (3, 0.0, -1.0),
+        (3, -2.0, 1.0),
+    ] {
+        let o = Vec3A::new(3.0 * k as f32 + 0.25, 0.25, z - 5.0 * d);
+        let hit = scene
+            .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, d)), f32::INFINITY)
+            .unwrap_or_else(|| panic!("the ray onto part {k} at z = {z} hits"));
+        assert!((hit.t - 5.0).abs() < 1e-5, "part {k}: t = {}", hit.t);
+        let albedo = scene.materials[hit.material as usize].albedo(hit.uv, &scene.textures);
+        assert!(
+            (albedo.x - (0.1 + 0.2 * k as f32)).abs() < 1e-6,
+            "part {k} at z = {z} keeps its material: albedo {albedo}"
+        );
+    }
+}
+
 #[test]
 fn gltf_sparse_accessor_and_interleaved_view_are_read() {
     let mut a = Asset::default();

@@ -287,6 +287,47 @@ impl Mesh {
         gamma_offset(7) * ((a * w.x).abs() + (b * w.y).abs() + (c * w.z).abs())
     }
 
+    /// Whether `other` carries the same vertex attributes (normals, UVs,
+    /// tangents: each on both meshes or on neither), so that
+    /// [`Mesh::append`] can join them without inventing any.
+    pub fn same_attributes(&self, other: &Mesh) -> bool {
+        self.normals.is_empty() == other.normals.is_empty()
+            && self.uvs.is_empty() == other.uvs.is_empty()
+            && self.tangents.is_empty() == other.tangents.is_empty()
+    }
+
+    /// Appends `other`'s vertices and triangles after this mesh's, its
+    /// material slots numbered after this mesh's (slot `s` of `other`
+    /// becomes `slot_count + s`): two parts placed the same way become one
+    /// mesh under one BVH. Each vertex and triangle keeps its attributes, so
+    /// every hit shades as before. Both must be unprepared (no BVH yet) and
+    /// [`Mesh::same_attributes`]; the caller keeps the vertex count within
+    /// `u32`.
+    pub fn append(&mut self, other: Mesh) {
+        debug_assert!(
+            self.blas.is_none() && other.blas.is_none(),
+            "append before `prepare`"
+        );
+        debug_assert!(self.same_attributes(&other));
+        let base = self.positions.len() as u32;
+        if self.slots.is_empty() {
+            self.slots = vec![0; self.indices.len()];
+        }
+        let first = self.slot_count.max(1);
+        if other.slots.is_empty() {
+            self.slots.extend(std::iter::repeat_n(first, other.indices.len()));
+        } else {
+            self.slots.extend(other.slots.iter().map(|s| first + s));
+        }
+        self.slot_count = first + other.slot_count.max(1);
+        self.positions.extend(other.positions);
+        self.indices
+            .extend(other.indices.iter().map(|t| t.map(|i| base + i)));
+        self.normals.extend(other.normals);
+        self.uvs.extend(other.uvs);
+        self.tangents.extend(other.tangents);
+    }
+
     /// Material slot of triangle `tri`.
     #[inline]
     pub fn slot(&self, tri: u32) -> u32 {
@@ -371,4 +412,78 @@ impl Mesh {
 fn blocks(first: u32, count: u32) -> impl Iterator<Item = (u32, u32)> {
     let head = count.min(4);
     std::iter::once((first, head)).chain((count > 4).then(|| (first + 4, count - 4)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::rng::Pcg32 as Rng;
+
+    /// A mesh of `n` random triangles in the unit cube around `c`, with
+    /// vertex normals, UVs and `slots` slots, each triangle in a random one.
+    fn random_mesh(rng: &mut Rng, n: usize, c: Vec3A, slots: u32) -> Mesh {
+        let mut v = || Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) - Vec3A::splat(0.5);
+        let mut m = Mesh::default();
+        for t in 0..n as u32 {
+            for _ in 0..3 {
+                m.positions.push(c + v());
+                m.normals.push(v().normalize_or(Vec3A::Z));
+                m.uvs.push(v().truncate());
+            }
+            m.indices.push([3 * t, 3 * t + 1, 3 * t + 2]);
+        }
+        if slots > 1 {
+            m.slots = (0..n as u32).map(|t| t % slots).collect();
+        }
+        m.slot_count = slots;
+        m
+    }
+
+    /// Two meshes appended and given one BVH answer every ray as the two
+    /// did on their own: the nearest distance bit for bit, the same shading
+    /// record, and the slot of the part hit (the second part's slots
+    /// numbered after the first's).
+    #[test]
+    fn appended_meshes_hit_and_shade_as_their_parts() {
+        let mut rng = Rng::new(11, 3);
+        let a = random_mesh(&mut rng, 200, Vec3A::ZERO, 1);
+        let b = random_mesh(&mut rng, 150, Vec3A::new(0.3, 0.1, 0.2), 3);
+        let mut joined = a.clone();
+        joined.append(b.clone());
+        assert_eq!((joined.triangle_count(), joined.slot_count), (350, 4));
+        let (mut a, mut b) = (a, b);
+        a.prepare();
+        b.prepare();
+        joined.prepare();
+        let mut hits = 0;
+        for _ in 0..4000 {
+            let o = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 4.0 - Vec3A::splat(2.0);
+            let to = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 0.8 - Vec3A::splat(0.3);
+            let ray = Ray::new(o, (to - o).normalize());
+            let parts = [(&a, 0u32), (&b, 1)];
+            let want = parts
+                .iter()
+                .filter_map(|(m, k)| m.closest(&ray, f32::INFINITY).map(|h| (h, *m, *k)))
+                .min_by(|x, y| x.0.t.total_cmp(&y.0.t));
+            let got = joined.closest(&ray, f32::INFINITY);
+            assert_eq!(
+                got.map(|h| h.t.to_bits()),
+                want.map(|w| w.0.t.to_bits()),
+                "{ray:?}"
+            );
+            let (Some(g), Some((w, part, k))) = (got, want) else {
+                continue;
+            };
+            hits += 1;
+            let (hg, hw) = (joined.hit(g.tri, g.t, g.bc), part.hit(w.tri, w.t, w.bc));
+            assert_eq!((hg.p, hg.ns, hg.uv), (hw.p, hw.ns, hw.uv), "{ray:?}");
+            let want_slot = if k == 0 {
+                part.slot(w.tri)
+            } else {
+                1 + part.slot(w.tri)
+            };
+            assert_eq!(joined.slot(g.tri), want_slot, "{ray:?}");
+        }
+        assert!(hits > 1000, "only {hits} hits");
+    }
 }
