@@ -25,7 +25,9 @@ What it does:
 3. With `--exr`, renders: the asset under the equirectangular sky `--envmap` (Mitsuba `envmap`,
    unrotated, ronray's `Environment(map: ...)`), on a grey Lambert floor at y = 0, through the
    camera `--eye/--target/--fov` (vertical degrees), box filter, independent sampler, `path`
-   with max_depth 8 and rr_depth 5, `scalar_rgb`.
+   with max_depth 8 and rr_depth 5, `scalar_rgb` (or `--variant llvm_ad_rgb`: how
+   tools/side_by_side.sh times it). The JSON report gives `load_s` and `render_s` (the scene's
+   load, and the render alone: what ronray's own `in X s` measures).
 With `--ron`, prints the ronray `materials` block (and the `Gltf` overrides) of the same model.
 """
 import argparse
@@ -256,6 +258,7 @@ def main():
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--variant", default="scalar_rgb", choices=["scalar_rgb", "llvm_ad_rgb"])
     ap.add_argument("--fixture", help="also write FIXTURE_64.pfm (box-downsampled to 64²) and an "
                     "all-zero FIXTURE_mask_64.pfm (the scene has no area lights)")
     ap.add_argument("--compare", help="print the RMSE of the 64² image against this 64² PFM")
@@ -267,18 +270,24 @@ def main():
     if a.ron:
         print(ron_block(shapes, os.path.relpath(os.path.abspath(a.gltf), a.ron_dir)))
     if a.exr:
+        import time
         import mitsuba as mi
         import drjit as dr
-        mi.set_variant("scalar_rgb")
+        mi.set_variant(a.variant)
         dr.set_thread_count(a.threads)
+        t0 = time.perf_counter()
         scene = mi.load_dict(mitsuba_scene(mi, shapes, a))
+        t1 = time.perf_counter()
+        # As ../shared/tools/mitsuba_run.py times it: up to the image in memory.
         img = np.array(mi.render(scene, spp=a.spp, seed=a.seed), dtype=np.float32)
+        t2 = time.perf_counter()
         mi.Bitmap(np.ascontiguousarray(img), mi.Bitmap.PixelFormat.RGB).write(a.exr)
         k = a.size // 64
         if k * 64 != a.size:
             sys.exit("--size must be a multiple of 64")
         small = img.reshape(64, k, 64, k, 3).mean(axis=(1, 3))
         report = {"exr": a.exr, "spp": a.spp, "size": a.size, "seed": a.seed, "mitsuba": mi.__version__,
+                  "variant": a.variant, "load_s": round(t1 - t0, 3), "render_s": round(t2 - t1, 3),
                   "mean_64": [float(x) for x in small.reshape(-1, 3).mean(axis=0)]}
         if a.fixture:
             write_pfm(a.fixture + "_64.pfm", small)

@@ -77,6 +77,24 @@ for json in "$here"/bench/*/*.json; do
     [ -f "$refs/${ref}_emitter_mask.png" ] && ln -s "$refs/${ref}_emitter_mask.png" "$out/b_$name/${name}_emitter_mask.png"
     scenes+=("$name:$twin")
 done
+# The Khronos FlightHelmet (glTF, 94,722 triangles, base-colour and normal
+# maps under the sky map): the twin of tests/fixtures/refs/flight_helmet.ron
+# drawn by tools/gltf_to_mitsuba.py (needs `pygltflib` beside `mitsuba`; the
+# row is left out without it, or with NO_HELMET=1). Its reference is a Mitsuba
+# `llvm_ad_rgb` render at HELMET_REF_SPP (default 4096, seed 1) made here in
+# the warm-up: no shared reference exists at 256². Both sides draw every
+# material with the model they share (docs/gltf.md, "Mitsuba reference").
+helmet_gltf="$here/assets/gltf/FlightHelmet/FlightHelmet.gltf"
+helmet=""
+if [ -z "${NO_HELMET:-}" ] && "$py" -c "import pygltflib, mitsuba" 2> /dev/null; then
+    helmet="$out/helmet"
+    mkdir -p "$helmet" "$out/b_flight_helmet"
+    scenes+=("flight_helmet:$here/tests/fixtures/refs/flight_helmet.ron")
+fi
+helmet_run() { # gltf_to_mitsuba.py ARGS...: the twin at 256², llvm, its JSON report
+    "$py" "$here/tools/gltf_to_mitsuba.py" "$helmet_gltf" --out "$helmet" --envmap "$here/assets/sky_sun.exr" \
+        --size 256 --variant llvm_ad_rgb --threads "$threads" "$@" 2> /dev/null
+}
 # ONLY=SUBSTRING keeps the scenes whose name holds it.
 if [ -n "${ONLY:-}" ]; then
     kept=()
@@ -88,8 +106,11 @@ refdir_of() { if [ -d "$out/b_$1" ]; then echo "$out/b_$1"; else echo "$refs"; f
 json_of() { local j=("$here"/bench/*/"$1".json); if [ -f "${j[0]}" ]; then echo "${j[0]}"; else echo "$refs/$1.json"; fi; }
 mask_of() { local d; d="$(refdir_of "$1")"; [ -f "$d/${1}_emitter_mask.png" ] && echo "--mask $d/${1}_emitter_mask.png"; }
 mi_render() { # NAME OUT -> "render_s" or "failed"
-    "$py" "$run" "$(json_of "$1")" --variant llvm_ad_rgb --spp 256 --out "$2" 2>/dev/null \
-        | sed -n 's/.*"render_s": \([0-9.]*\).*/\1/p' | grep . || echo failed
+    if [ "$1" = flight_helmet ]; then
+        helmet_run --spp 256 --exr "$2"
+    else
+        "$py" "$run" "$(json_of "$1")" --variant llvm_ad_rgb --spp 256 --out "$2" 2>/dev/null
+    fi | sed -n 's/.*"render_s": \([0-9.]*\).*/\1/p' | grep . || echo failed
 }
 rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed" (RR_BIN: another binary)
     local twin="$1" spp="$2" o="$3"; shift 3
@@ -99,6 +120,11 @@ rr_render() { # TWIN SPP OUT EXTRA... -> seconds or "failed" (RR_BIN: another bi
 err_of() { "$ronray" diff "$1" "$(refdir_of "$2")/${2}_ref.exr" $(mask_of "$2") | awk '$1 == "rmse" {print $2}'; }
 
 echo "== $("$ronray" --version) at $ronray"
+if [ -n "$helmet" ] && [[ "flight_helmet" == *"${ONLY:-}"* ]]; then
+    echo "== the FlightHelmet's reference: Mitsuba llvm, ${HELMET_REF_SPP:-4096} spp $(date -u +%T)"
+    helmet_run --spp "${HELMET_REF_SPP:-4096}" --seed 1 --exr "$out/b_flight_helmet/flight_helmet_ref.exr" > /dev/null \
+        || echo "the FlightHelmet's reference failed" >&2
+fi
 echo "== warm-up (Mitsuba's JIT caches) and Mitsuba's 256-spp error per scene"
 for s in "${scenes[@]}"; do
     name="${s%%:*}"
