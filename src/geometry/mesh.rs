@@ -420,7 +420,8 @@ mod tests {
     use crate::math::rng::Pcg32 as Rng;
 
     /// A mesh of `n` random triangles in the unit cube around `c`, with
-    /// vertex normals, UVs and `slots` slots, each triangle in a random one.
+    /// vertex normals and UVs; triangle `t` in slot `t mod slots` (one
+    /// slot: no per-triangle slots, as a single-material mesh has).
     fn random_mesh(rng: &mut Rng, n: usize, c: Vec3A, slots: u32) -> Mesh {
         let mut v = || Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) - Vec3A::splat(0.5);
         let mut m = Mesh::default();
