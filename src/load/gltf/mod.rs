@@ -124,7 +124,7 @@ pub(crate) fn import(
 /// order, [`Mesh::append`]) under one placement: one BVH over all their
 /// triangles instead of one instance each. An asset's parts overlap (the
 /// FlightHelmet's six meshes share one volume), and a ray entered every
-/// part's tree whose box it crossed: 13% more samples per second on the
+/// part's tree whose box it crossed: 12% more samples per second on the
 /// helmet with one tree (docs/benchmarks.md). A mesh placed by several
 /// nodes stays one shared mesh with an instance per node. Nothing is
 /// transformed, so every hit is shaded exactly as before; only the order
