@@ -287,13 +287,15 @@ impl Mesh {
         gamma_offset(7) * ((a * w.x).abs() + (b * w.y).abs() + (c * w.z).abs())
     }
 
-    /// Whether `other` carries the same vertex attributes (normals, UVs,
-    /// tangents: each on both meshes or on neither), so that
-    /// [`Mesh::append`] can join them without inventing any.
-    pub fn same_attributes(&self, other: &Mesh) -> bool {
-        self.normals.is_empty() == other.normals.is_empty()
-            && self.uvs.is_empty() == other.uvs.is_empty()
-            && self.tangents.is_empty() == other.tangents.is_empty()
+    /// Which vertex attributes the mesh carries: normals, UVs, tangents.
+    /// [`Mesh::append`] joins only meshes with the same, so that it invents
+    /// none.
+    pub fn attributes(&self) -> [bool; 3] {
+        [
+            !self.normals.is_empty(),
+            !self.uvs.is_empty(),
+            !self.tangents.is_empty(),
+        ]
     }
 
     /// Appends `other`'s vertices and triangles after this mesh's, its
@@ -301,14 +303,14 @@ impl Mesh {
     /// becomes `slot_count + s`): two parts placed the same way become one
     /// mesh under one BVH. Each vertex and triangle keeps its attributes, so
     /// every hit shades as before. Both must be unprepared (no BVH yet) and
-    /// [`Mesh::same_attributes`]; the caller keeps the vertex count within
+    /// have the same [`Mesh::attributes`]; the caller keeps the vertex count within
     /// `u32`.
     pub fn append(&mut self, other: Mesh) {
         debug_assert!(
             self.blas.is_none() && other.blas.is_none(),
             "append before `prepare`"
         );
-        debug_assert!(self.same_attributes(&other));
+        debug_assert_eq!(self.attributes(), other.attributes());
         let base = self.positions.len() as u32;
         if self.slots.is_empty() {
             self.slots = vec![0; self.indices.len()];

@@ -126,12 +126,16 @@ impl SkyWeight {
     /// The weight of a sky of irradiance `irradiance` and squared
     /// irradiance `second` (see the type's docs).
     pub fn new(irradiance: SkyIrradiance, second: SkyIrradiance) -> Self {
-        Self::with_whole(Self {
+        let w = Self {
             irradiance,
             second,
             flat: false,
             whole: 0.0,
-        })
+        };
+        Self {
+            whole: w.weigh(Vec3A::ZERO),
+            ..w
+        }
     }
 
     /// A sky of radiance `radiance` in every direction (weight 0).
@@ -142,14 +146,6 @@ impl SkyWeight {
             second: SkyIrradiance::constant(Rgb::splat(l * l)),
             flat: true,
             whole: 0.0,
-        }
-    }
-
-    /// `w` with its weight for `n` zero filled in.
-    fn with_whole(w: Self) -> Self {
-        Self {
-            whole: w.weigh(Vec3A::ZERO),
-            ..w
         }
     }
 
@@ -168,12 +164,9 @@ impl SkyWeight {
         self.weigh(n)
     }
 
-    /// [`SkyWeight::at`] computed, for any `n`.
+    /// [`SkyWeight::at`] of a sky that is not flat, computed, for any `n`.
     #[inline]
     fn weigh(&self, n: Vec3A) -> f32 {
-        if self.flat {
-            return 0.0;
-        }
         let e = self.irradiance.either_side(n);
         let e2 = self.second.either_side(n);
         let (full, base) = if n == Vec3A::ZERO {

@@ -158,20 +158,12 @@ fn merge_single_placements(imported: Imported) -> Imported {
         };
         let (mesh, slots, _) = &entry;
         let joinable = uses[k] == 1 && slots.len() == mesh.slot_count as usize;
-        let key: Key = (
-            world.to_cols_array().map(f32::to_bits),
-            [
-                !mesh.normals.is_empty(),
-                !mesh.uvs.is_empty(),
-                !mesh.tangents.is_empty(),
-            ],
-        );
+        let key: Key = (world.to_cols_array().map(f32::to_bits), mesh.attributes());
         // Joined while the sum stays well inside the indices' and the
         // tree's limits; past them the part opens a new group.
         let into = groups.get(&key).copied().filter(|&g| {
             let target = &out.meshes[g].0;
             joinable
-                && target.same_attributes(mesh)
                 && target.positions.len() + mesh.positions.len() < u32::MAX as usize / 2
                 && target.triangle_count() + mesh.triangle_count() < crate::accel::wide::MAX_PRIMS / 2
         });
