@@ -173,16 +173,20 @@ impl Path {
         let split = self.split_caustics && scene.caustics.is_some();
         let max_chain = max_chain(self.max_depth);
         let mut hit = Hit::default();
+        // Whether the next ray hits, when the previous vertex found it
+        // already (see the end of the loop).
+        let mut next: Option<bool> = None;
         loop {
             counters.rays += 1;
-            let found = match first.take() {
-                Some((found, h)) => {
+            let found = match (first.take(), next.take()) {
+                (Some((found, h)), _) => {
                     if found {
                         hit = *h;
                     }
                     found
                 }
-                None => scene.intersect_into(&st.ray, f32::INFINITY, &mut hit),
+                (None, Some(found)) => found,
+                (None, None) => scene.intersect_into(&st.ray, f32::INFINITY, &mut hit),
             };
             if !found {
                 // The environment, reached by the previous BSDF sample.
@@ -263,28 +267,42 @@ impl Path {
             // Next-event estimation: one light, picked as the scene says (by
             // the light tree unless told otherwise).
             let top = if delta { None } else { picker.top(hit.p, hit.ns) };
+            // The light sample's shadow ray, traced once the next ray is
+            // (below), and what it brings if nothing blocks it.
+            let mut shadow = None;
             if !delta && let Some((li, pmf)) = picker.pick_from(top.as_ref(), hit.p, hit.ns, u_pick) {
                 let light = &scene.lights[li];
                 if let Some(ls) = light.sample(hit.p, side, u_light, draw, &scene.geometry) {
                     let wi = frame.to_local(ls.wi);
                     let f = bsdf.eval(wo, wi) * wi.z.abs();
                     if f != Rgb::ZERO {
-                        let (shadow, extent) = shadow_ray(&hit, &ls);
                         counters.rays += 1;
-                        if !scene.occluded(&shadow, extent) {
-                            let light_pdf = pmf * ls.pdf;
-                            let w = if ls.delta {
-                                1.0
-                            } else {
-                                power_heuristic(light_pdf, bsdf.pdf(wo, wi))
-                            };
-                            l += st.beta * f * ls.li * (w / light_pdf);
-                        }
+                        shadow = Some((
+                            shadow_ray(&hit, &ls),
+                            st.beta * f * ls.li,
+                            pmf * ls.pdf,
+                            ls.delta,
+                            wi,
+                        ));
                     }
                 }
             }
+            // Adds the light sample's radiance when its shadow ray is clear.
+            let light_sample = |l: &mut Rgb| {
+                if let Some(((ray, extent), contribution, light_pdf, light_delta, wi)) = shadow
+                    && !scene.occluded(&ray, extent)
+                {
+                    let w = if light_delta {
+                        1.0
+                    } else {
+                        power_heuristic(light_pdf, bsdf.pdf(wo, wi))
+                    };
+                    *l += contribution * (w / light_pdf);
+                }
+            };
 
             if splits > 1 && !delta {
+                light_sample(&mut l);
                 // Path splitting: the first continuation along the sample
                 // drawn above, the others along their own.
                 let mut sum = Rgb::ZERO;
@@ -304,11 +322,18 @@ impl Path {
                 return l + sum * (1.0 / splits as f32);
             }
 
-            // Continue the path along the BSDF sample.
-            let Some(bs) = bs else {
-                break;
+            // Continue the path along the BSDF sample. Its ray is traced
+            // before the shadow ray, back to back: the two searches do not
+            // depend on each other, and the processor overlaps them.
+            let go_on = match bs {
+                Some(bs) => self.advance(&mut st, &bs, &hit, &frame, (delta, side), split, sampler),
+                None => false,
             };
-            if !self.advance(&mut st, &bs, &hit, &frame, (delta, side), split, sampler) {
+            if go_on {
+                next = Some(scene.intersect_into(&st.ray, f32::INFINITY, &mut hit));
+            }
+            light_sample(&mut l);
+            if !go_on {
                 break;
             }
             prev_top = top;
