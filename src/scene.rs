@@ -54,6 +54,10 @@ pub struct Scene {
     /// The bounded shapes in SIMD lanes when they are a few spheres and
     /// quads (see [`ShapeLanes`]): tested all at once, not through `bvh`.
     pub lanes: Option<ShapeLanes>,
+    /// For each of `shapes`, whether a material it is drawn with has a
+    /// cut-out (a shadow ray may pass through it); empty when no material
+    /// has one.
+    pub cut: Vec<bool>,
     /// The lights caustic connections emit from, when the scene has
     /// perfect-specular surfaces for them to matter.
     pub caustics: Option<CausticEmitters>,
@@ -504,12 +508,17 @@ impl Scene {
     /// Whether anything blocks `ray` before `t_max` (shadow rays). Cut-outs
     /// let it through where they are transparent.
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        if !self.surfaces.is_empty() && self.surfaces.iter().any(|s| s.cutout.is_some()) {
+        if !self.cut.is_empty() {
+            // The nearest surface decides, past the cut-outs' holes. A shape
+            // without a cut-out blocks: no hit record is needed to say so.
+            let Some((nearest, t)) = self.nearest(ray, t_max) else {
+                return false;
+            };
+            if !self.cut.get(nearest.shape() as usize).copied().unwrap_or(true) {
+                return true;
+            }
             return self
-                .nearest(ray, t_max)
-                .and_then(|(nearest, t)| {
-                    self.apply_surface(ray, t_max, nearest, t, false, &mut Hit::default())
-                })
+                .apply_surface(ray, t_max, nearest, t, false, &mut Hit::default())
                 .is_some();
         }
         let geo = &self.geometry;

@@ -248,3 +248,75 @@ fn image_emission_on_a_small_far_quad_lights_as_its_average() {
         bad.join("\n")
     );
 }
+
+#[test]
+fn shadow_rays_pass_cut_outs_and_stop_at_opaque_shapes_through_the_scene_bvh() {
+    // Twelve opaque spheres (more shapes than the SIMD lanes take, so the
+    // scene BVH orders them), a quad with a 2 × 2 checker cut-out and a
+    // mesh whose cut-out is all hole: shadow rays ask each shape whether
+    // it may let them through, by its index in the BVH's order.
+    let spheres: Vec<String> = (0..12)
+        .map(|k| {
+            format!(
+                r#"Sphere(center: ({}, 5, 0), radius: 0.2, material: "solid")"#,
+                -3.0 + 0.5 * k as f32
+            )
+        })
+        .collect();
+    let text = |block_opacity: &str| {
+        format!(
+            r#"Scene(
+                camera: (eye: (0, 3, 6), target: (0, 0, 0), fov_y_degrees: 40),
+                materials: {{
+                    "solid": Lambert(albedo: 0.3),
+                    "cut": Cutout(opacity: Checker(a: 1, b: 0, scale: 2), mode: Threshold(0.5), material: Lambert(albedo: 0.3)),
+                    "block": Cutout(opacity: {block_opacity}, mode: Threshold(0.5), material: Lambert(albedo: 0.3)),
+                }},
+                lights: [Rect(center: (0, 9, 0), half_u: (0.5, 0, 0), half_v: (0, 0, 0.5), radiance: (20, 20, 20))],
+                objects: [
+                    {},
+                    Quad(corner: (-1, 1, 1), edge_u: (2, 0, 0), edge_v: (0, 0, -2), material: "cut"),
+                    Mesh(file: "../assets/short_block.obj", material: "block"),
+                ],
+            )"#,
+            spheres.join(",\n")
+        )
+    };
+    let load = |t: &str| {
+        load_str(&root().join("scenes/test.ron"), t, &Overrides::default())
+            .unwrap_or_else(|e| panic!("scene loads: {e}"))
+            .scene
+    };
+    let down = |x: f32, y: f32, z: f32| ronray::math::Ray::new(glam::Vec3A::new(x, y, z), -glam::Vec3A::Y);
+    for (opacity, block_blocks) in [("0", false), ("1", true)] {
+        let scene = load(&text(opacity));
+        // The quad's four checker cells, from above, stopping short of the block.
+        let cells: Vec<bool> = [(-0.5, 0.5), (0.5, 0.5), (-0.5, -0.5), (0.5, -0.5)]
+            .iter()
+            .map(|&(x, z)| scene.occluded(&down(x, 3.0, z), 2.5))
+            .collect();
+        assert_eq!(
+            cells.iter().filter(|&&b| b).count(),
+            2,
+            "checker cells blocked: {cells:?}"
+        );
+        assert!(
+            cells[0] == cells[3] && cells[1] == cells[2] && cells[0] != cells[1],
+            "not a checker: {cells:?}"
+        );
+        // Every sphere blocks a ray through its centre.
+        for k in 0..12 {
+            let x = -3.0 + 0.5 * k as f32;
+            assert!(
+                scene.occluded(&down(x, 6.0, 0.0), 2.0),
+                "sphere {k} let a shadow ray through"
+            );
+        }
+        // Through the block (y −1 to −0.4), below the quad.
+        assert_eq!(
+            scene.occluded(&down(0.35, 0.0, 0.38), 2.0),
+            block_blocks,
+            "the block with opacity {opacity}"
+        );
+    }
+}

@@ -212,36 +212,24 @@ pub fn build_in(
         .map(|m| m.bsdf(glam::Vec2::ZERO, &textures).is_delta())
         .collect();
     let is_delta = |m: u32| delta.get(m as usize).copied().unwrap_or(false);
-    let targets = caustic::specular_targets(&shapes, &objects, &ctx.geometry, |s| match s {
-        Shape::Sphere(x) => is_delta(x.material),
-        Shape::Quad(x) => is_delta(x.material),
-        Shape::Plane(x) => is_delta(x.material),
-        Shape::Sdf(i) => ctx
-            .geometry
-            .sdfs
-            .get(*i as usize)
-            .is_some_and(|x| is_delta(x.material)),
-        Shape::Instance(i) => ctx
-            .geometry
-            .instances
-            .get(*i as usize)
-            .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
-        Shape::Triangle(t) => ctx
-            .geometry
-            .instances
-            .get(t.instance as usize)
-            .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
-        Shape::MeshQuad(q) => ctx
-            .geometry
-            .instances
-            .get(q.instance as usize)
-            .is_some_and(|x| x.materials.iter().any(|&m| is_delta(m))),
+    let targets = caustic::specular_targets(&shapes, &objects, &ctx.geometry, |s| {
+        any_material(s, &ctx.geometry, is_delta)
     });
     let caustics = CausticEmitters::new(&ctx.lights, targets);
     // Only scenes with a normal map, bump map or cut-out pay for them.
     if surfaces.iter().all(crate::materials::Surface::is_plain) {
         surfaces.clear();
     }
+    // Which shapes a shadow ray may pass through; none in most scenes.
+    let has_cutout = |m: u32| surfaces.get(m as usize).is_some_and(|s| s.cutout.is_some());
+    let cut: Vec<bool> = if surfaces.iter().any(|s| s.cutout.is_some()) {
+        shapes
+            .iter()
+            .map(|s| any_material(s, &ctx.geometry, has_cutout))
+            .collect()
+    } else {
+        Vec::new()
+    };
     let lanes = ShapeLanes::new(&shapes[..bounded as usize]);
     let mut scene = Scene {
         caustics,
@@ -256,6 +244,7 @@ pub fn build_in(
         objects,
         bounded,
         lanes,
+        cut,
         geometry: ctx.geometry,
         bvh,
         media: None,
@@ -301,6 +290,26 @@ fn check_extent(ctx: &mut BuildContext, i: usize, shapes: usize, unbounded: usiz
             )
             .help("scene coordinates are 32-bit floats; scale the object or the scene down"),
         );
+    }
+}
+
+/// Whether `pred` holds for a material shape `s` is drawn with (any of a
+/// mesh's, whose triangles take their materials from its instance).
+fn any_material(s: &Shape, geometry: &Geometry, pred: impl Fn(u32) -> bool) -> bool {
+    let instance = |i: u32| {
+        geometry
+            .instances
+            .get(i as usize)
+            .is_some_and(|x| x.materials.iter().any(|&m| pred(m)))
+    };
+    match s {
+        Shape::Sphere(x) => pred(x.material),
+        Shape::Quad(x) => pred(x.material),
+        Shape::Plane(x) => pred(x.material),
+        Shape::Sdf(i) => geometry.sdfs.get(*i as usize).is_some_and(|x| pred(x.material)),
+        Shape::Instance(i) => instance(*i),
+        Shape::Triangle(t) => instance(t.instance),
+        Shape::MeshQuad(q) => instance(q.instance),
     }
 }
 
