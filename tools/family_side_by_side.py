@@ -288,39 +288,43 @@ def main():
             sys.exit(f"ronray failed on {scene}:\n{(p.stdout + p.stderr)[-3000:]}")
         return float(m.group(1))
 
-    rows = []
-    for name, s in scenes(a.big).items():
-        if a.only and name not in a.only:
-            continue
-        scene, js = os.path.join(work, name + ".ron"), os.path.join(work, name + ".json")
-        write_ron(scene, s)
-        with open(js, "w") as f:
-            json.dump(s, f)
-        mitsuba(js, 4, os.path.join(work, "warm.exr"))  # Mitsuba's kernel cache
-        ratios = []
-        for r in range(a.rounds):
-            mt = mitsuba(js, a.spp, os.path.join(work, "mi.exr"))
-            rt = rr(scene, a.spp, os.path.join(work, "rr.exr"))
-            ratios.append(rt / mt)
-            print(f"{name} round {r + 1}: Mitsuba {mt:.2f} s, ronray {rt:.2f} s, {rt / mt:.2f}x", flush=True)
-        ratios.sort()
-        row = [name, f"{ratios[len(ratios) // 2]:.2f}x ({', '.join('%.2f' % x for x in ratios)})"]
+    try:
+        rows = []
+        for name, s in scenes(a.big).items():
+            if a.only and name not in a.only:
+                continue
+            scene, js = os.path.join(work, name + ".ron"), os.path.join(work, name + ".json")
+            write_ron(scene, s)
+            with open(js, "w") as f:
+                json.dump(s, f)
+            mitsuba(js, 4, os.path.join(work, "warm.exr"))  # Mitsuba's kernel cache
+            ratios = []
+            for r in range(a.rounds):
+                mt = mitsuba(js, a.spp, os.path.join(work, "mi.exr"))
+                rt = rr(scene, a.spp, os.path.join(work, "rr.exr"))
+                ratios.append(rt / mt)
+                print(f"{name} round {r + 1}: Mitsuba {mt:.2f} s, ronray {rt:.2f} s, {rt / mt:.2f}x", flush=True)
+            ratios.sort()
+            row = [name, f"{ratios[len(ratios) // 2]:.2f}x ({', '.join('%.2f' % x for x in ratios)})"]
+            if a.check:
+                mitsuba(js, a.check, os.path.join(work, "mi_check.exr"))
+                rr(scene, a.check, os.path.join(work, "rr_check.exr"))
+                p = subprocess.run([py, compare, os.path.join(work, "rr_check.exr"), os.path.join(work, "mi_check.exr")],
+                                   capture_output=True, text=True)
+                if p.returncode != 0:
+                    sys.exit(f"comparing the {name} images failed:\n{p.stderr[-3000:]}")
+                whole, lo, hi, dark, rmse = map(float, p.stdout.split())
+                row += [f"{whole:.4f}", f"{lo:.4f}–{hi:.4f}" + (f" ({dark:.0f} dark left out)" if dark else ""), f"{rmse:.4f}"]
+            rows.append(row)
+        head = ["scene", f"ronray / Mitsuba per sample ({a.spp} spp, {a.rounds} rounds)"]
         if a.check:
-            mitsuba(js, a.check, os.path.join(work, "mi_check.exr"))
-            rr(scene, a.check, os.path.join(work, "rr_check.exr"))
-            p = subprocess.run([py, compare, os.path.join(work, "rr_check.exr"), os.path.join(work, "mi_check.exr")],
-                               capture_output=True, text=True)
-            whole, lo, hi, dark, rmse = map(float, p.stdout.split())
-            row += [f"{whole:.4f}", f"{lo:.4f}–{hi:.4f}" + (f" ({dark:.0f} dark left out)" if dark else ""), f"{rmse:.4f}"]
-        rows.append(row)
-    head = ["scene", f"ronray / Mitsuba per sample ({a.spp} spp, {a.rounds} rounds)"]
-    if a.check:
-        head += [f"mean ratio at {a.check} spp", "4 × 4 blocks' mean ratios", "RMSE"]
-    print("| " + " | ".join(head) + " |")
-    print("|" + "---|" * len(head))
-    for row in rows:
-        print("| " + " | ".join(row) + " |")
-    shutil.rmtree(work, ignore_errors=True)
+            head += [f"mean ratio at {a.check} spp", "4 × 4 blocks' mean ratios", "RMSE"]
+        print("| " + " | ".join(head) + " |")
+        print("|" + "---|" * len(head))
+        for row in rows:
+            print("| " + " | ".join(row) + " |")
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -175,10 +175,10 @@ impl Path {
         let mut hit = Hit::default();
         // Whether the next ray hits, when the previous vertex found it
         // already (see the end of the loop).
-        let mut next: Option<bool> = None;
+        let mut found_ahead: Option<bool> = None;
         loop {
             counters.rays += 1;
-            let found = match (first.take(), next.take()) {
+            let found = match (first.take(), found_ahead.take()) {
                 (Some((found, h)), _) => {
                     if found {
                         hit = *h;
@@ -330,7 +330,7 @@ impl Path {
                 None => false,
             };
             if go_on {
-                next = Some(scene.intersect_into(&st.ray, f32::INFINITY, &mut hit));
+                found_ahead = Some(scene.intersect_into(&st.ray, f32::INFINITY, &mut hit));
             }
             light_sample(&mut l);
             if !go_on {
