@@ -121,7 +121,9 @@ def write_ron(path, s):
     lines = [
         "Scene(",
         f"    camera: (eye: {t3(eye)}, target: {t3(target)}, up: (0, 1, 0), fov_y_degrees: {fov}),",
-        "    film: (width: 256, height: 256, spp: 64, sampler: Independent),",
+        # No sampler: the defaults (`--error` times them); the per-sample
+        # rounds set `Independent` on the command line.
+        "    film: (width: 256, height: 256, spp: 64),",
         "    integrator: Path(max_depth: 8, rr_depth: 5),",
         "    materials: {",
     ]
@@ -227,9 +229,10 @@ mi.set_variant("llvm_ad_rgb")
 dr.set_thread_count(2)
 s = json.load(open(sys.argv[2]))
 spp = int(sys.argv[3])
+seed = int(sys.argv[5]) if len(sys.argv) > 5 else 0
 scene = mi.load_dict(mitsuba_scene(mi, np, s, spp))
 t0 = time.time()
-img = np.array(mi.render(scene, spp=spp), dtype=np.float32)
+img = np.array(mi.render(scene, spp=spp, seed=seed), dtype=np.float32)
 t1 = time.time()
 mi.Bitmap(np.ascontiguousarray(img), mi.Bitmap.PixelFormat.RGB).write(sys.argv[4])
 print(t1 - t0)
@@ -251,6 +254,23 @@ rmse = np.sqrt(((a - b) ** 2).mean())
 print(a.mean() / b.mean(), min(ratios), max(ratios), len(pairs) - len(ratios), rmse)
 """
 
+# The error of two renders against a reference (in Mitsuba's Python): each
+# one's RMSE over the whole image, and over each of 4 x 4 blocks the ratio of
+# the second's mean squared error to the first's (blocks where the first's
+# is nil left out); prints the two RMSEs and the blocks' smallest and
+# largest ratio.
+ERROR_CHILD = r"""
+import sys, numpy as np, mitsuba as mi
+mi.set_variant("scalar_rgb")
+ref, a, b = (np.array(mi.Bitmap(p), dtype=np.float64)[..., :3] for p in sys.argv[1:4])
+ea, eb = ((x - ref) ** 2 for x in (a, b))
+h, w = ref.shape[:2]
+blocks = [(ea[y:y + h // 4, x:x + w // 4].mean(), eb[y:y + h // 4, x:x + w // 4].mean())
+          for y in range(0, h, h // 4) for x in range(0, w, w // 4)]
+ratios = [q / p for p, q in blocks if p > 0]
+print(np.sqrt(ea.mean()), np.sqrt(eb.mean()), min(ratios), max(ratios))
+"""
+
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -258,6 +278,11 @@ def main():
     ap.add_argument("--spp", type=int, default=128)
     ap.add_argument("--check", type=int, default=0, help="also compare images rendered at this many spp")
     ap.add_argument("--big", help="the 1M-triangle OBJ of gen_big_mesh.py (row left out without it)")
+    ap.add_argument("--error", type=int, default=0,
+                    help="also time ronray's defaults to Mitsuba's error at --spp, against a Mitsuba reference of this many spp")
+    ap.add_argument("--defaults-spp", type=int, default=0,
+                    help="ronray's defaults at this many spp for --error (default: --spp / 4, so that their error is about "
+                         "Mitsuba's and the reference's noise is small beside both)")
     ap.add_argument("--only", nargs="*", default=[])
     a = ap.parse_args()
     ronray = os.environ.get("RONRAY", os.path.join(REPO, "target", "release", "ronray"))
@@ -272,17 +297,21 @@ def main():
     compare = os.path.join(work, "compare.py")
     with open(compare, "w") as f:
         f.write(COMPARE_CHILD)
+    error = os.path.join(work, "error.py")
+    with open(error, "w") as f:
+        f.write(ERROR_CHILD)
 
-    def mitsuba(js, spp, out):
-        p = subprocess.run([py, child, here, js, str(spp), out], capture_output=True, text=True)
+    def mitsuba(js, spp, out, seed=0):
+        p = subprocess.run([py, child, here, js, str(spp), out, str(seed)], capture_output=True, text=True)
         if p.returncode != 0:
             sys.exit(f"Mitsuba failed on {js}:\n{p.stderr[-3000:]}")
         return float(p.stdout.split()[-1])
 
-    def rr(scene, spp, out):
+    def rr(scene, spp, out, defaults=False):
+        per_sample = [] if defaults else ["--set", "film.sampler=Independent", "--set", "film.allocation=Even",
+                                          "--set", "integrator.splits=1"]
         p = subprocess.run([ronray, "render", scene, "--spp", str(spp), "--size", "256x256", "--threads", "2",
-                            "--progress", "none", "--set", "film.sampler=Independent", "--set", "film.allocation=Even",
-                            "--set", "integrator.splits=1", "-o", out], capture_output=True, text=True)
+                            "--progress", "none", *per_sample, "-o", out], capture_output=True, text=True)
         m = re.search(r" in ([0-9.]+) s", p.stdout + p.stderr)
         if p.returncode != 0 or not m:
             sys.exit(f"ronray failed on {scene}:\n{(p.stdout + p.stderr)[-3000:]}")
@@ -298,14 +327,35 @@ def main():
             with open(js, "w") as f:
                 json.dump(s, f)
             mitsuba(js, 4, os.path.join(work, "warm.exr"))  # Mitsuba's kernel cache
-            ratios = []
+            ref = os.path.join(work, "ref.exr")
+            if a.error:
+                mitsuba(js, a.error, ref, seed=1)
+            ratios, to_error, worst = [], [], []
             for r in range(a.rounds):
                 mt = mitsuba(js, a.spp, os.path.join(work, "mi.exr"))
                 rt = rr(scene, a.spp, os.path.join(work, "rr.exr"))
                 ratios.append(rt / mt)
-                print(f"{name} round {r + 1}: Mitsuba {mt:.2f} s, ronray {rt:.2f} s, {rt / mt:.2f}x", flush=True)
+                line = f"{name} round {r + 1}: Mitsuba {mt:.2f} s, ronray {rt:.2f} s, {rt / mt:.2f}x"
+                if a.error:
+                    # ronray's defaults at the same count, scaled to Mitsuba's
+                    # error (error ∝ 1/√time): time × (RMSE / Mitsuba's)².
+                    dt = rr(scene, a.defaults_spp or max(a.spp // 4, 1), os.path.join(work, "rd.exr"), defaults=True)
+                    p = subprocess.run([py, error, ref, os.path.join(work, "mi.exr"), os.path.join(work, "rd.exr")],
+                                       capture_output=True, text=True)
+                    if p.returncode != 0:
+                        sys.exit(f"measuring the {name} errors failed:\n{p.stderr[-3000:]}")
+                    em, ed, _, hi = map(float, p.stdout.split())
+                    to_error.append(dt * (ed / em) ** 2 / mt)
+                    # The worst block, at equal time: its squared error × time.
+                    worst.append(hi * dt / mt)
+                    line += f"; defaults {dt:.2f} s, RMSE {ed:.4f} vs {em:.4f}: {to_error[-1]:.2f}x to error"
+                print(line, flush=True)
             ratios.sort()
             row = [name, f"{ratios[len(ratios) // 2]:.2f}x ({', '.join('%.2f' % x for x in ratios)})"]
+            if a.error:
+                to_error.sort()
+                worst.sort()
+                row += [f"{to_error[len(to_error) // 2]:.2f}x", f"{worst[len(worst) // 2]:.2f}x"]
             if a.check:
                 mitsuba(js, a.check, os.path.join(work, "mi_check.exr"))
                 rr(scene, a.check, os.path.join(work, "rr_check.exr"))
@@ -317,6 +367,8 @@ def main():
                 row += [f"{whole:.4f}", f"{lo:.4f}–{hi:.4f}" + (f" ({dark:.0f} dark left out)" if dark else ""), f"{rmse:.4f}"]
             rows.append(row)
         head = ["scene", f"ronray / Mitsuba per sample ({a.spp} spp, {a.rounds} rounds)"]
+        if a.error:
+            head += [f"defaults' time to Mitsuba's {a.spp}-spp error / Mitsuba's", "worst 4 × 4 block, MSE × time"]
         if a.check:
             head += [f"mean ratio at {a.check} spp", "4 × 4 blocks' mean ratios", "RMSE"]
         print("| " + " | ".join(head) + " |")
