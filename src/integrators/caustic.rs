@@ -50,9 +50,11 @@
 //! tracer on those paths, but they are only 14% of the variance and the
 //! shadow rays cost 30–60% more time, so it lost overall.
 //!
-//! Emitted from: rectangles and parallelograms (one- or two-sided) and
-//! one-sided emissive spheres. Caustics of other lights (meshes, SDFs, the
-//! sky) stay with the path tracer, as before.
+//! Emitted from: rectangles and parallelograms (one- or two-sided),
+//! one-sided emissive spheres and a sky with an image (a parallel beam
+//! through a specular object's bounding sphere: `lights/caustic.rs`).
+//! Caustics of other lights (meshes, SDFs, a constant sky) stay with the
+//! path tracer, as before.
 
 use super::{Counters, light_point_error, offset_origin, spawn};
 use crate::camera::Camera;
@@ -107,9 +109,15 @@ pub fn trace(
     let u_point = sampler.next_vec2();
     let u_dir = sampler.next_vec2();
     let u_cone = sampler.next_f32();
+    let light = &scene.lights[li as usize];
+    if let Some(env) = light.as_environment().filter(|_| em.is_sky(li)) {
+        // From the sky: a parallel beam through a target's disk.
+        let (o, d, flux) = em.sky_start(env, pmf, u_dir, u_cone, u_point)?;
+        return follow(scene, Ray::new(o, d), flux, max_chain, sampler, counters);
+    }
     // A point, its emitting normal, L_e / (pmf · p_A), and whether the back
     // emits too.
-    let LightOrigin { p, n, le, two_sided } = scene.lights[li as usize].caustic_origin(u_point, pmf)?;
+    let LightOrigin { p, n, le, two_sided } = light.caustic_origin(u_point, pmf)?;
     // A direction and its density: toward the specular objects' bounding
     // spheres when they can be aimed at from here, else cosine-weighted.
     let (d, pdf) = match em.aim(p, u_cone, u_dir) {
@@ -128,12 +136,26 @@ pub fn trace(
     if !(cos_l > 0.0 && pdf > 0.0) {
         return None;
     }
-    let mut flux = le * (cos_l / pdf);
+    let flux = le * (cos_l / pdf);
+    let side = if d.dot(n) >= 0.0 { n } else { -n };
+    let ray = Ray::new(offset_origin(p, side, light_point_error(p, side), d), d);
+    follow(scene, ray, flux, max_chain, sampler, counters)
+}
+
+/// Follows a light path leaving along `ray` with flux weight `flux` through
+/// perfect-specular surfaces: its end y when one to `max_chain` of them lead
+/// to a surface that is not one.
+fn follow(
+    scene: &Scene,
+    mut ray: Ray,
+    mut flux: Rgb,
+    max_chain: u32,
+    sampler: &mut Sampler,
+    counters: &mut Counters,
+) -> Option<LightVertex> {
     if !flux.is_finite() || flux == Rgb::ZERO {
         return None;
     }
-    let side = if d.dot(n) >= 0.0 { n } else { -n };
-    let mut ray = Ray::new(offset_origin(p, side, light_point_error(p, side), d), d);
     let mut chain = 0u32;
     loop {
         counters.rays += 1;

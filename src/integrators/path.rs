@@ -204,6 +204,7 @@ impl Path {
                             l += st.beta * le * w;
                         }
                     }
+                    Some((i, _)) if self.theirs(scene, &st, split, max_chain, i) => {}
                     _ => {
                         let le = escaped(scene, st.ray.d, st.segments == 0);
                         if le != Rgb::ZERO {
@@ -220,10 +221,11 @@ impl Path {
                 let le = emitted(scene, &hit, st.ray.d);
                 if le != Rgb::ZERO {
                     let w = if st.prev_delta {
-                        let theirs = st.traced
-                            && (1..=max_chain).contains(&st.chain)
-                            && scene.caustics.as_ref().is_some_and(|c| c.covers(hit.light));
-                        if theirs { 0.0 } else { 1.0 }
+                        if self.theirs(scene, &st, split, max_chain, hit.light) {
+                            0.0
+                        } else {
+                            1.0
+                        }
                     } else {
                         let light = &scene.lights[hit.light as usize];
                         let light_pdf =
@@ -339,6 +341,19 @@ impl Path {
             prev_top = top;
         }
         l
+    }
+
+    /// Whether light `light`, reached by `st`'s last ray after a delta
+    /// vertex, is the caustic light tracer's to count (`super::caustic`):
+    /// the path's last non-delta vertex was seen from the camera and left by
+    /// a non-delta sample, one to `max_chain` perfect-specular vertices
+    /// since, and the tracer emits from that light.
+    #[inline]
+    fn theirs(&self, scene: &Scene, st: &State, split: bool, max_chain: u32, light: u32) -> bool {
+        split
+            && st.traced
+            && (1..=max_chain).contains(&st.chain)
+            && scene.caustics.as_ref().is_some_and(|c| c.covers(light))
     }
 
     /// Moves `st` across the vertex at `hit` along `bs` (throughput, MIS

@@ -1,12 +1,31 @@
 //! Where the caustic light tracer (`crate::integrators::caustic`) emits
-//! from and aims at: the rectangle and sphere lights, chosen by power, and
-//! the bounding spheres of the perfect mirrors and smooth glass.
+//! from and aims at: the rectangle and sphere lights and a sky map, chosen
+//! by power, and the bounding spheres of the perfect mirrors and smooth
+//! glass.
+//!
+//! # The sky
+//! A sky map's sun focused by a glass ball onto the ground is the same
+//! caustic as a lamp's, and as rare for the path tracer (a floor's BSDF
+//! sample must leave through the glass onto a sun a few pixels wide). A
+//! light path from the sky ([`CausticEmitters::sky_start`]) takes a direction
+//! by the sky's own importance sampling, density `p(ω)`, then a point of the
+//! plane across it: uniform on the disk, across `ω`, of one target's bounding
+//! sphere, the sphere chosen in proportion to its disk's area, so that the
+//! point's density is `n / (π Σ r²)` with `n` the disks that hold it. The
+//! ray starts there, moved back toward the sky to outside the scene's
+//! bounds, and travels along `−ω`: every ray from the sky that can meet a
+//! perfect-specular object is drawn (it crosses that object's bounding
+//! sphere, so its point lies in that sphere's disk). Its flux weight is
+//! `L(ω) / (pmf · p(ω) · p(x))` (a parallel beam: `dΦ = L dA⊥ dω`). Only a
+//! sky with an image is traced from: a constant sky's caustics are as soft
+//! as the sky and the path tracer finds them well.
 
-use super::{Light, sphere_cone};
+use super::{EnvironmentLight, Light, sphere_cone};
 use crate::accel::Aabb;
 use crate::geometry::{Geometry, Shape};
 use crate::math::trig::sin_cos_turns;
-use crate::math::{Frame, luminance};
+use crate::math::{Frame, Rgb, luminance};
+use crate::sampler::Draw;
 use glam::{Vec2, Vec3A};
 use std::collections::HashMap;
 use std::f32::consts::PI;
@@ -25,6 +44,10 @@ pub struct CausticEmitters {
     /// at most [`MAX_CONES`]; empty when one is unbounded (a mirror plane):
     /// then emission is cosine-weighted.
     targets: Vec<(Vec3A, f32)>,
+    /// The sky when it is emitted from (module docs): its light index, and
+    /// the centre and radius of a sphere around every bounded shape (its
+    /// light paths start outside it).
+    sky: Option<(u32, Vec3A, f32)>,
 }
 
 impl CausticEmitters {
@@ -32,21 +55,34 @@ impl CausticEmitters {
     /// matter: no surface is a perfect mirror or smooth glass (`targets` is
     /// empty), or no light is one this module emits from. `targets` is
     /// `None` when a specular surface is unbounded ([`specular_targets`]).
-    pub fn new(lights: &[Light], targets: Option<Vec<(Vec3A, f32)>>) -> Option<Self> {
+    /// `bounds` holds every bounded shape: the sky's light paths start
+    /// outside it (the sky is emitted from only when it has an image, the
+    /// bounds are finite and the targets bounded).
+    pub fn new(lights: &[Light], targets: Option<Vec<(Vec3A, f32)>>, bounds: Aabb) -> Option<Self> {
         let targets = match targets {
             Some(t) if t.is_empty() => return None,
             Some(t) => t,
             None => Vec::new(),
         };
+        let (centre, radius) = (bounds.centroid(), 0.5 * (bounds.max - bounds.min).length());
+        // What the sky sends through the targets' disks, π Σ r² ∫L dω: its
+        // power as the light tracer sees it.
+        let disks: f32 = targets.iter().map(|(_, r)| PI * r * r).sum();
+        let sky_traced = !targets.is_empty() && centre.is_finite() && radius.is_finite() && disks.is_finite();
+        let mut sky = None;
         let mut pmf: Vec<f32> = lights
             .iter()
-            // Each light says whether it is traced from (`LightModel::emits_caustics`).
-            .map(|l| {
-                if l.emits_caustics() {
-                    luminance(l.power()).max(0.0)
-                } else {
-                    0.0
+            .enumerate()
+            // Each light says whether it is traced from
+            // (`LightModel::emits_caustics`); the first sky with an image
+            // is, through the targets.
+            .map(|(i, l)| match l.as_environment() {
+                Some(e) if sky_traced && sky.is_none() && e.map().is_some() => {
+                    sky = Some((i as u32, centre, radius));
+                    disks * luminance(e.radiance_integral()).max(0.0)
                 }
+                _ if l.emits_caustics() => luminance(l.power()).max(0.0),
+                _ => 0.0,
             })
             .map(|p| if p.is_finite() { p } else { 0.0 })
             .collect();
@@ -69,12 +105,69 @@ impl CausticEmitters {
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
+        let sky = sky.filter(|s| pmf[s.0 as usize] > 0.0);
         Some(Self {
             lights: indices,
             cdf,
             pmf,
             targets,
+            sky,
         })
+    }
+
+    /// Whether light `i` is the sky, emitted from ([`Self::sky_start`]).
+    #[inline]
+    pub fn is_sky(&self, i: u32) -> bool {
+        self.sky.is_some_and(|s| s.0 == i)
+    }
+
+    /// The start of a light path from the sky `env` (picked with
+    /// probability `pmf`; module docs): the ray's origin outside the scene,
+    /// its direction of travel, and its flux weight `L(ω) / (pmf · p(ω) ·
+    /// p(x))`. `u_dir` draws the direction, `u_disk` the point, `u_pick`
+    /// the target. `None` where the sky sends nothing that way.
+    pub fn sky_start(
+        &self,
+        env: &EnvironmentLight,
+        pmf: f32,
+        u_dir: Vec2,
+        u_pick: f32,
+        u_disk: Vec2,
+    ) -> Option<(Vec3A, Vec3A, Rgb)> {
+        let (_, centre, radius) = self.sky?;
+        let s = env.sample(centre, Vec3A::ZERO, u_dir, Draw::Independent)?;
+        let w = s.wi;
+        if !(s.pdf > 0.0 && s.li != Rgb::ZERO) {
+            return None;
+        }
+        // A target by its disk's area, then a point uniform on the disk.
+        let total: f32 = self.targets.iter().map(|(_, r)| r * r).sum();
+        let mut acc = 0.0;
+        let k = self
+            .targets
+            .iter()
+            .position(|(_, r)| {
+                acc += r * r;
+                acc > u_pick * total
+            })
+            .unwrap_or(self.targets.len() - 1);
+        let (c, r) = self.targets[k];
+        let frame = Frame::from_normal(w);
+        let (sin_p, cos_p) = sin_cos_turns(u_disk.y);
+        let q = c + frame.to_world(Vec3A::new(cos_p, sin_p, 0.0) * (r * u_disk.x.sqrt()));
+        // The disks that hold the ray: its distance to each centre's line
+        // along ω within that radius.
+        let holds = |(c, r): &(Vec3A, f32)| {
+            let v = *c - q;
+            (v - v.dot(w) * w).length_squared() <= r * r * (1.0 + 1e-5)
+        };
+        let n = self.targets.iter().filter(|t| holds(t)).count().max(1);
+        let p_x = n as f32 / (PI * total);
+        // Outside the scene's sphere: |o − centre| ≥ t − |q − centre| ≥ radius.
+        let t = 1.01 * (radius + (q - centre).length()) + 1e-3;
+        let o = q + t * w;
+        let flux = s.li / (pmf * s.pdf * p_x);
+        (o.is_finite() && flux.is_finite()).then_some((o, -w, flux))
     }
 
     /// Whether light `i` is emitted from (its caustic paths seen directly
@@ -243,6 +336,70 @@ mod tests {
         );
         // From inside a target there is no cone: emission is cosine-weighted.
         assert!(aim(&targets, Vec3A::new(0.0, 0.0, -3.0), 0.5, Vec2::splat(0.5)).is_none());
+    }
+
+    /// A 64 × 32 sky: a dim gradient and a bright 3 × 2-pixel sun.
+    fn sky() -> EnvironmentLight {
+        let (w, h) = (64u32, 32u32);
+        let mut rgb = Vec::new();
+        for j in 0..h {
+            for i in 0..w {
+                let sun = (20..23).contains(&i) && (9..11).contains(&j);
+                let l = if sun {
+                    400.0
+                } else {
+                    0.2 + 0.8 * j as f32 / h as f32
+                };
+                rgb.extend_from_slice(&[l, 0.7 * l, 0.4 * l]);
+            }
+        }
+        EnvironmentLight::from_map(crate::lights::EnvMap::from_rgb(w, h, &rgb), 1.5, 30.0)
+    }
+
+    #[test]
+    fn sky_beams_carry_what_the_sky_sends_through_the_targets() {
+        // E[flux] of `sky_start` is ∫ L(ω) A(ω) dω, A(ω) the area of the
+        // union of the targets' disks across ω. One sphere: π r² ∫L dω.
+        // Two concentric spheres: the larger's disk is the union, so the
+        // smaller's points, which both disks hold, must count twice in the
+        // density (and a point counted once too often would bias it).
+        let env = sky();
+        let lights = [Light::Environment(Box::new(env.clone()))];
+        let bounds = Aabb::from_points(&[Vec3A::splat(-3.0), Vec3A::splat(3.0)]);
+        let c = Vec3A::new(0.3, -0.2, 0.5);
+        for (targets, area) in [(vec![(c, 0.7)], PI * 0.49), (vec![(c, 0.4), (c, 0.9)], PI * 0.81)] {
+            let em = CausticEmitters::new(&lights, Some(targets.clone()), bounds).expect("a sky to trace");
+            assert!(em.is_sky(0));
+            let mut rng = Pcg32::new(5, 3);
+            let n = 200_000;
+            let mut sum = [0.0f64; 3];
+            for _ in 0..n {
+                let mut u = || rng.next_f32();
+                let (u_dir, u_pick, u_disk) = (Vec2::new(u(), u()), u(), Vec2::new(u(), u()));
+                let Some((o, d, flux)) = em.sky_start(&env, 1.0, u_dir, u_pick, u_disk) else {
+                    continue;
+                };
+                // The beam starts outside the scene and crosses a target.
+                let inside = o.cmpge(bounds.min).all() && o.cmple(bounds.max).all();
+                assert!(!inside, "origin {o} inside the scene");
+                assert!(targets.iter().any(|(tc, r)| {
+                    let v = *tc - o;
+                    (v - v.dot(d) * d).length() <= r * 1.0001
+                }));
+                for (s, f) in sum.iter_mut().zip(flux.to_array()) {
+                    *s += f as f64;
+                }
+            }
+            let want = env.radiance_integral() * area;
+            for (s, w) in sum.iter().zip(want.to_array()) {
+                let got = s / n as f64;
+                assert!((got - w as f64).abs() < 0.02 * w as f64, "flux {got} vs {w}");
+            }
+        }
+        // No sky image (a constant sky) or no bounded target: no sky beams.
+        let constant = [Light::Environment(Box::new(EnvironmentLight::constant(Rgb::ONE)))];
+        assert!(CausticEmitters::new(&constant, Some(vec![(c, 0.5)]), bounds).is_none());
+        assert!(CausticEmitters::new(&lights, None, bounds).is_none());
     }
 
     #[test]

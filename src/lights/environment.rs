@@ -279,6 +279,12 @@ impl EnvironmentLight {
         (le, pdf)
     }
 
+    /// `∫ L dω` over the sphere, W/m² per channel: what the sky sends
+    /// through a unit area facing it, summed over every way it faces.
+    pub fn radiance_integral(&self) -> Rgb {
+        self.radiant_exitance
+    }
+
     /// Power for light selection: the flux through the scene's bounding disk,
     /// π·R²·∫L dω (pbrt-v4's `ImageInfiniteLight::Phi`), W per channel.
     pub fn power(&self) -> Rgb {

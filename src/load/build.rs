@@ -215,7 +215,7 @@ pub fn build_in(
     let targets = caustic::specular_targets(&shapes, &objects, &ctx.geometry, |s| {
         any_material(s, &ctx.geometry, is_delta)
     });
-    let caustics = CausticEmitters::new(&ctx.lights, targets);
+    let caustics = CausticEmitters::new(&ctx.lights, targets, bvh.bounds());
     // Only scenes with a normal map, bump map or cut-out pay for them.
     if surfaces.iter().all(crate::materials::Surface::is_plain) {
         surfaces.clear();
