@@ -45,9 +45,8 @@ pub struct CausticEmitters {
     /// then emission is cosine-weighted.
     targets: Vec<(Vec3A, f32)>,
     /// The sky when it is emitted from (module docs): its light index, and
-    /// the centre and radius of a sphere around every bounded shape (its
-    /// light paths start outside it).
-    sky: Option<(u32, Vec3A, f32)>,
+    /// a box around every bounded shape (its light paths start outside it).
+    sky: Option<(u32, Aabb)>,
 }
 
 impl CausticEmitters {
@@ -64,11 +63,13 @@ impl CausticEmitters {
             Some(t) => t,
             None => Vec::new(),
         };
-        let (centre, radius) = (bounds.centroid(), 0.5 * (bounds.max - bounds.min).length());
         // What the sky sends through the targets' disks, π Σ r² ∫L dω: its
         // power as the light tracer sees it.
         let disks: f32 = targets.iter().map(|(_, r)| PI * r * r).sum();
-        let sky_traced = !targets.is_empty() && centre.is_finite() && radius.is_finite() && disks.is_finite();
+        let finite = bounds.min.is_finite()
+            && bounds.max.is_finite()
+            && (bounds.max - bounds.min).length().is_finite();
+        let sky_traced = !targets.is_empty() && finite && disks.is_finite();
         let mut sky = None;
         let mut pmf: Vec<f32> = lights
             .iter()
@@ -78,7 +79,7 @@ impl CausticEmitters {
             // is, through the targets.
             .map(|(i, l)| match l.as_environment() {
                 Some(e) if sky_traced && sky.is_none() && e.map().is_some() => {
-                    sky = Some((i as u32, centre, radius));
+                    sky = Some((i as u32, bounds));
                     disks * luminance(e.radiance_integral()).max(0.0)
                 }
                 _ if l.emits_caustics() => luminance(l.power()).max(0.0),
@@ -134,8 +135,8 @@ impl CausticEmitters {
         u_pick: f32,
         u_disk: Vec2,
     ) -> Option<(Vec3A, Vec3A, Rgb)> {
-        let (_, centre, radius) = self.sky?;
-        let s = env.sample(centre, Vec3A::ZERO, u_dir, Draw::Independent)?;
+        let (_, bounds) = self.sky?;
+        let s = env.sample(bounds.centroid(), Vec3A::ZERO, u_dir, Draw::Independent)?;
         let w = s.wi;
         if !(s.pdf > 0.0 && s.li != Rgb::ZERO) {
             return None;
@@ -163,9 +164,18 @@ impl CausticEmitters {
         };
         let n = self.targets.iter().filter(|t| holds(t)).count().max(1);
         let p_x = n as f32 / (PI * total);
-        // Outside the scene's sphere: |o − centre| ≥ t − |q − centre| ≥ radius.
-        let t = 1.01 * (radius + (q - centre).length()) + 1e-3;
-        let o = q + t * w;
+        // Just past where the line leaves the scene's box toward the sky, not
+        // farther: an origin twice the scene's size away would blur the
+        // caustic of a small ball on a large floor (f32 positions).
+        let mut t_exit = f32::INFINITY;
+        for a in 0..3 {
+            if w[a].abs() > 1e-12 {
+                let (t0, t1) = ((bounds.min[a] - q[a]) / w[a], (bounds.max[a] - q[a]) / w[a]);
+                t_exit = t_exit.min(t0.max(t1));
+            }
+        }
+        let margin = 1e-4 * (1.0 + (bounds.max - bounds.min).length());
+        let o = q + (t_exit.max(0.0) * (1.0 + 1e-4) + margin) * w;
         let flux = s.li / (pmf * s.pdf * p_x);
         (o.is_finite() && flux.is_finite()).then_some((o, -w, flux))
     }
