@@ -110,6 +110,9 @@ pub struct Plan {
     /// True when a whole frame would light trace its caustics and this
     /// piece path traces them: the assembled frame is not `render`'s bytes.
     pub light_trace_skipped: bool,
+    /// True when the skipped light tracing would have drawn a point or spot
+    /// light's caustics, which the path tracer cannot find.
+    pub point_caustics_skipped: bool,
 }
 
 /// A request the view cannot honour.
@@ -231,6 +234,12 @@ impl Plan {
             denoise: image && denoise,
             adaptive_ignored: f.adaptive.is_some() && !matches!(sampling, Sampling::Adaptive(_)),
             light_trace_skipped: piece && traced.is_some(),
+            point_caustics_skipped: piece
+                && traced.is_some()
+                && scene
+                    .caustics
+                    .as_ref()
+                    .is_some_and(|c| c.from_points(&scene.lights)),
         }
     }
 
@@ -246,7 +255,11 @@ impl Plan {
                 "film.noise_threshold is ignored for pieces: their exact sums add up across machines only when every pixel takes every sample; the assembled frame is not what `render` writes".to_string(),
             );
         }
-        if self.light_trace_skipped {
+        if self.point_caustics_skipped {
+            notes.push(
+                "this scene's caustics are light traced in a whole render and path traced in pieces, and the path tracer cannot find a point or spot light's: the assembled frame lacks them; `integrator: Path(caustics: PathOnly)` leaves them out of whole renders too".to_string(),
+            );
+        } else if self.light_trace_skipped {
             notes.push(
                 "this scene's caustics are light traced in a whole render and path traced in pieces: the assembled frame has the same expected value but not the bytes `render` writes".to_string(),
             );

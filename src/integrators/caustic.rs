@@ -51,17 +51,20 @@
 //! shadow rays cost 30–60% more time, so it lost overall.
 //!
 //! Emitted from: rectangles and parallelograms (one- or two-sided),
-//! one-sided emissive spheres and a sky with an image (a parallel beam
-//! through a specular object's bounding sphere: `lights/caustic.rs`).
-//! Caustics of other lights (meshes, SDFs, a constant sky) stay with the
-//! path tracer, as before.
+//! one-sided emissive spheres, a sky with an image (a parallel beam
+//! through a specular object's bounding sphere: `lights/caustic.rs`), and
+//! point and spot lights. A point or spot light's caustics are found by
+//! nothing else: a BSDF sample never reaches a point, so without the light
+//! tracer a glass ball under a point light casts a black shadow (as in
+//! pbrt-v4's and Mitsuba 3's path tracers). Caustics of other lights
+//! (meshes, SDFs, a constant sky) stay with the path tracer, as before.
 
 use super::{Counters, light_point_error, offset_origin, spawn};
 use crate::camera::Camera;
 use crate::geometry::Hit;
 use crate::lights::{CausticEmitters, LightOrigin};
 use crate::materials::Bxdf;
-use crate::math::sampling::cosine_hemisphere;
+use crate::math::sampling::{UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_sphere};
 use crate::math::{Frame, Ray, Rgb};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -114,6 +117,15 @@ pub fn trace(
         // From the sky: a parallel beam through a target's disk.
         let (o, d, flux) = em.sky_start(env, pmf, u_dir, u_cone, u_point)?;
         return follow(scene, Ray::new(o, d), flux, max_chain, sampler, counters);
+    }
+    if let Some(p) = light.point_source() {
+        // A point or spot light: a direction toward the targets (over the
+        // sphere when they cannot be aimed at), flux I(ω) / (pmf · p(ω)).
+        let (d, pdf) = em
+            .aim(p, u_cone, u_dir)
+            .unwrap_or_else(|| (uniform_sphere(u_dir), UNIFORM_SPHERE_PDF));
+        let flux = light.intensity_toward(d) / (pmf * pdf);
+        return follow(scene, Ray::new(p, d), flux, max_chain, sampler, counters);
     }
     // A point, its emitting normal, L_e / (pmf · p_A), and whether the back
     // emits too.

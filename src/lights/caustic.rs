@@ -116,6 +116,15 @@ impl CausticEmitters {
         })
     }
 
+    /// Whether a point or spot light of `lights` (the scene's, these
+    /// emitters were built from) is emitted from: its caustics are found by
+    /// nothing but the light tracer.
+    pub fn from_points(&self, lights: &[Light]) -> bool {
+        self.lights
+            .iter()
+            .any(|&i| lights.get(i as usize).is_some_and(|l| l.point_source().is_some()))
+    }
+
     /// Whether light `i` is the sky, emitted from ([`Self::sky_start`]).
     #[inline]
     pub fn is_sky(&self, i: u32) -> bool {

@@ -232,6 +232,27 @@ impl Light {
         }
     }
 
+    /// Where a light without area (point, spot) sits; `None` for the others.
+    #[inline]
+    pub fn point_source(&self) -> Option<Vec3A> {
+        match self {
+            Light::Point(l) => Some(l.position),
+            Light::Spot(l) => Some(l.position),
+            _ => None,
+        }
+    }
+
+    /// Radiant intensity (W/sr) a point or spot light sends along unit
+    /// direction `d`; zero for lights with area and the sky.
+    #[inline]
+    pub fn intensity_toward(&self, d: Vec3A) -> Rgb {
+        match self {
+            Light::Point(l) => l.intensity,
+            Light::Spot(l) => l.intensity * l.falloff(d.dot(l.direction)),
+            _ => Rgb::ZERO,
+        }
+    }
+
     /// True for lights without area (point, spot): sampled exactly, never hit by
     /// rays.
     #[inline]

@@ -58,4 +58,10 @@ impl LightModel for PointLight {
     fn is_delta(&self) -> bool {
         true
     }
+    /// Its caustics are light traced from its position
+    /// (`integrators/caustic.rs`): the path tracer can never find them (no
+    /// BSDF sample reaches a point).
+    fn emits_caustics(&self) -> bool {
+        true
+    }
 }
