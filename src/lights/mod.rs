@@ -238,7 +238,9 @@ impl Light {
         match self {
             Light::Point(l) => Some(l.position),
             Light::Spot(l) => Some(l.position),
-            _ => None,
+            Light::Quad(_) | Light::Sphere(_) | Light::Mesh(_) | Light::Sdf(_) | Light::Environment(_) => {
+                None
+            }
         }
     }
 
@@ -249,7 +251,9 @@ impl Light {
         match self {
             Light::Point(l) => l.intensity,
             Light::Spot(l) => l.intensity * l.falloff(d.dot(l.direction)),
-            _ => Rgb::ZERO,
+            Light::Quad(_) | Light::Sphere(_) | Light::Mesh(_) | Light::Sdf(_) | Light::Environment(_) => {
+                Rgb::ZERO
+            }
         }
     }
 
