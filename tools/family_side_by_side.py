@@ -24,7 +24,14 @@ Needs a release build of ronray (or RONRAY=path) and a Python with the
 `mitsuba` package (run this script with it, or MITSUBA_PYTHON=...);
 Mitsuba's LLVM backend may need DRJIT_LIBLLVM_PATH (see side_by_side.sh).
 
-Usage: family_side_by_side.py [--rounds N] [--spp N] [--check SPP] [--big OBJ] [--only NAME ...]
+With `--error REF_SPP` each round also renders ronray's defaults (at
+`--defaults-spp`, default `--spp / 4`) and measures both renderers' RMSE
+against a Mitsuba reference of REF_SPP samples: the defaults' time scaled to
+Mitsuba's error over Mitsuba's time, and the worst 4 × 4 block's squared
+error × time over Mitsuba's.
+
+Usage: family_side_by_side.py [--rounds N] [--spp N] [--check SPP] [--error REF_SPP] [--defaults-spp N]
+                              [--big OBJ] [--only NAME ...]
 """
 import argparse
 import json
@@ -337,7 +344,7 @@ def main():
                 ratios.append(rt / mt)
                 line = f"{name} round {r + 1}: Mitsuba {mt:.2f} s, ronray {rt:.2f} s, {rt / mt:.2f}x"
                 if a.error:
-                    # ronray's defaults at the same count, scaled to Mitsuba's
+                    # ronray's defaults at --defaults-spp, scaled to Mitsuba's
                     # error (error ∝ 1/√time): time × (RMSE / Mitsuba's)².
                     dt = rr(scene, a.defaults_spp or max(a.spp // 4, 1), os.path.join(work, "rd.exr"), defaults=True)
                     p = subprocess.run([py, error, ref, os.path.join(work, "mi.exr"), os.path.join(work, "rd.exr")],
