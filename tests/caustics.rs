@@ -77,23 +77,30 @@ fn keeps_the_image(extra: &str) {
     let split = load_text(&glass_scene(&film(1024, 4), extra));
     assert!(Plan::whole(&split.scene, &split.view).light_trace.is_some());
     let (img, _) = render_whole(&split.scene, &split.view, &threads(2));
-    let (a, b) = (blocks(&truth.pixels, w, w), blocks(&img.pixels, w, w));
-    report(&format!(
-        "caustic box 24x24 ({extra}): mean path tracer alone {:.5}, split {:.5}",
-        a[0], b[0]
-    ));
+    same_image(
+        &truth.pixels,
+        &img.pixels,
+        w,
+        &format!("caustic box 24x24 ({extra})"),
+    );
+}
+
+/// Asserts that `img` (a `w`-pixel-wide render) is `truth` in expectation:
+/// the whole image's mean within 1%, each quadrant's within 3%; reports
+/// both as `what`.
+fn same_image(truth: &[ronray::math::Rgb], img: &[ronray::math::Rgb], w: usize, what: &str) {
+    let (a, b) = (blocks(truth, w, w), blocks(img, w, w));
+    report(&format!("{what}: whole {:.5} (truth), {:.5}", a[0], b[0]));
     assert!(
         (a[0] - b[0]).abs() < 0.01 * a[0],
-        "whole image {} vs {}",
+        "{what}: whole image {} vs {}",
         b[0],
         a[0]
     );
-    let (qa, qb) = (blocks(&truth.pixels, w, w / 2), blocks(&img.pixels, w, w / 2));
+    let (qa, qb) = (blocks(truth, w, w / 2), blocks(img, w, w / 2));
     for (k, (x, y)) in qa.iter().zip(&qb).enumerate() {
-        assert!(
-            (x - y).abs() < 0.03 * x,
-            "quadrant {k}: split {y} vs path tracer alone {x}"
-        );
+        report(&format!("{what}: quadrant {k} {x:.5} (truth), {y:.5}"));
+        assert!((x - y).abs() < 0.03 * x, "{what}: quadrant {k}: {y} vs {x}");
     }
 }
 
@@ -187,25 +194,12 @@ fn light_traced_sky_caustics_keep_the_image_region_by_region() {
     let split = load_text(&sky_scene(&film(1024, 4), ""));
     assert!(Plan::whole(&split.scene, &split.view).light_trace.is_some());
     let (img, _) = render_whole(&split.scene, &split.view, &threads(2));
-    let (a, b) = (blocks(&truth.pixels, w, w), blocks(&img.pixels, w, w));
-    report(&format!(
-        "sky caustics 24x24: mean path tracer alone {:.5}, split {:.5}",
-        a[0], b[0]
-    ));
-    assert!(
-        (a[0] - b[0]).abs() < 0.01 * a[0],
-        "whole image {} vs {}",
-        b[0],
-        a[0]
+    same_image(
+        &truth.pixels,
+        &img.pixels,
+        w,
+        "sky caustics 24x24, path tracer alone vs split",
     );
-    let (qa, qb) = (blocks(&truth.pixels, w, w / 2), blocks(&img.pixels, w, w / 2));
-    for (k, (x, y)) in qa.iter().zip(&qb).enumerate() {
-        report(&format!("sky caustics quadrant {k}: alone {x:.5}, split {y:.5}"));
-        assert!(
-            (x - y).abs() < 0.03 * x,
-            "quadrant {k}: split {y} vs path tracer alone {x}"
-        );
-    }
 }
 
 #[test]
@@ -313,25 +307,7 @@ fn a_point_lights_caustic_is_that_of_a_tiny_sphere_light() {
         render_whole(&sphere.scene, &sphere.view, &threads(2)).0,
         render_whole(&point.scene, &point.view, &threads(2)).0,
     );
-    let (wa, wb) = (blocks(&a.pixels, w, w), blocks(&b.pixels, w, w));
-    report(&format!(
-        "point vs tiny sphere light: whole {:.5} vs {:.5}",
-        wb[0], wa[0]
-    ));
-    assert!(
-        (wa[0] - wb[0]).abs() < 0.01 * wa[0],
-        "whole image {} vs {}",
-        wb[0],
-        wa[0]
-    );
-    let (qa, qb) = (blocks(&a.pixels, w, w / 2), blocks(&b.pixels, w, w / 2));
-    for (k, (x, y)) in qa.iter().zip(&qb).enumerate() {
-        report(&format!("point vs tiny sphere quadrant {k}: {y:.5} vs {x:.5}"));
-        assert!(
-            (x - y).abs() < 0.03 * x,
-            "quadrant {k}: point light {y} vs sphere light {x}"
-        );
-    }
+    same_image(&a.pixels, &b.pixels, w, "tiny sphere light vs point light");
 }
 
 #[test]
