@@ -24,6 +24,7 @@ mod bad_values;
 mod baked_patterns;
 mod bvh_bunny;
 mod cameras;
+mod caustic_family;
 mod caustics;
 mod check;
 mod claims;
