@@ -10,7 +10,9 @@
 #    are used: the bench's timings are single runs.
 # 3. Rounds, alternating per scene: Mitsuba 256 spp; ronray `Independent`,
 #    256 spp in every pixel (`allocation: Even`), one path per camera sample
-#    (`splits: 1`), for the per-sample ratio;
+#    (`splits: 1`) and no light-traced caustics (`caustics: PathOnly`:
+#    Mitsuba's `path` has none; PER_SAMPLE_CAUSTICS=LightTracing times
+#    ronray's with them), for the per-sample ratio: the same algorithm;
 #    ronray's defaults at the sample count of step 2, timed and measured
 #    against the reference (so the table shows that the timed render does
 #    reach Mitsuba's error).
@@ -47,6 +49,7 @@ py="${MITSUBA_PYTHON:-python3}"
 ronray="${RONRAY:-$here/target/release/ronray}"
 extra="${EXTRA:-}"
 threads="${THREADS:-2}"
+per_sample_caustics="${PER_SAMPLE_CAUSTICS:-PathOnly}"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 # One line per measurement, for the summary: "mi|rr|err NAME VALUE".
@@ -170,7 +173,7 @@ for round in $(seq "$rounds"); do
         need=$(awk -v n="$name" '$1 == "need" && $2 == n {print $3}' "$log")
         mi=$(mi_render "$name" "$out/mi.exr")
         rr=$(rr_render "$twin" 256 "$out/rr.exr" --set film.sampler=Independent --set film.allocation=Even \
-            --set integrator.splits=1)
+            --set integrator.splits=1 --set integrator.caustics="$per_sample_caustics")
         line="$name | mitsuba llvm 256 spp $mi s | ronray Independent 256 spp $rr s"
         if [ "$mi" != failed ]; then
             echo "mi $name $mi" >> "$log"
@@ -187,7 +190,8 @@ for round in $(seq "$rounds"); do
         fi
         if [ -n "$extra" ]; then
             x=$(RR_BIN="$extra" rr_render "$twin" 256 "$out/rr.exr" --set film.sampler=Independent \
-                --set film.allocation=Even --set integrator.splits=1)
+                --set film.allocation=Even --set integrator.splits=1 \
+                --set integrator.caustics="$per_sample_caustics")
             [ "$x" != failed ] && echo "xrr $name $x" >> "$log"
             line="$line | extra Independent 256 spp $x s"
             if [ -n "$need" ]; then
