@@ -109,6 +109,19 @@ pub fn trace(
     counters: &mut Counters,
 ) -> Option<LightVertex> {
     let (li, pmf) = em.pick(sampler.next_f32());
+    trace_from(scene, em, li, pmf, max_chain, sampler, counters)
+}
+
+/// [`trace`] from light `li`, picked with probability `pmf`.
+pub(super) fn trace_from(
+    scene: &Scene,
+    em: &CausticEmitters,
+    li: u32,
+    pmf: f32,
+    max_chain: u32,
+    sampler: &mut Sampler,
+    counters: &mut Counters,
+) -> Option<LightVertex> {
     let u_point = sampler.next_vec2();
     let u_dir = sampler.next_vec2();
     let u_cone = sampler.next_f32();

@@ -2,6 +2,7 @@
 //! at the camera along one ray.
 
 pub mod caustic;
+pub mod caustic_reach;
 pub mod direct;
 pub mod path;
 pub mod sky_visibility;

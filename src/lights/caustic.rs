@@ -71,7 +71,7 @@ impl CausticEmitters {
             && (bounds.max - bounds.min).length().is_finite();
         let sky_traced = !targets.is_empty() && finite && disks.is_finite();
         let mut sky = None;
-        let mut pmf: Vec<f32> = lights
+        let pmf: Vec<f32> = lights
             .iter()
             .enumerate()
             // Each light says whether it is traced from
@@ -87,14 +87,18 @@ impl CausticEmitters {
             })
             .map(|p| if p.is_finite() { p } else { 0.0 })
             .collect();
+        Self::by_power(pmf, targets, sky)
+    }
+
+    /// The emitters of lights weighted `pmf` (one entry per scene light; 0:
+    /// not emitted from), normalised; `None` when none has weight.
+    fn by_power(mut pmf: Vec<f32>, targets: Vec<Target>, sky: Option<(u32, Aabb)>) -> Option<Self> {
         let total: f32 = pmf.iter().sum();
         if !(total > 0.0 && total.is_finite()) {
             return None;
         }
         pmf.iter_mut().for_each(|p| *p /= total);
-        let indices: Vec<u32> = (0..lights.len() as u32)
-            .filter(|&i| pmf[i as usize] > 0.0)
-            .collect();
+        let indices: Vec<u32> = (0..pmf.len() as u32).filter(|&i| pmf[i as usize] > 0.0).collect();
         let mut acc = 0.0;
         let mut cdf: Vec<f32> = indices
             .iter()
@@ -114,6 +118,25 @@ impl CausticEmitters {
             targets,
             sky,
         })
+    }
+
+    /// The lights emitted from (indices in the scene's lights).
+    pub fn emitters(&self) -> &[u32] {
+        &self.lights
+    }
+
+    /// These emitters without the lights in `drop`, the others chosen in
+    /// the same proportions; `None` when none is left. The path tracer then
+    /// keeps the caustic paths of the dropped lights
+    /// (`crate::integrators::caustic_reach`).
+    pub fn without(&self, drop: &[u32]) -> Option<Self> {
+        let mut pmf = self.pmf.clone();
+        for &i in drop {
+            if let Some(p) = pmf.get_mut(i as usize) {
+                *p = 0.0;
+            }
+        }
+        Self::by_power(pmf, self.targets.clone(), self.sky)
     }
 
     /// Whether a point or spot light of `lights` (the scene's, these
@@ -419,6 +442,31 @@ mod tests {
         let constant = [Light::Environment(Box::new(EnvironmentLight::constant(Rgb::ONE)))];
         assert!(CausticEmitters::new(&constant, Some(vec![(c, 0.5)]), bounds).is_none());
         assert!(CausticEmitters::new(&lights, None, bounds).is_none());
+    }
+
+    #[test]
+    fn without_leaves_the_dropped_lights_to_the_path_tracer() {
+        // The sky and a point light, both emitted from; dropping the sky
+        // leaves the point light alone (probability 1, the sky no longer
+        // covered or traced), dropping both leaves nothing.
+        let lights = [
+            Light::Environment(Box::new(sky())),
+            Light::Point(super::super::PointLight {
+                position: Vec3A::new(0.0, 2.0, 0.0),
+                intensity: Rgb::splat(3.0),
+            }),
+        ];
+        let bounds = Aabb::from_points(&[Vec3A::splat(-3.0), Vec3A::splat(3.0)]);
+        let em = CausticEmitters::new(&lights, Some(vec![(Vec3A::ZERO, 0.5)]), bounds).expect("emitters");
+        assert_eq!(em.emitters(), &[0, 1]);
+        assert!(em.is_sky(0) && em.covers(0) && em.covers(1));
+        let point = em.without(&[0]).expect("the point light is left");
+        assert_eq!(point.emitters(), &[1]);
+        assert!(!point.is_sky(0) && !point.covers(0) && point.covers(1));
+        assert_eq!(point.pick(0.3), (1, 1.0));
+        assert!(em.without(&[0, 1]).is_none());
+        // Dropping a light that is not emitted from changes nothing.
+        assert_eq!(em.without(&[7]).expect("unchanged").emitters(), &[0, 1]);
     }
 
     #[test]

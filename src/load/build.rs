@@ -257,6 +257,15 @@ pub fn build_in(
         scene.caustics = None;
     }
     let view = super::view::build_view(desc, base);
+    // Lights whose light paths would almost never reach the film leave
+    // their caustics to the path tracer (a few hundred paths each).
+    if let crate::integrators::Integrator::Path(p) = &view.integrator
+        && p.light_trace_caustics
+    {
+        let film = (view.film.width, view.film.height);
+        let chain = crate::integrators::caustic::max_chain(p.max_depth);
+        crate::integrators::caustic_reach::keep_lights_that_reach(&mut scene, &view.camera, film, chain);
+    }
     // What share of the sky the surfaces the camera sees are lit by
     // (light selection's weight for the sky; a few thousand rays).
     let aspect = view.film.width as f32 / view.film.height.max(1) as f32;
