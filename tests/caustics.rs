@@ -416,7 +416,7 @@ fn dome_scene(integrator: &str, lights: &str) -> String {
 
 #[test]
 fn a_light_whose_light_paths_miss_the_film_is_left_to_the_path_tracer() {
-    // The sky's beams cross the dome's disk, a million times the floor's
+    // The sky's beams cross the dome's disk, three million times the floor's
     // area, and almost none lands in the picture: the light tracer leaves
     // the sky to the path tracer (`integrators/caustic_reach.rs`), and the
     // image is the path tracer's alone, bit for bit. Before, the sky stayed
