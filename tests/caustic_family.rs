@@ -10,8 +10,10 @@
 //! sample reaches a point), so a scene with a point light is compared with
 //! its twin lit by a sphere of radius 0.003 and radiance I/πr² at the same
 //! place (the same intensity toward every direction), whose caustics both
-//! estimators draw; the pixels that see that sphere, directly or in a mirror,
-//! are masked out, since the point is invisible.
+//! estimators draw. The pixels that see that sphere, directly or in a
+//! mirror (the point is invisible), are masked out: those where the two
+//! images differ by more than half their sum plus 0.3, one or two per
+//! scene.
 //!
 //! The comparison is statistical: eight seeds of each render (24 × 24
 //! pixels; the truth at 256 samples, the split at 64) give each region's
