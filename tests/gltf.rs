@@ -41,6 +41,7 @@ impl Asset {
         let bytes: Vec<u8> = data.iter().flat_map(|f| f.to_le_bytes()).collect();
         let view = self.view(&bytes, None);
         let per = match ty {
+            "SCALAR" => 1,
             "VEC2" => 2,
             "VEC3" => 3,
             _ => 4,
@@ -705,32 +706,249 @@ fn malformed_gltf_is_a_located_error() {
     assert!(e.contains("invalid glTF"), "{e}");
 }
 
-#[test]
-fn fox_loads_with_a_note_that_skin_and_animations_are_not_rendered() {
-    let fox = common::root().join("tests/fixtures/gltf/Fox.glb");
-    let data = std::fs::read(&fox).expect("the Fox fixture");
-    let loaded = load(
-        &[("Fox.glb", &data)],
-        &scene_with(
-            r#"Gltf(file: "Fox.glb", transform: [Scale((0.02, 0.02, 0.02))])"#,
-            "",
-        ),
-    )
-    .unwrap_or_else(|e| panic!("Fox loads: {e}"));
-    let notes: Vec<String> = loaded
+/// A load error as the user sees it.
+fn explain(e: LoadError) -> String {
+    match e {
+        LoadError::Invalid(r) => r.render(false),
+        e => e.to_string(),
+    }
+}
+
+/// The notes of a load, as messages.
+fn notes_of(loaded: &ronray::load::Loaded) -> Vec<String> {
+    loaded
         .warnings
         .diagnostics
         .iter()
         .map(|d| d.message.clone())
-        .collect();
+        .collect()
+}
+
+/// The shipped Fox (skinned, three animations): without `animation` it
+/// loads in its rest pose with a note naming the animations it could
+/// play; with `"Walk"` its legs are somewhere else, and an animation it
+/// does not have is an error at `animation` listing the three.
+#[test]
+fn fox_rests_without_an_animation_and_walks_with_one() {
+    let fox = common::root().join("tests/fixtures/gltf/Fox.glb");
+    let data = std::fs::read(&fox).expect("the Fox fixture");
+    let with = |extra: &str, frame: i32| {
+        let objects = format!(r#"Gltf(file: "Fox.glb", transform: [Scale((0.02, 0.02, 0.02))]{extra})"#);
+        let scene = scene_with(&objects, "").replacen(
+            "Scene(",
+            &format!("Scene(animation: (frames: (1, 48), fps: 24, frame: {frame}),"),
+            1,
+        );
+        load(&[("Fox.glb", &data)], &scene)
+    };
+    let rest = with("", 1).unwrap_or_else(|e| panic!("Fox loads: {}", explain(e)));
+    let notes = notes_of(&rest);
     assert!(
         notes
             .iter()
-            .any(|n| n.contains("skin") && n.contains("animation") && n.contains("not rendered")),
-        "expected a note on skin and animations, got {notes:?}"
+            .any(|n| n.contains("\"Survey\", \"Walk\", \"Run\"") && n.contains("rest pose")),
+        "expected a note naming the animations, got {notes:?}"
     );
-    assert!(loaded.scene.geometry.meshes[0].triangle_count() > 100);
+    let bounds = |l: &ronray::load::Loaded| l.scene.geometry.meshes[0].positions.clone();
+    let p_rest = bounds(&rest);
+    assert!(p_rest.len() > 100);
+    let walk =
+        |frame| with(r#", animation: "Walk""#, frame).unwrap_or_else(|e| panic!("Fox walks: {}", explain(e)));
+    let (w1, w10) = (walk(1), walk(10));
+    assert!(
+        !notes_of(&w1).iter().any(|n| n.contains("rest pose")),
+        "{:?}",
+        notes_of(&w1)
+    );
+    let moved = |a: &[Vec3A], b: &[Vec3A]| {
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| (*p - *q).length())
+            .fold(0.0f32, f32::max)
+    };
+    let (a, b, c) = (p_rest.as_slice(), bounds(&w1), bounds(&w10));
+    assert_eq!(a.len(), b.len());
+    // Fox units (centimetres before the object's scale): the legs swing
+    // by tens of them between frames, and every point stays near the fox.
+    assert!(
+        moved(a, &b) > 5.0,
+        "walk frame 1 is the rest pose (moved {})",
+        moved(a, &b)
+    );
+    assert!(
+        moved(&b, &c) > 5.0,
+        "frames 1 and 10 are one pose (moved {})",
+        moved(&b, &c)
+    );
+    assert!(moved(a, &c) < 200.0, "a vertex flew off ({})", moved(a, &c));
+    // Frame 10 again: the same pose, bit for bit.
+    assert_eq!(bounds(&walk(10)), c, "posing is deterministic");
+    let e = with(r#", animation: "Jump""#, 1)
+        .err()
+        .expect("no animation Jump");
+    let msg = explain(e);
+    assert!(
+        msg.contains("animation") && msg.contains("\"Survey\", \"Walk\", \"Run\""),
+        "{msg}"
+    );
     assert!(Path::new(&fox).exists());
+}
+
+/// A triangle under a node whose translation is animated: at frame F of a
+/// scene whose frames start at 1 (24 fps) it sits where the keys put it at
+/// (F − 1)/24 s, LINEAR between keys, held past the last, wrapped with
+/// `repeat`, and STEP holds each key.
+#[test]
+fn an_animated_node_moves_its_mesh_by_the_keys_at_the_frame_time() {
+    let mut a = Asset::default();
+    let tri = triangle(&mut a);
+    // Keys at 0 s and 1 s: x from 0 to 2.
+    let times = a.floats(&[0.0, 1.0], "SCALAR");
+    let values = a.floats(&[0.0, 0.0, 0.0, 2.0, 0.0, 0.0], "VEC3");
+    let doc = |interpolation: &str| {
+        a.gltf(json!({
+            "scenes": [{"nodes": [0]}],
+            "nodes": [{"mesh": 0}],
+            "meshes": [tri],
+            "animations": [{
+                "name": "slide",
+                "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                "samplers": [{"input": times, "output": values, "interpolation": interpolation}],
+            }],
+        }))
+    };
+    let x_at = |interpolation: &str, frame: i32, repeat: bool| -> f32 {
+        let extra = if repeat { ", repeat: true" } else { "" };
+        let objects = format!(r#"Gltf(file: "a.gltf", material: "grey", animation: "slide"{extra})"#);
+        let scene = scene_with(&objects, "").replacen(
+            "Scene(",
+            &format!("Scene(animation: (frames: (1, 200), fps: 24, frame: {frame}),"),
+            1,
+        );
+        let loaded = load(&[("a.gltf", doc(interpolation).as_bytes())], &scene)
+            .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+        let geo = &loaded.scene.geometry;
+        let [p, q, r] = geo.instances[0].world_triangle(0, &geo.meshes);
+        p.x.min(q.x).min(r.x)
+    };
+    let close = |got: f32, want: f32| assert!((got - want).abs() < 1e-5, "x {got}, expected {want}");
+    close(x_at("LINEAR", 1, false), 0.0);
+    close(x_at("LINEAR", 13, false), 1.0); // 0.5 s
+    close(x_at("LINEAR", 25, false), 2.0); // 1 s
+    close(x_at("LINEAR", 49, false), 2.0); // 2 s: held
+    close(x_at("LINEAR", 37, true), 1.0); // 1.5 s wraps to 0.5 s
+    close(x_at("STEP", 13, false), 0.0);
+    close(x_at("STEP", 25, false), 2.0);
+    // `#0` names the same animation.
+    let scene = scene_with(r##"Gltf(file: "a.gltf", material: "grey", animation: "#0")"##, "");
+    assert!(load(&[("a.gltf", doc("LINEAR").as_bytes())], &scene).is_ok());
+}
+
+/// A skinned strip of two triangles: the vertices weighted to the second
+/// joint follow it when the animation turns that joint a quarter turn
+/// about z, those weighted to the first stay, and a vertex split half and
+/// half lands between (the blend of the two joint matrices). The node
+/// holding the mesh is moved far away: skinned vertices ignore it, and a
+/// second node with the same mesh and skin shares the one skinned mesh.
+#[test]
+fn a_skinned_mesh_follows_its_joints() {
+    let mut a = Asset::default();
+    // A quad from x = 0 to 2 in z = 0, split at x = 1.
+    let pos = a.floats(
+        &[
+            0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 2.0, 1.0, 0.0,
+        ],
+        "VEC3",
+    );
+    let idx = a.indices(&[0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4]);
+    let joints: Vec<u8> = [[0u8, 1, 0, 0]; 6].iter().flatten().copied().collect();
+    let jv = a.view(&joints, None);
+    let j = a.accessor(json!({"bufferView": jv, "componentType": 5121, "count": 6, "type": "VEC4"}));
+    // x = 0: first joint; x = 1: half each; x = 2: second joint.
+    let w = a.floats(
+        &[
+            1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0,
+            0.0, 0.0, 1.0, 0.0, 0.0,
+        ],
+        "VEC4",
+    );
+    // Joint 1 sits at x = 1; its inverse bind matrix undoes that.
+    let ibm: Vec<f32> = [Mat4::IDENTITY, Mat4::from_translation(Vec3::new(-1.0, 0.0, 0.0))]
+        .iter()
+        .flat_map(|m| m.to_cols_array())
+        .collect();
+    let ibm_view = a.view(
+        &ibm.iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>(),
+        None,
+    );
+    let ibm = a.accessor(json!({"bufferView": ibm_view, "componentType": 5126, "count": 2, "type": "MAT4"}));
+    let times = a.floats(&[0.0], "SCALAR");
+    let turn = Quat::from_rotation_z(std::f32::consts::FRAC_PI_2);
+    let rot = a.floats(&turn.to_array(), "VEC4");
+    let gltf = a.gltf(json!({
+        "scenes": [{"nodes": [0, 1, 3]}],
+        "nodes": [
+            {"children": [2]},
+            {"mesh": 0, "skin": 0, "translation": [100.0, 0.0, 0.0]},
+            {"translation": [1.0, 0.0, 0.0]},
+            // The same mesh and skin again: the same triangles, built once.
+            {"mesh": 0, "skin": 0, "translation": [0.0, -50.0, 0.0]},
+        ],
+        "skins": [{"joints": [0, 2], "inverseBindMatrices": ibm}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": pos, "JOINTS_0": j, "WEIGHTS_0": w}, "indices": idx}]}],
+        "animations": [{
+            "channels": [{"sampler": 0, "target": {"node": 2, "path": "rotation"}}],
+            "samplers": [{"input": times, "output": rot}],
+        }],
+    }));
+    let positions = |animation: &str| {
+        let objects = format!(r#"Gltf(file: "a.gltf", material: "grey"{animation})"#);
+        let loaded = load(&[("a.gltf", gltf.as_bytes())], &scene_with(&objects, ""))
+            .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+        let geo = &loaded.scene.geometry;
+        assert_eq!(
+            geo.meshes.len(),
+            1,
+            "one skinned mesh for two nodes with one skin"
+        );
+        assert_eq!(geo.instances.len(), 2);
+        let mut got: Vec<Vec3> = (0..geo.meshes[0].triangle_count() as u32)
+            .flat_map(|t| geo.instances[0].world_triangle(t, &geo.meshes))
+            .map(Vec3::from)
+            .collect();
+        got.sort_by(|p, q| p.to_array().partial_cmp(&q.to_array()).expect("numbers"));
+        got.dedup_by(|p, q| (*p - *q).length() < 1e-5);
+        got
+    };
+    let has = |got: &[Vec3], want: Vec3| {
+        let near = got
+            .iter()
+            .map(|g| (*g - want).length())
+            .fold(f32::INFINITY, f32::min);
+        assert!(near < 1e-5, "{want} missing from {got:?}");
+    };
+    // At rest the joints are where the bind matrices say: the quad as stored.
+    let rest = positions("");
+    for p in [
+        [0.0, 0.0],
+        [1.0, 0.0],
+        [2.0, 0.0],
+        [0.0, 1.0],
+        [1.0, 1.0],
+        [2.0, 1.0],
+    ] {
+        has(&rest, Vec3::new(p[0], p[1], 0.0));
+    }
+    // Turned: joint 1's vertices (x = 2) swing about (1, 0) by 90°.
+    let posed = positions(r##", animation: "#0""##);
+    let bend = |p: Vec3| Vec3::new(1.0, 0.0, 0.0) + turn * (p - Vec3::new(1.0, 0.0, 0.0));
+    has(&posed, Vec3::ZERO);
+    has(&posed, Vec3::Y);
+    has(&posed, bend(Vec3::new(2.0, 0.0, 0.0)));
+    has(&posed, bend(Vec3::new(2.0, 1.0, 0.0)));
+    // Half and half: the mean of the two joints' images.
+    let x1 = Vec3::new(1.0, 1.0, 0.0);
+    has(&posed, (x1 + bend(x1)) * 0.5);
 }
 
 /// A small valid `.glb` (a box) and `.gltf` (a textured, normal-mapped,

@@ -271,6 +271,20 @@ pub enum ObjectDesc {
         /// right-handed, as ronray.
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
+        /// The asset's animation to pose it with, by name (`"Walk"`) or
+        /// index (`"#0"`); default none: the rest pose. The scene's first
+        /// frame shows the animation's start, and each frame after it
+        /// `1/fps` seconds more (docs/gltf.md).
+        #[serde(
+            default,
+            deserialize_with = "plain_or_some",
+            skip_serializing_if = "Option::is_none"
+        )]
+        animation: Option<String>,
+        /// Play `animation` over and over: its time wraps at its length
+        /// (default false: it holds its last pose).
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        repeat: bool,
     },
 }
 

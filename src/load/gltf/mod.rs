@@ -17,10 +17,12 @@
 //! (the `gltf` crate's validation).
 
 pub mod accessor;
+pub mod animation;
 pub mod document;
 pub mod material;
 pub mod nodes;
 pub mod primitive;
+pub mod skin;
 
 use super::build_context::BuildContext;
 use super::mtl::MtlMaterials;
@@ -46,15 +48,44 @@ pub struct Imported {
 /// material name in the asset.
 pub type ImportedMesh = (Mesh, Vec<Mapped>, Vec<Option<String>>);
 
-/// Imports `path` (reading within `root` when given), mapping materials
-/// into `mtl`.
+/// The pose an asset is built in: its rest pose, or one of its
+/// animations at a time.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Pose<'a> {
+    /// The animation, by name or `#k`; `None`: the rest pose.
+    pub animation: Option<&'a str>,
+    /// Seconds into the animation.
+    pub time: f32,
+    /// Wrap the time at the animation's length.
+    pub repeat: bool,
+}
+
+/// Why an asset was not imported: the file (any problem reading or
+/// building it) or the animation the scene names.
+#[derive(Debug)]
+pub enum ImportError {
+    /// The file, its buffers, nodes, meshes or skins.
+    File(String),
+    /// The scene's `animation` names none the asset has.
+    Animation(String),
+}
+
+impl From<String> for ImportError {
+    fn from(e: String) -> Self {
+        ImportError::File(e)
+    }
+}
+
+/// Imports `path` (reading within `root` when given) in `pose`, mapping
+/// materials into `mtl`.
 pub(crate) fn import(
     path: &Path,
     scene: Option<u32>,
     root: Option<&Path>,
+    pose: Pose,
     mtl: &mut MtlMaterials,
     notes: &mut Vec<String>,
-) -> Result<Imported, String> {
+) -> Result<Imported, ImportError> {
     let asset = document::read(path, root)?;
     let document::Asset {
         doc,
@@ -65,9 +96,24 @@ pub(crate) fn import(
         || path.display().to_string(),
         |f| f.to_string_lossy().into_owned(),
     );
-    report_unrendered(&doc, &label, notes);
-    let placements = nodes::flatten(&doc, scene)?;
+    report_unrendered(&doc, &label, pose.animation.is_some(), notes);
+    let chosen = match pose.animation {
+        Some(a) => Some(animation::find(&doc, a).map_err(ImportError::Animation)?),
+        None => None,
+    };
+    let mut pose_notes = Vec::new();
+    let locals = animation::locals(&doc, &buffers, chosen, pose.time, pose.repeat, &mut pose_notes)?;
+    notes.extend(pose_notes.into_iter().map(|n| format!("{label}: {n}")));
+    let placements = nodes::flatten(&doc, scene, &locals)?;
+    // Joints may sit anywhere in the node tree: every node's world
+    // transform, only when something is skinned.
+    let worlds = if placements.iter().any(|p| p.skin.is_some()) {
+        nodes::worlds(&doc, &locals)?
+    } else {
+        Vec::new()
+    };
     let mut built: HashMap<usize, usize> = HashMap::new();
+    let mut skinned: HashMap<(usize, usize), usize> = HashMap::new();
     let mut out = Imported {
         meshes: Vec::new(),
         placements: Vec::new(),
@@ -76,7 +122,18 @@ pub(crate) fn import(
     let mut images = material::Images::default();
     let mut by_material: HashMap<Option<usize>, Mapped> = HashMap::new();
     for p in &placements {
-        if let Some(&k) = built.get(&p.mesh) {
+        // A skinned mesh is built once per skin: its vertices move, and
+        // the node's own transform is ignored, so every node that places
+        // the same mesh with the same skin places the same triangles.
+        if let Some(s) = p.skin
+            && let Some(&k) = skinned.get(&(p.mesh, s))
+        {
+            out.placements.push((k, Mat4::IDENTITY));
+            continue;
+        }
+        if p.skin.is_none()
+            && let Some(&k) = built.get(&p.mesh)
+        {
             out.placements.push((k, p.world_from_mesh));
             continue;
         }
@@ -102,14 +159,31 @@ pub(crate) fn import(
                 by_material.insert(key, mapped);
                 mapped
             };
-            primitive::build(&doc, &buffers, p.mesh, &mut map, &mut mesh_notes)
+            primitive::build(
+                &doc,
+                &buffers,
+                p.mesh,
+                p.skin.is_some(),
+                &mut map,
+                &mut mesh_notes,
+            )
         };
         notes.extend(mesh_notes.into_iter().map(|n| format!("{label}: {n}")));
-        let (mesh, slots) = result?;
+        let (mut mesh, slots, influences) = result?;
+        let mut world_from_mesh = p.world_from_mesh;
+        if let (Some(s), Some(inf)) = (p.skin, influences) {
+            skin::deform(&doc, &buffers, s, &worlds, &mut mesh, &inf, p.world_from_mesh)
+                .map_err(|e| format!("nodes[{}]: {e}", p.node))?;
+            // The skinned vertices are in the asset's space already.
+            world_from_mesh = Mat4::IDENTITY;
+        }
         out.meshes.push((mesh, slots, names));
         let k = out.meshes.len() - 1;
-        built.insert(p.mesh, k);
-        out.placements.push((k, p.world_from_mesh));
+        match p.skin {
+            Some(s) => skinned.insert((p.mesh, s), k),
+            None => built.insert(p.mesh, k),
+        };
+        out.placements.push((k, world_from_mesh));
     }
     out.files = reader.files;
     let mut out = merge_single_placements(out);
@@ -190,12 +264,24 @@ fn merge_single_placements(imported: Imported) -> Imported {
     out
 }
 
-/// Notes for what the asset carries and ronray does not render.
-fn report_unrendered(doc: &gltf::Document, label: &str, notes: &mut Vec<String>) {
+/// Notes for what the asset carries and ronray does not render, and for
+/// animations left unplayed (`posed`: the scene picked one).
+fn report_unrendered(doc: &gltf::Document, label: &str, posed: bool, notes: &mut Vec<String>) {
+    let animations = doc.animations().count();
+    if animations > 0 && !posed {
+        let first = doc
+            .animations()
+            .next()
+            .map(|a| a.name().map_or("#0".to_string(), str::to_string))
+            .unwrap_or_default();
+        notes.push(format!(
+            "{label}: {animations} animation(s) ({}), none played: the asset is in its rest pose; \
+             pose it with `animation: \"{first}\"`",
+            animation::names(doc)
+        ));
+    }
     let count = |n: usize, what: &str| (n > 0).then(|| format!("{n} {what}"));
     let parts: Vec<String> = [
-        count(doc.skins().count(), "skin(s)"),
-        count(doc.animations().count(), "animation(s)"),
         count(doc.cameras().count(), "camera(s)"),
         count(
             doc.lights().map_or(0, |l| l.count()),
@@ -206,10 +292,7 @@ fn report_unrendered(doc: &gltf::Document, label: &str, notes: &mut Vec<String>)
     .flatten()
     .collect();
     if !parts.is_empty() {
-        notes.push(format!(
-            "{label}: {} read but not rendered (the meshes are placed in their rest pose)",
-            parts.join(", ")
-        ));
+        notes.push(format!("{label}: {} read but not rendered", parts.join(", ")));
     }
 }
 
@@ -219,6 +302,8 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         file,
         scene,
         materials,
+        animation,
+        repeat,
         ..
     } = o
     else {
@@ -227,12 +312,32 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     let at = format!("objects[{i}]");
     let path = ctx.base.join(file);
     let root = ctx.mtl.root().map(Path::to_path_buf);
-    let imported = match import(&path, *scene, root.as_deref(), &mut ctx.mtl, &mut ctx.notes) {
+    let pose = Pose {
+        animation: animation.as_deref(),
+        time: pose_time(ctx.desc),
+        repeat: *repeat,
+    };
+    if animation.is_some()
+        && let (open, close) = super::animation::shutter(ctx.desc)
+        && close > open
+    {
+        ctx.notes.push(format!(
+            "{at}: the asset is posed at the shutter's opening; its animation is not motion-blurred"
+        ));
+    }
+    let imported = match import(&path, *scene, root.as_deref(), pose, &mut ctx.mtl, &mut ctx.notes) {
         Ok(x) => x,
-        Err(e) => {
+        Err(ImportError::File(e)) => {
             let help = "check the asset with a glTF validator; ronray reads glTF 2.0 `.gltf` and `.glb`";
             ctx.problems
                 .push(Problem::new(format!("{at}.file"), e).help(help));
+            return;
+        }
+        Err(ImportError::Animation(e)) => {
+            ctx.problems.push(
+                Problem::new(format!("{at}.animation"), e)
+                    .help("name one of the asset's animations, or leave `animation` out for the rest pose"),
+            );
             return;
         }
     };
@@ -297,6 +402,18 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     }
 }
 
+/// Seconds into a glTF animation at the frame being built: the scene's
+/// first frame is the animation's start, each frame `1/fps` s later, and
+/// the asset is posed at the shutter's opening (`frame + shutter.0`), the
+/// time keyed instances are built at. A scene without `animation` is time
+/// 0 (plus its shutter's opening, at 24 frames per second).
+fn pose_time(desc: &crate::desc::SceneDesc) -> f32 {
+    let (open, _) = super::animation::shutter(desc);
+    let (first, fps) = desc.animation.as_ref().map_or((0, 24.0), |a| (a.frames.0, a.fps));
+    let fps = if fps > 0.0 && fps.is_finite() { fps } else { 24.0 };
+    (open - first as f32) / fps
+}
+
 /// Every key of `materials` must name a material of the asset.
 fn check_overrides(ctx: &mut BuildContext, at: &str, materials: &BTreeMap<String, String>, known: &[&str]) {
     for key in materials.keys() {
@@ -327,5 +444,13 @@ pub fn fuzz_import(data: &[u8]) -> bool {
     }
     let mut mtl = MtlMaterials::new(0, 0, Some(dir.path()));
     let mut notes = Vec::new();
-    import(&path, None, Some(dir.path()), &mut mtl, &mut notes).is_ok()
+    import(
+        &path,
+        None,
+        Some(dir.path()),
+        Pose::default(),
+        &mut mtl,
+        &mut notes,
+    )
+    .is_ok()
 }

@@ -22,10 +22,14 @@ pub struct Placement {
     /// The node's world transform (the asset's own space, before the
     /// object's `transform`).
     pub world_from_mesh: Mat4,
+    /// The skin that moves the mesh's vertices, if the node has one.
+    pub skin: Option<usize>,
 }
 
-/// The placements of scene `scene` (default: the file's `scene`, else 0).
-pub fn flatten(doc: &Document, scene: Option<u32>) -> Result<Vec<Placement>, String> {
+/// The placements of scene `scene` (default: the file's `scene`, else 0),
+/// each node placed by `locals` (every node's local transform, document
+/// order: the node's own, or posed by an animation).
+pub fn flatten(doc: &Document, scene: Option<u32>, locals: &[Mat4]) -> Result<Vec<Placement>, String> {
     let count = doc.scenes().count();
     let chosen = match scene {
         Some(s) => doc
@@ -50,7 +54,7 @@ pub fn flatten(doc: &Document, scene: Option<u32>) -> Result<Vec<Placement>, Str
                 ));
             }
         }
-        let local = Mat4::from_cols_array_2d(&node.transform().matrix());
+        let local = locals.get(i).copied().unwrap_or(Mat4::NAN);
         if !local.is_finite() {
             return Err(format!("nodes[{i}]: its transform is not finite"));
         }
@@ -63,6 +67,7 @@ pub fn flatten(doc: &Document, scene: Option<u32>) -> Result<Vec<Placement>, Str
                 mesh: m.index(),
                 node: i,
                 world_from_mesh: world,
+                skin: node.skin().map(|s| s.index()),
             });
         }
         stack.extend(node.children().map(|c| (c, world)));
@@ -70,4 +75,52 @@ pub fn flatten(doc: &Document, scene: Option<u32>) -> Result<Vec<Placement>, Str
     // Document order of nodes, so object ids and notes are stable.
     out.sort_by_key(|p| p.node);
     Ok(out)
+}
+
+/// Every node's world transform under `locals`, whatever scene holds it
+/// (a skin's joints need not be placed by the scene): each node's parent
+/// chain composed root to leaf, each node once (a long chain costs its
+/// length, not its square). A node with two parents, or in a cycle, is
+/// an error.
+pub fn worlds(doc: &Document, locals: &[Mat4]) -> Result<Vec<Mat4>, String> {
+    let count = doc.nodes().count();
+    let mut parent: Vec<Option<usize>> = vec![None; count];
+    for n in doc.nodes() {
+        for c in n.children() {
+            let slot = parent
+                .get_mut(c.index())
+                .ok_or_else(|| format!("nodes[{}] names a child that does not exist", n.index()))?;
+            if slot.replace(n.index()).is_some() {
+                return Err(format!("nodes[{}] has two parents", c.index()));
+            }
+        }
+    }
+    let local = |i: usize| locals.get(i).copied().unwrap_or(Mat4::NAN);
+    let mut world: Vec<Option<Mat4>> = vec![None; count];
+    let mut chain = Vec::new();
+    for i in 0..count {
+        // Up to the first node already placed (or a root), then down.
+        chain.clear();
+        let mut at = Some(i);
+        while let Some(n) = at.filter(|&n| world[n].is_none()) {
+            if chain.len() > count {
+                return Err(format!("nodes[{i}] is in a cycle of the node tree"));
+            }
+            chain.push(n);
+            at = parent[n];
+        }
+        let mut m = at.and_then(|n| world[n]).unwrap_or(Mat4::IDENTITY);
+        for &n in chain.iter().rev() {
+            m *= local(n);
+            world[n] = Some(m);
+        }
+    }
+    world
+        .into_iter()
+        .enumerate()
+        .map(|(i, m)| {
+            m.filter(Mat4::is_finite)
+                .ok_or_else(|| format!("nodes[{i}]: its world transform is not finite"))
+        })
+        .collect()
 }

@@ -11,27 +11,35 @@
 
 use super::accessor::{Buffers, read_f32, read_indices};
 use super::material::Mapped;
+use super::skin::{self, Influence};
 use crate::geometry::Mesh;
 use glam::{Vec2, Vec3A, Vec4};
 use gltf::Document;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
 
+/// A built mesh, its slots' materials, and (when asked for a skinned
+/// mesh) each vertex's joint influences.
+pub type Built = (Mesh, Vec<Mapped>, Option<Vec<Influence>>);
+
 /// Builds mesh `index`; `material` maps a primitive's glTF material to the
-/// scene's. Errors name the primitive.
+/// scene's. With `skinned`, each vertex's `JOINTS_0`/`WEIGHTS_0` come back
+/// too (zero weights where a primitive has none). Errors name the primitive.
 pub fn build(
     doc: &Document,
     buffers: &Buffers,
     index: usize,
+    skinned: bool,
     material: &mut dyn FnMut(Option<gltf::Material>) -> Mapped,
     notes: &mut Vec<String>,
-) -> Result<(Mesh, Vec<Mapped>), String> {
+) -> Result<Built, String> {
     let m = doc
         .meshes()
         .nth(index)
         .ok_or_else(|| format!("meshes[{index}] does not exist"))?;
     let mut mesh = Mesh::default();
     let mut slots = Vec::new();
+    let mut influences: Vec<Influence> = Vec::new();
     for p in m.primitives() {
         let at = format!("meshes[{index}].primitives[{}]", p.index());
         if p.morph_targets().next().is_some() {
@@ -51,11 +59,18 @@ pub fn build(
                 "{at}: COLOR_0 read but not rendered (ronray meshes carry no vertex colours)"
             ));
         }
+        if skinned {
+            let n = part.mesh.positions.len();
+            match skin::influences(doc, buffers, &p, n).map_err(|e| format!("{at}: {e}"))? {
+                Some(v) => influences.extend(v),
+                None => influences.extend(std::iter::repeat_n(([0; 4], [0.0; 4]), n)),
+            }
+        }
         append(&mut mesh, part.mesh, slots.len() as u32);
         slots.push(mapped);
     }
     mesh.slot_count = slots.len().max(1) as u32;
-    Ok((mesh, slots))
+    Ok((mesh, slots, skinned.then_some(influences)))
 }
 
 struct Part {

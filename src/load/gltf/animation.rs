@@ -1,0 +1,328 @@
+//! A glTF animation sampled at one time: each node's local transform with
+//! the animation's channels applied (glTF 2.0 §3.11). `nodes.rs` composes
+//! them down the tree and `skin.rs` moves skinned vertices by the posed
+//! joints, so the loader builds the asset as it stands at the frame drawn.
+//!
+//! Interpolation as the specification says: `STEP` holds a key's value,
+//! `LINEAR` blends translations and scales and turns rotations along the
+//! shortest arc (slerp), `CUBICSPLINE` is the Hermite spline through the
+//! keys with their in- and out-tangents scaled by the interval. Before the
+//! first key and after the last a channel holds its end value; with
+//! `repeat` the time wraps at the animation's length first.
+//!
+//! The asset is posed once per frame, at the shutter's opening: a skinned
+//! or animated part is not motion-blurred (a note says so when the
+//! shutter is open).
+
+use super::accessor::{Buffers, read_f32};
+use glam::{Mat4, Quat, Vec3};
+use gltf::Document;
+use gltf::accessor::{DataType, Dimensions};
+use gltf::animation::{Interpolation, Property};
+
+/// The animation `name` names: its name in the asset, or `#k` for the
+/// k-th. The error lists what the asset has.
+pub fn find(doc: &Document, name: &str) -> Result<usize, String> {
+    let count = doc.animations().count();
+    if let Some(k) = name.strip_prefix('#').and_then(|k| k.parse::<usize>().ok())
+        && k < count
+    {
+        return Ok(k);
+    }
+    if let Some(a) = doc.animations().find(|a| a.name() == Some(name)) {
+        return Ok(a.index());
+    }
+    Err(if count == 0 {
+        format!("the asset has no animation; there is no `{name}`")
+    } else {
+        format!("the asset has no animation `{name}`; it has {}", names(doc))
+    })
+}
+
+/// The asset's animations as the scene may name them: `"Walk"`, or `"#2"`
+/// for one without a name.
+pub fn names(doc: &Document) -> String {
+    doc.animations()
+        .map(|a| match a.name() {
+            Some(n) => format!("\"{n}\""),
+            None => format!("\"#{}\"", a.index()),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Every node's local transform (document order): the node's own, with
+/// the channels of animation `chosen` at `time` seconds applied (wrapped
+/// at the animation's length when `repeat`). Notes what is animated and
+/// not rendered (morph-target weights).
+pub fn locals(
+    doc: &Document,
+    buffers: &Buffers,
+    chosen: Option<usize>,
+    time: f32,
+    repeat: bool,
+    notes: &mut Vec<String>,
+) -> Result<Vec<Mat4>, String> {
+    let mut trs: Vec<(Vec3, Quat, Vec3)> = doc
+        .nodes()
+        .map(|n| {
+            let (t, r, s) = n.transform().decomposed();
+            (Vec3::from(t), Quat::from_array(r), Vec3::from(s))
+        })
+        .collect();
+    let mut locals: Vec<Mat4> = doc
+        .nodes()
+        .map(|n| Mat4::from_cols_array_2d(&n.transform().matrix()))
+        .collect();
+    let Some(k) = chosen else {
+        return Ok(locals);
+    };
+    let Some(anim) = doc.animations().nth(k) else {
+        return Err(format!("animations[{k}] does not exist"));
+    };
+    let mut channels = Vec::new();
+    for c in anim.channels() {
+        let at = format!("animations[{k}].channels[{}]", c.index());
+        let s = c.sampler();
+        let times: Vec<[f32; 1]> = read_f32(
+            doc,
+            buffers,
+            s.input().index(),
+            Dimensions::Scalar,
+            &[DataType::F32],
+            "animation input",
+        )
+        .map_err(|e| format!("{at}: {e}"))?;
+        let times: Vec<f32> = times.into_iter().map(|[t]| t).collect();
+        check_times(&times).map_err(|e| format!("{at}: {e}"))?;
+        channels.push((c, times, at));
+    }
+    let length = channels
+        .iter()
+        .filter_map(|(_, t, _)| t.last().copied())
+        .fold(0.0f32, f32::max);
+    let t = if repeat && length > 0.0 {
+        time.rem_euclid(length)
+    } else {
+        time
+    };
+    let mut animated = vec![false; trs.len()];
+    for (c, times, at) in channels {
+        let node = c.target().node().index();
+        let interpolation = c.sampler().interpolation();
+        let output = c.sampler().output().index();
+        let Some(slot) = trs.get_mut(node) else {
+            return Err(format!("{at}: targets node {node}, which does not exist"));
+        };
+        match c.target().property() {
+            Property::Translation | Property::Scale => {
+                let v: Vec<[f32; 3]> = read_f32(
+                    doc,
+                    buffers,
+                    output,
+                    Dimensions::Vec3,
+                    &[DataType::F32],
+                    "animation output",
+                )
+                .map_err(|e| format!("{at}: {e}"))?;
+                let x = Vec3::from(
+                    sample(&times, &v, interpolation, t, false).map_err(|e| format!("{at}: {e}"))?,
+                );
+                if !x.is_finite() {
+                    return Err(format!("{at}: a value is not finite"));
+                }
+                if c.target().property() == Property::Translation {
+                    slot.0 = x;
+                } else {
+                    slot.2 = x;
+                }
+            }
+            Property::Rotation => {
+                let types = [
+                    DataType::F32,
+                    DataType::I8,
+                    DataType::U8,
+                    DataType::I16,
+                    DataType::U16,
+                ];
+                let v: Vec<[f32; 4]> =
+                    read_f32(doc, buffers, output, Dimensions::Vec4, &types, "animation output")
+                        .map_err(|e| format!("{at}: {e}"))?;
+                let q = Quat::from_array(
+                    sample(&times, &v, interpolation, t, true).map_err(|e| format!("{at}: {e}"))?,
+                );
+                slot.1 = if q.is_finite() && q.length_squared() > 0.0 {
+                    q.normalize()
+                } else {
+                    Quat::IDENTITY
+                };
+            }
+            Property::MorphTargetWeights => {
+                notes.push(format!(
+                    "{at}: morph-target weights are animated but not rendered"
+                ));
+                continue;
+            }
+        }
+        animated[node] = true;
+    }
+    for (i, (t, r, s)) in trs.into_iter().enumerate() {
+        if animated[i] {
+            locals[i] = Mat4::from_scale_rotation_translation(s, r, t);
+        }
+    }
+    Ok(locals)
+}
+
+/// Key times: at least one, every one a number, none before the one
+/// before it.
+fn check_times(times: &[f32]) -> Result<(), String> {
+    if times.is_empty() {
+        return Err("the sampler has no keys".into());
+    }
+    if let Some(k) = times.iter().position(|t| !t.is_finite()) {
+        return Err(format!("key time {k} is not a number"));
+    }
+    if let Some(k) = times.windows(2).position(|w| w[1] < w[0]) {
+        return Err(format!(
+            "key times must increase: {} follows {}",
+            times[k + 1],
+            times[k]
+        ));
+    }
+    Ok(())
+}
+
+/// The sampler's value at `t`: `values` holds one element per key, or for
+/// `CUBICSPLINE` three (in-tangent, value, out-tangent). `quat`: the
+/// elements are rotations, turned by slerp under `LINEAR`.
+pub fn sample<const N: usize>(
+    times: &[f32],
+    values: &[[f32; N]],
+    interpolation: Interpolation,
+    t: f32,
+    quat: bool,
+) -> Result<[f32; N], String> {
+    let cubic = interpolation == Interpolation::CubicSpline;
+    let per = if cubic { 3 } else { 1 };
+    if values.len() != times.len() * per {
+        return Err(format!(
+            "{} output values for {} keys (expected {})",
+            values.len(),
+            times.len(),
+            times.len() * per
+        ));
+    }
+    let value = |k: usize| values[k * per + usize::from(cubic)];
+    let last = times.len() - 1;
+    // The interval [times[k], times[k + 1]) holding t; the ends hold.
+    let next = times.partition_point(|&x| x <= t);
+    if next == 0 {
+        return Ok(value(0));
+    }
+    if next > last {
+        return Ok(value(last));
+    }
+    let k = next - 1;
+    let dt = times[k + 1] - times[k];
+    if dt <= 0.0 {
+        return Ok(value(k + 1));
+    }
+    let s = (t - times[k]) / dt;
+    Ok(match interpolation {
+        Interpolation::Step => value(k),
+        Interpolation::Linear if quat && N == 4 => {
+            let q = |v: [f32; N]| Quat::from_xyzw(v[0], v[1], v[2], v[3]);
+            let r = q(value(k)).slerp(q(value(k + 1)), s).to_array();
+            std::array::from_fn(|i| r[i])
+        }
+        Interpolation::Linear => {
+            let (a, b) = (value(k), value(k + 1));
+            std::array::from_fn(|i| a[i] + (b[i] - a[i]) * s)
+        }
+        Interpolation::CubicSpline => {
+            // glTF 2.0 Appendix C: p(s) = (2s³ − 3s² + 1)·v_k + (s³ − 2s² + s)·Δt·b_k
+            //                            + (−2s³ + 3s²)·v_k+1 + (s³ − s²)·Δt·a_k+1.
+            let (v0, b0) = (values[3 * k + 1], values[3 * k + 2]);
+            let (a1, v1) = (values[3 * (k + 1)], values[3 * (k + 1) + 1]);
+            let (s2, s3) = (s * s, s * s * s);
+            let h = [
+                2.0 * s3 - 3.0 * s2 + 1.0,
+                (s3 - 2.0 * s2 + s) * dt,
+                -2.0 * s3 + 3.0 * s2,
+                (s3 - s2) * dt,
+            ];
+            std::array::from_fn(|i| h[0] * v0[i] + h[1] * b0[i] + h[2] * v1[i] + h[3] * a1[i])
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TIMES: [f32; 3] = [0.0, 1.0, 3.0];
+
+    #[test]
+    fn linear_blends_and_the_ends_hold() {
+        let v = [[0.0], [2.0], [6.0]];
+        let at = |t| sample(&TIMES, &v, Interpolation::Linear, t, false).unwrap()[0];
+        assert_eq!(at(-1.0), 0.0);
+        assert_eq!(at(0.5), 1.0);
+        assert_eq!(at(2.0), 4.0);
+        assert_eq!(at(3.0), 6.0);
+        assert_eq!(at(10.0), 6.0);
+    }
+
+    #[test]
+    fn step_holds_each_key_until_the_next() {
+        let v = [[0.0], [2.0], [6.0]];
+        let at = |t| sample(&TIMES, &v, Interpolation::Step, t, false).unwrap()[0];
+        assert_eq!(at(0.99), 0.0);
+        assert_eq!(at(1.0), 2.0);
+        assert_eq!(at(2.9), 2.0);
+    }
+
+    #[test]
+    fn cubic_spline_passes_its_keys_with_their_tangents() {
+        // Keys of x(t) = t³ on [0, 1, 3] with the exact derivatives as
+        // tangents: the Hermite spline of a cubic is the cubic.
+        let f = |t: f32| t * t * t;
+        let d = |t: f32| 3.0 * t * t;
+        let v: Vec<[f32; 1]> = TIMES.iter().flat_map(|&t| [[d(t)], [f(t)], [d(t)]]).collect();
+        for t in [0.0, 0.25, 0.5, 1.0, 1.7, 2.5, 3.0] {
+            let got = sample(&TIMES, &v, Interpolation::CubicSpline, t, false).unwrap()[0];
+            assert!((got - f(t)).abs() < 1e-4, "t {t}: {got} vs {}", f(t));
+        }
+    }
+
+    #[test]
+    fn linear_rotations_turn_along_the_shortest_arc() {
+        let a = Quat::IDENTITY;
+        // The same half turn about y written with the opposite sign: the
+        // short way from identity is a quarter turn at s = 0.5 either way.
+        let b = -Quat::from_rotation_y(std::f32::consts::FRAC_PI_2);
+        let v = [a.to_array(), b.to_array()];
+        let q = Quat::from_array(sample(&[0.0, 1.0], &v, Interpolation::Linear, 0.5, true).unwrap());
+        let angle = q.angle_between(Quat::IDENTITY);
+        assert!(
+            (angle - std::f32::consts::FRAC_PI_4).abs() < 1e-5,
+            "turned {angle}"
+        );
+    }
+
+    #[test]
+    fn a_short_output_is_refused() {
+        let e = sample(&TIMES, &[[0.0], [1.0]], Interpolation::Linear, 0.5, false).unwrap_err();
+        assert!(e.contains("2 output values for 3 keys"), "{e}");
+        let e = sample(&TIMES, &[[0.0]; 3], Interpolation::CubicSpline, 0.5, false).unwrap_err();
+        assert!(e.contains("expected 9"), "{e}");
+        assert!(
+            check_times(&[0.0, 2.0, 1.0])
+                .unwrap_err()
+                .contains("must increase")
+        );
+        assert!(check_times(&[f32::NAN]).is_err());
+        assert!(check_times(&[]).is_err());
+    }
+}
