@@ -706,6 +706,97 @@ fn malformed_gltf_is_a_located_error() {
     assert!(e.contains("invalid glTF"), "{e}");
 }
 
+/// Broken animations and skins are located errors at the object's file
+/// (never a panic, never a silently wrong pose): key times that go back,
+/// an output short of its keys, a vertex naming a joint the skin lacks,
+/// `JOINTS_0` without `WEIGHTS_0`, fewer inverse bind matrices than joints,
+/// and a cycle among the nodes a skin's joints hang from.
+#[test]
+fn malformed_animations_and_skins_are_located_errors() {
+    let mut a = Asset::default();
+    let pos = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "VEC3");
+    let jv = a.view(&[0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0], None);
+    let joints = a.accessor(json!({"bufferView": jv, "componentType": 5121, "count": 3, "type": "VEC4"}));
+    let bad_jv = a.view(&[0, 0, 0, 0, 7, 0, 0, 0, 0, 0, 0, 0], None);
+    let bad_joints =
+        a.accessor(json!({"bufferView": bad_jv, "componentType": 5121, "count": 3, "type": "VEC4"}));
+    let weights = a.floats(
+        &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+        "VEC4",
+    );
+    let ibm_bytes: Vec<u8> = Mat4::IDENTITY
+        .to_cols_array()
+        .iter()
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+    let ibm_view = a.view(&ibm_bytes, None);
+    let ibm = a.accessor(json!({"bufferView": ibm_view, "componentType": 5126, "count": 1, "type": "MAT4"}));
+    let back = a.floats(&[0.0, 2.0, 1.0], "SCALAR");
+    let two = a.floats(&[0.0, 1.0], "SCALAR");
+    let three_values = a.floats(&[0.0; 9], "VEC3");
+    let two_values = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0], "VEC3");
+    let one_value = a.floats(&[0.0; 3], "VEC3");
+    let base = |attributes: Value, skin: Value, animations: Value| {
+        a.gltf(json!({
+            "scenes": [{"nodes": [0, 1]}],
+            "nodes": [{"mesh": 0, "skin": 0}, {}],
+            "skins": [skin],
+            "meshes": [{"primitives": [{"attributes": attributes}]}],
+            "animations": animations,
+        }))
+    };
+    let good_attr = json!({"POSITION": pos, "JOINTS_0": joints, "WEIGHTS_0": weights});
+    let good_skin = json!({"joints": [1], "inverseBindMatrices": ibm});
+    let slide = |input: usize, output: usize| {
+        json!([{"name": "a", "channels": [{"sampler": 0, "target": {"node": 1, "path": "translation"}}],
+                "samplers": [{"input": input, "output": output}]}])
+    };
+    let check = |doc: String, animation: bool, want: &str| {
+        let extra = if animation { r#", animation: "a""# } else { "" };
+        let objects = format!(r#"Gltf(file: "a.gltf", material: "grey"{extra})"#);
+        let e = match load(&[("a.gltf", doc.as_bytes())], &scene_with(&objects, "")) {
+            Ok(_) => panic!("loaded; expected an error with {want:?}"),
+            Err(e) => explain(e),
+        };
+        assert!(
+            e.contains("scene.ron:6:") && e.contains(want),
+            "expected {want:?} at the file: {e}"
+        );
+    };
+    // The good asset loads, posed.
+    let good = base(good_attr.clone(), good_skin.clone(), slide(two, two_values));
+    let objects = r#"Gltf(file: "a.gltf", material: "grey", animation: "a")"#;
+    if let Err(e) = load(&[("a.gltf", good.as_bytes())], &scene_with(objects, "")) {
+        panic!("the good asset: {}", explain(e));
+    }
+    check(
+        base(good_attr.clone(), good_skin.clone(), slide(back, three_values)),
+        true,
+        "must increase",
+    );
+    check(
+        base(good_attr.clone(), good_skin.clone(), slide(two, one_value)),
+        true,
+        "1 output values for 2 keys",
+    );
+    let bad = json!({"POSITION": pos, "JOINTS_0": bad_joints, "WEIGHTS_0": weights});
+    check(base(bad, good_skin.clone(), json!([])), false, "names joint 7");
+    let half = json!({"POSITION": pos, "JOINTS_0": joints});
+    check(base(half, good_skin.clone(), json!([])), false, "one is missing");
+    check(
+        base(
+            good_attr.clone(),
+            json!({"joints": [1, 0], "inverseBindMatrices": ibm}),
+            json!([]),
+        ),
+        false,
+        "1 inverse bind matrices for 2 joints",
+    );
+    let mut cyc: Value = serde_json::from_str(&base(good_attr, good_skin, json!([]))).expect("json");
+    cyc["nodes"] = json!([{"mesh": 0, "skin": 0}, {"children": [2]}, {"children": [1]}]);
+    check(cyc.to_string(), false, "cycle");
+}
+
 /// A load error as the user sees it.
 fn explain(e: LoadError) -> String {
     match e {
