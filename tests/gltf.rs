@@ -706,6 +706,59 @@ fn malformed_gltf_is_a_located_error() {
     assert!(e.contains("invalid glTF"), "{e}");
 }
 
+/// A triangle with one morph target (its third corner 1 up in z): the
+/// mesh's default weight 0.5 puts the corner at z = 0.5 without an
+/// animation; an animation of the weight from 0 (0 s) to 1 (1 s) puts it
+/// at z = 0.25 on the frame 0.25 s in; a second node placing the same
+/// mesh without the animation stays at the default, so the morphed mesh is
+/// its node's own.
+#[test]
+fn morph_targets_blend_by_the_weights_at_the_frame_time() {
+    let mut a = Asset::default();
+    let pos = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "VEC3");
+    let up = a.floats(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], "VEC3");
+    let times = a.floats(&[0.0, 1.0], "SCALAR");
+    let w = a.floats(&[0.0, 1.0], "SCALAR");
+    let gltf = a.gltf(json!({
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0}, {"mesh": 0, "translation": [5.0, 0.0, 0.0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": pos}, "targets": [{"POSITION": up}]}], "weights": [0.5]}],
+        "animations": [{
+            "name": "rise",
+            "channels": [{"sampler": 0, "target": {"node": 0, "path": "weights"}}],
+            "samplers": [{"input": times, "output": w}],
+        }],
+    }));
+    let corner_z = |extra: &str| -> Vec<f32> {
+        let objects = format!(r#"Gltf(file: "a.gltf", material: "grey"{extra})"#);
+        let scene = scene_with(&objects, "").replacen(
+            "Scene(",
+            "Scene(animation: (frames: (0, 48), fps: 24, frame: 6),",
+            1,
+        );
+        let loaded =
+            load(&[("a.gltf", gltf.as_bytes())], &scene).unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+        let geo = &loaded.scene.geometry;
+        geo.instances
+            .iter()
+            .map(|i| {
+                i.world_triangle(0, &geo.meshes)
+                    .iter()
+                    .map(|p| p.z)
+                    .fold(f32::NEG_INFINITY, f32::max)
+            })
+            .collect()
+    };
+    let close = |got: f32, want: f32| assert!((got - want).abs() < 1e-6, "z {got}, expected {want}");
+    let rest = corner_z("");
+    assert_eq!(rest.len(), 2);
+    close(rest[0], 0.5);
+    close(rest[1], 0.5);
+    let posed = corner_z(r#", animation: "rise""#);
+    close(posed[0], 0.25); // frame 6 at 24 fps: 0.25 s
+    close(posed[1], 0.5);
+}
+
 /// Broken animations and skins are located errors at the object's file
 /// (never a panic, never a silently wrong pose): key times that go back,
 /// an output short of its keys, a vertex naming a joint the skin lacks,

@@ -1,7 +1,9 @@
-//! A glTF animation sampled at one time: each node's local transform with
-//! the animation's channels applied (glTF 2.0 §3.11). `nodes.rs` composes
-//! them down the tree and `skin.rs` moves skinned vertices by the posed
-//! joints, so the loader builds the asset as it stands at the frame drawn.
+//! A glTF animation sampled at one time: each node's local transform and
+//! morph-target weights with the animation's channels applied (glTF 2.0
+//! §3.11). `nodes.rs` composes the transforms down the tree, `primitive.rs`
+//! blends the morph targets and `skin.rs` moves skinned vertices by the
+//! posed joints, so the loader builds the asset as it stands at the frame
+//! drawn.
 //!
 //! Interpolation as the specification says: `STEP` holds a key's value,
 //! `LINEAR` blends translations and scales and turns rotations along the
@@ -51,18 +53,25 @@ pub fn names(doc: &Document) -> String {
         .join(", ")
 }
 
-/// Every node's local transform (document order): the node's own, with
-/// the channels of animation `chosen` at `time` seconds applied (wrapped
-/// at the animation's length when `repeat`). Notes what is animated and
-/// not rendered (morph-target weights).
-pub fn locals(
+/// The asset posed at one time.
+pub struct Posed {
+    /// Every node's local transform (document order).
+    pub locals: Vec<Mat4>,
+    /// Every node's morph-target weights, where the node or the animation
+    /// sets them (`None`: its mesh's own `weights`, else none).
+    pub weights: Vec<Option<Vec<f32>>>,
+}
+
+/// Every node's local transform and morph weights (document order): the
+/// node's own, with the channels of animation `chosen` at `time` seconds
+/// applied (wrapped at the animation's length when `repeat`).
+pub fn pose(
     doc: &Document,
     buffers: &Buffers,
     chosen: Option<usize>,
     time: f32,
     repeat: bool,
-    notes: &mut Vec<String>,
-) -> Result<Vec<Mat4>, String> {
+) -> Result<Posed, String> {
     let mut trs: Vec<(Vec3, Quat, Vec3)> = doc
         .nodes()
         .map(|n| {
@@ -70,12 +79,15 @@ pub fn locals(
             (Vec3::from(t), Quat::from_array(r), Vec3::from(s))
         })
         .collect();
-    let mut locals: Vec<Mat4> = doc
-        .nodes()
-        .map(|n| Mat4::from_cols_array_2d(&n.transform().matrix()))
-        .collect();
+    let mut posed = Posed {
+        locals: doc
+            .nodes()
+            .map(|n| Mat4::from_cols_array_2d(&n.transform().matrix()))
+            .collect(),
+        weights: doc.nodes().map(|n| n.weights().map(<[f32]>::to_vec)).collect(),
+    };
     let Some(k) = chosen else {
-        return Ok(locals);
+        return Ok(posed);
     };
     let Some(anim) = doc.animations().nth(k) else {
         return Err(format!("animations[{k}] does not exist"));
@@ -107,13 +119,23 @@ pub fn locals(
         time
     };
     let mut animated = vec![false; trs.len()];
+    // Rotations and weights may be normalised integers.
+    let quantised = [
+        DataType::F32,
+        DataType::I8,
+        DataType::U8,
+        DataType::I16,
+        DataType::U16,
+    ];
     for (c, times, at) in channels {
-        let node = c.target().node().index();
+        let target = c.target().node();
+        let node = target.index();
         let interpolation = c.sampler().interpolation();
         let output = c.sampler().output().index();
         let Some(slot) = trs.get_mut(node) else {
             return Err(format!("{at}: targets node {node}, which does not exist"));
         };
+        let err = |e: String| format!("{at}: {e}");
         match c.target().property() {
             Property::Translation | Property::Scale => {
                 let v: Vec<[f32; 3]> = read_f32(
@@ -124,10 +146,9 @@ pub fn locals(
                     &[DataType::F32],
                     "animation output",
                 )
-                .map_err(|e| format!("{at}: {e}"))?;
-                let x = Vec3::from(
-                    sample(&times, &v, interpolation, t, false).map_err(|e| format!("{at}: {e}"))?,
-                );
+                .map_err(err)?;
+                let x = sample(&times, v.as_flattened(), 3, interpolation, t, false).map_err(err)?;
+                let x = Vec3::from_slice(&x);
                 if !x.is_finite() {
                     return Err(format!("{at}: a value is not finite"));
                 }
@@ -136,42 +157,60 @@ pub fn locals(
                 } else {
                     slot.2 = x;
                 }
+                animated[node] = true;
             }
             Property::Rotation => {
-                let types = [
-                    DataType::F32,
-                    DataType::I8,
-                    DataType::U8,
-                    DataType::I16,
-                    DataType::U16,
-                ];
-                let v: Vec<[f32; 4]> =
-                    read_f32(doc, buffers, output, Dimensions::Vec4, &types, "animation output")
-                        .map_err(|e| format!("{at}: {e}"))?;
-                let q = Quat::from_array(
-                    sample(&times, &v, interpolation, t, true).map_err(|e| format!("{at}: {e}"))?,
+                let v: Vec<[f32; 4]> = read_f32(
+                    doc,
+                    buffers,
+                    output,
+                    Dimensions::Vec4,
+                    &quantised,
+                    "animation output",
+                )
+                .map_err(err)?;
+                let q = Quat::from_slice(
+                    &sample(&times, v.as_flattened(), 4, interpolation, t, true).map_err(err)?,
                 );
                 slot.1 = if q.is_finite() && q.length_squared() > 0.0 {
                     q.normalize()
                 } else {
                     Quat::IDENTITY
                 };
+                animated[node] = true;
             }
             Property::MorphTargetWeights => {
-                notes.push(format!(
-                    "{at}: morph-target weights are animated but not rendered"
-                ));
-                continue;
+                // One weight per morph target of the node's mesh, per key.
+                let targets = target
+                    .mesh()
+                    .and_then(|m| m.primitives().next())
+                    .map_or(0, |p| p.morph_targets().count());
+                if targets == 0 {
+                    continue;
+                }
+                let v: Vec<[f32; 1]> = read_f32(
+                    doc,
+                    buffers,
+                    output,
+                    Dimensions::Scalar,
+                    &quantised,
+                    "animation output",
+                )
+                .map_err(err)?;
+                let w = sample(&times, v.as_flattened(), targets, interpolation, t, false).map_err(err)?;
+                if !w.iter().all(|x| x.is_finite()) {
+                    return Err(format!("{at}: a weight is not finite"));
+                }
+                posed.weights[node] = Some(w);
             }
         }
-        animated[node] = true;
     }
     for (i, (t, r, s)) in trs.into_iter().enumerate() {
         if animated[i] {
-            locals[i] = Mat4::from_scale_rotation_translation(s, r, t);
+            posed.locals[i] = Mat4::from_scale_rotation_translation(s, r, t);
         }
     }
-    Ok(locals)
+    Ok(posed)
 }
 
 /// Key times: at least one, every one a number, none before the one
@@ -193,27 +232,30 @@ fn check_times(times: &[f32]) -> Result<(), String> {
     Ok(())
 }
 
-/// The sampler's value at `t`: `values` holds one element per key, or for
-/// `CUBICSPLINE` three (in-tangent, value, out-tangent). `quat`: the
-/// elements are rotations, turned by slerp under `LINEAR`.
-pub fn sample<const N: usize>(
+/// The sampler's value at `t`, `width` numbers: `values` holds one element
+/// of `width` numbers per key, or for `CUBICSPLINE` three (in-tangent,
+/// value, out-tangent). `quat`: the elements are rotations (width 4),
+/// turned by slerp under `LINEAR`.
+pub fn sample(
     times: &[f32],
-    values: &[[f32; N]],
+    values: &[f32],
+    width: usize,
     interpolation: Interpolation,
     t: f32,
     quat: bool,
-) -> Result<[f32; N], String> {
+) -> Result<Vec<f32>, String> {
     let cubic = interpolation == Interpolation::CubicSpline;
     let per = if cubic { 3 } else { 1 };
-    if values.len() != times.len() * per {
+    let expected = times.len() * per * width;
+    if width == 0 || values.len() != expected {
         return Err(format!(
-            "{} output values for {} keys (expected {})",
-            values.len(),
+            "{} output values for {} keys (expected {expected})",
+            values.len() / width.max(1),
             times.len(),
-            times.len() * per
         ));
     }
-    let value = |k: usize| values[k * per + usize::from(cubic)];
+    let element = |i: usize| &values[i * width..(i + 1) * width];
+    let value = |k: usize| element(k * per + usize::from(cubic)).to_vec();
     let last = times.len() - 1;
     // The interval [times[k], times[k + 1]) holding t; the ends hold.
     let next = times.partition_point(|&x| x <= t);
@@ -231,20 +273,19 @@ pub fn sample<const N: usize>(
     let s = (t - times[k]) / dt;
     Ok(match interpolation {
         Interpolation::Step => value(k),
-        Interpolation::Linear if quat && N == 4 => {
-            let q = |v: [f32; N]| Quat::from_xyzw(v[0], v[1], v[2], v[3]);
-            let r = q(value(k)).slerp(q(value(k + 1)), s).to_array();
-            std::array::from_fn(|i| r[i])
+        Interpolation::Linear if quat && width == 4 => {
+            let (a, b) = (Quat::from_slice(element(k)), Quat::from_slice(element(k + 1)));
+            a.slerp(b, s).to_array().to_vec()
         }
         Interpolation::Linear => {
-            let (a, b) = (value(k), value(k + 1));
-            std::array::from_fn(|i| a[i] + (b[i] - a[i]) * s)
+            let (a, b) = (element(k), element(k + 1));
+            a.iter().zip(b).map(|(a, b)| a + (b - a) * s).collect()
         }
         Interpolation::CubicSpline => {
             // glTF 2.0 Appendix C: p(s) = (2s³ − 3s² + 1)·v_k + (s³ − 2s² + s)·Δt·b_k
             //                            + (−2s³ + 3s²)·v_k+1 + (s³ − s²)·Δt·a_k+1.
-            let (v0, b0) = (values[3 * k + 1], values[3 * k + 2]);
-            let (a1, v1) = (values[3 * (k + 1)], values[3 * (k + 1) + 1]);
+            let (v0, b0) = (element(3 * k + 1), element(3 * k + 2));
+            let (a1, v1) = (element(3 * (k + 1)), element(3 * (k + 1) + 1));
             let (s2, s3) = (s * s, s * s * s);
             let h = [
                 2.0 * s3 - 3.0 * s2 + 1.0,
@@ -252,7 +293,9 @@ pub fn sample<const N: usize>(
                 -2.0 * s3 + 3.0 * s2,
                 (s3 - s2) * dt,
             ];
-            std::array::from_fn(|i| h[0] * v0[i] + h[1] * b0[i] + h[2] * v1[i] + h[3] * a1[i])
+            (0..width)
+                .map(|i| h[0] * v0[i] + h[1] * b0[i] + h[2] * v1[i] + h[3] * a1[i])
+                .collect()
         }
     })
 }
@@ -265,8 +308,8 @@ mod tests {
 
     #[test]
     fn linear_blends_and_the_ends_hold() {
-        let v = [[0.0], [2.0], [6.0]];
-        let at = |t| sample(&TIMES, &v, Interpolation::Linear, t, false).unwrap()[0];
+        let v = [0.0, 2.0, 6.0];
+        let at = |t| sample(&TIMES, &v, 1, Interpolation::Linear, t, false).unwrap()[0];
         assert_eq!(at(-1.0), 0.0);
         assert_eq!(at(0.5), 1.0);
         assert_eq!(at(2.0), 4.0);
@@ -276,8 +319,8 @@ mod tests {
 
     #[test]
     fn step_holds_each_key_until_the_next() {
-        let v = [[0.0], [2.0], [6.0]];
-        let at = |t| sample(&TIMES, &v, Interpolation::Step, t, false).unwrap()[0];
+        let v = [0.0, 2.0, 6.0];
+        let at = |t| sample(&TIMES, &v, 1, Interpolation::Step, t, false).unwrap()[0];
         assert_eq!(at(0.99), 0.0);
         assert_eq!(at(1.0), 2.0);
         assert_eq!(at(2.9), 2.0);
@@ -289,9 +332,9 @@ mod tests {
         // tangents: the Hermite spline of a cubic is the cubic.
         let f = |t: f32| t * t * t;
         let d = |t: f32| 3.0 * t * t;
-        let v: Vec<[f32; 1]> = TIMES.iter().flat_map(|&t| [[d(t)], [f(t)], [d(t)]]).collect();
+        let v: Vec<f32> = TIMES.iter().flat_map(|&t| [d(t), f(t), d(t)]).collect();
         for t in [0.0, 0.25, 0.5, 1.0, 1.7, 2.5, 3.0] {
-            let got = sample(&TIMES, &v, Interpolation::CubicSpline, t, false).unwrap()[0];
+            let got = sample(&TIMES, &v, 1, Interpolation::CubicSpline, t, false).unwrap()[0];
             assert!((got - f(t)).abs() < 1e-4, "t {t}: {got} vs {}", f(t));
         }
     }
@@ -303,7 +346,9 @@ mod tests {
         // short way from identity is a quarter turn at s = 0.5 either way.
         let b = -Quat::from_rotation_y(std::f32::consts::FRAC_PI_2);
         let v = [a.to_array(), b.to_array()];
-        let q = Quat::from_array(sample(&[0.0, 1.0], &v, Interpolation::Linear, 0.5, true).unwrap());
+        let q = Quat::from_slice(
+            &sample(&[0.0, 1.0], v.as_flattened(), 4, Interpolation::Linear, 0.5, true).unwrap(),
+        );
         let angle = q.angle_between(Quat::IDENTITY);
         assert!(
             (angle - std::f32::consts::FRAC_PI_4).abs() < 1e-5,
@@ -312,11 +357,24 @@ mod tests {
     }
 
     #[test]
+    fn wide_elements_blend_number_by_number() {
+        // Two morph weights per key.
+        let v = [0.0, 1.0, 1.0, 0.0, 0.5, 0.5];
+        let w = sample(&TIMES, &v, 2, Interpolation::Linear, 0.25, false).unwrap();
+        assert_eq!(w, vec![0.25, 0.75]);
+        let w = sample(&TIMES, &v, 2, Interpolation::Linear, 2.0, false).unwrap();
+        assert_eq!(w, vec![0.75, 0.25]);
+    }
+
+    #[test]
     fn a_short_output_is_refused() {
-        let e = sample(&TIMES, &[[0.0], [1.0]], Interpolation::Linear, 0.5, false).unwrap_err();
+        let e = sample(&TIMES, &[0.0, 1.0], 1, Interpolation::Linear, 0.5, false).unwrap_err();
         assert!(e.contains("2 output values for 3 keys"), "{e}");
-        let e = sample(&TIMES, &[[0.0]; 3], Interpolation::CubicSpline, 0.5, false).unwrap_err();
+        let e = sample(&TIMES, &[0.0; 3], 1, Interpolation::CubicSpline, 0.5, false).unwrap_err();
         assert!(e.contains("expected 9"), "{e}");
+        // Two morph weights per key: a short output is counted in elements.
+        let e = sample(&TIMES, &[0.0; 5], 2, Interpolation::Linear, 0.5, false).unwrap_err();
+        assert!(e.contains("expected 6"), "{e}");
         assert!(
             check_times(&[0.0, 2.0, 1.0])
                 .unwrap_err()

@@ -34,6 +34,12 @@ use material::Mapped;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
+/// Vertices an asset's meshes may hold beyond each mesh's first build,
+/// 2²⁵: a mesh is built again per skin and set of morph weights that poses
+/// it, and a small file can place one large mesh under many poses (one
+/// build of each mesh is bounded by the file's size).
+pub const MAX_POSED_COPIES: usize = 1 << 25;
+
 /// An asset imported into meshes and placements, before it joins a scene.
 pub struct Imported {
     /// Each mesh used, with the mapped material of each of its slots.
@@ -86,6 +92,19 @@ pub(crate) fn import(
     mtl: &mut MtlMaterials,
     notes: &mut Vec<String>,
 ) -> Result<Imported, ImportError> {
+    import_bounded(path, scene, root, pose, mtl, notes, MAX_POSED_COPIES)
+}
+
+/// [`import`] with `max_copies` in place of [`MAX_POSED_COPIES`] (tests).
+fn import_bounded(
+    path: &Path,
+    scene: Option<u32>,
+    root: Option<&Path>,
+    pose: Pose,
+    mtl: &mut MtlMaterials,
+    notes: &mut Vec<String>,
+    max_copies: usize,
+) -> Result<Imported, ImportError> {
     let asset = document::read(path, root)?;
     let document::Asset {
         doc,
@@ -101,19 +120,21 @@ pub(crate) fn import(
         Some(a) => Some(animation::find(&doc, a).map_err(ImportError::Animation)?),
         None => None,
     };
-    let mut pose_notes = Vec::new();
-    let locals = animation::locals(&doc, &buffers, chosen, pose.time, pose.repeat, &mut pose_notes)?;
-    notes.extend(pose_notes.into_iter().map(|n| format!("{label}: {n}")));
-    let placements = nodes::flatten(&doc, scene, &locals)?;
+    let posed = animation::pose(&doc, &buffers, chosen, pose.time, pose.repeat)?;
+    let locals = &posed.locals;
+    let placements = nodes::flatten(&doc, scene, locals)?;
     // Joints may sit anywhere in the node tree: every node's world
     // transform, only when something is skinned.
     let worlds = if placements.iter().any(|p| p.skin.is_some()) {
-        nodes::worlds(&doc, &locals)?
+        nodes::worlds(&doc, locals)?
     } else {
         Vec::new()
     };
-    let mut built: HashMap<usize, usize> = HashMap::new();
-    let mut skinned: HashMap<(usize, usize), usize> = HashMap::new();
+    // Each mesh once per skin and per set of morph weights reshaping it:
+    // (mesh, skin, weights' bits) → index in `out.meshes`.
+    type Key = (usize, Option<usize>, Option<Vec<u32>>);
+    let mut built: HashMap<Key, usize> = HashMap::new();
+    let (mut first_build, mut copies) = (std::collections::HashSet::new(), 0usize);
     let mut out = Imported {
         meshes: Vec::new(),
         placements: Vec::new(),
@@ -122,19 +143,32 @@ pub(crate) fn import(
     let mut images = material::Images::default();
     let mut by_material: HashMap<Option<usize>, Mapped> = HashMap::new();
     for p in &placements {
-        // A skinned mesh is built once per skin: its vertices move, and
-        // the node's own transform is ignored, so every node that places
-        // the same mesh with the same skin places the same triangles.
-        if let Some(s) = p.skin
-            && let Some(&k) = skinned.get(&(p.mesh, s))
-        {
-            out.placements.push((k, Mat4::IDENTITY));
-            continue;
-        }
-        if p.skin.is_none()
-            && let Some(&k) = built.get(&p.mesh)
-        {
-            out.placements.push((k, p.world_from_mesh));
+        // Morph weights: the node's (posed), else the mesh's; none when
+        // all are zero (the base shape).
+        let weights: Option<Vec<f32>> = posed.weights[p.node]
+            .clone()
+            .or_else(|| {
+                doc.meshes()
+                    .nth(p.mesh)
+                    .and_then(|m| m.weights())
+                    .map(<[f32]>::to_vec)
+            })
+            .filter(|w| w.iter().any(|&x| x != 0.0));
+        // A skinned mesh moves its vertices and ignores its node's
+        // transform, so every node placing the same mesh with the same
+        // skin (and weights) places the same triangles.
+        let key = (
+            p.mesh,
+            p.skin,
+            weights.as_ref().map(|w| w.iter().map(|x| x.to_bits()).collect()),
+        );
+        let placed = if p.skin.is_some() {
+            Mat4::IDENTITY
+        } else {
+            p.world_from_mesh
+        };
+        if let Some(&k) = built.get(&key) {
+            out.placements.push((k, placed));
             continue;
         }
         let mut source = material::Source {
@@ -163,6 +197,7 @@ pub(crate) fn import(
                 &doc,
                 &buffers,
                 p.mesh,
+                weights.as_deref(),
                 p.skin.is_some(),
                 &mut map,
                 &mut mesh_notes,
@@ -170,20 +205,27 @@ pub(crate) fn import(
         };
         notes.extend(mesh_notes.into_iter().map(|n| format!("{label}: {n}")));
         let (mut mesh, slots, influences) = result?;
-        let mut world_from_mesh = p.world_from_mesh;
         if let (Some(s), Some(inf)) = (p.skin, influences) {
+            // Into the asset's space: `placed` is the identity.
             skin::deform(&doc, &buffers, s, &worlds, &mut mesh, &inf, p.world_from_mesh)
                 .map_err(|e| format!("nodes[{}]: {e}", p.node))?;
-            // The skinned vertices are in the asset's space already.
-            world_from_mesh = Mat4::IDENTITY;
+        }
+        // Skins and morph weights build a mesh again per pose, which a
+        // file can multiply past its own size: the copies are bounded.
+        if !first_build.insert(p.mesh) {
+            copies = copies.saturating_add(mesh.positions.len());
+            if copies > max_copies {
+                return Err(ImportError::File(format!(
+                    "the asset's skins and morph weights build its meshes again past \
+                     {max_copies} vertices (a mesh is built once per skin and set of \
+                     weights); MAX_POSED_COPIES in src/load/gltf/mod.rs is the limit"
+                )));
+            }
         }
         out.meshes.push((mesh, slots, names));
         let k = out.meshes.len() - 1;
-        match p.skin {
-            Some(s) => skinned.insert((p.mesh, s), k),
-            None => built.insert(p.mesh, k),
-        };
-        out.placements.push((k, world_from_mesh));
+        built.insert(key, k);
+        out.placements.push((k, placed));
     }
     out.files = reader.files;
     let mut out = merge_single_placements(out);
@@ -453,4 +495,76 @@ pub fn fuzz_import(data: &[u8]) -> bool {
         &mut notes,
     )
     .is_ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A triangle with one morph target placed by three nodes, each with
+    /// its own weight: three builds, two of them copies of six vertices in
+    /// all. Within a limit of six they import; past five they are refused
+    /// with the limit's name, not allocated.
+    #[test]
+    fn posed_copies_are_bounded() {
+        let floats: Vec<u8> = [
+            0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+        ]
+        .iter()
+        .flat_map(|f| f.to_le_bytes())
+        .collect();
+        let b64 = |d: &[u8]| -> String {
+            const T: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+            d.chunks(3)
+                .flat_map(|c| {
+                    let n = c
+                        .iter()
+                        .enumerate()
+                        .fold(0u32, |n, (i, &b)| n | u32::from(b) << (16 - 8 * i));
+                    (0..4).map(move |k| {
+                        if k <= c.len() {
+                            T[(n >> (18 - 6 * k)) as usize & 63] as char
+                        } else {
+                            '='
+                        }
+                    })
+                })
+                .collect()
+        };
+        let doc = format!(
+            r#"{{"asset": {{"version": "2.0"}},
+               "buffers": [{{"byteLength": 72, "uri": "data:application/octet-stream;base64,{}"}}],
+               "bufferViews": [{{"buffer": 0, "byteLength": 36}}, {{"buffer": 0, "byteOffset": 36, "byteLength": 36}}],
+               "accessors": [
+                 {{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+                 {{"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 1]}}],
+               "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "targets": [{{"POSITION": 1}}]}}]}}],
+               "nodes": [{{"mesh": 0, "weights": [0.1]}}, {{"mesh": 0, "weights": [0.2]}}, {{"mesh": 0, "weights": [0.3]}}],
+               "scenes": [{{"nodes": [0, 1, 2]}}]}}"#,
+            b64(&floats)
+        );
+        let dir = tempfile::tempdir().expect("tempdir");
+        let path = dir.path().join("a.gltf");
+        std::fs::write(&path, doc).expect("write");
+        let run = |limit| {
+            let mut mtl = MtlMaterials::new(0, 0, Some(dir.path()));
+            import_bounded(
+                &path,
+                None,
+                Some(dir.path()),
+                Pose::default(),
+                &mut mtl,
+                &mut Vec::new(),
+                limit,
+            )
+        };
+        let ok = run(6).unwrap_or_else(|e| panic!("within the limit: {e:?}"));
+        // One build per weight (then joined: same transform, same attributes).
+        let triangles: usize = ok.meshes.iter().map(|m| m.0.triangle_count()).sum();
+        assert_eq!(triangles, 3, "one triangle per weight");
+        match run(5) {
+            Err(ImportError::File(e)) => assert!(e.contains("MAX_POSED_COPIES"), "{e}"),
+            other => panic!("expected the limit, got {:?}", other.map(|i| i.meshes.len())),
+        }
+    }
 }

@@ -23,12 +23,15 @@ use gltf::mesh::{Mode, Semantic};
 pub type Built = (Mesh, Vec<Mapped>, Option<Vec<Influence>>);
 
 /// Builds mesh `index`; `material` maps a primitive's glTF material to the
-/// scene's. With `skinned`, each vertex's `JOINTS_0`/`WEIGHTS_0` come back
-/// too (zero weights where a primitive has none). Errors name the primitive.
+/// scene's. `weights` blends the primitives' morph targets into their
+/// base shape. With `skinned`, each vertex's `JOINTS_0`/`WEIGHTS_0` come
+/// back too (zero weights where a primitive has none). Errors name the
+/// primitive.
 pub fn build(
     doc: &Document,
     buffers: &Buffers,
     index: usize,
+    weights: Option<&[f32]>,
     skinned: bool,
     material: &mut dyn FnMut(Option<gltf::Material>) -> Mapped,
     notes: &mut Vec<String>,
@@ -42,18 +45,14 @@ pub fn build(
     let mut influences: Vec<Influence> = Vec::new();
     for p in m.primitives() {
         let at = format!("meshes[{index}].primitives[{}]", p.index());
-        if p.morph_targets().next().is_some() {
-            notes.push(format!(
-                "{at}: morph targets read but not rendered (the base shape is)"
-            ));
-        }
         let mode = p.mode();
         if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
             notes.push(format!("{at}: mode {mode:?} makes no triangles; skipped"));
             continue;
         }
         let mapped = material(p.material().index().map(|_| p.material()));
-        let part = read_primitive(doc, buffers, &p, mapped, mode).map_err(|e| format!("{at}: {e}"))?;
+        let part =
+            read_primitive(doc, buffers, &p, mapped, mode, weights).map_err(|e| format!("{at}: {e}"))?;
         if part.colors {
             notes.push(format!(
                 "{at}: COLOR_0 read but not rendered (ronray meshes carry no vertex colours)"
@@ -84,6 +83,7 @@ fn read_primitive(
     p: &gltf::Primitive,
     mapped: Mapped,
     mode: Mode,
+    weights: Option<&[f32]>,
 ) -> Result<Part, String> {
     let f32_only = [DataType::F32];
     let uv_types = [DataType::F32, DataType::U8, DataType::U16];
@@ -157,10 +157,79 @@ fn read_primitive(
         return Err(format!("index {bad} (element {k}) is past the {n} vertices"));
     }
     mesh.indices = triangles(&list, mode);
+    if let Some(w) = weights {
+        morph(doc, buffers, p, w, &mut mesh)?;
+    }
     if mapped.normal_mapped && mesh.tangents.is_empty() && !mesh.uvs.is_empty() {
         crate::geometry::tangents::generate(&mut mesh);
     }
     Ok(Part { mesh, colors })
+}
+
+/// Adds `weights[i]` times morph target `i`'s displacements to the base
+/// shape (glTF 2.0 §3.7.2.2), positions, normals and tangents alike; the
+/// normals and tangents are renormalised after. Weights past the targets
+/// are ignored.
+fn morph(
+    doc: &Document,
+    buffers: &Buffers,
+    p: &gltf::Primitive,
+    weights: &[f32],
+    mesh: &mut Mesh,
+) -> Result<(), String> {
+    let n = mesh.positions.len();
+    // Float, or normalised signed integers (KHR_mesh_quantization).
+    let types = [DataType::F32, DataType::I8, DataType::I16];
+    let read = |a: gltf::Accessor, what: String| -> Result<Vec<Vec3A>, String> {
+        let d: Vec<[f32; 3]> = read_f32(doc, buffers, a.index(), Dimensions::Vec3, &types, &what)?;
+        if d.len() != n {
+            return Err(format!("{what} has {} elements for {n} positions", d.len()));
+        }
+        Ok(d.into_iter().map(Vec3A::from).collect())
+    };
+    for (i, (t, &w)) in p.morph_targets().zip(weights).enumerate() {
+        if w == 0.0 {
+            continue;
+        }
+        if let Some(a) = t.positions() {
+            for (x, d) in mesh
+                .positions
+                .iter_mut()
+                .zip(read(a, format!("targets[{i}].POSITION"))?)
+            {
+                *x += w * d;
+            }
+        }
+        if let Some(a) = t.normals().filter(|_| !mesh.normals.is_empty()) {
+            for (x, d) in mesh
+                .normals
+                .iter_mut()
+                .zip(read(a, format!("targets[{i}].NORMAL"))?)
+            {
+                *x += w * d;
+            }
+        }
+        if let Some(a) = t.tangents().filter(|_| !mesh.tangents.is_empty()) {
+            for (x, d) in mesh
+                .tangents
+                .iter_mut()
+                .zip(read(a, format!("targets[{i}].TANGENT"))?)
+            {
+                *x += (w * d).extend(0.0);
+            }
+        }
+    }
+    if let Some(k) = mesh.positions.iter().position(|x| !x.is_finite()) {
+        return Err(format!("morphed POSITION {k} is not finite"));
+    }
+    for x in &mut mesh.normals {
+        *x = x.normalize_or_zero();
+    }
+    for x in &mut mesh.tangents {
+        let xyz = Vec3A::from(x.truncate()).normalize_or(Vec3A::X);
+        *x = xyz.extend(x.w);
+    }
+    Ok(())
 }
 
 /// Triangles of an index list in `mode`, counter-clockwise (glTF's front).
