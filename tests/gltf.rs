@@ -759,6 +759,36 @@ fn morph_targets_blend_by_the_weights_at_the_frame_time() {
     close(posed[1], 0.5);
 }
 
+/// A skinned vertex with joints past the fourth (`JOINTS_1`) is skinned by
+/// its first four, with a note saying the rest are not read.
+#[test]
+fn joints_past_the_fourth_are_named_in_a_note() {
+    let mut a = Asset::default();
+    let pos = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "VEC3");
+    let jv = a.view(&[0; 12], None);
+    let joints = a.accessor(json!({"bufferView": jv, "componentType": 5121, "count": 3, "type": "VEC4"}));
+    let weights = a.floats(
+        &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+        "VEC4",
+    );
+    let none = a.floats(&[0.0; 12], "VEC4");
+    let gltf = a.gltf(json!({
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0, "skin": 0}, {}],
+        "skins": [{"joints": [1]}],
+        "meshes": [{"primitives": [{"attributes": {
+            "POSITION": pos, "JOINTS_0": joints, "WEIGHTS_0": weights, "JOINTS_1": joints, "WEIGHTS_1": none,
+        }}]}],
+    }));
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf", material: "grey")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+    let notes = notes_of(&loaded);
+    assert!(notes.iter().any(|n| n.contains("JOINTS_1")), "{notes:?}");
+}
+
 /// Broken animations and skins are located errors at the object's file
 /// (never a panic, never a silently wrong pose): key times that go back,
 /// an output short of its keys, a vertex naming a joint the skin lacks,

@@ -59,6 +59,12 @@ pub fn build(
             ));
         }
         if skinned {
+            if p.get(&Semantic::Joints(1)).is_some() {
+                notes.push(format!(
+                    "{at}: JOINTS_1/WEIGHTS_1 (joints past the fourth) are not read: each vertex \
+                     follows its first four, their weights rescaled to sum to 1"
+                ));
+            }
             let n = part.mesh.positions.len();
             match skin::influences(doc, buffers, &p, n).map_err(|e| format!("{at}: {e}"))? {
                 Some(v) => influences.extend(v),
