@@ -1125,8 +1125,9 @@ fn a_skinned_mesh_follows_its_joints() {
     has(&posed, (x1 + bend(x1)) * 0.5);
 }
 
-/// A small valid `.glb` (a box) and `.gltf` (a textured, normal-mapped,
-/// sparse quad), the glTF fuzz target's seeds.
+/// A small valid `.glb` (a box), `.gltf` (a textured, normal-mapped,
+/// sparse quad) and an animated, skinned, morphed triangle (every
+/// interpolation), the glTF fuzz target's seeds.
 fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     let (p, t) = unit_box();
     let mut a = Asset::default();
@@ -1142,7 +1143,60 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     vec![
         ("box.glb", glb),
         ("quad.gltf", quad_asset(m, true, true).into_bytes()),
+        ("posed.gltf", posed_asset().into_bytes()),
     ]
+}
+
+/// A triangle with a morph target, skinned to two joints, and an
+/// animation with a channel of each kind and every interpolation.
+fn posed_asset() -> String {
+    let mut a = Asset::default();
+    let pos = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "VEC3");
+    let up = a.floats(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0], "VEC3");
+    let jv = a.view(&[0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0], None);
+    let joints = a.accessor(json!({"bufferView": jv, "componentType": 5121, "count": 3, "type": "VEC4"}));
+    let weights = a.floats(
+        &[1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0],
+        "VEC4",
+    );
+    let times = a.floats(&[0.0, 0.5, 1.0], "SCALAR");
+    let moves = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 2.0, 0.0], "VEC3");
+    let turns: Vec<f32> = [
+        Quat::IDENTITY,
+        Quat::from_rotation_z(1.0),
+        Quat::from_rotation_x(2.0),
+    ]
+    .iter()
+    .flat_map(|q| q.to_array())
+    .collect();
+    let turns = a.floats(&turns, "VEC4");
+    // CUBICSPLINE: in-tangent, value, out-tangent per key.
+    let mut scales = Vec::new();
+    for v in [1.0f32, 2.0, 1.0] {
+        scales.extend([0.0; 3]);
+        scales.extend([v; 3]);
+        scales.extend([0.0; 3]);
+    }
+    let scales = a.floats(&scales, "VEC3");
+    let w = a.floats(&[0.0, 1.0, 0.5], "SCALAR");
+    a.gltf(json!({
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0, "skin": 0}, {"children": [2]}, {"translation": [1.0, 0.0, 0.0]}],
+        "skins": [{"joints": [1, 2]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": pos, "JOINTS_0": joints, "WEIGHTS_0": weights},
+                                    "targets": [{"POSITION": up}]}], "weights": [0.0]}],
+        "animations": [{"name": "all", "channels": [
+            {"sampler": 0, "target": {"node": 1, "path": "translation"}},
+            {"sampler": 1, "target": {"node": 2, "path": "rotation"}},
+            {"sampler": 2, "target": {"node": 2, "path": "scale"}},
+            {"sampler": 3, "target": {"node": 0, "path": "weights"}},
+        ], "samplers": [
+            {"input": times, "output": moves},
+            {"input": times, "output": turns, "interpolation": "LINEAR"},
+            {"input": times, "output": scales, "interpolation": "CUBICSPLINE"},
+            {"input": times, "output": w, "interpolation": "STEP"},
+        ]}],
+    }))
 }
 
 #[test]

@@ -475,7 +475,9 @@ fn check_overrides(ctx: &mut BuildContext, at: &str, materials: &BTreeMap<String
 }
 
 /// The fuzz target's entry: `data` as a `.glb` or `.gltf` file in a
-/// temporary folder, imported with every check; never panics.
+/// temporary folder, imported with every check, posed by its first
+/// animation (0.37 s in, wrapped) when it has one, else at rest; never
+/// panics.
 pub fn fuzz_import(data: &[u8]) -> bool {
     let Ok(dir) = tempfile::tempdir() else {
         return false;
@@ -486,15 +488,23 @@ pub fn fuzz_import(data: &[u8]) -> bool {
     }
     let mut mtl = MtlMaterials::new(0, 0, Some(dir.path()));
     let mut notes = Vec::new();
-    import(
-        &path,
-        None,
-        Some(dir.path()),
-        Pose::default(),
-        &mut mtl,
-        &mut notes,
-    )
-    .is_ok()
+    let posed = Pose {
+        animation: Some("#0"),
+        time: 0.37,
+        repeat: true,
+    };
+    match import(&path, None, Some(dir.path()), posed, &mut mtl, &mut notes) {
+        Err(ImportError::Animation(_)) => import(
+            &path,
+            None,
+            Some(dir.path()),
+            Pose::default(),
+            &mut mtl,
+            &mut notes,
+        )
+        .is_ok(),
+        r => r.is_ok(),
+    }
 }
 
 #[cfg(test)]
