@@ -1018,6 +1018,61 @@ fn an_animated_node_moves_its_mesh_by_the_keys_at_the_frame_time() {
     assert!(load(&[("a.gltf", doc("LINEAR").as_bytes())], &scene).is_ok());
 }
 
+/// A node the animation moves is motion-blurred like a keyed instance:
+/// with a half-frame shutter it moves from where the keys put it at the
+/// opening to where they put it half a frame later; with the shutter
+/// closed it holds still. A node whose animated scale is zero at the
+/// frame drawn is left out of the picture, and is back once scaled up.
+#[test]
+fn animated_nodes_are_motion_blurred_and_scaled_to_nothing_is_hidden() {
+    let mut a = Asset::default();
+    let tri = triangle(&mut a);
+    // x from 0 to 24 over 1 s: one unit per frame at 24 fps.
+    let times = a.floats(&[0.0, 1.0], "SCALAR");
+    let xs = a.floats(&[0.0, 0.0, 0.0, 24.0, 0.0, 0.0], "VEC3");
+    // Scale 0 until 0.5 s, then 1 (STEP).
+    let grow = a.floats(&[0.0, 0.0, 0.0, 1.0, 1.0, 1.0], "VEC3");
+    let half = a.floats(&[0.0, 0.5], "SCALAR");
+    let gltf = a.gltf(json!({
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"mesh": 0}, {"mesh": 0, "translation": [0.0, 5.0, 0.0]}],
+        "meshes": [tri],
+        "animations": [{"name": "go", "channels": [
+            {"sampler": 0, "target": {"node": 0, "path": "translation"}},
+            {"sampler": 1, "target": {"node": 1, "path": "scale"}},
+        ], "samplers": [
+            {"input": times, "output": xs},
+            {"input": half, "output": grow, "interpolation": "STEP"},
+        ]}],
+    }));
+    let at = |frame: i32, shutter: &str| {
+        let scene = scene_with(r#"Gltf(file: "a.gltf", material: "grey", animation: "go")"#, "")
+            .replacen(
+                "Scene(",
+                &format!("Scene(animation: (frames: (0, 48), fps: 24, frame: {frame}),"),
+                1,
+            )
+            .replacen("fov_y_degrees: 40", &format!("fov_y_degrees: 40{shutter}"), 1);
+        load(&[("a.gltf", gltf.as_bytes())], &scene).unwrap_or_else(|e| panic!("loads: {}", explain(e)))
+    };
+    // Frame 6 (0.25 s): the scaled node is hidden; the other moves.
+    let blurred = at(6, ", shutter: (0, 0.5)");
+    let geo = &blurred.scene.geometry;
+    assert_eq!(geo.instances.len(), 1, "the node scaled to nothing is not placed");
+    let m = geo.instances[0].motion().expect("the moving node is blurred");
+    let x = |t: f32| m.placement_at(t).world_from_object.translation.x;
+    assert!((x(6.0) - 6.0).abs() < 1e-4, "at the opening: {}", x(6.0));
+    assert!((x(6.5) - 6.5).abs() < 1e-4, "at the closing: {}", x(6.5));
+    assert!((x(6.25) - 6.25).abs() < 1e-4, "half way: {}", x(6.25));
+    // Shutter closed: placed, still.
+    let still = at(6, "");
+    let geo = &still.scene.geometry;
+    assert!(geo.instances[0].motion().is_none());
+    assert!((geo.instances[0].world_from_object.translation.x - 6.0).abs() < 1e-4);
+    // Frame 18 (0.75 s): the scaled node is back.
+    assert_eq!(at(18, "").scene.geometry.instances.len(), 2);
+}
+
 /// A skinned strip of two triangles: the vertices weighted to the second
 /// joint follow it when the animation turns that joint a quarter turn
 /// about z, those weighted to the first stay, and a vertex split half and

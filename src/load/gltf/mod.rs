@@ -44,11 +44,17 @@ pub const MAX_POSED_COPIES: usize = 1 << 25;
 pub struct Imported {
     /// Each mesh used, with the mapped material of each of its slots.
     pub meshes: Vec<ImportedMesh>,
-    /// (index into `meshes`, asset-space transform), one per placing node.
-    pub placements: Vec<(usize, Mat4)>,
+    /// (index into `meshes`, asset-space transform, and the transform's
+    /// keys over the shutter when an animation moves it), one per placing
+    /// node.
+    pub placements: Vec<(usize, Mat4, Option<Keys>)>,
     /// Every file read.
     pub files: Vec<std::path::PathBuf>,
 }
+
+/// An asset-space transform at times in frames over the shutter, for a
+/// part an animation moves rigidly while the shutter is open.
+pub type Keys = Vec<(f32, Mat4)>;
 
 /// A mesh, the mapped material of each of its slots and each slot's
 /// material name in the asset.
@@ -64,6 +70,12 @@ pub struct Pose<'a> {
     pub time: f32,
     /// Wrap the time at the animation's length.
     pub repeat: bool,
+    /// The shutter's opening, in frames.
+    pub open: f32,
+    /// Further (frames, seconds into the animation) over the open shutter
+    /// the rigid parts are posed at, for motion blur; empty when the
+    /// shutter is closed.
+    pub blur: &'a [(f32, f32)],
 }
 
 /// Why an asset was not imported: the file (any problem reading or
@@ -123,6 +135,7 @@ fn import_bounded(
     let posed = animation::pose(&doc, &buffers, chosen, pose.time, pose.repeat)?;
     let locals = &posed.locals;
     let placements = nodes::flatten(&doc, scene, locals)?;
+    let keys = motion_keys(&doc, &buffers, scene, chosen, pose, &placements)?;
     // Joints may sit anywhere in the node tree: every node's world
     // transform, only when something is skinned.
     let worlds = if placements.iter().any(|p| p.skin.is_some()) {
@@ -142,7 +155,12 @@ fn import_bounded(
     };
     let mut images = material::Images::default();
     let mut by_material: HashMap<Option<usize>, Mapped> = HashMap::new();
-    for p in &placements {
+    for (i, p) in placements.iter().enumerate() {
+        // A rigid part scaled to nothing at the opening (an animation's
+        // way to hide it) and not moving is not in the picture.
+        if p.skin.is_none() && keys[i].is_none() && p.world_from_mesh.determinant().abs() < 1e-30 {
+            continue;
+        }
         // Morph weights: the node's (posed), else the mesh's; none when
         // all are zero (the base shape).
         let weights: Option<Vec<f32>> = posed.weights[p.node]
@@ -168,7 +186,7 @@ fn import_bounded(
             p.world_from_mesh
         };
         if let Some(&k) = built.get(&key) {
-            out.placements.push((k, placed));
+            out.placements.push((k, placed, keys[i].clone()));
             continue;
         }
         let mut source = material::Source {
@@ -225,7 +243,7 @@ fn import_bounded(
         out.meshes.push((mesh, slots, names));
         let k = out.meshes.len() - 1;
         built.insert(key, k);
-        out.placements.push((k, placed));
+        out.placements.push((k, placed, keys[i].clone()));
     }
     out.files = reader.files;
     let mut out = merge_single_placements(out);
@@ -252,7 +270,7 @@ fn merge_single_placements(imported: Imported) -> Imported {
         files,
     } = imported;
     let mut uses = vec![0usize; meshes.len()];
-    for (k, _) in &placements {
+    for (k, _, _) in &placements {
         uses[*k] += 1;
     }
     let mut meshes: Vec<Option<ImportedMesh>> = meshes.into_iter().map(Some).collect();
@@ -266,14 +284,15 @@ fn merge_single_placements(imported: Imported) -> Imported {
     type Key = ([u32; 16], [bool; 3]);
     let mut groups: HashMap<Key, usize> = HashMap::new();
     let mut renumbered: HashMap<usize, usize> = HashMap::new();
-    for (k, world) in placements {
+    for (k, world, keys) in placements {
         let Some(entry) = meshes[k].take() else {
             // Placed before: its mesh is out already.
-            out.placements.push((renumbered[&k], world));
+            out.placements.push((renumbered[&k], world, keys));
             continue;
         };
         let (mesh, slots, _) = &entry;
-        let joinable = uses[k] == 1 && slots.len() == mesh.slot_count as usize;
+        // A moving part keeps its own instance.
+        let joinable = uses[k] == 1 && slots.len() == mesh.slot_count as usize && keys.is_none();
         let key: Key = (world.to_cols_array().map(f32::to_bits), mesh.attributes());
         // Joined while the sum stays well inside the indices' and the
         // tree's limits; past them the part opens a new group.
@@ -295,7 +314,7 @@ fn merge_single_placements(imported: Imported) -> Imported {
             None => {
                 let at = out.meshes.len();
                 out.meshes.push(entry);
-                out.placements.push((at, world));
+                out.placements.push((at, world, keys));
                 renumbered.insert(k, at);
                 if joinable {
                     groups.insert(key, at);
@@ -304,6 +323,55 @@ fn merge_single_placements(imported: Imported) -> Imported {
         }
     }
     out
+}
+
+/// Sub-steps of the open shutter at which an animated asset's rigid parts
+/// are posed: their motion is the keyed-instance motion through these
+/// poses (`anim::TransformTrack`, linear, rotations by slerp), close to
+/// the animation's own path for the turns a frame holds.
+pub const BLUR_STEPS: usize = 8;
+
+/// Per placement, its asset-space transform at the shutter's opening and
+/// at each time of `pose.blur`, when an animation moves it rigidly (not
+/// skinned) over the shutter and every pose is a regular transform of one
+/// handedness (a key of zero scale, or a mirror between two, would pass
+/// through a flat placement); else `None`, and the part holds its opening
+/// pose.
+fn motion_keys(
+    doc: &gltf::Document,
+    buffers: &accessor::Buffers,
+    scene: Option<u32>,
+    chosen: Option<usize>,
+    pose: Pose,
+    placements: &[nodes::Placement],
+) -> Result<Vec<Option<Keys>>, String> {
+    let mut keys = vec![None; placements.len()];
+    if chosen.is_none() || pose.blur.is_empty() {
+        return Ok(keys);
+    }
+    let mut all: Vec<Keys> = placements
+        .iter()
+        .map(|p| vec![(pose.open, p.world_from_mesh)])
+        .collect();
+    for &(frame, secs) in pose.blur {
+        let later = animation::pose(doc, buffers, chosen, secs, pose.repeat)?;
+        // The same tree, so the same placements in the same order.
+        for (k, p) in nodes::flatten(doc, scene, &later.locals)?.iter().enumerate() {
+            if let Some(a) = all.get_mut(k) {
+                a.push((frame, p.world_from_mesh));
+            }
+        }
+    }
+    for ((slot, a), p) in keys.iter_mut().zip(all).zip(placements) {
+        let det = |m: &Mat4| m.determinant();
+        let regular = a.iter().all(|(_, m)| m.is_finite() && det(m).abs() >= 1e-30)
+            && a.iter().all(|(_, m)| (det(m) > 0.0) == (det(&a[0].1) > 0.0));
+        let moves = a.windows(2).any(|w| w[0].1 != w[1].1);
+        if p.skin.is_none() && regular && moves && a.len() == pose.blur.len() + 1 {
+            *slot = Some(a);
+        }
+    }
+    Ok(keys)
 }
 
 /// Notes for what the asset carries and ronray does not render, and for
@@ -354,19 +422,28 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     let at = format!("objects[{i}]");
     let path = ctx.base.join(file);
     let root = ctx.mtl.root().map(Path::to_path_buf);
+    let (open, close) = super::animation::shutter(ctx.desc);
+    let blur: Vec<(f32, f32)> = if animation.is_some() && close > open {
+        ctx.notes.push(format!(
+            "{at}: skinned and morphed parts keep the pose of the shutter's opening (no \
+             deformation blur); parts the animation moves rigidly are motion-blurred"
+        ));
+        (1..=BLUR_STEPS)
+            .map(|k| {
+                let t = open + (close - open) * k as f32 / BLUR_STEPS as f32;
+                (t, animation_seconds(ctx.desc, t))
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
     let pose = Pose {
         animation: animation.as_deref(),
-        time: pose_time(ctx.desc),
+        time: animation_seconds(ctx.desc, open),
         repeat: *repeat,
+        open,
+        blur: &blur,
     };
-    if animation.is_some()
-        && let (open, close) = super::animation::shutter(ctx.desc)
-        && close > open
-    {
-        ctx.notes.push(format!(
-            "{at}: the asset is posed at the shutter's opening; its animation is not motion-blurred"
-        ));
-    }
     let imported = match import(&path, *scene, root.as_deref(), pose, &mut ctx.mtl, &mut ctx.notes) {
         Ok(x) => x,
         Err(ImportError::File(e)) => {
@@ -411,7 +488,7 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         ctx.geometry.meshes.push(mesh);
         slot_materials.push(resolved);
     }
-    for (k, asset_from_mesh) in imported.placements {
+    for (k, asset_from_mesh, keys) in imported.placements {
         let world = world_from_object * asset_from_mesh;
         let mesh = (first_mesh + k) as u32;
         let slots = &slot_materials[k];
@@ -420,6 +497,15 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
             Affine3A::from_mat4(world),
             slots.iter().map(|s| s.0).collect(),
         );
+        if let Some(keys) = keys {
+            // Moving while the shutter is open, as a keyed `Instance`.
+            let keys: Keys = keys.iter().map(|&(t, m)| (t, world_from_object * m)).collect();
+            let track = crate::anim::TransformTrack::new(&keys, crate::anim::Interpolation::Linear);
+            if track.moves_between(open, close) {
+                instance =
+                    instance.with_motion(crate::geometry::moving::InstanceMotion::new(track, (open, close)));
+            }
+        }
         if slots.iter().any(|s| s.1.is_some()) {
             instance.lights = slots
                 .iter()
@@ -444,16 +530,15 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     }
 }
 
-/// Seconds into a glTF animation at the frame being built: the scene's
-/// first frame is the animation's start, each frame `1/fps` s later, and
-/// the asset is posed at the shutter's opening (`frame + shutter.0`), the
-/// time keyed instances are built at. A scene without `animation` is time
-/// 0 (plus its shutter's opening, at 24 frames per second).
-fn pose_time(desc: &crate::desc::SceneDesc) -> f32 {
-    let (open, _) = super::animation::shutter(desc);
+/// Seconds into a glTF animation at time `t` (frames): the scene's first
+/// frame is the animation's start and each frame `1/fps` s later. The
+/// asset is posed at the shutter's opening (`frame + shutter.0`), the time
+/// keyed instances are built at. A scene without `animation` counts from
+/// frame 0 at 24 frames per second.
+fn animation_seconds(desc: &crate::desc::SceneDesc, t: f32) -> f32 {
     let (first, fps) = desc.animation.as_ref().map_or((0, 24.0), |a| (a.frames.0, a.fps));
     let fps = if fps > 0.0 && fps.is_finite() { fps } else { 24.0 };
-    (open - first as f32) / fps
+    (t - first as f32) / fps
 }
 
 /// Every key of `materials` must name a material of the asset.
@@ -488,10 +573,16 @@ pub fn fuzz_import(data: &[u8]) -> bool {
     }
     let mut mtl = MtlMaterials::new(0, 0, Some(dir.path()));
     let mut notes = Vec::new();
+    // Half a frame of shutter at 24 fps: the motion keys too.
+    let blur: Vec<(f32, f32)> = (1..=2)
+        .map(|k| (k as f32 * 0.25, 0.37 + k as f32 * 0.25 / 24.0))
+        .collect();
     let posed = Pose {
         animation: Some("#0"),
         time: 0.37,
         repeat: true,
+        open: 0.0,
+        blur: &blur,
     };
     match import(&path, None, Some(dir.path()), posed, &mut mtl, &mut notes) {
         Err(ImportError::Animation(_)) => import(

@@ -60,8 +60,11 @@ pub fn flatten(doc: &Document, scene: Option<u32>, locals: &[Mat4]) -> Result<Ve
         }
         let world = parent * local;
         if let Some(m) = node.mesh() {
-            if world.determinant().abs() < 1e-30 || !world.is_finite() {
-                return Err(format!("nodes[{i}]: its world transform is singular"));
+            // A node scaled to nothing is placed all the same (the caller
+            // leaves it out of the picture): an animation may scale it
+            // back, and placements keep one order whatever the pose.
+            if !world.is_finite() {
+                return Err(format!("nodes[{i}]: its world transform is not finite"));
             }
             out.push(Placement {
                 mesh: m.index(),
