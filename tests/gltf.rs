@@ -514,6 +514,37 @@ fn gltf_emission_above_the_limit_is_clamped_with_a_note() {
     }
 }
 
+/// A scene lit only by a glTF's emissive material renders lit, so the
+/// "it will render black" warning must not say otherwise (it did: only
+/// OBJ meshes were taken to maybe emit); with every material replaced by
+/// a scene one that does not emit, the warning is right and stays.
+#[test]
+fn a_scene_lit_by_a_gltf_emitter_is_not_warned_black() {
+    let m = json!({"emissiveFactor": [1, 0.5, 0]});
+    let gltf = quad_asset(m, false, false);
+    let scene = |object: &str| {
+        format!(
+            "Scene(
+                camera: (eye: (0, 1, 6), target: (0, 0, 0), fov_y_degrees: 40),
+                materials: {{ \"grey\": Lambert(albedo: 0.5) }},
+                objects: [{object}],
+            )"
+        )
+    };
+    let black = |object: &str| {
+        let loaded = load(&[("a.gltf", gltf.as_bytes())], &scene(object))
+            .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+        let warned = notes_of(&loaded).iter().any(|n| n.contains("render black"));
+        (warned, loaded.scene.lights.len())
+    };
+    let (warned, lights) = black(r#"Gltf(file: "a.gltf")"#);
+    assert!(lights > 0, "the emissive quad is a light");
+    assert!(!warned, "a scene lit by the glTF's emission was warned black");
+    let (warned, lights) = black(r#"Gltf(file: "a.gltf", material: "grey")"#);
+    assert_eq!(lights, 0);
+    assert!(warned, "a scene with nothing emitting was not warned");
+}
+
 #[test]
 fn gltf_mask_cuts_out_below_the_cutoff_only() {
     for (alpha, present) in [(0.3, false), (0.7, true)] {

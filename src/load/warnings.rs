@@ -131,8 +131,12 @@ pub fn emits(desc: &SceneDesc) -> bool {
         } => *strength > 0.0 && radiance.as_ref().is_none_or(positive),
     });
     let object = desc.objects.iter().any(|o| {
-        let mtl =
-            matches!(o, ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. }) && o.material().is_none();
+        // An OBJ's MTL or a glTF's own materials may emit (`Ke`,
+        // `emissiveFactor`) unless the scene replaces them all.
+        let mtl = matches!(
+            o,
+            ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } | ObjectDesc::Gltf { .. }
+        ) && o.material().is_none();
         mtl || o.emission().is_some_and(|e| glows(&e.radiance))
     });
     light || object

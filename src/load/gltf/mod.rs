@@ -163,8 +163,11 @@ fn import_bounded(
         }
         // Morph weights: the node's (posed), else the mesh's; none when
         // all are zero (the base shape).
-        let weights: Option<Vec<f32>> = posed.weights[p.node]
-            .clone()
+        let weights: Option<Vec<f32>> = posed
+            .weights
+            .get(p.node)
+            .cloned()
+            .flatten()
             .or_else(|| {
                 doc.meshes()
                     .nth(p.mesh)
