@@ -164,6 +164,12 @@ fn scene_with(objects: &str, materials: &str) -> String {
     )
 }
 
+/// The start of a scene whose frames run `first..=last` at 24 fps,
+/// drawing `frame`: what `scene_with(..).replacen("Scene(", ..)` puts in.
+fn animated(first: i32, last: i32, frame: i32) -> String {
+    format!("Scene(animation: (frames: ({first}, {last}), fps: 24, frame: {frame}),")
+}
+
 /// A unit right triangle in z = 0 (positions only), as asset parts.
 fn triangle(a: &mut Asset) -> Value {
     let pos = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "VEC3");
@@ -762,11 +768,7 @@ fn morph_targets_blend_by_the_weights_at_the_frame_time() {
     }));
     let corner_z = |extra: &str| -> Vec<f32> {
         let objects = format!(r#"Gltf(file: "a.gltf", material: "grey"{extra})"#);
-        let scene = scene_with(&objects, "").replacen(
-            "Scene(",
-            "Scene(animation: (frames: (0, 48), fps: 24, frame: 6),",
-            1,
-        );
+        let scene = scene_with(&objects, "").replacen("Scene(", &animated(0, 48, 6), 1);
         let loaded =
             load(&[("a.gltf", gltf.as_bytes())], &scene).unwrap_or_else(|e| panic!("loads: {}", explain(e)));
         let geo = &loaded.scene.geometry;
@@ -939,11 +941,7 @@ fn fox_rests_without_an_animation_and_walks_with_one() {
     let data = std::fs::read(&fox).expect("the Fox fixture");
     let with = |extra: &str, frame: i32| {
         let objects = format!(r#"Gltf(file: "Fox.glb", transform: [Scale((0.02, 0.02, 0.02))]{extra})"#);
-        let scene = scene_with(&objects, "").replacen(
-            "Scene(",
-            &format!("Scene(animation: (frames: (1, 48), fps: 24, frame: {frame}),"),
-            1,
-        );
+        let scene = scene_with(&objects, "").replacen("Scene(", &animated(1, 48, frame), 1);
         load(&[("Fox.glb", &data)], &scene)
     };
     let rest = with("", 1).unwrap_or_else(|e| panic!("Fox loads: {}", explain(e)));
@@ -1025,11 +1023,7 @@ fn an_animated_node_moves_its_mesh_by_the_keys_at_the_frame_time() {
     let x_at = |interpolation: &str, frame: i32, repeat: bool| -> f32 {
         let extra = if repeat { ", repeat: true" } else { "" };
         let objects = format!(r#"Gltf(file: "a.gltf", material: "grey", animation: "slide"{extra})"#);
-        let scene = scene_with(&objects, "").replacen(
-            "Scene(",
-            &format!("Scene(animation: (frames: (1, 200), fps: 24, frame: {frame}),"),
-            1,
-        );
+        let scene = scene_with(&objects, "").replacen("Scene(", &animated(1, 200, frame), 1);
         let loaded = load(&[("a.gltf", doc(interpolation).as_bytes())], &scene)
             .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
         let geo = &loaded.scene.geometry;
@@ -1078,11 +1072,7 @@ fn animated_nodes_are_motion_blurred_and_scaled_to_nothing_is_hidden() {
     }));
     let at = |frame: i32, shutter: &str| {
         let scene = scene_with(r#"Gltf(file: "a.gltf", material: "grey", animation: "go")"#, "")
-            .replacen(
-                "Scene(",
-                &format!("Scene(animation: (frames: (0, 48), fps: 24, frame: {frame}),"),
-                1,
-            )
+            .replacen("Scene(", &animated(0, 48, frame), 1)
             .replacen("fov_y_degrees: 40", &format!("fov_y_degrees: 40{shutter}"), 1);
         load(&[("a.gltf", gltf.as_bytes())], &scene).unwrap_or_else(|e| panic!("loads: {}", explain(e)))
     };

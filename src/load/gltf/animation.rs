@@ -62,16 +62,144 @@ pub struct Posed {
     pub weights: Vec<Option<Vec<f32>>>,
 }
 
+/// What a channel sets on its node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Target {
+    Translation,
+    Rotation,
+    Scale,
+    /// One weight per morph target of the node's mesh.
+    Weights,
+}
+
+/// One channel, its accessors read and checked once.
+struct Channel {
+    node: usize,
+    target: Target,
+    interpolation: Interpolation,
+    times: Vec<f32>,
+    /// `width` numbers per key (three times as many for `CUBICSPLINE`).
+    values: Vec<f32>,
+    width: usize,
+    /// Where it is in the asset, for errors found when it is sampled.
+    at: String,
+}
+
+/// An animation read from the asset: sampled at as many times as a frame
+/// and its shutter need, its accessors read once.
+pub struct Animation {
+    channels: Vec<Channel>,
+    /// Its last key time over all channels: where `repeat` wraps.
+    length: f32,
+}
+
+impl Animation {
+    /// Reads animation `k`: every channel's key times and values, checked.
+    /// Channels animating morph weights of a node without morph targets
+    /// are skipped.
+    pub fn read(doc: &Document, buffers: &Buffers, k: usize) -> Result<Self, String> {
+        let anim = doc
+            .animations()
+            .nth(k)
+            .ok_or_else(|| format!("animations[{k}] does not exist"))?;
+        // Rotations and weights may be normalised integers.
+        let quantised = [
+            DataType::F32,
+            DataType::I8,
+            DataType::U8,
+            DataType::I16,
+            DataType::U16,
+        ];
+        let mut channels = Vec::new();
+        for c in anim.channels() {
+            let at = format!("animations[{k}].channels[{}]", c.index());
+            let err = |e: String| format!("{at}: {e}");
+            let s = c.sampler();
+            let times: Vec<[f32; 1]> = read_f32(
+                doc,
+                buffers,
+                s.input().index(),
+                Dimensions::Scalar,
+                &[DataType::F32],
+                "animation input",
+            )
+            .map_err(err)?;
+            let times: Vec<f32> = times.into_iter().map(|[t]| t).collect();
+            check_times(&times).map_err(err)?;
+            let node = c.target().node();
+            let output = s.output().index();
+            let (target, values, width) = match c.target().property() {
+                Property::Translation | Property::Scale => {
+                    let v: Vec<[f32; 3]> = read_f32(
+                        doc,
+                        buffers,
+                        output,
+                        Dimensions::Vec3,
+                        &[DataType::F32],
+                        "animation output",
+                    )
+                    .map_err(err)?;
+                    let target = if c.target().property() == Property::Translation {
+                        Target::Translation
+                    } else {
+                        Target::Scale
+                    };
+                    (target, v.as_flattened().to_vec(), 3)
+                }
+                Property::Rotation => {
+                    let v: Vec<[f32; 4]> = read_f32(
+                        doc,
+                        buffers,
+                        output,
+                        Dimensions::Vec4,
+                        &quantised,
+                        "animation output",
+                    )
+                    .map_err(err)?;
+                    (Target::Rotation, v.as_flattened().to_vec(), 4)
+                }
+                Property::MorphTargetWeights => {
+                    let targets = node
+                        .mesh()
+                        .and_then(|m| m.primitives().next())
+                        .map_or(0, |p| p.morph_targets().count());
+                    if targets == 0 {
+                        continue;
+                    }
+                    let v: Vec<[f32; 1]> = read_f32(
+                        doc,
+                        buffers,
+                        output,
+                        Dimensions::Scalar,
+                        &quantised,
+                        "animation output",
+                    )
+                    .map_err(err)?;
+                    (Target::Weights, v.as_flattened().to_vec(), targets)
+                }
+            };
+            channels.push(Channel {
+                node: node.index(),
+                target,
+                interpolation: s.interpolation(),
+                times,
+                values,
+                width,
+                at,
+            });
+        }
+        let length = channels
+            .iter()
+            .filter_map(|c| c.times.last().copied())
+            .fold(0.0f32, f32::max);
+        Ok(Self { channels, length })
+    }
+}
+
 /// Every node's local transform and morph weights (document order): the
-/// node's own, with the channels of animation `chosen` at `time` seconds
-/// applied (wrapped at the animation's length when `repeat`).
-pub fn pose(
-    doc: &Document,
-    buffers: &Buffers,
-    chosen: Option<usize>,
-    time: f32,
-    repeat: bool,
-) -> Result<Posed, String> {
+/// node's own, with the channels of `animation` at `time` seconds applied
+/// (wrapped at the animation's length when `repeat`).
+pub fn pose(doc: &Document, animation: Option<&Animation>, time: f32, repeat: bool) -> Result<Posed, String> {
     let mut trs: Vec<(Vec3, Quat, Vec3)> = doc
         .nodes()
         .map(|n| {
@@ -86,122 +214,56 @@ pub fn pose(
             .collect(),
         weights: doc.nodes().map(|n| n.weights().map(<[f32]>::to_vec)).collect(),
     };
-    let Some(k) = chosen else {
+    let Some(anim) = animation else {
         return Ok(posed);
     };
-    let Some(anim) = doc.animations().nth(k) else {
-        return Err(format!("animations[{k}] does not exist"));
-    };
-    let mut channels = Vec::new();
-    for c in anim.channels() {
-        let at = format!("animations[{k}].channels[{}]", c.index());
-        let s = c.sampler();
-        let times: Vec<[f32; 1]> = read_f32(
-            doc,
-            buffers,
-            s.input().index(),
-            Dimensions::Scalar,
-            &[DataType::F32],
-            "animation input",
-        )
-        .map_err(|e| format!("{at}: {e}"))?;
-        let times: Vec<f32> = times.into_iter().map(|[t]| t).collect();
-        check_times(&times).map_err(|e| format!("{at}: {e}"))?;
-        channels.push((c, times, at));
-    }
-    let length = channels
-        .iter()
-        .filter_map(|(_, t, _)| t.last().copied())
-        .fold(0.0f32, f32::max);
-    let t = if repeat && length > 0.0 {
-        time.rem_euclid(length)
+    let t = if repeat && anim.length > 0.0 {
+        time.rem_euclid(anim.length)
     } else {
         time
     };
     let mut animated = vec![false; trs.len()];
-    // Rotations and weights may be normalised integers.
-    let quantised = [
-        DataType::F32,
-        DataType::I8,
-        DataType::U8,
-        DataType::I16,
-        DataType::U16,
-    ];
-    for (c, times, at) in channels {
-        let target = c.target().node();
-        let node = target.index();
-        let interpolation = c.sampler().interpolation();
-        let output = c.sampler().output().index();
-        let Some(slot) = trs.get_mut(node) else {
-            return Err(format!("{at}: targets node {node}, which does not exist"));
+    for c in &anim.channels {
+        let err = |e: String| format!("{}: {e}", c.at);
+        let Some(slot) = trs.get_mut(c.node) else {
+            return Err(err(format!("targets node {}, which does not exist", c.node)));
         };
-        let err = |e: String| format!("{at}: {e}");
-        match c.target().property() {
-            Property::Translation | Property::Scale => {
-                let v: Vec<[f32; 3]> = read_f32(
-                    doc,
-                    buffers,
-                    output,
-                    Dimensions::Vec3,
-                    &[DataType::F32],
-                    "animation output",
-                )
-                .map_err(err)?;
-                let x = sample(&times, v.as_flattened(), 3, interpolation, t, false).map_err(err)?;
-                let x = Vec3::from_slice(&x);
+        let v = sample(
+            &c.times,
+            &c.values,
+            c.width,
+            c.interpolation,
+            t,
+            c.target == Target::Rotation,
+        )
+        .map_err(err)?;
+        match c.target {
+            Target::Translation | Target::Scale => {
+                let x = Vec3::from_slice(&v);
                 if !x.is_finite() {
-                    return Err(format!("{at}: a value is not finite"));
+                    return Err(err("a value is not finite".into()));
                 }
-                if c.target().property() == Property::Translation {
+                if c.target == Target::Translation {
                     slot.0 = x;
                 } else {
                     slot.2 = x;
                 }
-                animated[node] = true;
+                animated[c.node] = true;
             }
-            Property::Rotation => {
-                let v: Vec<[f32; 4]> = read_f32(
-                    doc,
-                    buffers,
-                    output,
-                    Dimensions::Vec4,
-                    &quantised,
-                    "animation output",
-                )
-                .map_err(err)?;
-                let q = Quat::from_slice(
-                    &sample(&times, v.as_flattened(), 4, interpolation, t, true).map_err(err)?,
-                );
+            Target::Rotation => {
+                let q = Quat::from_slice(&v);
                 slot.1 = if q.is_finite() && q.length_squared() > 0.0 {
                     q.normalize()
                 } else {
                     Quat::IDENTITY
                 };
-                animated[node] = true;
+                animated[c.node] = true;
             }
-            Property::MorphTargetWeights => {
-                // One weight per morph target of the node's mesh, per key.
-                let targets = target
-                    .mesh()
-                    .and_then(|m| m.primitives().next())
-                    .map_or(0, |p| p.morph_targets().count());
-                if targets == 0 {
-                    continue;
+            Target::Weights => {
+                if !v.iter().all(|x| x.is_finite()) {
+                    return Err(err("a weight is not finite".into()));
                 }
-                let v: Vec<[f32; 1]> = read_f32(
-                    doc,
-                    buffers,
-                    output,
-                    Dimensions::Scalar,
-                    &quantised,
-                    "animation output",
-                )
-                .map_err(err)?;
-                let w = sample(&times, v.as_flattened(), targets, interpolation, t, false).map_err(err)?;
-                if !w.iter().all(|x| x.is_finite()) {
-                    return Err(format!("{at}: a weight is not finite"));
-                }
-                posed.weights[node] = Some(w);
+                posed.weights[c.node] = Some(v);
             }
         }
     }

@@ -132,10 +132,13 @@ fn import_bounded(
         Some(a) => Some(animation::find(&doc, a).map_err(ImportError::Animation)?),
         None => None,
     };
-    let posed = animation::pose(&doc, &buffers, chosen, pose.time, pose.repeat)?;
+    let read = chosen
+        .map(|k| animation::Animation::read(&doc, &buffers, k))
+        .transpose()?;
+    let posed = animation::pose(&doc, read.as_ref(), pose.time, pose.repeat)?;
     let locals = &posed.locals;
     let placements = nodes::flatten(&doc, scene, locals)?;
-    let keys = motion_keys(&doc, &buffers, scene, chosen, pose, &placements)?;
+    let keys = motion_keys(&doc, scene, read.as_ref(), pose, &placements)?;
     // Joints may sit anywhere in the node tree: every node's world
     // transform, only when something is skinned.
     let worlds = if placements.iter().any(|p| p.skin.is_some()) {
@@ -342,14 +345,13 @@ pub const BLUR_STEPS: usize = 8;
 /// pose.
 fn motion_keys(
     doc: &gltf::Document,
-    buffers: &accessor::Buffers,
     scene: Option<u32>,
-    chosen: Option<usize>,
+    animation: Option<&animation::Animation>,
     pose: Pose,
     placements: &[nodes::Placement],
 ) -> Result<Vec<Option<Keys>>, String> {
     let mut keys = vec![None; placements.len()];
-    if chosen.is_none() || pose.blur.is_empty() {
+    if animation.is_none() || pose.blur.is_empty() {
         return Ok(keys);
     }
     let mut all: Vec<Keys> = placements
@@ -357,7 +359,7 @@ fn motion_keys(
         .map(|p| vec![(pose.open, p.world_from_mesh)])
         .collect();
     for &(frame, secs) in pose.blur {
-        let later = animation::pose(doc, buffers, chosen, secs, pose.repeat)?;
+        let later = animation::pose(doc, animation, secs, pose.repeat)?;
         // The same tree, so the same placements in the same order.
         for (k, p) in nodes::flatten(doc, scene, &later.locals)?.iter().enumerate() {
             if let Some(a) = all.get_mut(k) {
