@@ -55,6 +55,70 @@ fn direct_point_light_on_lambert_plane_matches_closed_form() {
     );
 }
 
+/// A directional light on a Lambert plane: `ρ/π · E cos θ` everywhere it
+/// is not shadowed, with every integrator, under any number of suns (their
+/// sum, whichever the light tree picks); a ball's shadow falls where the
+/// light, travelling along `direction`, would have left it.
+#[test]
+fn directional_light_on_lambert_plane_matches_closed_form() {
+    let text = |integrator: &str, lights: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 4, 0.001), target: (0, 0, 0), fov_y_degrees: 60),
+            film: (width: 33, height: 33, spp: 16),
+            integrator: {integrator},
+            materials: {{ "grey": Lambert(albedo: (0.5, 0.5, 0.5)) }},
+            lights: [{lights}],
+            objects: [
+                Plane(point: (0, 0, 0), normal: (0, 1, 0), material: "grey"),
+                // Far off to the side, out of view, casting its shadow at x ≈ -3.
+                Sphere(center: (3, 3, 0), radius: 0.5, material: "grey"),
+            ],
+        )"#
+        )
+    };
+    // 60° from the zenith, travelling toward −x and down: cos θ = 0.5.
+    let sun = "Directional(direction: (-0.866, -0.5, 0), irradiance: (4, 2, 1))";
+    let weak = "Directional(direction: (0, -1, 0), irradiance: (1, 1, 1))";
+    for integrator in [
+        "Direct(light_samples: 1)",
+        "Path(max_depth: 2)",
+        "Path(max_depth: 2, light_selection: Power)",
+    ] {
+        for (lights, want) in [
+            (sun.to_string(), Vec3A::new(4.0, 2.0, 1.0) * 0.5),
+            (
+                format!("{sun}, {weak}"),
+                Vec3A::new(4.0, 2.0, 1.0) * 0.5 + Vec3A::ONE,
+            ),
+        ] {
+            let s = scene(&text(integrator, &lights));
+            let expected = want * (0.5 / PI);
+            // The origin, and a point far out on the plane: the same.
+            for x in [0.0f32, 2.5] {
+                let at = Vec3A::new(x, 0.0, 0.5);
+                let from = Vec3A::new(x, 1.0, 1.5);
+                let got = mean_li(&s, Ray::new(from, (at - from).normalize()), 4096);
+                for c in 0..3 {
+                    assert!(
+                        (got[c] - expected[c]).abs() <= 0.02 * expected[c],
+                        "{integrator}, [{lights}], x = {x}, channel {c}: {} against {}",
+                        got[c],
+                        expected[c]
+                    );
+                }
+            }
+        }
+        // In the ball's shadow, 1.5 × 1.732 = 5.2 along −x from below it:
+        // only the sky-less weak sun would light it, and it is not there.
+        let s = scene(&text(integrator, sun));
+        let at = Vec3A::new(3.0 - 3.0 * 1.732, 0.0, 0.0);
+        let from = at + Vec3A::new(0.0, 1.0, 0.5);
+        let got = mean_li(&s, Ray::new(from, (at - from).normalize()), 16);
+        assert!(got.max_element() < 1e-6, "{integrator}: shadow at {at} is {got}");
+    }
+}
+
 /// Irradiance from a uniform, one-sided Lambertian polygon emitter of radiance
 /// `l` at point `x` with normal `n` (Lambert's formula: E = L/2 Σ βᵢ n·γᵢ).
 fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {

@@ -377,7 +377,9 @@ fn nothing_to_light_trace_renders_as_the_path_tracer_alone() {
     ));
     let notes = piece_notes(&point);
     assert!(
-        notes.iter().any(|n| n.contains("point or spot light"))
+        notes
+            .iter()
+            .any(|n| n.contains("point, spot or directional light"))
             && !notes.iter().any(|n| n.contains("same expected value")),
         "{notes:?}"
     );

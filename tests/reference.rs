@@ -298,3 +298,60 @@ fn sobol_beats_independent_on_cornell() {
         "Sobol RMSE {sobol:.5} vs independent {independent:.5}"
     );
 }
+
+/// Directional lights (two suns and a dim sky over a glass ball and a red
+/// ball) against Mitsuba's `ptracer`, which finds what a path tracer cannot:
+/// the sun's caustic under the glass ball, and the light that caustic
+/// sends on (`make_sun_caustic.py`). The particle tracer cannot see
+/// through the glass from the camera, so the pixels that meet the ball are
+/// left out (the mask) and every 8 × 8 block of the rest is judged as
+/// [`common::check_blocks`] judges a whole image. The path tracer alone
+/// (`caustics: PathOnly`) must fail the same bar: the check can see the
+/// caustic.
+#[test]
+fn directional_lights_and_their_caustics_match_mitsuba_ptracer() {
+    let scene = "tests/fixtures/refs/sun_caustic.ron";
+    let fixture = |f: &str| read_image(&root().join("tests/fixtures/refs").join(f)).expect("fixture");
+    let reference = fixture("sun_caustic_64.pfm");
+    let skip: Vec<bool> = fixture("sun_caustic_mask_64.pfm")
+        .pixels
+        .iter()
+        .map(|p| p.x > 0.5)
+        .collect();
+    let render = |seed: u64, sets: &[&str]| {
+        let o = Overrides {
+            spp: Some(256),
+            size: Some((64, 64)),
+            seed: Some(seed),
+            sets: sets.iter().map(|s| s.to_string()).collect(),
+            ..Default::default()
+        };
+        let loaded = load_with(&root().join(scene), &o).expect("scene");
+        render_whole(&loaded.scene, &loaded.view, &Default::default()).0
+    };
+    let (a, b) = (render(1, &[]), render(2, &[]));
+    let bad = common::masked_blocks_off(&a, &b, &reference, &skip);
+    assert!(
+        bad.is_empty(),
+        "{} block(s) off the reference:\n{}",
+        bad.len(),
+        bad.join("\n")
+    );
+    // The image off the ball, as a whole, within 1%.
+    let kept_mean = |img: &Image| {
+        let kept = img.pixels.iter().zip(&skip).filter(|(_, s)| !**s);
+        let n = kept.clone().count() as f32;
+        kept.map(|(p, _)| *p).sum::<glam::Vec3A>() / n
+    };
+    let (got, want) = (kept_mean(&a), kept_mean(&reference));
+    assert!(
+        ((got - want).abs() / want).max_element() < 0.01,
+        "mean off the ball {got} against {want}"
+    );
+    let caustics = ["integrator.caustics=PathOnly"];
+    let (a, b) = (render(1, &caustics), render(2, &caustics));
+    assert!(
+        !common::masked_blocks_off(&a, &b, &reference, &skip).is_empty(),
+        "the path tracer alone passes: the check cannot see the caustic"
+    );
+}

@@ -67,6 +67,18 @@ pub enum LightDesc {
         #[serde(default)]
         falloff_degrees: f32,
     },
+    /// Parallel light from infinitely far away along `direction` (a sun):
+    /// a surface facing it receives `irradiance` W/m² per channel, one at
+    /// angle θ to it `irradiance · cos θ`. A delta light, like `Point`: it
+    /// casts hard shadows and is not seen by camera rays or in mirrors (for
+    /// a visible sun, put one in an `Environment` map).
+    Directional {
+        /// The way the light travels, from the sky toward the scene (a sun
+        /// overhead is `(0, -1, 0)`); need not be unit length.
+        direction: V3,
+        /// Irradiance on a surface facing the light, in W/m² per channel.
+        irradiance: Color,
+    },
     /// Parallelogram `corner + s·edge_u + t·edge_v`, s,t ∈ `[0, 1]`, emitting
     /// `radiance` (W/(m²·sr)) from the side its normal `normalize(edge_u ×
     /// edge_v)` points to. Visible to camera rays.
@@ -147,6 +159,7 @@ impl LightDesc {
             LightDesc::Environment { map, .. } => map.as_mut(),
             LightDesc::Point { .. }
             | LightDesc::Spot { .. }
+            | LightDesc::Directional { .. }
             | LightDesc::Quad { .. }
             | LightDesc::Rect { .. } => None,
         }

@@ -3,6 +3,7 @@
 //! pinhole camera's film, added to the tile loop's image. The plan decides
 //! whether it runs and how many paths it traces ([`super::plan::LightTrace`]).
 
+use super::plan::LightTrace;
 use crate::integrators::{Counters, caustic};
 use crate::math::rng::mix64;
 use crate::math::{ExactSum, Rgb, SampleRng};
@@ -18,7 +19,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 const CHUNK: u64 = 4096;
 
 /// Chunks traced between merges into the image: bounds the splats held at
-/// once (at most `CHUNK` each).
+/// once (at most `CHUNK` × [`caustic::MAX_SEGMENTS`] each).
 const BATCH: u64 = 64;
 
 /// The caustic light tracer ([`caustic`]): traces `paths` light paths of a
@@ -27,15 +28,19 @@ const BATCH: u64 = 64;
 /// untouched, when cancelled. Splats are summed exactly ([`ExactSum`]), so
 /// the image is the same whatever the thread count. Memory: 48 bytes a
 /// pixel for the sums beside the film's 16, below a render's peak
-/// (`crate::memory`), and at most `BATCH · CHUNK` splats.
+/// (`crate::memory`), and at most `BATCH · CHUNK` light paths' splats.
 pub(super) fn light_trace(
     scene: &Scene,
     view: &View,
-    paths: u64,
-    max_chain: u32,
+    trace: LightTrace,
     cancel: &AtomicBool,
     pixels: &mut [Rgb],
 ) -> Option<Counters> {
+    let LightTrace {
+        paths,
+        max_chain,
+        max_depth,
+    } = trace;
     let em = scene.caustics.as_ref()?;
     let (w, h) = (view.film.width, view.film.height);
     let mut sums = vec![ExactSum::ZERO; w as usize * h as usize];
@@ -54,12 +59,21 @@ pub(super) fn light_trace(
                 let mut sampler = Sampler::independent(SampleRng::new(seed, k));
                 let mut c = Counters::default();
                 let n = CHUNK.min(paths - k * CHUNK);
-                let splats = (0..n)
-                    .filter_map(|_| {
-                        let y = caustic::trace(scene, em, max_chain, &mut sampler, &mut c)?;
-                        caustic::splat(scene, &view.camera, w, h, &y, &mut c)
-                    })
-                    .collect();
+                let mut splats = Vec::new();
+                for _ in 0..n {
+                    let Some(mut v) = caustic::trace(scene, em, max_chain, &mut sampler, &mut c) else {
+                        continue;
+                    };
+                    // The caustic's own surface, then (from a point, spot
+                    // or directional light) every later one it lights.
+                    loop {
+                        splats.extend(caustic::splat(scene, &view.camera, w, h, &v, &mut c));
+                        match caustic::bounce(scene, &v, max_depth, &mut sampler, &mut c) {
+                            Some(next) => v = next,
+                            None => break,
+                        }
+                    }
+                }
                 (splats, c)
             })
             .collect();

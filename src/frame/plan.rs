@@ -78,6 +78,10 @@ pub struct LightTrace {
     pub paths: u64,
     /// The longest specular chain they follow.
     pub max_chain: u32,
+    /// The path tracer's depth (segments from the camera; `u32::MAX`:
+    /// unlimited), which bounds a delta light's paths past their first
+    /// surface (`caustic::bounce`).
+    pub max_depth: u32,
 }
 
 /// A frame's plan: see the module doc.
@@ -110,7 +114,7 @@ pub struct Plan {
     /// True when a whole frame would light trace its caustics and this
     /// piece path traces them: the assembled frame is not `render`'s bytes.
     pub light_trace_skipped: bool,
-    /// True when the skipped light tracing would have drawn a point or spot
+    /// True when the skipped light tracing would have drawn a point, spot or directional
     /// light's caustics, which the path tracer cannot find.
     pub point_caustics_skipped: bool,
 }
@@ -257,7 +261,7 @@ impl Plan {
         }
         if self.point_caustics_skipped {
             notes.push(
-                "this scene's caustics are light traced in a whole render and path traced in pieces, and the path tracer cannot find a point or spot light's: the assembled frame lacks them; `integrator: Path(caustics: PathOnly)` leaves them out of whole renders too".to_string(),
+                "this scene's caustics are light traced in a whole render and path traced in pieces, and the path tracer cannot find a point, spot or directional light's: the assembled frame lacks them; `integrator: Path(caustics: PathOnly)` leaves them out of whole renders too".to_string(),
             );
         } else if self.light_trace_skipped {
             notes.push(
@@ -353,6 +357,7 @@ fn light_trace(scene: &Scene, view: &View) -> Option<LightTrace> {
     (paths >= 1.0 && paths <= u32::MAX as f64).then_some(LightTrace {
         paths: paths as u64,
         max_chain: caustic::max_chain(p.max_depth),
+        max_depth: p.max_depth,
     })
 }
 

@@ -44,8 +44,7 @@ pub fn render(
         && !stats.cancelled
     {
         let start = Instant::now();
-        let mut run =
-            || super::caustics::light_trace(scene, view, trace.paths, trace.max_chain, cancel, &mut pixels);
+        let mut run = || super::caustics::light_trace(scene, view, trace, cancel, &mut pixels);
         let traced = match rayon::ThreadPoolBuilder::new()
             .num_threads(opts.threads.unwrap_or(0))
             .build()

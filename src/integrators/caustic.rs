@@ -44,6 +44,19 @@
 //! y|_camera / d² / (A_pix cos³θ)` to its pixel, and the pixel's estimate
 //! is the sum over all light paths over their number.
 //!
+//! Light from a point, spot or directional light does not stop at y: the
+//! caustic lights other surfaces in turn (a glass ball's bright spot on the
+//! floor brightens a ball beside it), and the path tracer cannot find those
+//! paths either (from each later surface, the way to the light still ends
+//! in a delta light seen through a specular chain). So a light path from a
+//! delta light goes on from y ([`bounce`]: a BSDF sample in its direction
+//! of travel, through any perfect-specular surfaces, to the next surface
+//! that is not one) and every such surface is splatted like y, within the
+//! path tracer's depth and by Russian roulette on the flux (as Mitsuba's
+//! `ptracer` joins every vertex of its light paths to the camera). A path
+//! from an area light or the sky stops at y: the path tracer finds what
+//! follows by BSDF sampling.
+//!
 //! Not done, measured: joining every non-delta camera-path vertex to the
 //! light path's end (bidirectional connections, for the caustics reached
 //! after another diffuse bounce) had 50 times less variance than the path
@@ -52,8 +65,9 @@
 //!
 //! Emitted from: rectangles and parallelograms (one- or two-sided),
 //! one-sided emissive spheres, a sky with an image (a parallel beam
-//! through a specular object's bounding sphere: `lights/caustic.rs`), and
-//! point and spot lights. A point or spot light's caustics are found by
+//! through a specular object's bounding sphere: `lights/caustic.rs`),
+//! directional lights (the same beam, one direction), and point and spot
+//! lights. A point, spot or directional light's caustics are found by
 //! nothing else: a BSDF sample never reaches a point, so without the light
 //! tracer a glass ball under a point light casts a black shadow (as in
 //! pbrt-v4's and Mitsuba 3's path tracers). Caustics of other lights
@@ -97,7 +111,17 @@ pub struct LightVertex {
     flux: Rgb,
     /// Specular vertices between the light and y (≥ 1).
     pub chain: u32,
+    /// Segments from the light to this vertex.
+    segments: u32,
+    /// Whether the light is a point, spot or directional light: the path
+    /// goes on past y ([`bounce`]).
+    from_delta: bool,
 }
+
+/// Most segments a light path from a delta light takes (Russian roulette
+/// ends nearly all long before; this bounds a path between mirrors that
+/// reflect everything).
+pub const MAX_SEGMENTS: u32 = 64;
 
 /// Traces one light path: `None` unless it leaves the light, meets one to
 /// `max_chain` perfect-specular surfaces and lands on a non-delta one.
@@ -126,10 +150,22 @@ pub(super) fn trace_from(
     let u_dir = sampler.next_vec2();
     let u_cone = sampler.next_f32();
     let light = &scene.lights[li as usize];
+    let delta = light.is_delta();
+    let follow = |ray: Ray, flux: Rgb, sampler: &mut Sampler, counters: &mut Counters| {
+        follow(scene, ray, flux, (0, max_chain), sampler, counters).map(|mut y| {
+            y.from_delta = delta;
+            y
+        })
+    };
     if let Some(env) = light.as_environment().filter(|_| em.is_sky(li)) {
         // From the sky: a parallel beam through a target's disk.
         let (o, d, flux) = em.sky_start(env, pmf, u_dir, u_cone, u_point)?;
-        return follow(scene, Ray::new(o, d), flux, max_chain, sampler, counters);
+        return follow(Ray::new(o, d), flux, sampler, counters);
+    }
+    if let Some(sun) = light.as_directional() {
+        // From a directional light: its parallel beam through a target's disk.
+        let (o, d, flux) = em.sun_start(sun, pmf, u_cone, u_point)?;
+        return follow(Ray::new(o, d), flux, sampler, counters);
     }
     if let Some(p) = light.point_source() {
         // A point or spot light: a direction toward the targets (over the
@@ -138,7 +174,7 @@ pub(super) fn trace_from(
             .aim(p, u_cone, u_dir)
             .unwrap_or_else(|| (uniform_sphere(u_dir), UNIFORM_SPHERE_PDF));
         let flux = light.intensity_toward(d) / (pmf * pdf);
-        return follow(scene, Ray::new(p, d), flux, max_chain, sampler, counters);
+        return follow(Ray::new(p, d), flux, sampler, counters);
     }
     // A point, its emitting normal, L_e / (pmf · p_A), and whether the back
     // emits too.
@@ -164,34 +200,58 @@ pub(super) fn trace_from(
     let flux = le * (cos_l / pdf);
     let side = if d.dot(n) >= 0.0 { n } else { -n };
     let ray = Ray::new(offset_origin(p, side, light_point_error(p, side), d), d);
-    follow(scene, ray, flux, max_chain, sampler, counters)
+    follow(ray, flux, sampler, counters)
 }
 
 /// Follows a light path leaving along `ray` with flux weight `flux` through
-/// perfect-specular surfaces: its end y when one to `max_chain` of them lead
-/// to a surface that is not one.
+/// perfect-specular surfaces: the next surface that is not one, when
+/// `chain.0` to `chain.1` of them lead to it; `segments` are those from the
+/// light to where `ray` leaves. The vertex is not marked `from_delta`.
 fn follow(
     scene: &Scene,
     mut ray: Ray,
     mut flux: Rgb,
-    max_chain: u32,
+    (min_chain, max_chain): (u32, u32),
     sampler: &mut Sampler,
     counters: &mut Counters,
 ) -> Option<LightVertex> {
-    if !flux.is_finite() || flux == Rgb::ZERO {
+    follow_from(
+        scene,
+        &mut ray,
+        &mut flux,
+        (min_chain.max(1), max_chain),
+        0,
+        sampler,
+        counters,
+    )
+}
+
+/// [`follow`] from a path that has `segments` segments where `ray` leaves.
+fn follow_from(
+    scene: &Scene,
+    ray: &mut Ray,
+    flux: &mut Rgb,
+    (min_chain, max_chain): (u32, u32),
+    segments: u32,
+    sampler: &mut Sampler,
+    counters: &mut Counters,
+) -> Option<LightVertex> {
+    if !flux.is_finite() || *flux == Rgb::ZERO {
         return None;
     }
     let mut chain = 0u32;
     loop {
         counters.rays += 1;
-        let hit = scene.intersect(&ray, f32::INFINITY)?;
+        let hit = scene.intersect(ray, f32::INFINITY)?;
         let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
         if !bsdf.is_delta() {
-            return (chain > 0).then_some(LightVertex {
+            return (chain >= min_chain).then_some(LightVertex {
                 hit,
                 wi: -ray.d,
-                flux,
+                flux: *flux,
                 chain,
+                segments: segments + chain + 1,
+                from_delta: false,
             });
         }
         chain += 1;
@@ -202,12 +262,67 @@ fn follow(
         let bs = bsdf.sample(frame.to_local(-ray.d), sampler.next_f32(), Vec2::ZERO)?;
         // The flux part of the weight: the radiance scaling of a refraction
         // is undone by the étendue's (module docs).
-        flux *= bs.weight * (bs.eta * bs.eta);
-        if flux == Rgb::ZERO || !flux.is_finite() {
+        *flux *= bs.weight * (bs.eta * bs.eta);
+        if *flux == Rgb::ZERO || !flux.is_finite() {
             return None;
         }
-        ray = spawn(&hit, frame.to_world(bs.wi));
+        *ray = spawn(&hit, frame.to_world(bs.wi));
     }
+}
+
+/// The next surface that is not perfectly specular, lit by the light path
+/// that reached `v` (module docs: only a path from a point, spot or
+/// directional light goes on): a BSDF sample at `v` along the light's
+/// direction of travel, then any perfect-specular chain. `None` when the
+/// path ends: from another light, past `max_depth` (the path tracer's:
+/// the camera's segment counts), by Russian roulette on the flux, or
+/// escaping.
+pub fn bounce(
+    scene: &Scene,
+    v: &LightVertex,
+    max_depth: u32,
+    sampler: &mut Sampler,
+    counters: &mut Counters,
+) -> Option<LightVertex> {
+    // The camera's segment and at least one more must fit.
+    let room = max_depth.min(MAX_SEGMENTS).saturating_sub(v.segments + 1);
+    if !v.from_delta || room == 0 {
+        return None;
+    }
+    let bsdf = scene.materials[v.hit.material as usize].bsdf(v.hit.uv, &scene.textures);
+    let frame = Frame::from_normal(v.hit.ns);
+    let wo = frame.to_local(v.wi);
+    let bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2())?;
+    let u_rr = sampler.next_f32();
+    let d = frame.to_world(bs.wi);
+    // Flux through the geometric surface: the shading normal's cosines
+    // traded for the geometric ones on both sides (Veach 1997, §5.3), and
+    // a refraction's radiance scaling undone, as along a chain.
+    let (cos_in_s, cos_in_g) = (wo.z.abs(), v.hit.ng.dot(v.wi).abs());
+    let (cos_out_s, cos_out_g) = (bs.wi.z.abs(), v.hit.ng.dot(d).abs());
+    if cos_in_g == 0.0 || cos_out_s == 0.0 {
+        return None;
+    }
+    let scale = bs.weight * (bs.eta * bs.eta) * (cos_in_s * cos_out_g / (cos_in_g * cos_out_s));
+    // Roulette on what the bounce keeps of the flux.
+    let q = scale.max_element().min(0.95);
+    if !(q > 0.0 && u_rr < q) {
+        return None;
+    }
+    let mut flux = v.flux * (scale / q);
+    let mut ray = spawn(&v.hit, d);
+    // A specular chain after this bounce takes what depth is left.
+    let mut next = follow_from(
+        scene,
+        &mut ray,
+        &mut flux,
+        (0, room - 1),
+        v.segments,
+        sampler,
+        counters,
+    )?;
+    next.from_delta = true;
+    Some(next)
 }
 
 /// Where light vertex `y` lands on the film of a pinhole `camera` (`w` × `h`

@@ -19,9 +19,9 @@
 //! whole frame (lands in the picture, in sight of the eye). A light whose
 //! share is under [`MIN_REACH`] is left to the path tracer
 //! ([`CausticEmitters::without`]): its caustics are then found as with
-//! `caustics: PathOnly`, and the other lights keep theirs. Point and spot
-//! lights are kept whatever their share: nothing else finds their
-//! caustics. Only the noise depends on the choice, never the expected
+//! `caustics: PathOnly`, and the other lights keep theirs. Point, spot and
+//! directional lights are kept whatever their share: nothing else finds
+//! their caustics. Only the noise depends on the choice, never the expected
 //! image.
 //!
 //! Deterministic: a fixed seed, one thread, the whole frame whatever piece
@@ -59,7 +59,7 @@ pub fn keep_lights_that_reach(scene: &mut Scene, camera: &Camera, (w, h): (u32, 
     }
     let drop: Vec<u32> = reach(scene, em, camera, (w, h), max_chain)
         .iter()
-        .filter(|&&(li, share)| share < MIN_REACH && scene.lights[li as usize].point_source().is_none())
+        .filter(|&&(li, share)| share < MIN_REACH && !scene.lights[li as usize].is_delta())
         .map(|&(li, _)| li)
         .collect();
     if !drop.is_empty() {

@@ -19,8 +19,16 @@
 //! `L(ω) / (pmf · p(ω) · p(x))` (a parallel beam: `dΦ = L dA⊥ dω`). Only a
 //! sky with an image is traced from: a constant sky's caustics are as soft
 //! as the sky and the path tracer finds them well.
+//!
+//! # Directional lights
+//! A sun given as a `Directional` light is the same beam with its one
+//! direction ([`CausticEmitters::sun_start`]): a point on the targets'
+//! disks across it, flux weight `E / (pmf · p(x))`. Its caustics are found
+//! by nothing else (no BSDF sample reaches a delta direction), so its
+//! weight among the emitters is what it sends through the disks, `π Σ r²
+//! E`.
 
-use super::{EnvironmentLight, Light, sphere_cone};
+use super::{DirectionalLight, EnvironmentLight, Light, sphere_cone};
 use crate::accel::Aabb;
 use crate::geometry::{Geometry, Shape};
 use crate::math::trig::sin_cos_turns;
@@ -47,6 +55,9 @@ pub struct CausticEmitters {
     /// The sky when it is emitted from (module docs): its light index, and
     /// a box around every bounded shape (its light paths start outside it).
     sky: Option<(u32, Aabb)>,
+    /// That box when beams can be traced (targets bounded, the box
+    /// finite): the sky's and the directional lights' paths start outside it.
+    beam_bounds: Option<Aabb>,
 }
 
 impl CausticEmitters {
@@ -70,6 +81,7 @@ impl CausticEmitters {
             && bounds.max.is_finite()
             && (bounds.max - bounds.min).length().is_finite();
         let sky_traced = !targets.is_empty() && finite && disks.is_finite();
+        let beam_bounds = sky_traced.then_some(bounds);
         let mut sky = None;
         let pmf: Vec<f32> = lights
             .iter()
@@ -82,17 +94,26 @@ impl CausticEmitters {
                     sky = Some((i as u32, bounds));
                     disks * luminance(e.radiance_integral()).max(0.0)
                 }
+                _ if l.as_directional().is_some() => match (l.as_directional(), sky_traced) {
+                    (Some(d), true) => disks * luminance(d.irradiance).max(0.0),
+                    _ => 0.0,
+                },
                 _ if l.emits_caustics() => luminance(l.power()).max(0.0),
                 _ => 0.0,
             })
             .map(|p| if p.is_finite() { p } else { 0.0 })
             .collect();
-        Self::by_power(pmf, targets, sky)
+        Self::by_power(pmf, targets, sky, beam_bounds)
     }
 
     /// The emitters of lights weighted `pmf` (one entry per scene light; 0:
     /// not emitted from), normalised; `None` when none has weight.
-    fn by_power(mut pmf: Vec<f32>, targets: Vec<Target>, sky: Option<(u32, Aabb)>) -> Option<Self> {
+    fn by_power(
+        mut pmf: Vec<f32>,
+        targets: Vec<Target>,
+        sky: Option<(u32, Aabb)>,
+        beam_bounds: Option<Aabb>,
+    ) -> Option<Self> {
         let total: f32 = pmf.iter().sum();
         if !(total > 0.0 && total.is_finite()) {
             return None;
@@ -117,6 +138,7 @@ impl CausticEmitters {
             pmf,
             targets,
             sky,
+            beam_bounds,
         })
     }
 
@@ -136,16 +158,16 @@ impl CausticEmitters {
                 *p = 0.0;
             }
         }
-        Self::by_power(pmf, self.targets.clone(), self.sky)
+        Self::by_power(pmf, self.targets.clone(), self.sky, self.beam_bounds)
     }
 
-    /// Whether a point or spot light of `lights` (the scene's, these
-    /// emitters were built from) is emitted from: its caustics are found by
-    /// nothing but the light tracer.
+    /// Whether a point, spot or directional light of `lights` (the scene's,
+    /// these emitters were built from) is emitted from: its caustics are
+    /// found by nothing but the light tracer.
     pub fn from_points(&self, lights: &[Light]) -> bool {
         self.lights
             .iter()
-            .any(|&i| lights.get(i as usize).is_some_and(|l| l.point_source().is_some()))
+            .any(|&i| lights.get(i as usize).is_some_and(Light::is_delta))
     }
 
     /// Whether light `i` is the sky, emitted from ([`Self::sky_start`]).
@@ -169,8 +191,35 @@ impl CausticEmitters {
     ) -> Option<(Vec3A, Vec3A, Rgb)> {
         let (_, bounds) = self.sky?;
         let s = env.sample(bounds.centroid(), Vec3A::ZERO, u_dir, Draw::Independent)?;
-        let w = s.wi;
         if !(s.pdf > 0.0 && s.li != Rgb::ZERO) {
+            return None;
+        }
+        self.beam_start(s.wi, s.li / (pmf * s.pdf), u_pick, u_disk)
+    }
+
+    /// The start of a light path from the directional light `sun` (picked
+    /// with probability `pmf`; module docs), as [`Self::sky_start`]'s.
+    pub fn sun_start(
+        &self,
+        sun: &DirectionalLight,
+        pmf: f32,
+        u_pick: f32,
+        u_disk: Vec2,
+    ) -> Option<(Vec3A, Vec3A, Rgb)> {
+        if sun.irradiance == Rgb::ZERO {
+            return None;
+        }
+        self.beam_start(-sun.direction, sun.irradiance / pmf, u_pick, u_disk)
+    }
+
+    /// A ray of the parallel beam arriving from unit direction `w` (toward
+    /// the light), `weight` its radiance or irradiance over the densities
+    /// drawn so far: a point on one target's disk across `w`, moved back to
+    /// outside the scene's box; its origin, direction of travel and flux
+    /// weight `weight / p(x)`.
+    fn beam_start(&self, w: Vec3A, weight: Rgb, u_pick: f32, u_disk: Vec2) -> Option<(Vec3A, Vec3A, Rgb)> {
+        let bounds = self.beam_bounds?;
+        if self.targets.is_empty() || !w.is_finite() {
             return None;
         }
         // A target by its disk's area, then a point uniform on the disk.
@@ -208,7 +257,7 @@ impl CausticEmitters {
         }
         let margin = 1e-4 * (1.0 + (bounds.max - bounds.min).length());
         let o = q + (t_exit.max(0.0) * (1.0 + 1e-4) + margin) * w;
-        let flux = s.li / (pmf * s.pdf * p_x);
+        let flux = weight / p_x;
         (o.is_finite() && flux.is_finite()).then_some((o, -w, flux))
     }
 

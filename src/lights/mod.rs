@@ -5,13 +5,14 @@
 //! | light | what emits | next-event estimation samples |
 //! |---|---|---|
 //! | `Point`, `Spot` | a point (delta) | its position |
+//! | `Directional` | parallel light from infinitely far (a sun; delta) | its direction, with an unbounded shadow ray |
 //! | `Quad` | a `Quad`/`Rect` light, or an emissive `Quad`/`Rect` object | rectangles uniformly in solid angle (spherical rectangles), other parallelograms by area |
 //! | `Sphere` | an emissive sphere | uniformly in the cone it subtends |
 //! | `Mesh` | the emissive triangles of a placed mesh (one material slot), moving with a keyed instance | by area: a triangle by an alias table, then a uniform point (placed at the path's time when it moves) |
 //! | `Sdf` | an emissive implicit surface | uniformly in its bounding sphere's cone, then marched |
 //! | `Environment` | the sky at infinity (at most one) | an image by its bilinear luminance × sin θ; a constant sky by the cosine about the shading normal |
 //!
-//! Every light but points and spots is also reached by BSDF sampling (a
+//! Every light but points, spots and directional lights is also reached by BSDF sampling (a
 //! surface in the BVH, or a ray that misses everything); the path tracer
 //! weighs the two strategies by MIS, so each emitter counts once.
 //!
@@ -21,6 +22,7 @@
 
 pub mod alias;
 pub mod caustic;
+pub mod directional;
 pub mod emission;
 pub mod env_map;
 pub mod env_table;
@@ -42,6 +44,7 @@ mod moving_tests;
 mod tests;
 
 pub use caustic::CausticEmitters;
+pub use directional::DirectionalLight;
 pub use emission::Emission;
 pub use env_map::EnvMap;
 pub use environment::{EnvSampling, EnvironmentLight};
@@ -68,6 +71,8 @@ pub enum Light {
     Point(PointLight),
     /// Point light limited to a cone (a delta light).
     Spot(SpotLight),
+    /// Parallel light from infinitely far away (a delta light: a sun).
+    Directional(DirectionalLight),
     /// One-sided parallelogram area light; its surface is also a
     /// [`crate::geometry::Quad`] in the scene BVH.
     Quad(QuadLight),
@@ -91,8 +96,8 @@ pub trait LightModel {
     /// What the light tree knows of it (`tree.rs`), `phi` being its power
     /// (luminance, W); `None` for a light without a position (the sky).
     fn bounds(&self, phi: f32) -> Option<LightBounds>;
-    /// True for lights without area (point, spot): sampled exactly, never
-    /// hit by rays.
+    /// True for lights without area (point, spot, directional): sampled
+    /// exactly, never hit by rays.
     fn is_delta(&self) -> bool {
         false
     }
@@ -109,6 +114,10 @@ pub trait LightModel {
     }
     /// The sky, when this light is it.
     fn as_environment(&self) -> Option<&EnvironmentLight> {
+        None
+    }
+    /// The directional light, when this light is one.
+    fn as_directional(&self) -> Option<&DirectionalLight> {
         None
     }
 }
@@ -135,6 +144,7 @@ macro_rules! forward_light {
         match $self {
             Light::Point($l) => $call,
             Light::Spot($l) => $call,
+            Light::Directional($l) => $call,
             Light::Quad($l) => $call,
             Light::Sphere($l) => $call,
             Light::Mesh($l) => $call,
@@ -182,6 +192,7 @@ impl Light {
         match self {
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
+            Light::Directional(l) => l.sample(p),
             Light::Quad(l) => l.sample(p, u),
             Light::Sphere(l) => l.sample(p, u),
             Light::Mesh(l) => l.sample(p, u),
@@ -199,7 +210,7 @@ impl Light {
             Light::Sphere(l) => l.emitted(hit.ng, w),
             Light::Mesh(l) => l.emitted(hit.ng, hit.uv, w),
             Light::Sdf(l) => l.emitted(hit.ng, w),
-            Light::Point(_) | Light::Spot(_) | Light::Environment(_) => Rgb::ZERO,
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => Rgb::ZERO,
         }
     }
 
@@ -213,7 +224,7 @@ impl Light {
             Light::Sphere(l) => l.pdf(p, wi, hit.t, hit.ng),
             Light::Mesh(l) => l.pdf(wi, hit.t, hit.ng),
             Light::Sdf(l) => l.pdf(p),
-            Light::Point(_) | Light::Spot(_) | Light::Environment(_) => 0.0,
+            Light::Point(_) | Light::Spot(_) | Light::Directional(_) | Light::Environment(_) => 0.0,
         }
     }
 
@@ -224,6 +235,7 @@ impl Light {
         match self {
             Light::Point(l) => l.power(),
             Light::Spot(l) => l.power(),
+            Light::Directional(l) => l.power(),
             Light::Quad(l) => l.power(),
             Light::Sphere(l) => l.power(),
             Light::Mesh(l) => l.power(),
@@ -238,9 +250,12 @@ impl Light {
         match self {
             Light::Point(l) => Some(l.position),
             Light::Spot(l) => Some(l.position),
-            Light::Quad(_) | Light::Sphere(_) | Light::Mesh(_) | Light::Sdf(_) | Light::Environment(_) => {
-                None
-            }
+            Light::Directional(_)
+            | Light::Quad(_)
+            | Light::Sphere(_)
+            | Light::Mesh(_)
+            | Light::Sdf(_)
+            | Light::Environment(_) => None,
         }
     }
 
@@ -251,14 +266,23 @@ impl Light {
         match self {
             Light::Point(l) => l.intensity,
             Light::Spot(l) => l.intensity * l.falloff(d.dot(l.direction)),
-            Light::Quad(_) | Light::Sphere(_) | Light::Mesh(_) | Light::Sdf(_) | Light::Environment(_) => {
-                Rgb::ZERO
-            }
+            Light::Directional(_)
+            | Light::Quad(_)
+            | Light::Sphere(_)
+            | Light::Mesh(_)
+            | Light::Sdf(_)
+            | Light::Environment(_) => Rgb::ZERO,
         }
     }
 
-    /// True for lights without area (point, spot): sampled exactly, never hit by
-    /// rays.
+    /// The directional light, when this light is one.
+    #[inline]
+    pub fn as_directional(&self) -> Option<&DirectionalLight> {
+        forward_light!(self, l => l.as_directional())
+    }
+
+    /// True for lights without area (point, spot, directional): sampled
+    /// exactly, never hit by rays.
     #[inline]
     pub fn is_delta(&self) -> bool {
         forward_light!(self, l => l.is_delta())

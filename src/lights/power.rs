@@ -44,10 +44,20 @@ impl LightPicker {
                 if uniform {
                     1.0
                 } else {
-                    luminance(l.power()).max(0.0)
+                    // A sky's or a sun's power grows with the scene's size
+                    // squared: past f32 in a scene 10¹⁵ wide, so taken as
+                    // the largest f32 rather than an infinity (whose share
+                    // would be NaN).
+                    let x = luminance(l.power());
+                    if x > 0.0 { x.min(f32::MAX) } else { 0.0 }
                 }
             })
             .collect();
+        // Scaled so the largest is 1: the sum cannot overflow.
+        let largest = w.iter().fold(0.0f32, |a, &b| a.max(b));
+        if largest > 0.0 {
+            w.iter_mut().for_each(|x| *x /= largest);
+        }
         let total: f32 = w.iter().sum();
         if total <= 0.0 {
             w.iter_mut().for_each(|x| *x = 1.0);
@@ -139,6 +149,26 @@ mod tests {
     use crate::lights::PointLight;
     use crate::math::Rgb;
     use glam::Vec3A;
+
+    /// A sun over a scene 10¹⁵ wide has a power past f32 (π r² E): its
+    /// share is still a number, and the picks still sum to one.
+    #[test]
+    fn powers_past_f32_still_give_probabilities() {
+        use crate::lights::DirectionalLight;
+        let mut sun = DirectionalLight::new(Vec3A::NEG_Y, Rgb::splat(1e12));
+        sun.scene_radius = 1e15;
+        assert!(!luminance(sun.power()).is_finite());
+        let lamp = Light::Point(PointLight {
+            position: Vec3A::ZERO,
+            intensity: Rgb::ONE,
+        });
+        let lights = [Light::Directional(sun), lamp, Light::Directional(sun)];
+        let p = LightPicker::new(&lights, Selection::Power);
+        let pmfs: Vec<f32> = (0..3).map(|i| p.pmf(Vec3A::ZERO, Vec3A::ZERO, i)).collect();
+        assert!(pmfs.iter().all(|x| x.is_finite()), "{pmfs:?}");
+        assert!((pmfs.iter().sum::<f32>() - 1.0).abs() < 1e-6 && (pmfs[0] - 0.5).abs() < 1e-6);
+        assert!(p.pick(Vec3A::ZERO, Vec3A::ZERO, 0.7).is_some());
+    }
 
     #[test]
     fn light_picker_follows_power() {

@@ -30,6 +30,11 @@
 //! of the centroids (pbrt uses a surface-area-orientation cost; this one is
 //! simpler, and `log4` of the light count deep).
 //!
+//! Directional lights (suns) are not in the tree either: each is weighed
+//! beside it by π × the irradiance it gives the point's surface, `π E
+//! |cos θ|` (π E for a point with no surface), the same units as a point
+//! lamp's `π I / d²`.
+//!
 //! The environment is not in the tree (it has no position): at each point
 //! it is weighed against the tree's root by its own importance in the same
 //! units, π × its unoccluded irradiance on the point's surface, times the
@@ -203,7 +208,8 @@ impl LightBounds {
 /// of a binary tree and weighs all children of a level in one pass.
 const WIDTH: usize = 4;
 
-/// The first step of a pick at a shading point: the sky's weight and the
+/// The first step of a pick at a shading point: the weight of the lights
+/// beside the tree (the sky and any directional lights, summed) and the
 /// root's child weights and their total ([`LightTree::top`]). A path keeps
 /// the one of its last vertex: the density of the light its next BSDF
 /// sample reaches is judged from that vertex again ([`LightTree::pmf_from`]),
@@ -363,24 +369,50 @@ pub struct LightTree {
     /// The environment, if it has power: its light index and its irradiance
     /// by normal.
     env: Option<(u32, SkyWeight)>,
+    /// The directional lights with power, weighed beside the tree.
+    suns: Box<[Sun]>,
     /// The share of the sky's irradiance the scene's surfaces see
     /// (`integrators/sky_visibility.rs`); 1 until measured.
     sky_visibility: f32,
-    /// Every light with power (the tree's and the environment), for the
-    /// uniform part of the mixture.
+    /// Every light with power (the tree's, the environment and the
+    /// directional lights), for the uniform part of the mixture.
     candidates: Vec<u32>,
+}
+
+/// A directional light beside the tree: its index, the unit direction
+/// toward it and π × its irradiance (luminance, W/m²).
+#[derive(Clone, Copy, Debug)]
+struct Sun {
+    light: u32,
+    toward: Vec3A,
+    pi_e: f32,
+}
+
+impl Sun {
+    /// π × the irradiance it gives a surface of normal `n` (either side, as
+    /// the tree's `|cos|`), or π E at a point with no surface.
+    #[inline]
+    fn at(&self, n: Vec3A) -> f32 {
+        if n == Vec3A::ZERO {
+            self.pi_e
+        } else {
+            self.pi_e * n.dot(self.toward).abs()
+        }
+    }
 }
 
 impl LightTree {
     /// The tree over `lights`. `None` when there is nothing to choose per
-    /// point (the caller then picks by power): no bounded light with power,
-    /// or one and no environment with power.
+    /// point (the caller then picks by power): fewer than two lights with
+    /// power among the bounded ones, the sky and the directional lights.
     pub fn new(lights: &[Light]) -> Option<Self> {
         let mut items = Vec::new();
         let mut env = None;
+        let mut suns = Vec::new();
         for (i, l) in lights.iter().enumerate() {
             // Bounded lights with power go in the tree; the first sky with
-            // power is weighed beside it; the rest are never picked here.
+            // power and every directional light with power are weighed
+            // beside it; the rest are never picked here.
             let bounds = light_bounds(l);
             if let Some(lb) =
                 bounds.filter(|lb| lb.phi > 0.0 && lb.bounds.min.is_finite() && lb.bounds.max.is_finite())
@@ -391,21 +423,38 @@ impl LightTree {
                 && env.is_none()
             {
                 env = Some((i as u32, *e.weight()))
+            } else if let Some(d) = l.as_directional() {
+                let pi_e = PI * luminance(d.irradiance);
+                if pi_e > 0.0 && pi_e.is_finite() && d.direction.is_finite() {
+                    suns.push(Sun {
+                        light: i as u32,
+                        toward: -d.direction,
+                        pi_e: pi_e.min(f32::MAX / 16.0),
+                    });
+                }
             }
         }
-        if items.is_empty() || (items.len() == 1 && env.is_none()) {
+        if items.len() + suns.len() + usize::from(env.is_some()) < 2 {
             return None;
         }
-        let mut candidates: Vec<u32> = items.iter().map(|it| it.0).chain(env.map(|e| e.0)).collect();
+        let mut candidates: Vec<u32> = items
+            .iter()
+            .map(|it| it.0)
+            .chain(env.map(|e| e.0))
+            .chain(suns.iter().map(|s| s.light))
+            .collect();
         candidates.sort_unstable();
         let mut tree = Self {
             nodes: Vec::with_capacity(items.len()),
             trail: vec![None; lights.len()],
             env,
+            suns: suns.into_boxed_slice(),
             sky_visibility: 1.0,
             candidates,
         };
-        tree.build(&mut items, 0, 0);
+        if !items.is_empty() {
+            tree.build(&mut items, 0, 0);
+        }
         Some(tree)
     }
 
@@ -463,13 +512,23 @@ impl LightTree {
     /// bit for bit.
     #[inline]
     pub fn top(&self, p: Vec3A, n: Vec3A) -> Top {
-        let env = self.env.as_ref().map_or(0.0, |e| self.sky_visibility * e.1.at(n));
+        let mut env = self.env.as_ref().map_or(0.0, |e| self.sky_visibility * e.1.at(n));
+        for sun in self.suns.iter() {
+            env += sun.at(n);
+        }
         let env = if env.is_finite() {
             env.min(f32::MAX / 8.0)
         } else {
             0.0
         };
-        (env, self.nodes[0].weights(p, n))
+        (env, self.nodes.first().and_then(|root| root.weights(p, n)))
+    }
+
+    /// The sky's weight at a point of normal `n` (as [`Self::top`] sums it).
+    #[inline]
+    fn sky_at(&self, n: Vec3A) -> f32 {
+        let w = self.env.as_ref().map_or(0.0, |e| self.sky_visibility * e.1.at(n));
+        if w.is_finite() { w.min(f32::MAX / 8.0) } else { 0.0 }
     }
 
     /// The uniform part of every candidate's probability.
@@ -500,10 +559,33 @@ impl LightTree {
         if sum.is_nan() || sum <= 0.0 {
             return None;
         }
-        if let Some((i, _)) = self.env
-            && u * sum < env
-        {
-            return Some((i as usize, self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * env / sum));
+        if u * sum < env {
+            // The sky or a directional light, in proportion to their
+            // weights here (the sky's alone when there is no sun).
+            if self.suns.is_empty() {
+                let (i, _) = self.env?;
+                return Some((i as usize, self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * env / sum));
+            }
+            let target = u * sum;
+            let mut acc = self.sky_at(n);
+            let mut chosen = self.env.filter(|_| target < acc).map(|e| (e.0, acc));
+            if chosen.is_none() {
+                let mut last = None;
+                for sun in self.suns.iter() {
+                    let w = sun.at(n);
+                    if w > 0.0 {
+                        last = Some((sun.light, w));
+                        if target < acc + w {
+                            break;
+                        }
+                    }
+                    acc += w;
+                }
+                // Rounding past the end: the last with any weight.
+                chosen = last.or(self.env.map(|e| (e.0, self.sky_at(n))));
+            }
+            let (i, w) = chosen?;
+            return (w > 0.0).then(|| (i as usize, self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * w / sum));
         }
         let (mut imp, mut total) = root?;
         u = ((u * sum - env) / root_total).clamp(0.0, ONE_MINUS_EPSILON);
@@ -545,7 +627,10 @@ impl LightTree {
     pub fn pmf_from(&self, top: &Top, p: Vec3A, n: Vec3A, i: usize) -> f32 {
         // A candidate is in the tree or is the sky.
         let in_tree = self.trail.get(i).is_some_and(Option::is_some);
-        if !in_tree && self.env.is_none_or(|e| e.0 as usize != i) {
+        if !in_tree
+            && self.env.is_none_or(|e| e.0 as usize != i)
+            && !self.suns.iter().any(|s| s.light as usize == i)
+        {
             return 0.0;
         }
         self.uniform_pmf() + (1.0 - UNIFORM_SHARE) * self.estimate_pmf(top, p, n, i)
@@ -561,7 +646,10 @@ impl LightTree {
             return 0.0;
         }
         if self.env.is_some_and(|e| e.0 as usize == i) {
-            return env / sum;
+            return if self.suns.is_empty() { env } else { self.sky_at(n) } / sum;
+        }
+        if let Some(sun) = self.suns.iter().find(|s| s.light as usize == i) {
+            return sun.at(n) / sum;
         }
         let (Some(Some((bits, depth))), Some((mut imp, mut total))) = (self.trail.get(i).copied(), root)
         else {
@@ -693,6 +781,70 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Directional lights are weighed beside the tree and the sky: picks
+    /// and densities agree, they sum to one where the tree's lights all
+    /// reach, each sun's share follows the irradiance it gives the surface,
+    /// and a scene of suns alone (no tree) still picks per point.
+    #[test]
+    fn directional_lights_are_weighed_beside_the_tree_and_the_sky() {
+        use crate::lights::{DirectionalLight, EnvironmentLight};
+        let sun = |d: Vec3A, e: f32| Light::Directional(DirectionalLight::new(d, Rgb::splat(e)));
+        let mixes: Vec<Vec<Light>> = vec![
+            // Lamps, a map sky and two suns.
+            {
+                let mut v = lights();
+                v.push(Light::Environment(Box::new(overhead_sun(1.0))));
+                v.push(sun(Vec3A::new(0.3, -1.0, 0.2), 3.0));
+                v.push(sun(Vec3A::new(-1.0, -0.2, 0.0), 1.0));
+                v
+            },
+            // One lamp and one sun: a tree of one light and a sun.
+            vec![quad(Vec3A::new(0.0, 3.0, 0.0), true, 5.0), sun(Vec3A::NEG_Y, 2.0)],
+            // Suns and a constant sky only: no tree nodes at all.
+            vec![
+                sun(Vec3A::NEG_Y, 2.0),
+                Light::Environment(Box::new(EnvironmentLight::constant(Rgb::splat(0.5)))),
+                sun(Vec3A::X, 1.0),
+            ],
+        ];
+        let mut rng = Pcg32::new(5, 11);
+        for lights in &mixes {
+            let tree = LightTree::new(lights).expect("a tree");
+            for _ in 0..300 {
+                let (p, n) = shading_point(&mut rng);
+                let n = if rng.next_f32() < 0.1 { Vec3A::ZERO } else { n };
+                let total: f64 = (0..lights.len()).map(|i| tree.pmf(p, n, i) as f64).sum();
+                assert!(total <= 1.0 + 1e-4 && total > 0.5, "pmfs sum to {total} at {p}");
+                for _ in 0..20 {
+                    if let Some((i, pmf)) = tree.pick(p, n, rng.next_f32()) {
+                        let want = tree.pmf(p, n, i);
+                        assert!(
+                            pmf > 0.0 && (pmf - want).abs() <= 1e-6 * want.max(1.0),
+                            "pick {pmf}, pmf {want}"
+                        );
+                    }
+                }
+            }
+        }
+        // Facing the first sun, the second (grazing) gets only the uniform share.
+        let lights = &mixes[2];
+        let tree = LightTree::new(lights).expect("a tree");
+        let up = Vec3A::Y;
+        let (a, b) = (tree.pmf(Vec3A::ZERO, up, 0), tree.pmf(Vec3A::ZERO, up, 2));
+        assert!((b - UNIFORM_SHARE / 3.0).abs() < 1e-6, "grazing sun {b}");
+        assert!(
+            (a - (UNIFORM_SHARE / 3.0 + 1.0 - UNIFORM_SHARE)).abs() < 1e-5,
+            "facing sun {a}"
+        );
+        // Half way between them both are weighed by E cos θ: 2 · 0.707 against 1 · 0.707.
+        let n = Vec3A::new(-1.0, 1.0, 0.0).normalize();
+        let (a, b) = (tree.pmf(Vec3A::ZERO, n, 0), tree.pmf(Vec3A::ZERO, n, 2));
+        let share = |x: f32| x - UNIFORM_SHARE / 3.0;
+        assert!((share(a) / share(b) - 2.0).abs() < 1e-4, "{a} against {b}");
+        // A single sun and nothing else: nothing to choose, no tree.
+        assert!(LightTree::new(&[sun(Vec3A::NEG_Y, 1.0)]).is_none());
     }
 
     /// A light that reaches a point is never given probability zero there:

@@ -175,10 +175,17 @@ pub fn build_in(
     let bvh_time = t1.elapsed();
     // The environment's power (for light selection) is its flux through the
     // scene's bounding disk.
+    // So is a directional light's.
+    let b = bvh.bounds();
+    let r = 0.5 * (b.max - b.min).length();
+    let scene_radius = if r.is_finite() && r > 0.0 { r } else { 1.0 };
     if let Some(Light::Environment(env)) = ctx.environment.map(|i| &mut ctx.lights[i as usize]) {
-        let b = bvh.bounds();
-        let r = 0.5 * (b.max - b.min).length();
-        env.scene_radius = if r.is_finite() && r > 0.0 { r } else { 1.0 };
+        env.scene_radius = scene_radius;
+    }
+    for l in &mut ctx.lights {
+        if let Light::Directional(d) = l {
+            d.scene_radius = scene_radius;
+        }
     }
 
     let stats = BuildStats {
@@ -380,7 +387,10 @@ fn textured_emissions(desc: &SceneDesc) -> Vec<(String, &ColorDesc)> {
         LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => {
             Some((format!("lights[{i}].radiance"), radiance))
         }
-        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Environment { .. } => None,
+        LightDesc::Point { .. }
+        | LightDesc::Spot { .. }
+        | LightDesc::Directional { .. }
+        | LightDesc::Environment { .. } => None,
     });
     let objects = desc.objects.iter().enumerate().filter_map(|(i, o)| {
         o.emission()

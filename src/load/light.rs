@@ -10,7 +10,7 @@ use crate::desc::LightDesc;
 use crate::diagnostic::{Problem, suggest};
 use crate::geometry::{Quad, Shape};
 use crate::imageio::read::MAX_IMAGE_SIDE;
-use crate::lights::{EnvMap, EnvironmentLight, Light, PointLight, QuadLight, SpotLight};
+use crate::lights::{DirectionalLight, EnvMap, EnvironmentLight, Light, PointLight, QuadLight, SpotLight};
 use crate::math::Rgb;
 use glam::Vec3A;
 use std::path::Path;
@@ -59,6 +59,13 @@ impl Checker {
                         "the falloff band is the outer part of the cone",
                     );
                 }
+            }
+            LightDesc::Directional {
+                direction,
+                irradiance,
+            } => {
+                self.nonzero(&p("direction"), direction, "`direction`");
+                self.emitted(&p("irradiance"), irradiance, "irradiance");
             }
             LightDesc::Quad {
                 corner,
@@ -219,6 +226,13 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
             (*intensity).into(),
             *cone_degrees,
             *falloff_degrees,
+        ))),
+        LightDesc::Directional {
+            direction,
+            irradiance,
+        } => ctx.lights.push(Light::Directional(DirectionalLight::new(
+            (*direction).into(),
+            (*irradiance).into(),
         ))),
         LightDesc::Quad {
             corner,

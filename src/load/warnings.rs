@@ -18,6 +18,11 @@
 //!   when every receiver lies behind or in that plane (`facing`).
 //!   Meshes, instances and SDFs are judged by their bounds once built
 //!   ([`warnings_built`]); where those are not known they count as lit.
+//! - **Sun from below.** A `Directional` light whose `direction` (the way
+//!   the light travels) points more than 5° up the camera's `up`: the
+//!   light comes from under the horizon, which is what writing the
+//!   direction *toward* the sun gives (pbrt's `from`/`to`, Blender's
+//!   gizmo); the ground is then lit from beneath.
 //! - **Field of view under 5°.** `fov_y_degrees` written in radians by habit
 //!   (`0.7`) still validates and zooms in about 57 times.
 //!
@@ -57,6 +62,7 @@ pub fn warnings_built(desc: &SceneDesc, built: &[Option<crate::accel::Aabb>]) ->
     out.extend(no_light(desc));
     out.extend(specular_under_direct(desc));
     out.extend(facing::lights_facing_away(desc, built));
+    out.extend(suns_from_below(desc));
     out.extend(narrow_fov(&desc.camera));
     out
 }
@@ -78,6 +84,9 @@ pub fn warnings_beside(desc: &SceneDesc, broken: &dyn Fn(&str) -> bool) -> Vec<P
     }
     if lit {
         out.extend(facing::lights_facing_away(desc, &[]));
+    }
+    if clean(&["include", "lights", "camera"]) {
+        out.extend(suns_from_below(desc));
     }
     if clean(&["include", "camera"]) {
         out.extend(narrow_fov(&desc.camera));
@@ -125,6 +134,7 @@ pub fn emits(desc: &SceneDesc) -> bool {
     };
     let light = desc.lights.iter().any(|l| match l {
         LightDesc::Point { intensity, .. } | LightDesc::Spot { intensity, .. } => positive(intensity),
+        LightDesc::Directional { irradiance, .. } => positive(irradiance),
         LightDesc::Quad { radiance, .. } | LightDesc::Rect { radiance, .. } => glows(radiance),
         LightDesc::Environment {
             radiance, strength, ..
@@ -201,7 +211,10 @@ fn specular_under_direct(desc: &SceneDesc) -> Vec<Problem> {
     }
     let lights = desc.lights.iter().filter_map(|l| match l {
         LightDesc::Quad { material, .. } | LightDesc::Rect { material, .. } => material.as_deref(),
-        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Environment { .. } => None,
+        LightDesc::Point { .. }
+        | LightDesc::Spot { .. }
+        | LightDesc::Directional { .. }
+        | LightDesc::Environment { .. } => None,
     });
     let overrides = desc.objects.iter().flat_map(|o| {
         o.material_overrides()
@@ -237,6 +250,42 @@ fn specular_under_direct(desc: &SceneDesc) -> Vec<Problem> {
 
 /// A field of view under [`MIN_FOV_DEGREES`]; the help offers the radian
 /// reading when it would be a valid angle.
+/// One warning per directional light of positive irradiance that travels
+/// upward, more than 5° above the camera's horizon (module docs).
+fn suns_from_below(desc: &SceneDesc) -> Vec<Problem> {
+    let up = glam::Vec3::from(desc.camera.up).normalize_or_zero();
+    desc.lights
+        .iter()
+        .enumerate()
+        .filter_map(|(i, l)| match l {
+            LightDesc::Directional { direction, irradiance } if irradiance.iter().any(|&e| e > 0.0) => {
+                let d = glam::Vec3::from(*direction).normalize_or_zero();
+                let sin_elevation = d.dot(up);
+                (sin_elevation > 5f32.to_radians().sin()).then(|| {
+                    let [x, y, z] = (-d).to_array();
+                    Problem::new(
+                        format!("lights[{i}].direction"),
+                        format!(
+                            "this light travels upward ({:.0}° above the horizon): it shines from below the scene",
+                            sin_elevation.clamp(-1.0, 1.0).asin().to_degrees()
+                        ),
+                    )
+                    .help(format!(
+                        "`direction` is the way the light travels, from the sky toward the scene (a sun overhead is \
+                         `(0, -1, 0)`); if the sun was meant to be where this points, write `direction: ({x:.3}, {y:.3}, {z:.3})`"
+                    ))
+                })
+            }
+            LightDesc::Directional { .. }
+            | LightDesc::Point { .. }
+            | LightDesc::Spot { .. }
+            | LightDesc::Quad { .. }
+            | LightDesc::Rect { .. }
+            | LightDesc::Environment { .. } => None,
+        })
+        .collect()
+}
+
 fn narrow_fov(camera: &CameraDesc) -> Option<Problem> {
     let f = camera.fov_y_degrees?;
     if f >= MIN_FOV_DEGREES {

@@ -297,3 +297,45 @@ pub fn check_blocks(
         bad.join("\n")
     );
 }
+
+/// [`check_blocks`]'s bar on the pixels `skip` leaves (a block keeps its
+/// kept pixels; one with fewer than a quarter kept is not judged): the
+/// blocks off the reference, described, or none.
+pub fn masked_blocks_off(
+    a: &ronray::imageio::Image,
+    b: &ronray::imageio::Image,
+    reference: &ronray::imageio::Image,
+    skip: &[bool],
+) -> Vec<String> {
+    let (w, h) = (a.width as usize, a.height as usize);
+    let mut bad = Vec::new();
+    for by in (0..h).step_by(BLOCK) {
+        for bx in (0..w).step_by(BLOCK) {
+            let kept: Vec<usize> = (by..(by + BLOCK).min(h))
+                .flat_map(|y| (bx..(bx + BLOCK).min(w)).map(move |x| y * w + x))
+                .filter(|&i| !skip[i])
+                .collect();
+            if kept.len() * 4 < BLOCK * BLOCK {
+                continue;
+            }
+            let n = kept.len() as f64;
+            for ch in 0..3 {
+                let get = |img: &ronray::imageio::Image, i: usize| f64::from(img.pixels[i][ch]);
+                let mean_ab = kept.iter().map(|&i| 0.5 * (get(a, i) + get(b, i))).sum::<f64>() / n;
+                let mean_ref = kept.iter().map(|&i| get(reference, i)).sum::<f64>() / n;
+                if mean_ref < TINY {
+                    continue;
+                }
+                let sum_sq: f64 = kept.iter().map(|&i| (get(a, i) - get(b, i)).powi(2)).sum();
+                let sigma = sum_sq.sqrt() / (2.0 * n);
+                let tol = 4.0 * sigma + 0.03 * mean_ref + 0.001;
+                if (mean_ab - mean_ref).abs() > tol {
+                    bad.push(format!(
+                        "block at ({bx}, {by}) channel {ch}: {mean_ab:.5} vs reference {mean_ref:.5} (tolerance {tol:.5})"
+                    ));
+                }
+            }
+        }
+    }
+    bad
+}

@@ -149,7 +149,10 @@ fn area_light(l: &LightDesc) -> Option<(Vec3, Vec3, Vec3, [&'static str; 2])> {
                 ["half_u", "half_v"],
             ))
         }
-        LightDesc::Point { .. } | LightDesc::Spot { .. } | LightDesc::Environment { .. } => None,
+        LightDesc::Point { .. }
+        | LightDesc::Spot { .. }
+        | LightDesc::Directional { .. }
+        | LightDesc::Environment { .. } => None,
     }
 }
 

@@ -117,3 +117,46 @@ fn narrow_fov_offers_radians_only_when_they_make_sense() {
     d.camera.fov_y_degrees = Some(1.0);
     assert!(warnings(&d)[0].help.as_deref().unwrap_or("").contains("57.3"));
 }
+
+#[test]
+fn a_sun_travelling_upward_is_warned_with_the_flipped_direction() {
+    let objects = r#"objects: [Sphere(center: (0, 0, 0), radius: 1, material: "w")]"#;
+    let with = |light: &str| scene(&format!("integrator: Path(), lights: [{light}], {objects}"));
+    // Written toward the sun: 45° up. The help offers the reverse.
+    let up = with("Directional(direction: (1, 1, 0), irradiance: (3, 3, 3))");
+    let w = warnings(&up);
+    assert_eq!(
+        w.iter().map(|p| p.path.as_str()).collect::<Vec<_>>(),
+        ["lights[0].direction"]
+    );
+    assert!(w[0].message.contains("45° above the horizon"), "{}", w[0].message);
+    assert!(
+        w[0].help
+            .as_deref()
+            .is_some_and(|h| h.contains("(-0.707, -0.707, -0.000)")),
+        "{:?}",
+        w[0].help
+    );
+    // Downward, horizontal, barely upward (under 5°) and dark suns are fine.
+    for ok in [
+        "Directional(direction: (1, -1, 0), irradiance: (3, 3, 3))",
+        "Directional(direction: (1, 0, 0), irradiance: (3, 3, 3))",
+        "Directional(direction: (1, 0.05, 0), irradiance: (3, 3, 3))",
+        "Directional(direction: (0, 1, 0), irradiance: (0, 0, 0))",
+    ] {
+        let d = with(&format!("{ok}, Point(position: (0, 3, 0), intensity: (1, 1, 1))"));
+        assert!(paths(&d).is_empty(), "{ok}: {:?}", paths(&d));
+    }
+    // "Up" is the camera's: with +z up, a sun travelling along +z rises.
+    let mut tilted = with("Directional(direction: (0, 0, 1), irradiance: (3, 3, 3))");
+    assert!(paths(&tilted).is_empty());
+    tilted.camera.up = [0.0, 0.0, 1.0];
+    assert_eq!(paths(&tilted), ["lights[0].direction"]);
+    // A sun is a light: the scene is not "black".
+    assert!(emits(&with(
+        "Directional(direction: (0, -1, 0), irradiance: (1, 0, 0))"
+    )));
+    assert!(!emits(&with(
+        "Directional(direction: (0, -1, 0), irradiance: (0, 0, 0))"
+    )));
+}
