@@ -1202,8 +1202,9 @@ fn a_skinned_mesh_follows_its_joints() {
 }
 
 /// A small valid `.glb` (a box), `.gltf` (a textured, normal-mapped,
-/// sparse quad) and an animated, skinned, morphed triangle (every
-/// interpolation), the glTF fuzz target's seeds.
+/// sparse quad), an animated, skinned, morphed triangle (every
+/// interpolation) and a floor with a light of each `KHR_lights_punctual`
+/// kind, the glTF fuzz target's seeds.
 fn seeds() -> Vec<(&'static str, Vec<u8>)> {
     let (p, t) = unit_box();
     let mut a = Asset::default();
@@ -1220,6 +1221,10 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
         ("box.glb", glb),
         ("quad.gltf", quad_asset(m, true, true).into_bytes()),
         ("posed.gltf", posed_asset().into_bytes()),
+        (
+            "lit.gltf",
+            lit_asset([json!({}), json!({}), json!({})]).into_bytes(),
+        ),
     ]
 }
 
@@ -1312,4 +1317,190 @@ fn gltf_byte_mutations_never_panic() {
             let _ = ronray::fuzzing::gltf(&bytes);
         }
     }
+}
+
+/// `KHR_lights_punctual` lights with a floor (a triangle turned to face
+/// +y, over x ∈ [0, 5], z ∈ [−5, 0]), as an asset: a point light
+/// at (0, 3, 0), a spot on a node turned to shine down (−z turned a
+/// quarter turn about x), a directional light turned likewise, each with
+/// `extra` merged into its light, under a scene that moves the asset by
+/// `transform`.
+fn lit_asset(extra: [Value; 3]) -> String {
+    let mut a = Asset::default();
+    let mut lights = vec![
+        json!({"type": "point", "color": [1.0, 0.5, 0.25], "intensity": 683.0, "range": 20.0}),
+        json!({"type": "spot", "intensity": 1366.0, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}}),
+        json!({"type": "directional", "color": [0.5, 0.5, 0.5], "intensity": 1366.0}),
+    ];
+    for (l, e) in lights.iter_mut().zip(extra) {
+        for (k, v) in e.as_object().expect("an object") {
+            l[k] = v.clone();
+        }
+    }
+    let floor = triangle(&mut a);
+    let down = [
+        -std::f32::consts::FRAC_1_SQRT_2,
+        0.0,
+        0.0,
+        std::f32::consts::FRAC_1_SQRT_2,
+    ];
+    a.gltf(json!({
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": lights}},
+        "scenes": [{"nodes": [0, 1, 2, 3]}],
+        "nodes": [
+            {"mesh": 0, "scale": [5, 5, 5], "rotation": down},
+            {"translation": [0, 3, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+            {"translation": [1, 2, 0], "rotation": down, "scale": [4, 4, 4],
+             "extensions": {"KHR_lights_punctual": {"light": 1}}},
+            {"rotation": down, "extensions": {"KHR_lights_punctual": {"light": 2}}},
+        ],
+        "meshes": [floor],
+    }))
+}
+
+/// An asset's point, spot and directional lights join the scene's lights
+/// where their nodes and the object's transform put them, their candela
+/// and lux over 683 lm/W, a spot's half-angles as `Spot`'s full cone; a
+/// `range` is named in a note; a scene lit only by them is not warned
+/// black, and renders lit.
+#[test]
+fn gltf_punctual_lights_are_placed_and_converted() {
+    use ronray::lights::Light;
+    let gltf = lit_asset([json!({}), json!({}), json!({})]);
+    let scene = |lights: &str| {
+        format!(
+            "Scene(
+                camera: (eye: (12, 6, 6), target: (12, 0, -2), fov_y_degrees: 40),
+                integrator: Path(max_depth: 2),
+                materials: {{ \"grey\": Lambert(albedo: 0.5) }},
+                lights: [{lights}],
+                objects: [Gltf(file: \"a.gltf\", material: \"grey\", transform: [Translate((10, 0, 0))])],
+            )"
+        )
+    };
+    let loaded =
+        load(&[("a.gltf", gltf.as_bytes())], &scene("")).unwrap_or_else(|e| panic!("{}", explain(e)));
+    let lights = &loaded.scene.lights;
+    assert_eq!(lights.len(), 3, "three lights");
+    let close = |a: Vec3A, b: Vec3A| (a - b).length() < 1e-4;
+    match &lights[0] {
+        Light::Point(p) => {
+            assert!(close(p.position, Vec3A::new(10.0, 3.0, 0.0)), "{}", p.position);
+            assert!(close(p.intensity, Vec3A::new(1.0, 0.5, 0.25)), "{}", p.intensity);
+        }
+        other => panic!("not a point light: {other:?}"),
+    }
+    match &lights[1] {
+        Light::Spot(s) => {
+            assert!(close(s.position, Vec3A::new(11.0, 2.0, 0.0)), "{}", s.position);
+            assert!(close(s.direction, Vec3A::NEG_Y), "{}", s.direction);
+            assert!(close(s.intensity, Vec3A::splat(2.0)));
+            // Full intensity within 0.2 rad of the axis, none past 0.5.
+            assert_eq!(s.falloff(0.19f32.cos()), 1.0);
+            assert_eq!(s.falloff(0.51f32.cos()), 0.0);
+            assert!(s.falloff(0.35f32.cos()) > 0.0 && s.falloff(0.35f32.cos()) < 1.0);
+        }
+        other => panic!("not a spot light: {other:?}"),
+    }
+    match &lights[2] {
+        Light::Directional(d) => {
+            assert!(close(d.direction, Vec3A::NEG_Y), "{}", d.direction);
+            assert!(close(d.irradiance, Vec3A::ONE), "{}", d.irradiance);
+        }
+        other => panic!("not a directional light: {other:?}"),
+    }
+    let notes = notes_of(&loaded);
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("3 KHR_lights_punctual light(s) placed")),
+        "{notes:?}"
+    );
+    assert!(
+        notes.iter().any(|n| n.contains("1 light(s) give a `range`")),
+        "{notes:?}"
+    );
+    assert!(!notes.iter().any(|n| n.contains("render black")), "{notes:?}");
+    // Lit by them alone: the floor under the sun is ρ/π · E = 0.5/π · 1 and
+    // more (the point and the spot add to it).
+    let img = render_whole(&loaded.scene, &loaded.view, &Default::default()).0;
+    let mean = img.pixels.iter().map(|p| p.x).sum::<f32>() / img.pixels.len() as f32;
+    assert!(mean > 0.02, "the asset's lights light nothing: mean {mean}");
+    // Without its lights (a zero intensity each) the same scene is black
+    // and warned so.
+    let dark = lit_asset([
+        json!({"intensity": 0}),
+        json!({"intensity": 0}),
+        json!({"intensity": 0}),
+    ]);
+    let loaded =
+        load(&[("a.gltf", dark.as_bytes())], &scene("")).unwrap_or_else(|e| panic!("{}", explain(e)));
+    assert!(notes_of(&loaded).iter().any(|n| n.contains("render black")));
+}
+
+/// A light with values outside the extension's ranges is a located error
+/// naming the light and what is wrong; a node naming a light that does
+/// not exist is refused; a light whose node is scaled to nothing has no
+/// direction and is left out with a note.
+#[test]
+fn malformed_punctual_lights_are_located_errors() {
+    for (extra, want) in [
+        ([json!({"intensity": -1.0}), json!({}), json!({})], "intensity -1"),
+        (
+            [json!({"color": [1.0, -2.0, 0.0]}), json!({}), json!({})],
+            "color",
+        ),
+        (
+            [
+                json!({}),
+                json!({"spot": {"innerConeAngle": 0.6, "outerConeAngle": 0.5}}),
+                json!({}),
+            ],
+            "spot cone angles",
+        ),
+        (
+            [
+                json!({}),
+                json!({"spot": {"innerConeAngle": 0.1, "outerConeAngle": 2.0}}),
+                json!({}),
+            ],
+            "spot cone angles",
+        ),
+        (
+            [json!({}), json!({}), json!({"intensity": 1e30})],
+            "past the limit",
+        ),
+    ] {
+        let gltf = lit_asset(extra);
+        let e = error_of(&[("a.gltf", gltf.as_bytes())]);
+        assert!(e.contains("objects[0].file") || e.contains("file:"), "{e}");
+        assert!(
+            e.contains(want) && e.contains("KHR_lights_punctual light"),
+            "{want}: {e}"
+        );
+    }
+    // A node naming light 7 of three.
+    let gltf = lit_asset([json!({}), json!({}), json!({})]).replace("{\"light\":2}", "{\"light\":7}");
+    assert!(gltf.contains("\"light\":7"), "the replacement found its text");
+    let e = error_of(&[("a.gltf", gltf.as_bytes())]);
+    assert!(
+        e.contains("nodes[3]") && e.contains("light") && e.contains("out of bounds"),
+        "{e}"
+    );
+    // Scaled to nothing: no direction.
+    let gltf = lit_asset([json!({}), json!({}), json!({})]).replace("\"scale\":[4,4,4]", "\"scale\":[0,0,0]");
+    assert!(
+        gltf.contains("\"scale\":[0,0,0]"),
+        "the replacement found its text"
+    );
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("{}", explain(e)));
+    // The scene's own point light, the asset's point and directional.
+    assert_eq!(loaded.scene.lights.len(), 3);
+    let notes = notes_of(&loaded);
+    assert!(notes.iter().any(|n| n.contains("has no direction")), "{notes:?}");
 }

@@ -232,8 +232,13 @@ pub fn load_str_with_meshes(
         .map_err(|p| LoadError::Invalid(composition.locate(&p).sorted()))?;
     // Warnings once built: meshes, instances and SDFs have bounds then.
     let extents = super::warnings::object_extents(&scene, desc.objects.len());
-    let mut warnings =
-        super::warnings::located(&composition, &super::warnings::warnings_built(&desc, &extents));
+    // What the files held is known now: an MTL's `Ke`, a glTF's emission
+    // or punctual lights.
+    let lit = scene.lights.iter().any(|l| l.power().max_element() > 0.0);
+    let mut warnings = super::warnings::located(
+        &composition,
+        &super::warnings::warnings_built(&desc, &extents, Some(lit)),
+    );
     // What the build repaired or defaulted (OBJ fixes, a grey default) is
     // reported beside the warnings, as notes.
     warnings

@@ -52,14 +52,21 @@ pub use facing::object_extents;
 /// lights, materials, area lights in file order, camera. Meshes, instances
 /// and SDFs count as lit by every area light (see [`warnings_built`]).
 pub fn warnings(desc: &SceneDesc) -> Vec<Problem> {
-    warnings_built(desc, &[])
+    warnings_built(desc, &[], None)
 }
 
 /// As [`warnings`], with the world bounds of each object as built
-/// ([`object_extents`]), so that meshes, instances and SDFs are judged too.
-pub fn warnings_built(desc: &SceneDesc, built: &[Option<crate::accel::Aabb>]) -> Vec<Problem> {
+/// ([`object_extents`]), so that meshes, instances and SDFs are judged too,
+/// and `lit`: whether the built scene has a light of positive power (what
+/// its files hold is then known: an MTL's `Ke`, a glTF's emission or
+/// punctual lights).
+pub fn warnings_built(
+    desc: &SceneDesc,
+    built: &[Option<crate::accel::Aabb>],
+    lit: Option<bool>,
+) -> Vec<Problem> {
     let mut out = Vec::new();
-    out.extend(no_light(desc));
+    out.extend(no_light(desc, lit));
     out.extend(specular_under_direct(desc));
     out.extend(facing::lights_facing_away(desc, built));
     out.extend(suns_from_below(desc));
@@ -77,7 +84,7 @@ pub fn warnings_beside(desc: &SceneDesc, broken: &dyn Fn(&str) -> bool) -> Vec<P
     let lit = clean(&["include", "lights", "objects", "meshes"]);
     let mut out = Vec::new();
     if lit {
-        out.extend(no_light(desc));
+        out.extend(no_light(desc, None));
     }
     if clean(&["include", "materials", "integrator", "objects", "lights"]) {
         out.extend(specular_under_direct(desc));
@@ -122,9 +129,10 @@ pub fn located(composition: &Composition, problems: &[Problem]) -> Report {
 }
 
 /// Whether anything in the scene emits light: a light of positive power, an
-/// object with positive `emission`, or a mesh that keeps some of its MTL
+/// object with positive `emission`, a mesh that keeps some of its MTL
 /// materials (an MTL `Ke` emits, and reading the files to find out is the
-/// build's work: such a mesh errs on the side of silence).
+/// build's work: such a mesh errs on the side of silence), or any glTF
+/// asset (emissive materials or `KHR_lights_punctual` lights).
 pub fn emits(desc: &SceneDesc) -> bool {
     let positive = |c: &[f32; 3]| c.iter().any(|&x| x > 0.0);
     // A texture is taken to glow somewhere: its checks report a black one.
@@ -143,17 +151,20 @@ pub fn emits(desc: &SceneDesc) -> bool {
     let object = desc.objects.iter().any(|o| {
         // An OBJ's MTL or a glTF's own materials may emit (`Ke`,
         // `emissiveFactor`) unless the scene replaces them all.
-        let mtl = matches!(
-            o,
-            ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. } | ObjectDesc::Gltf { .. }
-        ) && o.material().is_none();
-        mtl || o.emission().is_some_and(|e| glows(&e.radiance))
+        let mtl =
+            matches!(o, ObjectDesc::Mesh { .. } | ObjectDesc::Instance { .. }) && o.material().is_none();
+        // A glTF may also carry `KHR_lights_punctual` lights, whatever
+        // replaces its materials.
+        let gltf = matches!(o, ObjectDesc::Gltf { .. });
+        mtl || gltf || o.emission().is_some_and(|e| glows(&e.radiance))
     });
     light || object
 }
 
-fn no_light(desc: &SceneDesc) -> Option<Problem> {
-    if emits(desc) {
+/// The black-image warning: from the built scene's lights when known
+/// (`lit`), else from the description ([`emits`]).
+fn no_light(desc: &SceneDesc, lit: Option<bool>) -> Option<Problem> {
+    if lit.unwrap_or_else(|| emits(desc)) {
         return None;
     }
     let message = if desc.lights.is_empty() {

@@ -10,9 +10,10 @@
 //! Steps: `document.rs` reads the file and its buffers (fenced, size
 //! capped), `nodes.rs` flattens the chosen scene's node tree, `primitive.rs`
 //! builds each mesh used once (its primitives are the mesh's material
-//! slots), and this file places one instance per node. What the asset has
-//! and ronray does not render (skins, animations, morph targets, cameras,
-//! punctual lights, vertex colours) is reported in notes, never silently
+//! slots), `punctual.rs` converts its `KHR_lights_punctual` lights, and
+//! this file places one instance per node and the lights. What the asset
+//! has and ronray does not render (cameras, vertex colours, an animation
+//! not chosen) is reported in notes, never silently
 //! dropped; a required extension ronray does not know is an error naming it
 //! (the `gltf` crate's validation).
 
@@ -22,6 +23,7 @@ pub mod document;
 pub mod material;
 pub mod nodes;
 pub mod primitive;
+pub mod punctual;
 pub mod skin;
 
 use super::build_context::BuildContext;
@@ -50,6 +52,8 @@ pub struct Imported {
     pub placements: Vec<(usize, Mat4, Option<Keys>)>,
     /// Every file read.
     pub files: Vec<std::path::PathBuf>,
+    /// The chosen scene's `KHR_lights_punctual` lights, in the pose drawn.
+    pub lights: Vec<punctual::ImportedLight>,
 }
 
 /// An asset-space transform at times in frames over the shutter, for a
@@ -137,7 +141,8 @@ fn import_bounded(
         .transpose()?;
     let posed = animation::pose(&doc, read.as_ref(), pose.time, pose.repeat)?;
     let locals = &posed.locals;
-    let placements = nodes::flatten(&doc, scene, locals)?;
+    let (placements, light_nodes) = nodes::flatten_with_lights(&doc, scene, locals)?;
+    let lights = punctual_lights(&doc, &light_nodes, &label, notes)?;
     let keys = motion_keys(&doc, scene, read.as_ref(), pose, &placements)?;
     // Joints may sit anywhere in the node tree: every node's world
     // transform, only when something is skinned.
@@ -155,6 +160,7 @@ fn import_bounded(
         meshes: Vec::new(),
         placements: Vec::new(),
         files: Vec::new(),
+        lights,
     };
     let mut images = material::Images::default();
     let mut by_material: HashMap<Option<usize>, Mapped> = HashMap::new();
@@ -274,6 +280,7 @@ fn merge_single_placements(imported: Imported) -> Imported {
         meshes,
         placements,
         files,
+        lights,
     } = imported;
     let mut uses = vec![0usize; meshes.len()];
     for (k, _, _) in &placements {
@@ -284,6 +291,7 @@ fn merge_single_placements(imported: Imported) -> Imported {
         meshes: Vec::new(),
         placements: Vec::new(),
         files,
+        lights,
     };
     // The open group of each transform (bit for bit) and set of vertex
     // attributes: its mesh's index in `out`.
@@ -395,20 +403,51 @@ fn report_unrendered(doc: &gltf::Document, label: &str, posed: bool, notes: &mut
             animation::names(doc)
         ));
     }
-    let count = |n: usize, what: &str| (n > 0).then(|| format!("{n} {what}"));
-    let parts: Vec<String> = [
-        count(doc.cameras().count(), "camera(s)"),
-        count(
-            doc.lights().map_or(0, |l| l.count()),
-            "KHR_lights_punctual light(s)",
-        ),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    if !parts.is_empty() {
-        notes.push(format!("{label}: {} read but not rendered", parts.join(", ")));
+    let cameras = doc.cameras().count();
+    if cameras > 0 {
+        notes.push(format!(
+            "{label}: {cameras} camera(s) read but not used (the scene's `camera` is)"
+        ));
     }
+}
+
+/// The lights the walk placed, converted (`punctual.rs`), with a note
+/// saying how many and in what units, and one for `range`s ignored.
+fn punctual_lights(
+    doc: &gltf::Document,
+    placed: &[nodes::LightPlacement],
+    label: &str,
+    notes: &mut Vec<String>,
+) -> Result<Vec<punctual::ImportedLight>, String> {
+    let Some(all) = doc.lights() else {
+        return Ok(Vec::new());
+    };
+    let all: Vec<gltf::khr_lights_punctual::Light> = all.collect();
+    let mut out = Vec::with_capacity(placed.len());
+    let mut ranged = 0;
+    for p in placed {
+        let light = all.get(p.light).ok_or_else(|| {
+            format!(
+                "nodes[{}] names KHR_lights_punctual light {}, which does not exist",
+                p.node, p.light
+            )
+        })?;
+        ranged += usize::from(light.range().is_some());
+        out.push(punctual::import(light, p.node, p.world)?);
+    }
+    if !out.is_empty() {
+        notes.push(format!(
+            "{label}: {} KHR_lights_punctual light(s) placed, their candela and lux over 683 lm/W \
+             (W/sr and W/m², as Blender's importer)",
+            out.len()
+        ));
+    }
+    if ranged > 0 {
+        notes.push(format!(
+            "{label}: {ranged} light(s) give a `range`, not applied: light falls off with the inverse square"
+        ));
+    }
+    Ok(out)
 }
 
 /// Adds `Gltf` object `i` to the scene.
@@ -533,6 +572,49 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         ctx.geometry.instances.push(instance);
         ctx.shapes.push(Shape::Instance(id));
     }
+    for light in &imported.lights {
+        place_light(ctx, &at, light, world_from_object);
+    }
+}
+
+/// Adds an asset's light, placed by its node and the object's transform,
+/// to the scene's lights (at the shutter's opening: lights are not
+/// motion-blurred). A spot or directional light whose node is scaled to
+/// nothing has no direction and is left out, with a note.
+fn place_light(ctx: &mut BuildContext, at: &str, light: &punctual::ImportedLight, world_from_object: Mat4) {
+    use crate::lights::{DirectionalLight, Light, PointLight, SpotLight};
+    use punctual::PunctualKind;
+    let (p, d) = light.placed(world_from_object);
+    let emitted = crate::math::Rgb::from(light.emitted);
+    let built = match (light.kind, d) {
+        (PunctualKind::Point, _) => Light::Point(PointLight {
+            position: p,
+            intensity: emitted,
+        }),
+        (
+            PunctualKind::Spot {
+                cone_degrees,
+                falloff_degrees,
+            },
+            Some(d),
+        ) => Light::Spot(SpotLight::new(p, d, emitted, cone_degrees, falloff_degrees)),
+        (PunctualKind::Directional, Some(d)) => Light::Directional(DirectionalLight::new(d, emitted)),
+        (PunctualKind::Spot { .. } | PunctualKind::Directional, None) => {
+            ctx.notes.push(format!(
+                "{at}: the light of nodes[{}] has no direction (its node is scaled to nothing): left out",
+                light.node
+            ));
+            return;
+        }
+    };
+    if !p.is_finite() {
+        ctx.notes.push(format!(
+            "{at}: the light of nodes[{}] is placed past f32 by the object's transform: left out",
+            light.node
+        ));
+        return;
+    }
+    ctx.lights.push(built);
 }
 
 /// Seconds into a glTF animation at time `t` (frames): the scene's first

@@ -26,10 +26,30 @@ pub struct Placement {
     pub skin: Option<usize>,
 }
 
+/// A `KHR_lights_punctual` light placed by a node.
+#[derive(Clone, Copy, Debug)]
+pub struct LightPlacement {
+    /// Index in the document's lights.
+    pub light: usize,
+    /// Index of the node that places it.
+    pub node: usize,
+    /// The node's world transform (the asset's own space).
+    pub world: Mat4,
+}
+
 /// The placements of scene `scene` (default: the file's `scene`, else 0),
 /// each node placed by `locals` (every node's local transform, document
 /// order: the node's own, or posed by an animation).
 pub fn flatten(doc: &Document, scene: Option<u32>, locals: &[Mat4]) -> Result<Vec<Placement>, String> {
+    flatten_with_lights(doc, scene, locals).map(|(meshes, _)| meshes)
+}
+
+/// [`flatten`], with the scene's lights placed by the same walk.
+pub fn flatten_with_lights(
+    doc: &Document,
+    scene: Option<u32>,
+    locals: &[Mat4],
+) -> Result<(Vec<Placement>, Vec<LightPlacement>), String> {
     let count = doc.scenes().count();
     let chosen = match scene {
         Some(s) => doc
@@ -43,6 +63,7 @@ pub fn flatten(doc: &Document, scene: Option<u32>, locals: &[Mat4]) -> Result<Ve
     };
     let mut seen = vec![false; doc.nodes().count()];
     let mut out = Vec::new();
+    let mut lights = Vec::new();
     let mut stack: Vec<(gltf::Node, Mat4)> = chosen.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
     while let Some((node, parent)) = stack.pop() {
         let i = node.index();
@@ -73,11 +94,22 @@ pub fn flatten(doc: &Document, scene: Option<u32>, locals: &[Mat4]) -> Result<Ve
                 skin: node.skin().map(|s| s.index()),
             });
         }
+        if let Some(l) = node.light() {
+            if !world.is_finite() {
+                return Err(format!("nodes[{i}]: its world transform is not finite"));
+            }
+            lights.push(LightPlacement {
+                light: l.index(),
+                node: i,
+                world,
+            });
+        }
         stack.extend(node.children().map(|c| (c, world)));
     }
-    // Document order of nodes, so object ids and notes are stable.
+    // Document order of nodes, so object ids, lights and notes are stable.
     out.sort_by_key(|p| p.node);
-    Ok(out)
+    lights.sort_by_key(|l| l.node);
+    Ok((out, lights))
 }
 
 /// Every node's world transform under `locals`, whatever scene holds it
