@@ -30,6 +30,9 @@ enum Sky {
     /// The sky map: a gradient sky (0.3× the lights' irradiance) and a 0.5°
     /// sun (2× the lights' irradiance at normal incidence).
     Sun,
+    /// A `Directional` sun from the map sun's direction (2× the lights'
+    /// irradiance at normal incidence) over a constant sky (0.3×).
+    Directional,
 }
 
 /// One generated scene.
@@ -65,6 +68,7 @@ impl Spec {
         let sky = match self.sky {
             Sky::Constant(k) => format!("sky{k}"),
             Sky::Sun => "sun".into(),
+            Sky::Directional => "directional".into(),
         };
         let kind = match self.kind {
             Kind::Rect => "lights",
@@ -115,8 +119,18 @@ fn family() -> Vec<Spec> {
             });
         }
     }
+    for ground in [4.0, 40.0, 400.0] {
+        for lights in [1, 2] {
+            v.push(Spec {
+                ground,
+                sky: Sky::Directional,
+                lights,
+                kind: Kind::Rect,
+            });
+        }
+    }
     for kind in [Kind::Point, Kind::Sphere, Kind::Mesh] {
-        for sky in [Sky::Constant(0.3), Sky::Sun] {
+        for sky in [Sky::Constant(0.3), Sky::Sun, Sky::Directional] {
             v.push(Spec {
                 ground: 40.0,
                 sky,
@@ -274,7 +288,24 @@ fn sky_light(spec: &Spec) -> String {
             let strength = e / lamp_irradiance(&lamps(1));
             format!(r#"Environment(map: "sun.exr", strength: {strength}),"#)
         }
+        Sky::Directional => {
+            let (d, sun, l) = directional(e);
+            format!(
+                "Directional(direction: {}, irradiance: {}),\nEnvironment(radiance: ({l}, {l}, {l})),",
+                v3(d),
+                v3(sun)
+            )
+        }
     }
+}
+
+/// A directional sun for lamps of irradiance `e`: the way it travels (from
+/// [`SUN`]), its irradiance (2 `e`, the map sun's tint) and the constant
+/// sky's radiance beside it (0.3 `e` of irradiance on the ground).
+fn directional(e: f32) -> ([f32; 3], [f32; 3], f32) {
+    let d = (-glam::Vec3::from(SUN)).normalize().to_array();
+    let sun = [0.8, 0.95, 1.25].map(|c| c * 2.0 * e);
+    (d, sun, 0.3 * e / PI)
 }
 
 /// Rectangles (centre, half_u, half_v, material) the scene holds besides
@@ -473,6 +504,15 @@ fn json(spec: &Spec, size: u32) -> String {
             r#", "environment": {{"type": "envmap", "filename": "sun.exr", "scale": {}}}"#,
             e / lamp_irradiance(&lamps(1))
         ),
+        // `mitsuba_run.py` reads no directional light: tools/open_scenes.py
+        // leaves these scenes out of its table.
+        Sky::Directional => {
+            let (d, sun, l) = directional(e);
+            format!(
+                r#", "environment": {{"type": "constant", "radiance": [{l}, {l}, {l}]}}, "directional_lights": [{{"direction": [{}, {}, {}], "irradiance": [{}, {}, {}]}}]"#,
+                d[0], d[1], d[2], sun[0], sun[1], sun[2]
+            )
+        }
     };
     let conductor = |alpha: f32, eta: [f32; 3], k: [f32; 3]| {
         format!(
