@@ -131,20 +131,26 @@ fn generated_extreme_scenes_render_finite_pixels() {
                 s(&mut rng)
             ),
         };
-        let light = if case % 2 == 0 {
-            format!(
+        let light = match case % 4 {
+            0 | 2 => format!(
                 "Point(position: {}, intensity: ({e:e}, {e:e}, {e:e}))",
                 v3(&mut rng),
                 e = s(&mut rng)
-            )
-        } else {
-            format!(
+            ),
+            1 => format!(
                 "Rect(center: {}, half_u: {}, half_v: {}, radiance: ({e:e}, {e:e}, {e:e}))",
                 v3(&mut rng),
                 v3(&mut rng),
                 v3(&mut rng),
                 e = s(&mut rng)
-            )
+            ),
+            // A sun beside a lamp: the light tree weighs both.
+            _ => format!(
+                "Directional(direction: {}, irradiance: ({e:e}, {e:e}, {e:e})), Point(position: {}, intensity: (1, 1, 1))",
+                v3(&mut rng),
+                v3(&mut rng),
+                e = s(&mut rng)
+            ),
         };
         let camera = format!(
             "camera: (eye: {}, target: {}, fov_y_degrees: 40)",
@@ -470,4 +476,42 @@ fn sixty_four_thousand_errors_load_in_linear_time() {
         large as f64 * 1e-9,
         small as f64 * 1e-9
     );
+}
+
+/// Light selection weighs every directional light at every shading point,
+/// so their number is bounded (`MAX_DIRECTIONAL_LIGHTS`): 64 load, 65 are
+/// an error at `lights` that names the limit and how to merge them.
+#[test]
+fn directional_lights_are_bounded() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let scene = |n: usize| {
+        let suns = (0..n)
+            .map(|k| {
+                format!(
+                    "Directional(direction: ({}, -1, 0), irradiance: (0.1, 0.1, 0.1))",
+                    k as f32 * 0.01
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
+        format!(
+            r#"Scene(camera: (eye: (0, 1, 4), target: (0, 0, 0), fov_y_degrees: 40),
+            materials: {{ "m": Lambert(albedo: (0.5, 0.5, 0.5)) }},
+            lights: [{suns}],
+            objects: [Sphere(center: (0, 0, 0), radius: 1, material: "m")])"#
+        )
+    };
+    let l = load_tiny(dir.path(), &scene(64)).expect("64 suns load");
+    assert_finite(&l, "64 suns");
+    match load_str(&dir.path().join("gen.ron"), &scene(65), &Overrides::default()) {
+        Err(ronray::load::LoadError::Invalid(r)) => {
+            let text = r.render(false);
+            assert!(
+                text.contains("65 directional lights") && text.contains("MAX_DIRECTIONAL_LIGHTS"),
+                "{text}"
+            );
+        }
+        Err(e) => panic!("not a located error: {e}"),
+        Ok(_) => panic!("65 suns loaded"),
+    }
 }

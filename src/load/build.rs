@@ -62,6 +62,12 @@ pub struct BuildStats {
     pub located_notes: Vec<Problem>,
 }
 
+/// Most directional lights a scene may hold, its own and its glTF assets'
+/// together: light selection weighs every one at every shading point (the
+/// light tree holds lights with a position), so ten thousand would make a
+/// render crawl. Real scenes have one to three.
+pub const MAX_DIRECTIONAL_LIGHTS: usize = 64;
+
 /// Builds a scene that has passed [`super::validate::validate`]. `base` is
 /// the folder relative paths resolve against.
 pub fn build(desc: &SceneDesc, base: &Path) -> Result<(Scene, View, BuildStats), Vec<Problem>> {
@@ -151,6 +157,22 @@ pub fn build_in(
         super::object::build_object(&mut ctx, i, o);
         check_extent(&mut ctx, i, shapes, unbounded);
         tag_object(&mut ctx, i as u32 + 1);
+    }
+    let suns = ctx.lights.iter().filter(|l| l.as_directional().is_some()).count();
+    if suns > MAX_DIRECTIONAL_LIGHTS {
+        ctx.problems.push(
+            Problem::new(
+                "lights",
+                format!(
+                    "{suns} directional lights (the scene's and its glTF assets'), more than the limit of \
+                     {MAX_DIRECTIONAL_LIGHTS}: every shading point weighs each one"
+                ),
+            )
+            .help(
+                "merge suns that shine the same way into one (their irradiances add); \
+                 MAX_DIRECTIONAL_LIGHTS in src/load/build.rs is the limit",
+            ),
+        );
     }
     if !ctx.problems.is_empty() {
         return Err(ctx.problems);
