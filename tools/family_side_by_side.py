@@ -15,7 +15,8 @@ enough at SPP for the blocks' noise to be small; 1,024 is).
 
 The scenes: the bunny (3,674 triangles, no normals: flat, `face_normals` in
 Mitsuba) on a floor under the sky map, the same under a rectangle light
-and a dim constant sky, the bunny as a mesh light beside a gold sphere,
+and a dim constant sky, under a directional sun, a blue sky and a small
+lamp, the bunny as a mesh light beside a gold sphere,
 100 spheres of three materials, glass and plastic spheres under the sky
 map, and (when `--big OBJ` names the 1M-triangle mesh of
 `../shared/tools/gen_big_mesh.py`) that mesh under a rectangle light.
@@ -67,6 +68,10 @@ def scenes(big):
     out = {
         "bunny_sky": dict(camera=cam, mats=mats, objects=[floor, bunny], lights=[("env", SKY)]),
         "bunny_area": dict(camera=cam, mats=mats, objects=[floor, bunny], lights=[area, ("const", 0.05)]),
+        # The most ordinary outdoor scene: a sun (a directional light, 45° up,
+        # behind and to the right) over a blue sky, beside a small lamp.
+        "bunny_sun": dict(camera=cam, mats=mats, objects=[floor, bunny],
+                          lights=[("sun", (-0.5, -0.7071, -0.5), 3.0), ("const", 0.15), ("rect", (-1, 2, 1), (0.2, 0, 0), (0, 0, 0.2), 20.0)]),
         "bunny_glow": dict(
             camera=cam,
             mats=mats,
@@ -141,6 +146,8 @@ def write_ron(path, s):
             lines.append(f'        Environment(map: "{light[1]}"),')
         elif light[0] == "const":
             lines.append(f"        Environment(radiance: {t3([light[1]] * 3)}),")
+        elif light[0] == "sun":
+            lines.append(f"        Directional(direction: {t3(light[1])}, irradiance: {t3([light[2]] * 3)}),")
         else:
             _, c, hu, hv, le = light
             lines.append(f"        Rect(center: {t3(c)}, half_u: {t3(hu)}, half_v: {t3(hv)}, radiance: {t3([le] * 3)}),")
@@ -216,6 +223,8 @@ def mitsuba_scene(mi, np, s, spp):
             d[f"l{i}"] = {"type": "envmap", "filename": light[1]}
         elif light[0] == "const":
             d[f"l{i}"] = {"type": "constant", "radiance": rgb([light[1]] * 3)}
+        elif light[0] == "sun":
+            d[f"l{i}"] = {"type": "directional", "direction": list(light[1]), "irradiance": rgb([light[2]] * 3)}
         else:
             _, c, hu, hv, le = light
             d[f"l{i}"] = {"type": "rectangle", "to_world": rect_to_world(c, hu, hv),
