@@ -794,32 +794,76 @@ fn morph_targets_blend_by_the_weights_at_the_frame_time() {
 
 /// A skinned vertex with joints past the fourth (`JOINTS_1`) is skinned by
 /// its first four, with a note saying the rest are not read.
+/// Up to eight joints a vertex: `JOINTS_1`/`WEIGHTS_1` add to the first
+/// four (a vertex split half and half between a joint of each set lands
+/// half way; one weighed by the second set alone follows it), and a third
+/// set is named in a note.
 #[test]
-fn joints_past_the_fourth_are_named_in_a_note() {
+fn a_second_set_of_joints_is_read_and_a_third_named_in_a_note() {
     let mut a = Asset::default();
     let pos = a.floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0], "VEC3");
-    let jv = a.view(&[0; 12], None);
-    let joints = a.accessor(json!({"bufferView": jv, "componentType": 5121, "count": 3, "type": "VEC4"}));
-    let weights = a.floats(
-        &[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+    // Set 0: vertex 0 half on joint 0, vertex 1 wholly on joint 0, vertex 2 nothing.
+    let j0v = a.view(&[0; 12], None);
+    let j0 = a.accessor(json!({"bufferView": j0v, "componentType": 5121, "count": 3, "type": "VEC4"}));
+    let w0 = a.floats(
+        &[0.5, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        "VEC4",
+    );
+    // Set 1: vertex 0 half on joint 1, vertex 2 wholly on joint 1.
+    let j1v = a.view(&[1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0], None);
+    let j1 = a.accessor(json!({"bufferView": j1v, "componentType": 5121, "count": 3, "type": "VEC4"}));
+    let w1 = a.floats(
+        &[0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
         "VEC4",
     );
     let none = a.floats(&[0.0; 12], "VEC4");
-    let gltf = a.gltf(json!({
-        "scenes": [{"nodes": [0, 1]}],
-        "nodes": [{"mesh": 0, "skin": 0}, {}],
-        "skins": [{"joints": [1]}],
-        "meshes": [{"primitives": [{"attributes": {
-            "POSITION": pos, "JOINTS_0": joints, "WEIGHTS_0": weights, "JOINTS_1": joints, "WEIGHTS_1": none,
-        }}]}],
-    }));
-    let loaded = load(
-        &[("a.gltf", gltf.as_bytes())],
-        &scene_with(r#"Gltf(file: "a.gltf", material: "grey")"#, ""),
-    )
-    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
-    let notes = notes_of(&loaded);
-    assert!(notes.iter().any(|n| n.contains("JOINTS_1")), "{notes:?}");
+    let asset = |third: bool| {
+        let mut attributes =
+            json!({"POSITION": pos, "JOINTS_0": j0, "WEIGHTS_0": w0, "JOINTS_1": j1, "WEIGHTS_1": w1});
+        if third {
+            attributes["JOINTS_2"] = json!(j0);
+            attributes["WEIGHTS_2"] = json!(none);
+        }
+        a.gltf(json!({
+            "scenes": [{"nodes": [0, 1, 2]}],
+            // The holding node is ignored; joint 1 is 10 up.
+            "nodes": [{"mesh": 0, "skin": 0, "translation": [100, 0, 0]}, {}, {"translation": [0, 10, 0]}],
+            "skins": [{"joints": [1, 2]}],
+            "meshes": [{"primitives": [{"attributes": attributes}]}],
+        }))
+    };
+    let load_asset = |gltf: &str| {
+        load(
+            &[("a.gltf", gltf.as_bytes())],
+            &scene_with(r#"Gltf(file: "a.gltf", material: "grey")"#, ""),
+        )
+        .unwrap_or_else(|e| panic!("loads: {}", explain(e)))
+    };
+    let loaded = load_asset(&asset(false));
+    let geo = &loaded.scene.geometry;
+    let got: Vec<Vec3> = geo.instances[0]
+        .world_triangle(0, &geo.meshes)
+        .into_iter()
+        .map(Vec3::from)
+        .collect();
+    let want = [
+        Vec3::new(0.0, 5.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 11.0, 0.0),
+    ];
+    for w in want {
+        assert!(
+            got.iter().any(|g| (*g - w).length() < 1e-5),
+            "{w} missing from {got:?}"
+        );
+    }
+    assert!(
+        !notes_of(&loaded).iter().any(|n| n.contains("JOINTS")),
+        "{:?}",
+        notes_of(&loaded)
+    );
+    let notes = notes_of(&load_asset(&asset(true)));
+    assert!(notes.iter().any(|n| n.contains("JOINTS_2")), "{notes:?}");
 }
 
 /// Broken animations and skins are located errors at the object's file

@@ -59,16 +59,19 @@ pub fn build(
             ));
         }
         if skinned {
-            if p.get(&Semantic::Joints(1)).is_some() {
+            if p.get(&Semantic::Joints(2)).is_some() {
                 notes.push(format!(
-                    "{at}: JOINTS_1/WEIGHTS_1 (joints past the fourth) are not read: each vertex \
-                     follows its first four, their weights rescaled to sum to 1"
+                    "{at}: JOINTS_2/WEIGHTS_2 and later (joints past the eighth) are not read: each \
+                     vertex follows its first eight, their weights rescaled to sum to 1"
                 ));
             }
             let n = part.mesh.positions.len();
             match skin::influences(doc, buffers, &p, n).map_err(|e| format!("{at}: {e}"))? {
                 Some(v) => influences.extend(v),
-                None => influences.extend(std::iter::repeat_n(([0; 4], [0.0; 4]), n)),
+                None => influences.extend(std::iter::repeat_n(
+                    ([0; skin::MAX_INFLUENCES], [0.0; skin::MAX_INFLUENCES]),
+                    n,
+                )),
             }
         }
         append(&mut mesh, part.mesh, slots.len() as u32);

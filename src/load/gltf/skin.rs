@@ -1,5 +1,5 @@
-//! Skinned meshes (glTF 2.0 §3.7.3): each vertex moves with up to four
-//! joints, `p' = Σ wᵢ · Jⱼᵢ · p`, where a joint's matrix is its posed world
+//! Skinned meshes (glTF 2.0 §3.7.3): each vertex moves with up to eight
+//! joints (two sets of four), `p' = Σ wᵢ · Jⱼᵢ · p`, where a joint's matrix is its posed world
 //! transform times its inverse bind matrix. The result is in the asset's
 //! space: the transform of the node that holds the mesh is ignored, as
 //! the specification says. Normals go through the inverse transpose of
@@ -16,32 +16,79 @@ use gltf::Document;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Semantic;
 
-/// A vertex's joints (indices into the skin's `joints`) and their weights.
-pub type Influence = ([u32; 4], [f32; 4]);
+/// Joints a vertex follows at most: two sets of four (`JOINTS_0`/`WEIGHTS_0`
+/// and `JOINTS_1`/`WEIGHTS_1`), what exporters write for rigs with more
+/// than four influences (Blender's "influence limit" above 4).
+pub const MAX_INFLUENCES: usize = 8;
 
-/// The `JOINTS_0` / `WEIGHTS_0` of primitive `p` (`n` vertices), or `None`
-/// when it has neither.
+/// A vertex's joints (indices into the skin's `joints`) and their weights;
+/// unused slots weigh 0.
+pub type Influence = ([u32; MAX_INFLUENCES], [f32; MAX_INFLUENCES]);
+
+/// The `JOINTS_k` / `WEIGHTS_k` sets 0 and 1 of primitive `p` (`n`
+/// vertices), or `None` when it has no set 0. Sets past the second are not
+/// read (`primitive.rs` says so in a note).
 pub fn influences(
     doc: &Document,
     buffers: &Buffers,
     p: &gltf::Primitive,
     n: usize,
 ) -> Result<Option<Vec<Influence>>, String> {
-    let (joints, weights) = match (p.get(&Semantic::Joints(0)), p.get(&Semantic::Weights(0))) {
+    let Some(first) = set(doc, buffers, p, n, 0)? else {
+        return Ok(None);
+    };
+    let second = set(doc, buffers, p, n, 1)?;
+    Ok(Some(
+        first
+            .into_iter()
+            .enumerate()
+            .map(|(v, (j0, w0))| {
+                let (j1, w1) = second.as_ref().map_or(([0; 4], [0.0; 4]), |s| s[v]);
+                let mut j = [0; MAX_INFLUENCES];
+                let mut w = [0.0; MAX_INFLUENCES];
+                j[..4].copy_from_slice(&j0);
+                j[4..].copy_from_slice(&j1);
+                w[..4].copy_from_slice(&w0);
+                w[4..].copy_from_slice(&w1);
+                (j, w)
+            })
+            .collect(),
+    ))
+}
+
+/// One set of a vertex's joints and weights: four of each.
+type Set = ([u32; 4], [f32; 4]);
+
+/// Set `k` of joints and weights: `None` when the primitive has neither;
+/// an error when it has one without the other, a normalised `JOINTS_k`, a
+/// count other than `n`, or a negative or non-finite weight.
+fn set(
+    doc: &Document,
+    buffers: &Buffers,
+    p: &gltf::Primitive,
+    n: usize,
+    k: u32,
+) -> Result<Option<Vec<Set>>, String> {
+    let (joints, weights) = match (p.get(&Semantic::Joints(k)), p.get(&Semantic::Weights(k))) {
         (None, None) => return Ok(None),
         (Some(j), Some(w)) => (j, w),
-        _ => return Err("JOINTS_0 and WEIGHTS_0 come together; one is missing".into()),
+        _ => {
+            return Err(format!(
+                "JOINTS_{k} and WEIGHTS_{k} come together; one is missing"
+            ));
+        }
     };
     if joints.normalized() {
-        return Err("JOINTS_0 cannot be normalised".into());
+        return Err(format!("JOINTS_{k} cannot be normalised"));
     }
+    let (jn, wn) = (format!("JOINTS_{k}"), format!("WEIGHTS_{k}"));
     let j: Vec<[f32; 4]> = read_f32(
         doc,
         buffers,
         joints.index(),
         Dimensions::Vec4,
         &[DataType::U8, DataType::U16],
-        "JOINTS_0",
+        &jn,
     )?;
     let w: Vec<[f32; 4]> = read_f32(
         doc,
@@ -49,20 +96,20 @@ pub fn influences(
         weights.index(),
         Dimensions::Vec4,
         &[DataType::F32, DataType::U8, DataType::U16],
-        "WEIGHTS_0",
+        &wn,
     )?;
     if j.len() != n || w.len() != n {
         return Err(format!(
-            "JOINTS_0 has {} and WEIGHTS_0 {} elements for {n} positions",
+            "{jn} has {} and {wn} {} elements for {n} positions",
             j.len(),
             w.len()
         ));
     }
-    if let Some(k) = w
+    if let Some(v) = w
         .iter()
         .position(|w| !w.iter().all(|x| x.is_finite() && *x >= 0.0))
     {
-        return Err(format!("WEIGHTS_0 {k} is negative or not a number"));
+        return Err(format!("{wn} {v} is negative or not a number"));
     }
     Ok(Some(
         j.into_iter()
