@@ -1547,4 +1547,20 @@ fn malformed_punctual_lights_are_located_errors() {
     assert_eq!(loaded.scene.lights.len(), 3);
     let notes = notes_of(&loaded);
     assert!(notes.iter().any(|n| n.contains("has no direction")), "{notes:?}");
+    // Placed beyond the scene's coordinate limit: left out with a note.
+    let gltf = lit_asset([json!({}), json!({}), json!({})])
+        .replace("\"translation\":[0,3,0]", "\"translation\":[0,3e20,0]");
+    assert!(gltf.contains("3e20"), "the replacement found its text");
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("{}", explain(e)));
+    assert_eq!(
+        loaded.scene.lights.len(),
+        3,
+        "the scene's point light, the asset's spot and sun"
+    );
+    let notes = notes_of(&loaded);
+    assert!(notes.iter().any(|n| n.contains("coordinate limit")), "{notes:?}");
 }

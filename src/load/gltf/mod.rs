@@ -607,9 +607,13 @@ fn place_light(ctx: &mut BuildContext, at: &str, light: &punctual::ImportedLight
             return;
         }
     };
-    if !p.is_finite() {
+    // As the scene's own positions (`validate::MAX_COORD`): beyond it,
+    // squared distances overflow f32.
+    let limit = super::validate::MAX_COORD;
+    if !(p.is_finite() && p.abs().max_element() <= limit) {
         ctx.notes.push(format!(
-            "{at}: the light of nodes[{}] is placed past f32 by the object's transform: left out",
+            "{at}: the light of nodes[{}] is placed at {p}, beyond ±{limit:e} (the scene's coordinate \
+             limit): left out",
             light.node
         ));
         return;
