@@ -151,8 +151,10 @@ pub(super) fn trace_from(
     let u_cone = sampler.next_f32();
     let light = &scene.lights[li as usize];
     let delta = light.is_delta();
-    let follow = |ray: Ray, flux: Rgb, sampler: &mut Sampler, counters: &mut Counters| {
-        follow(scene, ray, flux, (0, max_chain), sampler, counters).map(|mut y| {
+    // Through one to `max_chain` specular surfaces to y, marked with
+    // whether the path goes on past it.
+    let to_y = |ray: Ray, flux: Rgb, sampler: &mut Sampler, counters: &mut Counters| {
+        follow(scene, ray, flux, max_chain, sampler, counters).map(|mut y| {
             y.from_delta = delta;
             y
         })
@@ -160,12 +162,12 @@ pub(super) fn trace_from(
     if let Some(env) = light.as_environment().filter(|_| em.is_sky(li)) {
         // From the sky: a parallel beam through a target's disk.
         let (o, d, flux) = em.sky_start(env, pmf, u_dir, u_cone, u_point)?;
-        return follow(Ray::new(o, d), flux, sampler, counters);
+        return to_y(Ray::new(o, d), flux, sampler, counters);
     }
     if let Some(sun) = light.as_directional() {
         // From a directional light: its parallel beam through a target's disk.
         let (o, d, flux) = em.sun_start(sun, pmf, u_cone, u_point)?;
-        return follow(Ray::new(o, d), flux, sampler, counters);
+        return to_y(Ray::new(o, d), flux, sampler, counters);
     }
     if let Some(p) = light.point_source() {
         // A point or spot light: a direction toward the targets (over the
@@ -174,7 +176,7 @@ pub(super) fn trace_from(
             .aim(p, u_cone, u_dir)
             .unwrap_or_else(|| (uniform_sphere(u_dir), UNIFORM_SPHERE_PDF));
         let flux = light.intensity_toward(d) / (pmf * pdf);
-        return follow(Ray::new(p, d), flux, sampler, counters);
+        return to_y(Ray::new(p, d), flux, sampler, counters);
     }
     // A point, its emitting normal, L_e / (pmf · p_A), and whether the back
     // emits too.
@@ -200,33 +202,28 @@ pub(super) fn trace_from(
     let flux = le * (cos_l / pdf);
     let side = if d.dot(n) >= 0.0 { n } else { -n };
     let ray = Ray::new(offset_origin(p, side, light_point_error(p, side), d), d);
-    follow(ray, flux, sampler, counters)
+    to_y(ray, flux, sampler, counters)
 }
 
-/// Follows a light path leaving along `ray` with flux weight `flux` through
-/// perfect-specular surfaces: the next surface that is not one, when
-/// `chain.0` to `chain.1` of them lead to it; `segments` are those from the
-/// light to where `ray` leaves. The vertex is not marked `from_delta`.
+/// Follows a light path leaving the light along `ray` with flux weight
+/// `flux` through perfect-specular surfaces: its end y when one to
+/// `max_chain` of them lead to a surface that is not one. The vertex is not
+/// marked `from_delta`.
 fn follow(
     scene: &Scene,
     mut ray: Ray,
     mut flux: Rgb,
-    (min_chain, max_chain): (u32, u32),
+    max_chain: u32,
     sampler: &mut Sampler,
     counters: &mut Counters,
 ) -> Option<LightVertex> {
-    follow_from(
-        scene,
-        &mut ray,
-        &mut flux,
-        (min_chain.max(1), max_chain),
-        0,
-        sampler,
-        counters,
-    )
+    follow_from(scene, &mut ray, &mut flux, (1, max_chain), 0, sampler, counters)
 }
 
-/// [`follow`] from a path that has `segments` segments where `ray` leaves.
+/// The next surface that is not perfectly specular along `ray`, when
+/// `chain.0` to `chain.1` specular surfaces lead to it, for a path that has
+/// `segments` segments where `ray` leaves; `ray` and `flux` are carried
+/// through the chain.
 fn follow_from(
     scene: &Scene,
     ray: &mut Ray,

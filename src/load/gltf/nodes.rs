@@ -80,13 +80,15 @@ pub fn flatten_with_lights(
             return Err(format!("nodes[{i}]: its transform is not finite"));
         }
         let world = parent * local;
+        let light = node.light();
+        // Only a node that places something needs a finite world transform.
+        if (node.mesh().is_some() || light.is_some()) && !world.is_finite() {
+            return Err(format!("nodes[{i}]: its world transform is not finite"));
+        }
         if let Some(m) = node.mesh() {
             // A node scaled to nothing is placed all the same (the caller
             // leaves it out of the picture): an animation may scale it
             // back, and placements keep one order whatever the pose.
-            if !world.is_finite() {
-                return Err(format!("nodes[{i}]: its world transform is not finite"));
-            }
             out.push(Placement {
                 mesh: m.index(),
                 node: i,
@@ -94,10 +96,7 @@ pub fn flatten_with_lights(
                 skin: node.skin().map(|s| s.index()),
             });
         }
-        if let Some(l) = node.light() {
-            if !world.is_finite() {
-                return Err(format!("nodes[{i}]: its world transform is not finite"));
-            }
+        if let Some(l) = light {
             lights.push(LightPlacement {
                 light: l.index(),
                 node: i,
