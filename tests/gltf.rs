@@ -7,6 +7,8 @@
 
 use crate::common;
 
+mod camera;
+
 use glam::{Mat4, Quat, Vec3, Vec3A};
 use ronray::frame::render_whole;
 use ronray::imageio::Image;
@@ -952,6 +954,22 @@ fn malformed_animations_and_skins_are_located_errors() {
         false,
         "1 inverse bind matrices for 2 joints",
     );
+    // A channel's target the `gltf` crate unwraps unchecked (a panic
+    // before): a property that is none of the four, a node that is not.
+    let aimed = |node: usize, path: &str| {
+        json!([{"name": "a", "channels": [{"sampler": 0, "target": {"node": node, "path": path}}],
+                "samplers": [{"input": two, "output": two_values}]}])
+    };
+    check(
+        base(good_attr.clone(), good_skin.clone(), aimed(1, "translatio")),
+        true,
+        "channels[0].target.path",
+    );
+    check(
+        base(good_attr.clone(), good_skin.clone(), aimed(9, "translation")),
+        true,
+        "node 9 does not exist",
+    );
     let mut cyc: Value = serde_json::from_str(&base(good_attr, good_skin, json!([]))).expect("json");
     cyc["nodes"] = json!([{"mesh": 0, "skin": 0}, {"children": [2]}, {"children": [1]}]);
     check(cyc.to_string(), false, "cycle");
@@ -1269,6 +1287,7 @@ fn seeds() -> Vec<(&'static str, Vec<u8>)> {
             "lit.gltf",
             lit_asset([json!({}), json!({}), json!({})]).into_bytes(),
         ),
+        ("camera.gltf", camera::dolly_asset().into_bytes()),
     ]
 }
 

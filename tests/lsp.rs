@@ -250,11 +250,16 @@ fn lsp_client_gets_diagnostics_hover_completion_and_definitions() {
     let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
     assert!(md.contains("Full vertical field of view"), "{md}");
     assert!(md.contains("range: ≥ 0, ≤ 180"), "{md}");
-    // Only perspective cameras need a field of view; `eye` every camera.
+    // Only perspective cameras need a field of view; every sphere a
+    // radius. (`eye` is required unless a glTF camera is taken: the
+    // checks say so, the schema cannot.)
     assert!(!md.contains("(required)"), "{md}");
-    let h = c.at("textDocument/hover", &s_uri, pos(&text, "eye", 0, 1));
+    let h = c.at("textDocument/hover", &s_uri, pos(&text, "radius", 0, 1));
     let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
     assert!(md.contains("(required)"), "{md}");
+    let h = c.at("textDocument/hover", &s_uri, pos(&text, "eye", 0, 1));
+    let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
+    assert!(md.contains("unless `gltf` takes"), "{md}");
     let h = c.at("textDocument/hover", &s_uri, pos(&text, "light_samples", 0, 1));
     let md = h["contents"]["value"].as_str().unwrap_or("").to_string();
     assert!(md.contains("default: `1`") && md.contains("integer"), "{md}");

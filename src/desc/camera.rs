@@ -7,16 +7,25 @@ use serde::{Deserialize, Serialize};
 /// A camera looking from `eye` toward `target`: perspective (the default,
 /// with `fov_y_degrees`), orthographic or spherical by `projection`.
 /// Image x runs along `normalize(forward × up)` (to the right), image row 0 is
-/// at the top.
+/// at the top. Or a glTF asset's own camera, by `gltf`: its node gives the
+/// place and direction, its projection the field of view.
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
     /// Position of the camera (the pinhole, or the centre of the lens), in world
-    /// space.
-    pub eye: V3,
+    /// space. Required, unless `gltf` takes an asset's camera.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eye: Option<V3>,
     /// A point the camera looks at; it is centred in the image. By default also
-    /// the distance in focus.
-    pub target: V3,
+    /// the distance in focus. Required, unless `gltf` takes an asset's camera.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<V3>,
+    /// An asset's own camera instead of `eye`, `target`, `up` and the
+    /// projection: `gltf: (file: "scene.gltf")` takes the first camera of
+    /// the `Gltf` object that reads that file, placed as its meshes are (the
+    /// object's `transform`, `scene` and `animation`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gltf: Option<GltfCameraDesc>,
     /// Which way is up in the image, default `(0, 1, 0)`; need not be unit length
     /// or perpendicular to the view, but must not be parallel to `target − eye`.
     #[serde(default = "default_up")]
@@ -51,6 +60,31 @@ pub struct CameraDesc {
     /// How the camera moves between `keys` (default `Linear`).
     #[serde(default, skip_serializing_if = "InterpolationDesc::is_default")]
     pub interpolation: InterpolationDesc,
+}
+
+impl CameraDesc {
+    /// `eye` and `target`, once checked (or filled in from a glTF camera):
+    /// a stand-in looking down −z from the origin where one is missing,
+    /// which validation has refused already.
+    pub fn look(&self) -> ([f32; 3], [f32; 3]) {
+        (
+            self.eye.unwrap_or([0.0; 3]),
+            self.target.unwrap_or([0.0, 0.0, -1.0]),
+        )
+    }
+}
+
+/// Which glTF camera the scene looks through.
+#[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct GltfCameraDesc {
+    /// The `file` of the scene's `Gltf` object that holds the camera,
+    /// written as that object writes it.
+    pub file: String,
+    /// The camera by the name of its node or of the camera itself, or by
+    /// index (`"#0"`); default the first camera the asset's scene places.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<String>,
 }
 
 /// The camera's projection.

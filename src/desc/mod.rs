@@ -39,7 +39,7 @@ mod transform;
 
 pub use animation::{AnimationDesc, CameraKeyDesc, InterpolationDesc, TransformKeyDesc};
 pub use aov::AovDesc;
-pub use camera::{CameraDesc, ProjectionDesc};
+pub use camera::{CameraDesc, GltfCameraDesc, ProjectionDesc};
 pub use color::ColorDesc;
 pub use display::{FilterDesc, TonemapDesc};
 pub use emission::EmissionDesc;

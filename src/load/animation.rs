@@ -224,8 +224,8 @@ pub(super) fn camera_at(c: &CameraDesc, time: f32) -> CameraDesc {
         return c.clone();
     };
     CameraDesc {
-        eye: m.eye.at(time).to_array(),
-        target: m.target.at(time).to_array(),
+        eye: Some(m.eye.at(time).to_array()),
+        target: Some(m.target.at(time).to_array()),
         up: m.up.at(time).to_array(),
         ..c.clone()
     }

@@ -60,6 +60,9 @@ pub struct BuildStats {
     /// Notes at a scene path (an image whose texels were repaired, at the
     /// parameter that read it), located in the files like warnings.
     pub located_notes: Vec<Problem>,
+    /// The scene's camera as a glTF asset's camera filled it in
+    /// (`camera.gltf`); `None` when the scene describes its own.
+    pub camera: Option<crate::desc::CameraDesc>,
 }
 
 /// Most directional lights a scene may hold, its own and its glTF assets'
@@ -93,6 +96,23 @@ pub fn build_in(
     root: Option<&Path>,
 ) -> Result<(Scene, View, BuildStats), Vec<Problem>> {
     let t0 = Instant::now();
+    // A glTF asset's camera, read first: SDFs take their precision from it.
+    let mut camera_notes = Vec::new();
+    let (camera, camera_problem) = match super::gltf::camera::resolve(desc, base, root, &mut camera_notes) {
+        Ok(c) => (c, None),
+        Err(p) => (None, Some(p)),
+    };
+    let with_camera;
+    let desc = match &camera {
+        Some(c) => {
+            with_camera = SceneDesc {
+                camera: c.clone(),
+                ..desc.clone()
+            };
+            &with_camera
+        }
+        None => desc,
+    };
     let super::material::Materials {
         mut materials,
         mut surfaces,
@@ -138,8 +158,8 @@ pub fn build_in(
             )
         }),
         triangles: 0,
-        problems: Vec::new(),
-        notes: Vec::new(),
+        problems: camera_problem.into_iter().collect(),
+        notes: camera_notes,
         env_times: Default::default(),
         light_files: Vec::new(),
         mtl_files: Vec::new(),
@@ -224,6 +244,7 @@ pub fn build_in(
         located_notes,
         env_read_time: ctx.env_times.0,
         env_table_time: ctx.env_times.1,
+        camera,
     };
     let selection = match desc.integrator {
         IntegratorDesc::Path { light_selection, .. } => match light_selection {

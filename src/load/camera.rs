@@ -2,16 +2,17 @@
 
 use super::validate::{Checker, MAX_COORD};
 use crate::camera::{Camera, Projection};
-use crate::desc::{CameraDesc, ProjectionDesc};
+use crate::desc::{CameraDesc, GltfCameraDesc, ObjectDesc, ProjectionDesc};
 use glam::Vec3;
 
 impl Checker {
-    pub(super) fn camera(&mut self, c: &CameraDesc) {
-        let ok = self.finite("camera.eye", &c.eye)
-            & self.finite("camera.target", &c.target)
-            & self.nonzero("camera.up", &c.up, "`up`");
-        if ok {
-            let view = Vec3::from(c.target) - Vec3::from(c.eye);
+    pub(super) fn camera(&mut self, c: &CameraDesc, objects: &[ObjectDesc]) {
+        if let Some(g) = &c.gltf {
+            self.gltf_camera(c, g, objects);
+        } else if let Some((eye, target)) = self.eye_and_target(c)
+            && self.nonzero("camera.up", &c.up, "`up`")
+        {
+            let view = Vec3::from(target) - Vec3::from(eye);
             if view.length_squared() == 0.0 {
                 self.push(
                     "camera.target",
@@ -30,7 +31,9 @@ impl Checker {
                 );
             }
         }
-        self.projection(c);
+        if c.gltf.is_none() {
+            self.projection(c);
+        }
         if !(c.aperture_radius >= 0.0 && c.aperture_radius.is_finite()) {
             self.push(
                 "camera.aperture_radius",
@@ -44,6 +47,93 @@ impl Checker {
                 format!("focus distance {f} must be > 0"),
                 "it is the distance from `eye` to the sharp plane",
             );
+        }
+    }
+
+    /// `eye` and `target`, both there and finite, or a problem for each
+    /// missing one.
+    fn eye_and_target(&mut self, c: &CameraDesc) -> Option<([f32; 3], [f32; 3])> {
+        let mut check = |field: &str, v: Option<[f32; 3]>, what: &str| match v {
+            Some(v) => self.finite(&format!("camera.{field}"), &v).then_some(v),
+            None => {
+                self.push(
+                    "camera",
+                    format!("the camera has no `{field}`"),
+                    format!(
+                        "write `{field}: (x, y, z)`, {what}; or look through a glTF asset's \
+                         camera with `gltf: (file: \"…\")`"
+                    ),
+                );
+                None
+            }
+        };
+        let eye = check("eye", c.eye, "the point the camera looks from");
+        let target = check("target", c.target, "a point it looks at");
+        Some((eye?, target?))
+    }
+
+    /// A glTF asset's camera: the file must be one `Gltf` object's, and
+    /// the fields the asset's camera gives are not written as well.
+    fn gltf_camera(&mut self, c: &CameraDesc, g: &GltfCameraDesc, objects: &[ObjectDesc]) {
+        let given = [
+            ("eye", c.eye.is_some()),
+            ("target", c.target.is_some()),
+            ("up", c.up != [0.0, 1.0, 0.0]),
+            ("fov_y_degrees", c.fov_y_degrees.is_some()),
+            ("projection", c.projection != ProjectionDesc::Perspective),
+            ("keys", !c.keys.is_empty()),
+        ];
+        for (field, set) in given {
+            if set {
+                self.push(
+                    &format!("camera.{field}"),
+                    format!("`{field}` is given by the glTF camera `gltf` takes"),
+                    "remove it, or remove `gltf` and describe the camera here",
+                );
+            }
+        }
+        if c.aperture_radius > 0.0 && c.focus_distance.is_none() {
+            self.push(
+                "camera.aperture_radius",
+                "a glTF camera has no distance in focus: a lens with an aperture needs `focus_distance`",
+                "write `focus_distance: d`, the distance from the camera to the sharp plane",
+            );
+        }
+        let matching = objects
+            .iter()
+            .filter(|o| matches!(o, ObjectDesc::Gltf { file, .. } if *file == g.file))
+            .count();
+        if matching != 1 {
+            let mut files: Vec<&str> = objects
+                .iter()
+                .filter_map(|o| match o {
+                    ObjectDesc::Gltf { file, .. } => Some(file.as_str()),
+                    _ => None,
+                })
+                .collect();
+            files.dedup();
+            let (what, help) = if matching == 0 {
+                (
+                    format!("no `Gltf` object reads `{}`", g.file),
+                    if files.is_empty() {
+                        "place the asset with a `Gltf(file: ..)` object; the camera is placed as its meshes are"
+                            .to_string()
+                    } else {
+                        format!("write the `file` of one of: {}", files.join(", "))
+                    },
+                )
+            } else {
+                (
+                    format!(
+                        "{matching} `Gltf` objects read `{}`: which one places the camera is unclear",
+                        g.file
+                    ),
+                    "the camera follows one object's transform: write the file differently in the others \
+                     (e.g. `./` in front), or place the asset once"
+                        .to_string(),
+                )
+            };
+            self.push("camera.gltf.file", what, help);
         }
     }
 
@@ -106,8 +196,8 @@ pub(super) fn build_camera(c: &CameraDesc, rows: u32) -> Camera {
         ProjectionDesc::Spherical => Projection::Spherical { rows },
     };
     let fov = c.fov_y_degrees.unwrap_or(40.0);
-    let mut camera =
-        Camera::look_at(c.eye.into(), c.target.into(), c.up.into(), fov).with_projection(projection);
+    let (eye, target) = c.look();
+    let mut camera = Camera::look_at(eye.into(), target.into(), c.up.into(), fov).with_projection(projection);
     camera.aperture_radius = c.aperture_radius;
     if let Some(f) = c.focus_distance {
         camera.focus_distance = f;

@@ -177,8 +177,9 @@ impl Document for IncludeDesc {
 
 fn stand_in_camera() -> CameraDesc {
     CameraDesc {
-        eye: [0.0, 0.0, 1.0],
-        target: [0.0; 3],
+        eye: Some([0.0, 0.0, 1.0]),
+        target: Some([0.0; 3]),
+        gltf: None,
         up: [0.0, 1.0, 0.0],
         fov_y_degrees: Some(40.0),
         projection: crate::desc::ProjectionDesc::Perspective,

@@ -235,9 +235,14 @@ pub fn load_str_with_meshes(
     // What the files held is known now: an MTL's `Ke`, a glTF's emission
     // or punctual lights.
     let lit = scene.lights.iter().any(|l| l.power().max_element() > 0.0);
+    // Judged with the camera as drawn (a glTF asset's, when it is taken).
+    let drawn = stats.camera.as_ref().map(|c| SceneDesc {
+        camera: c.clone(),
+        ..desc.clone()
+    });
     let mut warnings = super::warnings::located(
         &composition,
-        &super::warnings::warnings_built(&desc, &extents, Some(lit)),
+        &super::warnings::warnings_built(drawn.as_ref().unwrap_or(&desc), &extents, Some(lit)),
     );
     // What the build repaired or defaulted (OBJ fixes, a grey default) is
     // reported beside the warnings, as notes.

@@ -98,7 +98,7 @@ pub fn validate_files_apart(scene: &SceneDesc, base: &Path, root: Option<&Path>)
             },
         );
     }
-    v.camera(&scene.camera);
+    v.camera(&scene.camera, &scene.objects);
     v.film(&scene.film);
     v.integrator(&scene.integrator);
     if let Some(t) = &scene.test {

@@ -11,14 +11,16 @@
 //! capped), `nodes.rs` flattens the chosen scene's node tree, `primitive.rs`
 //! builds each mesh used once (its primitives are the mesh's material
 //! slots), `punctual.rs` converts its `KHR_lights_punctual` lights, and
-//! this file places one instance per node and the lights. What the asset
-//! has and ronray does not render (cameras, vertex colours, an animation
-//! not chosen) is reported in notes, never silently
-//! dropped; a required extension ronray does not know is an error naming it
+//! this file places one instance per node and the lights; `camera.rs`
+//! makes one of its cameras the scene's when the scene asks. What the
+//! asset has and ronray does not render (cameras the scene does not take,
+//! vertex colours, an animation not chosen) is reported in notes, never
+//! silently dropped; a required extension ronray does not know is an error naming it
 //! (the `gltf` crate's validation).
 
 pub mod accessor;
 pub mod animation;
+pub mod camera;
 pub mod document;
 pub mod material;
 pub mod nodes;
@@ -54,6 +56,9 @@ pub struct Imported {
     pub files: Vec<std::path::PathBuf>,
     /// The chosen scene's `KHR_lights_punctual` lights, in the pose drawn.
     pub lights: Vec<punctual::ImportedLight>,
+    /// How many cameras the file holds (the scene's `camera` may take one:
+    /// `camera.rs`).
+    pub cameras: usize,
 }
 
 /// An asset-space transform at times in frames over the shutter, for a
@@ -141,7 +146,11 @@ fn import_bounded(
         .transpose()?;
     let posed = animation::pose(&doc, read.as_ref(), pose.time, pose.repeat)?;
     let locals = &posed.locals;
-    let (placements, light_nodes) = nodes::flatten_with_lights(&doc, scene, locals)?;
+    let nodes::Walk {
+        meshes: placements,
+        lights: light_nodes,
+        ..
+    } = nodes::walk(&doc, scene, locals)?;
     let lights = punctual_lights(&doc, &light_nodes, &label, notes)?;
     let keys = motion_keys(&doc, scene, read.as_ref(), pose, &placements)?;
     // Joints may sit anywhere in the node tree: every node's world
@@ -161,6 +170,7 @@ fn import_bounded(
         placements: Vec::new(),
         files: Vec::new(),
         lights,
+        cameras: doc.cameras().count(),
     };
     let mut images = material::Images::default();
     let mut by_material: HashMap<Option<usize>, Mapped> = HashMap::new();
@@ -281,6 +291,7 @@ fn merge_single_placements(imported: Imported) -> Imported {
         placements,
         files,
         lights,
+        cameras,
     } = imported;
     let mut uses = vec![0usize; meshes.len()];
     for (k, _, _) in &placements {
@@ -292,6 +303,7 @@ fn merge_single_placements(imported: Imported) -> Imported {
         placements: Vec::new(),
         files,
         lights,
+        cameras,
     };
     // The open group of each transform (bit for bit) and set of vertex
     // attributes: its mesh's index in `out`.
@@ -403,12 +415,6 @@ fn report_unrendered(doc: &gltf::Document, label: &str, posed: bool, notes: &mut
             animation::names(doc)
         ));
     }
-    let cameras = doc.cameras().count();
-    if cameras > 0 {
-        notes.push(format!(
-            "{label}: {cameras} camera(s) read but not used (the scene's `camera` is)"
-        ));
-    }
 }
 
 /// The lights the walk placed, converted (`punctual.rs`), with a note
@@ -488,6 +494,8 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
         open,
         blur: &blur,
     };
+    // The asset's cameras are not the scene's unless it says so.
+    let taken = ctx.desc.camera.gltf.as_ref().is_some_and(|g| g.file == *file);
     let imported = match import(&path, *scene, root.as_deref(), pose, &mut ctx.mtl, &mut ctx.notes) {
         Ok(x) => x,
         Err(ImportError::File(e)) => {
@@ -504,6 +512,13 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
             return;
         }
     };
+    if imported.cameras > 0 && !taken {
+        ctx.notes.push(format!(
+            "{at}: the asset's {} camera(s) are not used (the scene's `camera` is); look through one \
+             with `camera: (gltf: (file: {file:?}))`",
+            imported.cameras
+        ));
+    }
     ctx.mtl_files.extend(imported.files.iter().cloned());
     let known: Vec<&str> = imported
         .meshes
@@ -626,7 +641,7 @@ fn place_light(ctx: &mut BuildContext, at: &str, light: &punctual::ImportedLight
 /// asset is posed at the shutter's opening (`frame + shutter.0`), the time
 /// keyed instances are built at. A scene without `animation` counts from
 /// frame 0 at 24 frames per second.
-fn animation_seconds(desc: &crate::desc::SceneDesc, t: f32) -> f32 {
+pub(super) fn animation_seconds(desc: &crate::desc::SceneDesc, t: f32) -> f32 {
     let (first, fps) = desc.animation.as_ref().map_or((0, 24.0), |a| (a.frames.0, a.fps));
     let fps = if fps > 0.0 && fps.is_finite() { fps } else { 24.0 };
     (t - first as f32) / fps
@@ -650,10 +665,20 @@ fn check_overrides(ctx: &mut BuildContext, at: &str, materials: &BTreeMap<String
     }
 }
 
+/// The scene through whose camera [`fuzz_import`] looks at its asset.
+const FUZZ_LOOKING: &str = r##"Scene(camera: (gltf: (file: "fuzz.glb"), shutter: (0, 0.5)),
+    objects: [Gltf(file: "fuzz.glb", animation: "#0", repeat: true)])"##;
+
+fn fuzz_scene() -> Result<crate::desc::SceneDesc, ron::error::SpannedError> {
+    ron::Options::default()
+        .with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME)
+        .from_str(FUZZ_LOOKING)
+}
+
 /// The fuzz target's entry: `data` as a `.glb` or `.gltf` file in a
-/// temporary folder, imported with every check, posed by its first
-/// animation (0.37 s in, wrapped) when it has one, else at rest; never
-/// panics.
+/// temporary folder, its first camera taken as a scene's, and imported
+/// with every check, posed by its first animation (0.37 s in, wrapped)
+/// when it has one, else at rest; never panics.
 pub fn fuzz_import(data: &[u8]) -> bool {
     let Ok(dir) = tempfile::tempdir() else {
         return false;
@@ -675,6 +700,10 @@ pub fn fuzz_import(data: &[u8]) -> bool {
         open: 0.0,
         blur: &blur,
     };
+    // Its first camera as a scene's, animated over an open shutter.
+    if let Ok(desc) = fuzz_scene() {
+        let _ = camera::resolve(&desc, dir.path(), Some(dir.path()), &mut notes);
+    }
     match import(&path, None, Some(dir.path()), posed, &mut mtl, &mut notes) {
         Err(ImportError::Animation(_)) => import(
             &path,
@@ -692,6 +721,13 @@ pub fn fuzz_import(data: &[u8]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fuzz entry's scene reads, so the camera step does run.
+    #[test]
+    fn the_fuzz_entry_looks_through_the_asset_camera() {
+        let desc = fuzz_scene().expect("reads");
+        assert!(desc.camera.gltf.is_some() && desc.camera.shutter.is_some());
+    }
 
     /// A triangle with one morph target placed by three nodes, each with
     /// its own weight: three builds, two of them copies of six vertices in

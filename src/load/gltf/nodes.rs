@@ -37,19 +37,37 @@ pub struct LightPlacement {
     pub world: Mat4,
 }
 
+/// A camera placed by a node.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraPlacement {
+    /// Index in the document's cameras.
+    pub camera: usize,
+    /// Index of the node that places it.
+    pub node: usize,
+    /// The node's world transform (the asset's own space).
+    pub world: Mat4,
+}
+
+/// What one walk of a scene's node tree places.
+#[derive(Debug, Default)]
+pub struct Walk {
+    /// Meshes, by node in document order.
+    pub meshes: Vec<Placement>,
+    /// `KHR_lights_punctual` lights, by node in document order.
+    pub lights: Vec<LightPlacement>,
+    /// Cameras, by node in document order.
+    pub cameras: Vec<CameraPlacement>,
+}
+
 /// The placements of scene `scene` (default: the file's `scene`, else 0),
 /// each node placed by `locals` (every node's local transform, document
 /// order: the node's own, or posed by an animation).
 pub fn flatten(doc: &Document, scene: Option<u32>, locals: &[Mat4]) -> Result<Vec<Placement>, String> {
-    flatten_with_lights(doc, scene, locals).map(|(meshes, _)| meshes)
+    walk(doc, scene, locals).map(|w| w.meshes)
 }
 
-/// [`flatten`], with the scene's lights placed by the same walk.
-pub fn flatten_with_lights(
-    doc: &Document,
-    scene: Option<u32>,
-    locals: &[Mat4],
-) -> Result<(Vec<Placement>, Vec<LightPlacement>), String> {
+/// [`flatten`], with the scene's lights and cameras placed by the same walk.
+pub fn walk(doc: &Document, scene: Option<u32>, locals: &[Mat4]) -> Result<Walk, String> {
     let count = doc.scenes().count();
     let chosen = match scene {
         Some(s) => doc
@@ -64,6 +82,7 @@ pub fn flatten_with_lights(
     let mut seen = vec![false; doc.nodes().count()];
     let mut out = Vec::new();
     let mut lights = Vec::new();
+    let mut cameras = Vec::new();
     let mut stack: Vec<(gltf::Node, Mat4)> = chosen.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
     while let Some((node, parent)) = stack.pop() {
         let i = node.index();
@@ -82,7 +101,7 @@ pub fn flatten_with_lights(
         let world = parent * local;
         let light = node.light();
         // Only a node that places something needs a finite world transform.
-        if (node.mesh().is_some() || light.is_some()) && !world.is_finite() {
+        if (node.mesh().is_some() || light.is_some() || node.camera().is_some()) && !world.is_finite() {
             return Err(format!("nodes[{i}]: its world transform is not finite"));
         }
         if let Some(m) = node.mesh() {
@@ -103,12 +122,24 @@ pub fn flatten_with_lights(
                 world,
             });
         }
+        if let Some(c) = node.camera() {
+            cameras.push(CameraPlacement {
+                camera: c.index(),
+                node: i,
+                world,
+            });
+        }
         stack.extend(node.children().map(|c| (c, world)));
     }
     // Document order of nodes, so object ids, lights and notes are stable.
     out.sort_by_key(|p| p.node);
     lights.sort_by_key(|l| l.node);
-    Ok((out, lights))
+    cameras.sort_by_key(|c| c.node);
+    Ok(Walk {
+        meshes: out,
+        lights,
+        cameras,
+    })
 }
 
 /// Every node's world transform under `locals`, whatever scene holds it

@@ -75,7 +75,8 @@ pub fn half_pixel(scene: &SceneDesc) -> f32 {
             tan_half_fov / rows
         }
         ProjectionDesc::Orthographic { view_height } => {
-            let distance = (Vec3::from(c.target) - Vec3::from(c.eye)).length();
+            let (eye, target) = c.look();
+            let distance = (Vec3::from(target) - Vec3::from(eye)).length();
             0.5 * view_height / distance.max(1e-6) / rows
         }
         ProjectionDesc::Spherical => 0.5 * std::f32::consts::PI / rows,
