@@ -519,3 +519,59 @@ fn mirrored_emissive_mesh_still_emits_outward() {
         );
     }
 }
+
+/// A thin glass pane (`Glass(thin: true)`) between the eye and a sunlit
+/// Lambert floor passes (1 − R)·tint of the floor's radiance ρE/π and
+/// mirrors R of it (the floor beyond the pane), with R = 2F/(1 + F) (both
+/// faces' reflections, Mitsuba's `thindielectric`) and the ray not bent; the same pane as a solid's boundary (not thin)
+/// bends the ray into the glass and scales its radiance by 1/η², which
+/// this must tell apart.
+#[test]
+fn thin_glass_pane_passes_one_minus_r_of_the_light_tinted() {
+    let text = |thin: bool| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 1, 3), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: Path(max_depth: 3, caustics: PathOnly),
+            materials: {{
+                "grey": Lambert(albedo: (0.5, 0.5, 0.5)),
+                "pane": Glass(ior: 1.5, tint: (0.9, 0.5, 0.2), thin: {thin}),
+            }},
+            lights: [Directional(direction: (0, -1, 0), irradiance: (1, 1, 1))],
+            objects: [
+                Plane(point: (0, 0, 0), normal: (0, 1, 0), material: "grey"),
+                // Upright at z = 1, across the view, beside the sun's way.
+                Rect(center: (0, 1.1, 1), half_u: (2, 0, 0), half_v: (0, 0.9, 0), material: "pane"),
+            ],
+        )"#
+        )
+    };
+    let from = Vec3A::new(0.0, 1.0, 3.0);
+    let ray = Ray::new(from, (Vec3A::ZERO - from).normalize());
+    // F at the pane, from the ray's cosine to its normal (3/√10).
+    let cos = 3.0 / 10f32.sqrt();
+    let (sin_t, n) = ((1.0 - cos * cos).sqrt() / 1.5, 1.5f32);
+    let cos_t = (1.0 - sin_t * sin_t).sqrt();
+    let rs = ((cos - n * cos_t) / (cos + n * cos_t)).powi(2);
+    let rp = ((n * cos - cos_t) / (n * cos + cos_t)).powi(2);
+    let f = 0.5 * (rs + rp);
+    let r = 2.0 * f / (1.0 + f);
+    let floor = 0.5 / PI;
+    // What the pane reflects (white, down onto the floor beyond it) is
+    // the same sunlit floor.
+    let want = (Vec3A::new(0.9, 0.5, 0.2) * (1.0 - r) + Vec3A::splat(r)) * floor;
+    let got = mean_li(&scene(&text(true)), ray, 40_000);
+    for c in 0..3 {
+        assert!(
+            (got[c] - want[c]).abs() <= 0.02 * want[c],
+            "channel {c}: {} against ((1 − R)·tint + R)·ρE/π = {}",
+            got[c],
+            want[c]
+        );
+    }
+    let solid = mean_li(&scene(&text(false)), ray, 4_000);
+    assert!(
+        solid.x < 0.6 * want.x,
+        "a solid's boundary scales by 1/η² (and stays inside): {solid} against {want}"
+    );
+}

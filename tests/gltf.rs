@@ -1583,3 +1583,107 @@ fn malformed_punctual_lights_are_located_errors() {
     let notes = notes_of(&loaded);
     assert!(notes.iter().any(|n| n.contains("coordinate limit")), "{notes:?}");
 }
+
+/// `KHR_materials_transmission` becomes glass: a thin sheet without
+/// `KHR_materials_volume` (the extension's thin-walled default), a solid's
+/// boundary with one (rough above 0.05), tinted by the base colour, at
+/// `KHR_materials_ior`; under half transmissive (metallic counts against
+/// it) stays opaque, with a note.
+#[test]
+fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
+    use ronray::materials::Bsdf;
+    let mut a = Asset::default();
+    let cases = [
+        // (extensions, roughness, metallic)
+        (
+            json!({"KHR_materials_transmission": {"transmissionFactor": 1.0}}),
+            0.0,
+            0.0,
+        ),
+        (
+            json!({"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                   "KHR_materials_volume": {"thicknessFactor": 0.5}, "KHR_materials_ior": {"ior": 1.33}}),
+            0.0,
+            0.0,
+        ),
+        (
+            json!({"KHR_materials_transmission": {"transmissionFactor": 1.0},
+                   "KHR_materials_volume": {"thicknessFactor": 0.5}}),
+            0.5,
+            0.0,
+        ),
+        (
+            json!({"KHR_materials_transmission": {"transmissionFactor": 0.3}}),
+            0.0,
+            0.0,
+        ),
+        (
+            json!({"KHR_materials_transmission": {"transmissionFactor": 1.0}}),
+            0.0,
+            0.8,
+        ),
+    ];
+    let meshes: Vec<Value> = (0..cases.len())
+        .map(|k| {
+            let x = 3.0 * k as f32;
+            let pos = a.floats(&[x, 0.0, 0.0, x + 1.0, 0.0, 0.0, x, 1.0, 0.0], "VEC3");
+            json!({"primitives": [{"attributes": {"POSITION": pos}, "material": k}]})
+        })
+        .collect();
+    let materials: Vec<Value> = cases
+        .iter()
+        .enumerate()
+        .map(|(k, (ext, rough, metal))| {
+            json!({"name": format!("m{k}"), "extensions": ext,
+                   "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.6, 0.3, 1.0],
+                                            "roughnessFactor": rough, "metallicFactor": metal}})
+        })
+        .collect();
+    let nodes: Vec<Value> = (0..cases.len()).map(|k| json!({"mesh": k})).collect();
+    let gltf = a.gltf(json!({
+        "extensionsUsed": ["KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_ior"],
+        "scenes": [{"nodes": (0..cases.len()).collect::<Vec<_>>()}],
+        "nodes": nodes,
+        "meshes": meshes,
+        "materials": materials,
+    }));
+    let loaded = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+    let scene = &loaded.scene;
+    let bsdf_of = |k: usize| {
+        let o = Vec3A::new(3.0 * k as f32 + 0.25, 0.25, 5.0);
+        let hit = scene
+            .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, -1.0)), f32::INFINITY)
+            .unwrap_or_else(|| panic!("part {k} is hit"));
+        scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures)
+    };
+    let tint = ronray::math::Rgb::new(0.9, 0.6, 0.3);
+    match bsdf_of(0) {
+        Bsdf::Glass(g) => assert!(g.thin && g.ior == 1.5 && g.tint == tint, "{g:?}"),
+        b => panic!("no volume: a thin sheet, not {b:?}"),
+    }
+    match bsdf_of(1) {
+        Bsdf::Glass(g) => assert!(!g.thin && g.ior == 1.33 && g.tint == tint, "{g:?}"),
+        b => panic!("a volume: a solid's boundary, not {b:?}"),
+    }
+    match bsdf_of(2) {
+        Bsdf::RoughGlass(g) => assert!(g.ior == 1.5 && g.tint == tint, "{g:?}"),
+        b => panic!("a rough volume: rough glass, not {b:?}"),
+    }
+    for k in [3, 4] {
+        assert!(
+            matches!(bsdf_of(k), Bsdf::MetalPlastic(_)),
+            "case {k}: under half transmissive, opaque"
+        );
+    }
+    let notes = notes_of(&loaded);
+    for want in ["0.3 × (1 − metallic 0) = 0.30", "(1 − metallic 0.8) = 0.20"] {
+        assert!(
+            notes.iter().any(|n| n.contains(want) && n.contains("opaque")),
+            "no note with {want:?}: {notes:?}"
+        );
+    }
+}

@@ -105,6 +105,11 @@ pub enum MaterialDesc {
         /// `Exact`).
         #[serde(default)]
         fresnel: DielectricFresnelDesc,
+        /// A thin sheet (a window pane, a soap film) instead of the boundary of
+        /// a solid: light passes straight through, and what both faces reflect
+        /// adds up (Mitsuba's `thindielectric`). Default false.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        thin: bool,
     },
     /// Mitsuba 3's `roughplastic` (`nonlinear: false`): a `diffuse` base under
     /// a rough dielectric coat of index `ior` (η coat / η outside), whose

@@ -578,13 +578,19 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
         MaterialDesc::Mirror { tint } => Material::Mirror(MirrorMaterial {
             tint: b.color(tint, &p("tint"), true),
         }),
-        MaterialDesc::Glass { ior, tint, fresnel } => Material::Glass(GlassMaterial {
+        MaterialDesc::Glass {
+            ior,
+            tint,
+            fresnel,
+            thin,
+        } => Material::Glass(GlassMaterial {
             ior: b.scalar(ior, &p("ior")),
             tint: b.color(tint, &p("tint"), true),
             fresnel: match fresnel {
                 DielectricFresnelDesc::Exact => DielectricFresnel::Exact,
                 DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
             },
+            thin: *thin,
         }),
         MaterialDesc::RoughPlastic {
             diffuse,

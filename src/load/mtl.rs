@@ -293,6 +293,7 @@ impl MtlMaterials {
                 ),
                 tint: ColorTex::Const(tint),
                 fresnel: DielectricFresnel::Exact,
+                thin: false,
             })
         } else if illum == 3 {
             let tint = if ks.max_element() > 0.0 {

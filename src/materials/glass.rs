@@ -16,6 +16,12 @@
 //!   object seen through does not change brightness.
 //! * **Tint** colours transmitted light only, once per refraction (a cheap
 //!   stand-in for absorption inside); reflection off glass stays white.
+//! * **Thin** glass is a sheet, not a solid's boundary (Mitsuba 3's
+//!   `thindielectric`): light passes straight through (`wi = −wo`, no
+//!   bending and no radiance scaling), tinted once, and the light both
+//!   faces reflect, bouncing between them, adds up: with F the Fresnel
+//!   reflectance at the angle of incidence, R = F + (1 − F)² F / (1 − F²)
+//!   = 2F / (1 + F), T = 1 − R. The same from either side.
 
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, DielectricFresnel, MaterialModel, ScalarTex, Texture};
 use crate::math::Rgb;
@@ -32,6 +38,26 @@ pub struct Glass {
     pub tint: Rgb,
     /// Which Fresnel formula picks between reflection and refraction.
     pub fresnel: DielectricFresnel,
+    /// A thin sheet: straight through, both faces' reflections (module docs).
+    pub thin: bool,
+}
+
+impl Glass {
+    /// The thin sheet's sample (module docs): reflect with probability
+    /// R = 2F/(1 + F), else pass straight through, tinted.
+    fn sample_thin(&self, wo: Vec3A, u_lobe: f32) -> Option<BsdfSample> {
+        let f = self.fresnel.eval(wo.z.abs(), self.ior);
+        let r = if f < 1.0 { 2.0 * f / (1.0 + f) } else { 1.0 };
+        if u_lobe < r {
+            return Some(BsdfSample::delta(
+                Vec3A::new(-wo.x, -wo.y, wo.z),
+                Rgb::ONE,
+                r,
+                1.0,
+            ));
+        }
+        Some(BsdfSample::delta(-wo, self.tint, 1.0 - r, 1.0))
+    }
 }
 
 impl Bxdf for Glass {
@@ -47,6 +73,9 @@ impl Bxdf for Glass {
         let cos_o = wo.z;
         if cos_o == 0.0 {
             return None;
+        }
+        if self.thin {
+            return self.sample_thin(wo, u_lobe);
         }
         let f = self.fresnel.eval(cos_o, self.ior);
         // Reflection has throughput F; chosen with probability `prob` (F, or 1
@@ -93,6 +122,8 @@ pub struct GlassMaterial {
     pub tint: ColorTex,
     /// Which Fresnel formula chooses between reflection and refraction.
     pub fresnel: DielectricFresnel,
+    /// A thin sheet rather than a solid's boundary.
+    pub thin: bool,
 }
 
 impl MaterialModel for GlassMaterial {
@@ -102,6 +133,7 @@ impl MaterialModel for GlassMaterial {
             ior: self.ior.eval(uv, textures),
             tint: self.tint.eval(uv, textures),
             fresnel: self.fresnel,
+            thin: self.thin,
         })
     }
     /// 1 times the absorption tint, as OIDN asks of dielectrics.
@@ -124,6 +156,7 @@ mod tests {
             ior: 1.5,
             tint: Rgb::ONE,
             fresnel,
+            thin: false,
         }
     }
 
@@ -195,5 +228,47 @@ mod tests {
         }
         // Beyond the critical angle (41.8°) from inside, always reflect.
         assert_eq!(fresnel::dielectric(-0.5, 1.5), 1.0);
+    }
+
+    /// A thin sheet passes light straight through or mirrors it, from
+    /// either side alike, with Mitsuba's `thindielectric` probabilities
+    /// (R = 2F/(1 + F): 0.0769 at normal incidence for η 1.5), tints only
+    /// what passes, and neither bends nor rescales radiance.
+    #[test]
+    fn thin_glass_passes_straight_through_with_both_faces_reflecting() {
+        let tint = Rgb::new(0.9, 0.5, 0.2);
+        let g = Glass {
+            thin: true,
+            tint,
+            ..glass(DielectricFresnel::Exact)
+        };
+        for (i, cos_o) in [1.0f32, 0.7, 0.2, -0.7, -1.0].into_iter().enumerate() {
+            let wo = Vec3A::new((1.0 - cos_o * cos_o).max(0.0).sqrt(), 0.0, cos_o);
+            let f = fresnel::dielectric(cos_o.abs(), 1.5);
+            let want = 2.0 * f / (1.0 + f);
+            let mut rng = Pcg32::new(11, i as u64);
+            let n = 200_000;
+            let mut reflected = 0u32;
+            for _ in 0..n {
+                let s = g.sample(wo, rng.next_f32(), rng.next_vec2()).expect("scatters");
+                assert!(s.delta && s.eta == 1.0);
+                if s.wi.z * wo.z > 0.0 {
+                    reflected += 1;
+                    assert_eq!((s.wi.x, s.wi.y, s.wi.z), (-wo.x, -wo.y, wo.z));
+                    assert_eq!(s.weight, Rgb::ONE);
+                } else {
+                    assert_eq!(s.wi, -wo, "straight through");
+                    assert_eq!(s.weight, tint);
+                }
+            }
+            let p = reflected as f32 / n as f32;
+            let sigma = (want * (1.0 - want) / n as f32).sqrt();
+            assert!(
+                (p - want).abs() <= 5.0 * sigma + 1e-6,
+                "cos {cos_o}: {p} vs {want}"
+            );
+        }
+        let f0 = fresnel::dielectric(1.0, 1.5);
+        assert!((2.0 * f0 / (1.0 + f0) - 0.076_923).abs() < 1e-4);
     }
 }

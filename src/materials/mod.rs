@@ -528,7 +528,8 @@ mod material_tests {
             Material::Glass(GlassMaterial {
                 ior: Tex::Const(1.5),
                 tint: checker,
-                fresnel: DielectricFresnel::Exact
+                fresnel: DielectricFresnel::Exact,
+                thin: false,
             })
             .is_textured()
         );
@@ -583,6 +584,7 @@ mod material_tests {
                 ior: Tex::Const(1.5),
                 tint: checker,
                 fresnel: DielectricFresnel::Exact,
+                thin: false,
             }),
             Material::Emitter(Emitter),
         ];

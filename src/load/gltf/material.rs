@@ -12,7 +12,8 @@
 //! | `alphaMode: BLEND` | stochastic `Cutout` on alpha (a warning: blending is approximated by coverage) |
 //! | `emissiveFactor` × `KHR_materials_emissive_strength` (× the mean of `emissiveTexture`) | the primitive's light, as an emissive mesh group |
 //! | `KHR_texture_transform` | the lookup's UV transform (its `texCoord` override included) |
-//! | `KHR_materials_ior` | a note when ≠ 1.5: `MetalPlastic`'s F0 is 0.04 |
+//! | `KHR_materials_ior` | a note when ≠ 1.5: `MetalPlastic`'s F0 is 0.04; the glass's ior |
+//! | `KHR_materials_transmission` (× `transmissionTexture`'s mean) × (1 − metallic) ≥ ½ | `Glass(thin: true)` tinted by the base colour; with `KHR_materials_volume` (`thicknessFactor` > 0) a solid: `Glass`, or `RoughGlass` (GGX) above roughness 0.05; below ½ opaque, with a note |
 //! | `occlusionTexture` | ignored with a note: a path tracer computes occlusion |
 //! | `doubleSided: false` | a note: ronray materials shade both sides |
 //!
@@ -175,11 +176,6 @@ pub(crate) fn map(
     if !m.double_sided() {
         note("doubleSided is false, but ronray materials shade both sides".into());
     }
-    if let Some(ior) = m.ior().filter(|&i| (i - 1.5).abs() > 1e-3) {
-        note(format!(
-            "KHR_materials_ior {ior} not used: MetalPlastic's dielectric F0 is 0.04 (ior 1.5)"
-        ));
-    }
     let e = m.emissive_factor();
     let strength = m.emissive_strength().unwrap_or(1.0);
     // As MTL `Ke`: channels that are no radiance read as 0, and at most
@@ -218,17 +214,28 @@ pub(crate) fn map(
             uv_sets[0]
         ));
     }
-    let index = sink.mtl.push_with_surface(
-        Material::MetalPlastic(MetalPlasticMaterial {
-            base_color,
-            roughness: Roughness {
-                tex: roughness,
-                is_alpha: false,
-            },
-            metalness,
-        }),
-        surface,
-    );
+    let see_through = Transmissive {
+        tint: base_color.clone(),
+        roughness: rough_f,
+        metalness: metal_f,
+    };
+    let opaque = Material::MetalPlastic(MetalPlasticMaterial {
+        base_color,
+        roughness: Roughness {
+            tex: roughness,
+            is_alpha: false,
+        },
+        metalness,
+    });
+    let material = transmissive(asset, images, sink.mtl, &m, see_through, &mut note).unwrap_or_else(|| {
+        if let Some(ior) = m.ior().filter(|&i| (i - 1.5).abs() > 1e-3) {
+            note(format!(
+                "KHR_materials_ior {ior} not used: MetalPlastic's dielectric F0 is 0.04 (ior 1.5)"
+            ));
+        }
+        opaque
+    });
+    let index = sink.mtl.push_with_surface(material, surface);
     Mapped {
         index,
         uv_set: uv_sets.first().copied().unwrap_or(0),
@@ -236,6 +243,117 @@ pub(crate) fn map(
         emission: (emission.is_finite() && emission.max_element() > 0.0).then_some(emission),
         double_sided: m.double_sided(),
     }
+}
+
+/// What a transmissive material keeps of the metallic–roughness one.
+struct Transmissive {
+    /// The base colour (texture × factor): the tint of what passes.
+    tint: crate::materials::ColorTex,
+    /// `roughnessFactor` (perceptual).
+    roughness: f32,
+    /// `metallicFactor`: transmission is the dielectric part's only.
+    metalness: f32,
+}
+
+/// `KHR_materials_transmission` (with `KHR_materials_volume`, `KHR_materials_ior`)
+/// as ronray glass, when at least half of the surface transmits
+/// (transmission × (1 − metallic) ≥ ½; ronray has no blend of the two, so
+/// a surface is glass or opaque, with a note when it is partly either):
+/// without a volume (`thicknessFactor` 0, the extension's default) the
+/// surface is thin-walled, as the extension defines it — a thin `Glass`
+/// sheet; with one, the boundary of a solid — `Glass`, or `RoughGlass`
+/// (GGX) when `roughnessFactor` > 0.05. The base colour tints each
+/// crossing; `attenuationColor` is named in a note, not applied.
+fn transmissive(
+    asset: &mut Source,
+    images: &mut Images,
+    mtl: &mut super::super::mtl::MtlMaterials,
+    m: &gltf::Material,
+    t: Transmissive,
+    note: &mut dyn FnMut(String),
+) -> Option<Material> {
+    use crate::materials::{DielectricFresnel, Distribution, GlassMaterial, RoughGlassMaterial};
+    let ext = m.transmission()?;
+    let mut share = ext.transmission_factor();
+    if let Some(info) = ext.transmission_texture() {
+        let mean = texture(asset, images, mtl, &info.texture(), false, None, note)
+            .and_then(|(i, _)| mtl.texture_mean(i));
+        if let Some(mean) = mean {
+            share *= mean.x;
+            note("transmissionTexture approximated by its mean (red channel)".into());
+        }
+    }
+    let share = if share.is_finite() {
+        share.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let metal = if t.metalness.is_finite() {
+        t.metalness.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let glass = share * (1.0 - metal);
+    if glass <= 0.0 {
+        return None;
+    }
+    if glass < 0.5 {
+        note(format!(
+            "KHR_materials_transmission {share} × (1 − metallic {metal}) = {glass:.2}: under one half, rendered opaque"
+        ));
+        return None;
+    }
+    if glass < 1.0 {
+        note(format!(
+            "KHR_materials_transmission {share} × (1 − metallic {metal}) = {glass:.2}: rendered as all glass"
+        ));
+    }
+    let ior = match m.ior() {
+        None => 1.5,
+        Some(i) if (1.0..=10.0).contains(&i) => i,
+        Some(i) => {
+            note(format!(
+                "KHR_materials_ior {i} is outside [1, 10]: glass of ior 1.5"
+            ));
+            1.5
+        }
+    };
+    let volume = m.volume().filter(|v| v.thickness_factor() > 0.0);
+    if let Some(v) = &volume {
+        let c = v.attenuation_color();
+        if v.attenuation_distance().is_finite() && c != [1.0; 3] {
+            note(format!(
+                "KHR_materials_volume attenuationColor {c:?} over {} not applied (the base colour tints each crossing)",
+                v.attenuation_distance()
+            ));
+        }
+    }
+    let rough = if t.roughness.is_finite() {
+        t.roughness.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    Some(match volume {
+        Some(_) if rough > 0.05 => Material::RoughGlass(RoughGlassMaterial {
+            distribution: Distribution::Ggx,
+            roughness: Roughness::perceptual(rough),
+            ior: crate::materials::Tex::Const(ior),
+            tint: t.tint,
+        }),
+        solid => {
+            if solid.is_none() && rough > 0.05 {
+                note(format!(
+                    "roughness {rough} of a thin-walled transmissive surface not applied: a smooth thin sheet"
+                ));
+            }
+            Material::Glass(GlassMaterial {
+                ior: crate::materials::Tex::Const(ior),
+                tint: t.tint,
+                fresnel: DielectricFresnel::Exact,
+                thin: solid.is_none(),
+            })
+        }
+    })
 }
 
 /// The UV set a texture reads (`KHR_texture_transform` may override it).

@@ -58,6 +58,7 @@ fn rough_glass_nearly_smooth_matches_glass() {
         ior: 1.5,
         tint: Rgb::ONE,
         fresnel: crate::materials::DielectricFresnel::Exact,
+        thin: false,
     };
     let mut rng = Pcg32::new(122, 0);
     for cos_o in [0.95f32, 0.5, -0.95, -0.8] {
