@@ -1687,3 +1687,57 @@ fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
         );
     }
 }
+
+/// A `KHR_mesh_quantization` asset (the form gltfpack and glTF-Transform
+/// write for the web), required by the file: integer positions
+/// dequantised by the node's scale, normalised `i8` normals and `u16`
+/// texture coordinates, read as the floats they stand for.
+#[test]
+fn quantized_meshes_are_read() {
+    let mut a = Asset::default();
+    let u16s = |d: &[u16]| d.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+    let view = a.view(&u16s(&[0, 0, 0, 1000, 0, 0, 0, 1000, 0]), None);
+    let pos = a.accessor(
+        json!({"bufferView": view, "componentType": 5123, "count": 3, "type": "VEC3",
+        "min": [0, 0, 0], "max": [1000, 1000, 0]}),
+    );
+    let view = a.view(&[0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0], Some(4));
+    let normal = a.accessor(
+        json!({"bufferView": view, "componentType": 5120, "normalized": true,
+        "count": 3, "type": "VEC3"}),
+    );
+    let view = a.view(&u16s(&[0, 0, 65535, 0, 0, 65535]), None);
+    let uv = a.accessor(
+        json!({"bufferView": view, "componentType": 5123, "normalized": true,
+        "count": 3, "type": "VEC2"}),
+    );
+    let doc = a.gltf(json!({
+        "extensionsUsed": ["KHR_mesh_quantization"],
+        "extensionsRequired": ["KHR_mesh_quantization"],
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "scale": [0.002, 0.002, 0.002]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": pos, "NORMAL": normal, "TEXCOORD_0": uv}}]}],
+    }));
+    let loaded = load(
+        &[("a.gltf", doc.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf", material: "grey")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+    let geo = &loaded.scene.geometry;
+    let tri = geo.instances[0].world_triangle(0, &geo.meshes);
+    for (got, want) in tri
+        .iter()
+        .zip([Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0)])
+    {
+        assert!((Vec3::from(*got) - want).length() < 1e-5, "{got} against {want}");
+    }
+    let mesh = &geo.meshes[0];
+    assert!(
+        mesh.normals.iter().all(|n| (*n - Vec3A::Z).length() < 1e-6),
+        "{:?}",
+        mesh.normals
+    );
+    // glTF's v runs down; ronray stores 1 − v.
+    let uvs: Vec<[f32; 2]> = mesh.uvs.iter().map(|v| v.to_array()).collect();
+    assert_eq!(uvs, [[0.0, 1.0], [1.0, 1.0], [0.0, 0.0]]);
+}

@@ -59,7 +59,12 @@ pub fn read(path: &Path, root: Option<&Path>) -> Result<Asset, String> {
         crate::files::read_regular(path, MAX_GLTF_BYTES).map_err(|e| format!("cannot read glTF: {e}"))?;
     check_glb_length(&bytes)?;
     let gltf = gltf::Gltf::from_slice_without_validation(&bytes).map_err(describe)?;
-    let json = gltf.document.into_json();
+    let mut json = gltf.document.into_json();
+    // `KHR_mesh_quantization` asks only that integer positions, normals,
+    // tangents and texture coordinates be read, which the accessor reader
+    // does (`primitive.rs`); the `gltf` crate does not list it, and its
+    // validation would refuse the file.
+    json.extensions_required.retain(|e| e != "KHR_mesh_quantization");
     // `gltf-json` 1.4.1's validation indexes `accessors` by POSITION's
     // accessor unchecked (a panic on a hostile index): checked first.
     for (m, mesh) in json.meshes.iter().enumerate() {

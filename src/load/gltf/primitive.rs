@@ -94,11 +94,20 @@ fn read_primitive(
     mode: Mode,
     weights: Option<&[f32]>,
 ) -> Result<Part, String> {
-    let f32_only = [DataType::F32];
-    let uv_types = [DataType::F32, DataType::U8, DataType::U16];
+    // Floats, and the integers `KHR_mesh_quantization` allows (normalised
+    // or not, as the accessor says; the node's transform dequantises).
+    let any_int = [
+        DataType::F32,
+        DataType::I8,
+        DataType::U8,
+        DataType::I16,
+        DataType::U16,
+    ];
+    let signed = [DataType::F32, DataType::I8, DataType::I16];
+    let color_types = [DataType::F32, DataType::U8, DataType::U16];
     let pos = p.get(&Semantic::Positions).ok_or("no POSITION attribute")?;
     let positions: Vec<[f32; 3]> =
-        read_f32(doc, buffers, pos.index(), Dimensions::Vec3, &f32_only, "POSITION")?;
+        read_f32(doc, buffers, pos.index(), Dimensions::Vec3, &any_int, "POSITION")?;
     // As OBJ vertices: a position that is no number is refused, not built
     // into the BVH (the `gltf` fuzz target's NaN vertex).
     if let Some((k, p)) = positions
@@ -122,20 +131,20 @@ fn read_primitive(
     let mut mesh = Mesh::default();
     mesh.positions = positions.iter().map(|&p| Vec3A::from(p)).collect();
     if let Some(a) = p.get(&Semantic::Normals) {
-        let v: Vec<[f32; 3]> = read_f32(doc, buffers, a.index(), Dimensions::Vec3, &f32_only, "NORMAL")?;
+        let v: Vec<[f32; 3]> = read_f32(doc, buffers, a.index(), Dimensions::Vec3, &signed, "NORMAL")?;
         same(v.len(), "NORMAL")?;
         mesh.normals = v.iter().map(|&n| Vec3A::from(n).normalize_or_zero()).collect();
     }
     let uv_set = mapped.uv_set;
     if let Some(a) = p.get(&Semantic::TexCoords(uv_set)) {
         let what = format!("TEXCOORD_{uv_set}");
-        let v: Vec<[f32; 2]> = read_f32(doc, buffers, a.index(), Dimensions::Vec2, &uv_types, &what)?;
+        let v: Vec<[f32; 2]> = read_f32(doc, buffers, a.index(), Dimensions::Vec2, &any_int, &what)?;
         same(v.len(), &what)?;
         // glTF's v runs down the image; ronray's up.
         mesh.uvs = v.iter().map(|&[u, v]| Vec2::new(u, 1.0 - v)).collect();
     }
     if let Some(a) = p.get(&Semantic::Tangents) {
-        let v: Vec<[f32; 4]> = read_f32(doc, buffers, a.index(), Dimensions::Vec4, &f32_only, "TANGENT")?;
+        let v: Vec<[f32; 4]> = read_f32(doc, buffers, a.index(), Dimensions::Vec4, &signed, "TANGENT")?;
         same(v.len(), "TANGENT")?;
         mesh.tangents = v
             .iter()
@@ -152,8 +161,8 @@ fn read_primitive(
             return Err(format!("COLOR_0 is {dims:?}, expected Vec3 or Vec4"));
         }
         let len = match dims {
-            Dimensions::Vec3 => read_f32::<3>(doc, buffers, a.index(), dims, &uv_types, "COLOR_0")?.len(),
-            _ => read_f32::<4>(doc, buffers, a.index(), dims, &uv_types, "COLOR_0")?.len(),
+            Dimensions::Vec3 => read_f32::<3>(doc, buffers, a.index(), dims, &color_types, "COLOR_0")?.len(),
+            _ => read_f32::<4>(doc, buffers, a.index(), dims, &color_types, "COLOR_0")?.len(),
         };
         same(len, "COLOR_0")?;
         colors = true;
