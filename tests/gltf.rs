@@ -1741,3 +1741,54 @@ fn quantized_meshes_are_read() {
     let uvs: Vec<[f32; 2]> = mesh.uvs.iter().map(|v| v.to_array()).collect();
     assert_eq!(uvs, [[0.0, 1.0], [1.0, 1.0], [0.0, 0.0]]);
 }
+
+/// An `emissiveTexture` varies the light over the surface (it was its
+/// mean colour everywhere): a quad whose emission map is red on its left
+/// half and black on its right glows `emissiveFactor` × red on the left
+/// and not at all on the right, and a surface the quad lights sees its
+/// light come from the left half.
+#[test]
+fn gltf_emissive_texture_varies_the_light_over_the_surface() {
+    let mut bytes = Vec::new();
+    let img = image::RgbaImage::from_fn(2, 1, |x, _| {
+        if x == 0 {
+            image::Rgba([255, 0, 0, 255])
+        } else {
+            image::Rgba([0, 0, 0, 255])
+        }
+    });
+    img.write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .expect("encode png");
+    let m = json!({"emissiveFactor": [2, 2, 2], "emissiveTexture": {"index": 1, "texCoord": 1},
+        "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 1}});
+    let mut gltf: Value = serde_json::from_str(&quad_asset(m, false, false)).expect("JSON");
+    gltf["images"][1] = json!({"uri": format!("data:image/png;base64,{}", b64(&bytes))});
+    let loaded = load(
+        &[("a.gltf", gltf.to_string().as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+    let seen = |x: f32| {
+        let from = Vec3A::new(x, 0.0, 3.0);
+        common::mean_li(&loaded, Ray::new(from, Vec3A::new(0.0, 0.0, -1.0)), 16)
+    };
+    let (left, right) = (seen(-0.5), seen(0.5));
+    assert!(
+        (left - Vec3A::new(2.0, 0.0, 0.0)).length() < 1e-3,
+        "left half: {left}"
+    );
+    assert!(right.length() < 1e-3, "right half: {right}");
+    // The light's power is its mean radiance × area × π: one red quad-half
+    // (beside the scene's point light, 4π × 30 W/sr).
+    let all = loaded
+        .scene
+        .lights
+        .iter()
+        .fold(ronray::math::Rgb::ZERO, |a, l| a + l.power());
+    let total = all - ronray::math::Rgb::splat(4.0 * std::f32::consts::PI * 30.0);
+    let want = 2.0 * 2.0 * std::f32::consts::PI; // 2 W/(m²·sr) × 2 m² lit × π
+    assert!(
+        (total.x - want).abs() < 0.05 * want && total.y.abs() < 1e-2,
+        "the quad's power {total:?} against {want} in red"
+    );
+}

@@ -339,8 +339,20 @@ impl MtlMaterials {
 
     /// The emission of image `t` (a scene texture index) times `ke`.
     fn emission_map(&self, t: u32, ke: Rgb) -> Emission {
-        let local = ColorTex::image(t - self.first_texture);
-        Emission::new(&local, &self.textures).scaled(ke)
+        self.emission_lookup(crate::materials::ImageLookup::plain(t), ke)
+    }
+
+    /// The emission `look` reads (its `index` a scene texture index, one
+    /// of these files' textures) times `ke`; constant `ke` when it names
+    /// none of them.
+    pub(crate) fn emission_lookup(&self, look: crate::materials::ImageLookup, ke: Rgb) -> Emission {
+        match look.index.checked_sub(self.first_texture) {
+            Some(local) if (local as usize) < self.textures.len() => {
+                let local = ColorTex::Image(crate::materials::ImageLookup { index: local, ..look });
+                Emission::new(&local, &self.textures).scaled(ke)
+            }
+            _ => Emission::constant(ke),
+        }
     }
 
     /// Decodes a scalar map (linear) once per path: its index and channel

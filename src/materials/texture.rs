@@ -132,6 +132,20 @@ pub struct ImageLookup {
     pub uv: UvTransform,
 }
 
+impl ImageLookup {
+    /// Image `index` as it is: every channel, unscaled, no UV transform.
+    pub fn plain(index: u32) -> Self {
+        ImageLookup {
+            index,
+            channel: Channel::All,
+            scale: 1.0,
+            offset: 0.0,
+            rows_down: false,
+            uv: UvTransform::default(),
+        }
+    }
+}
+
 /// A parameter that may vary over the surface: a closed set of kinds, all
 /// `Copy`-free plain data evaluated without allocation.
 #[derive(Clone, Debug, PartialEq)]
@@ -231,14 +245,7 @@ impl ColorTex {
     /// A colour image read whole, with no transform: what a plain file name
     /// in a scene gives.
     pub fn image(index: u32) -> Self {
-        Tex::Image(ImageLookup {
-            index,
-            channel: Channel::All,
-            scale: 1.0,
-            offset: 0.0,
-            rows_down: false,
-            uv: UvTransform::default(),
-        })
+        Tex::Image(ImageLookup::plain(index))
     }
 }
 

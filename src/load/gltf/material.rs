@@ -10,7 +10,7 @@
 //! | `normalTexture` with `scale` | `NormalMap(strength: scale)` over the material, MikkTSpace tangents when the mesh has none |
 //! | `alphaMode: MASK` with `alphaCutoff` | `Cutout(mode: Threshold(cutoff))` on base-colour alpha |
 //! | `alphaMode: BLEND` | stochastic `Cutout` on alpha (a warning: blending is approximated by coverage) |
-//! | `emissiveFactor` × `KHR_materials_emissive_strength` (× the mean of `emissiveTexture`) | the primitive's light, as an emissive mesh group |
+//! | `emissiveFactor` × `KHR_materials_emissive_strength` × `emissiveTexture` (sRGB) | the primitive's light, as an emissive mesh group, the texture sampled as an MTL's `map_Ke` |
 //! | `KHR_texture_transform` | the lookup's UV transform (its `texCoord` override included) |
 //! | `KHR_materials_ior` | a note when ≠ 1.5: `MetalPlastic`'s F0 is 0.04; the glass's ior |
 //! | `KHR_materials_transmission` (× `transmissionTexture`'s mean) × (1 − metallic) ≥ ½ | `Glass(thin: true)` tinted by the base colour; with `KHR_materials_volume` (`thicknessFactor` > 0) a solid: `Glass`, or `RoughGlass` (GGX) above roughness 0.05; below ½ opaque, with a note |
@@ -41,8 +41,10 @@ pub struct Mapped {
     pub uv_set: u32,
     /// Whether it has a normal map (the mesh then needs tangents).
     pub normal_mapped: bool,
-    /// Emitted radiance, if any.
+    /// Emitted radiance, if any (`emissiveFactor` × strength).
     pub emission: Option<Rgb>,
+    /// The `emissiveTexture` the radiance is multiplied by, if any.
+    pub emission_map: Option<ImageLookup>,
     /// glTF's `doubleSided` (an emissive primitive then emits both ways).
     pub double_sided: bool,
 }
@@ -90,6 +92,7 @@ pub(crate) fn map(
             uv_set: 0,
             normal_mapped: false,
             emission: None,
+            emission_map: None,
             double_sided: false,
         };
     };
@@ -183,7 +186,7 @@ pub(crate) fn map(
     let asked = Rgb::new(e[0], e[1], e[2]) * strength;
     let mut repairs = super::super::texels::Repairs::default();
     let fixed = |x: f32, r: &mut super::super::texels::Repairs| r.value(x).min(MAX_RADIANCE);
-    let mut emission = Rgb::new(
+    let emission = Rgb::new(
         fixed(asked.x, &mut repairs),
         fixed(asked.y, &mut repairs),
         fixed(asked.z, &mut repairs),
@@ -194,18 +197,15 @@ pub(crate) fn map(
              and negative channels read as 0, at most {MAX_RADIANCE:e}); read as {emission}"
         ));
     }
+    // The emission varies over the surface as the texture does: the mesh
+    // light samples it (`lights::Emission`), as an MTL's `map_Ke`.
+    let mut emission_map = None;
     if let Some(info) = m.emissive_texture()
         && emission.max_element() > 0.0
     {
-        let mean = texture(asset, images, sink.mtl, &info.texture(), true, None, &mut note)
-            .and_then(|(i, _)| sink.mtl.texture_mean(i));
-        if let Some(mean) = mean {
-            emission *= mean;
-        }
-        note(
-            "emissiveTexture approximated by its mean colour (emission textures are not yet supported)"
-                .into(),
-        );
+        uv_sets.push(set_of(&info));
+        emission_map = texture(asset, images, sink.mtl, &info.texture(), true, None, &mut note)
+            .map(|(i, _)| lookup(i, Channel::All, 1.0, &info));
     }
     uv_sets.dedup();
     if uv_sets.len() > 1 {
@@ -241,6 +241,7 @@ pub(crate) fn map(
         uv_set: uv_sets.first().copied().unwrap_or(0),
         normal_mapped,
         emission: (emission.is_finite() && emission.max_element() > 0.0).then_some(emission),
+        emission_map,
         double_sided: m.double_sided(),
     }
 }

@@ -529,7 +529,7 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
     let first_mesh = ctx.geometry.meshes.len();
     let mut slot_materials = Vec::new();
     for (mesh, slots, names) in imported.meshes {
-        let resolved: Vec<(u32, Option<(crate::math::Rgb, bool)>)> = slots
+        let resolved: Vec<(u32, Option<(crate::lights::Emission, bool)>)> = slots
             .iter()
             .zip(&names)
             .map(|(mapped, name)| {
@@ -540,7 +540,16 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
                     .and_then(|n| ctx.material_index.get(n.as_str()).copied());
                 match chosen {
                     Some(m) => (m, None),
-                    None => (mapped.index, mapped.emission.map(|e| (e, mapped.double_sided))),
+                    None => (
+                        mapped.index,
+                        mapped.emission.map(|e| {
+                            let emission = match mapped.emission_map {
+                                Some(look) => ctx.mtl.emission_lookup(look, e),
+                                None => crate::lights::Emission::constant(e),
+                            };
+                            (emission, mapped.double_sided)
+                        }),
+                    ),
                 }
             })
             .collect();
@@ -570,14 +579,8 @@ pub(super) fn add(ctx: &mut BuildContext, i: usize, o: &ObjectDesc, world_from_o
                 .iter()
                 .enumerate()
                 .map(|(slot, s)| {
-                    s.1.map_or(NO_LIGHT, |(radiance, two_sided)| {
-                        super::mesh::mesh_light(
-                            ctx,
-                            &instance,
-                            slot,
-                            crate::lights::Emission::constant(radiance),
-                            two_sided,
-                        )
+                    s.1.as_ref().map_or(NO_LIGHT, |(emission, two_sided)| {
+                        super::mesh::mesh_light(ctx, &instance, slot, emission.clone(), *two_sided)
                     })
                 })
                 .collect();
