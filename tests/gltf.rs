@@ -1792,3 +1792,37 @@ fn gltf_emissive_texture_varies_the_light_over_the_surface() {
         "the quad's power {total:?} against {want} in red"
     );
 }
+
+/// A texture's sampler `wrapS`/`wrapT` reach the lookup (they were read as
+/// repeat, with a note): clamp along u and mirror along v.
+#[test]
+fn gltf_sampler_wrap_modes_are_kept() {
+    use ronray::materials::{Material, Tex, Wrap};
+    let m = json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 1, "texCoord": 1}}});
+    let mut gltf: Value = serde_json::from_str(&quad_asset(m, false, false)).expect("JSON");
+    gltf["samplers"] = json!([{"wrapS": 33071, "wrapT": 33648}]);
+    gltf["textures"][1]["sampler"] = json!(0);
+    let loaded = load(
+        &[("a.gltf", gltf.to_string().as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+    let wraps: Vec<[Wrap; 2]> = loaded
+        .scene
+        .materials
+        .iter()
+        .filter_map(|m| match m {
+            Material::MetalPlastic(p) => match &p.base_color {
+                Tex::Image(l) => Some(l.wrap),
+                _ => None,
+            },
+            _ => None,
+        })
+        .collect();
+    assert_eq!(wraps, [[Wrap::Clamp, Wrap::Mirror]]);
+    assert!(
+        !notes_of(&loaded).iter().any(|n| n.contains("wrap")),
+        "{:?}",
+        notes_of(&loaded)
+    );
+}

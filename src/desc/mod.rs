@@ -54,7 +54,7 @@ pub use medium::MediumDesc;
 pub use object::{MeshDesc, ObjectDesc, SphereUvDesc};
 pub use sdf::{MarchDesc, RotationDesc, SdfDesc};
 pub use texture::{
-    ChannelDesc, ColorspaceDesc, ImageDesc, OriginDesc, PatternDesc, ScalarDesc, TexDesc, UvDesc,
+    ChannelDesc, ColorspaceDesc, ImageDesc, OriginDesc, PatternDesc, ScalarDesc, TexDesc, UvDesc, WrapDesc,
 };
 pub use transform::TransformDesc;
 

@@ -5,7 +5,7 @@
 //! | form | value |
 //! |---|---|
 //! | `"file.png"` | an image, defaults for everything else |
-//! | `Image(file: "…", channel: R, colorspace: Linear, scale: 1, offset: 0, origin: BottomLeft, uv: (…))` | `texel·scale + offset` |
+//! | `Image(file: "…", channel: R, colorspace: Linear, scale: 1, offset: 0, origin: BottomLeft, uv: (…), wrap: Repeat)` | `texel·scale + offset` |
 //! | `Checker(a: …, b: …, scale: 4, uv: (…))` | squares of `a` and `b`, `scale` per UV unit |
 //! | `Pattern(pattern: Fbm(octaves: 5), a: …, b: …, seed: 0, uv: (…))` | `a + (b − a)·pattern(uv)` |
 //!
@@ -78,6 +78,20 @@ pub struct ImageDesc {
     pub origin: OriginDesc,
     /// Transform applied to the surface's UVs first.
     pub uv: UvDesc,
+    /// What lies past the image's edges (default `Repeat`).
+    pub wrap: WrapDesc,
+}
+
+/// What an image shows past its edges.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, schemars::JsonSchema, PartialEq, Eq)]
+pub enum WrapDesc {
+    /// The image tiles the plane.
+    #[default]
+    Repeat,
+    /// The edge texels stretch out: a decal or label shows once.
+    Clamp,
+    /// Tiles, every other one mirrored, so no seam shows.
+    Mirror,
 }
 
 impl ImageDesc {
@@ -91,6 +105,7 @@ impl ImageDesc {
             offset: 0.0,
             origin: OriginDesc::BottomLeft,
             uv: UvDesc::default(),
+            wrap: WrapDesc::Repeat,
         }
     }
 
@@ -241,6 +256,7 @@ pub(super) fn visit_tex_map<'de, V: DeserializeOwned, A: MapAccess<'de>>(
         "offset",
         "origin",
         "uv",
+        "wrap",
         "a",
         "b",
         "pattern",
@@ -265,6 +281,10 @@ pub(super) fn visit_tex_map<'de, V: DeserializeOwned, A: MapAccess<'de>>(
             "origin" => {
                 image.origin = m.next_value()?;
                 image_only.push("origin");
+            }
+            "wrap" => {
+                image.wrap = m.next_value()?;
+                image_only.push("wrap");
             }
             "scale" => scale = Some(m.next_value::<f32>()?),
             "offset" => offset = Some(m.next_value::<f32>()?),
@@ -351,6 +371,9 @@ impl<V: Serialize + PartialEq> TexDesc<V> {
                 }
                 if i.origin != OriginDesc::BottomLeft {
                     st.serialize_field("origin", &i.origin)?;
+                }
+                if i.wrap != WrapDesc::Repeat {
+                    st.serialize_field("wrap", &i.wrap)?;
                 }
                 if !i.uv.is_identity() {
                     st.serialize_field("uv", &i.uv)?;
@@ -474,14 +497,15 @@ pub(super) fn tex_schemas(
     let channel = g.subschema_for::<ChannelDesc>();
     let colorspace = g.subschema_for::<ColorspaceDesc>();
     let origin = g.subschema_for::<OriginDesc>();
+    let wrap = g.subschema_for::<WrapDesc>();
     vec![
         schemars::json_schema!({ "type": "string", "description": "image file, relative to the scene file" }),
         schemars::json_schema!({
             "title": "Image", "type": "object", "additionalProperties": false, "required": ["file"],
-            "description": "Image(file, channel, colorspace, scale, offset, origin, uv)",
+            "description": "Image(file, channel, colorspace, scale, offset, origin, uv, wrap)",
             "properties": {
                 "file": { "type": "string" }, "channel": channel, "colorspace": colorspace,
-                "scale": { "type": "number" }, "offset": { "type": "number" }, "origin": origin, "uv": uv
+                "scale": { "type": "number" }, "offset": { "type": "number" }, "origin": origin, "uv": uv, "wrap": wrap
             }
         }),
         schemars::json_schema!({
@@ -543,6 +567,19 @@ mod tests {
                 0.1,
                 OriginDesc::TopLeft
             )
+        );
+        let Ok(ScalarDesc::Texture(TexDesc::Image(i))) =
+            parse("Image(file: \"r.png\", channel: R, wrap: Mirror)")
+        else {
+            panic!("image with a wrap");
+        };
+        assert_eq!(i.wrap, WrapDesc::Mirror);
+        // Written back only when not the default.
+        let text = ron::to_string(&ScalarDesc::Texture(TexDesc::Image(i))).expect("writes");
+        assert!(text.contains("wrap:Mirror"), "{text}");
+        assert!(
+            parse("Checker(a: 0.1, b: 0.9, wrap: Clamp)").is_err(),
+            "a checker has no edge"
         );
         assert!(matches!(
             parse("Checker(a: 0.1, b: 0.9, scale: 4, uv: (rotation_degrees: 45))"),

@@ -7,7 +7,7 @@ use super::validate::{Checker, MAX_RADIANCE, RADIANCE_HELP};
 use crate::desc::{
     ChannelDesc, ColorDesc, ColorspaceDesc, CutoutModeDesc, DielectricFresnelDesc, DistributionDesc,
     FresnelDesc, ImageDesc, MaterialDesc, MetalDesc, OriginDesc, PatternDesc, RoughnessUnitDesc, ScalarDesc,
-    TexDesc,
+    TexDesc, WrapDesc,
 };
 use crate::diagnostic::Problem;
 use crate::materials::{
@@ -17,7 +17,7 @@ use crate::materials::{
 };
 use crate::materials::{
     Channel, ColorTex, Cutout, DielectricFresnel, Distribution, Fresnel, ImageLookup, Material, Metal,
-    Pattern, Perturb, Roughness, ScalarTex, Surface, Tex, Texture, UvTransform,
+    Pattern, Perturb, Roughness, ScalarTex, Surface, Tex, Texture, UvTransform, Wrap,
 };
 use crate::math::Rgb;
 use std::collections::{BTreeMap, HashMap};
@@ -809,6 +809,7 @@ impl Builder<'_> {
                         offset: 0.0,
                         rows_down: false,
                         uv: UvTransform::default(),
+                        wrap: [Wrap::Repeat; 2],
                     });
                 };
                 let channel = match i.channel {
@@ -850,6 +851,11 @@ impl Builder<'_> {
                     offset: i.offset,
                     rows_down: i.origin == OriginDesc::TopLeft,
                     uv: uv(&i.uv),
+                    wrap: [match i.wrap {
+                        WrapDesc::Repeat => Wrap::Repeat,
+                        WrapDesc::Clamp => Wrap::Clamp,
+                        WrapDesc::Mirror => Wrap::Mirror,
+                    }; 2],
                 })
             }
         }

@@ -235,6 +235,7 @@ impl MtlMaterials {
                     offset: 0.0,
                     rows_down: false,
                     uv: UvTransform::default(),
+                    wrap: [crate::materials::Wrap::Repeat; 2],
                 }))
             };
         let param = |k: &str| {

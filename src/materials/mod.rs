@@ -72,7 +72,7 @@ pub use rough_coat::RoughCoat;
 pub use rough_glass::{RoughGlass, RoughGlassMaterial};
 pub use rough_plastic::{RoughPlastic, RoughPlasticMaterial};
 pub use surface::{Cutout, Perturb, Surface};
-pub use texture::{Channel, ColorTex, ImageLookup, ScalarTex, Tex, Texture, UvTransform};
+pub use texture::{Channel, ColorTex, ImageLookup, ScalarTex, Tex, Texture, UvTransform, Wrap};
 
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};

@@ -130,6 +130,40 @@ pub struct ImageLookup {
     pub rows_down: bool,
     /// Applied to the surface's UVs first.
     pub uv: UvTransform,
+    /// What lies past the image's edge, along u and along v.
+    pub wrap: [Wrap; 2],
+}
+
+/// What an image shows past its edges (Mitsuba's `wrap_mode`, glTF's
+/// sampler `wrapS`/`wrapT`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image tiles the plane.
+    #[default]
+    Repeat,
+    /// The edge texels stretch out: a decal or label shows once.
+    Clamp,
+    /// Tiles, every other one mirrored, so no seam shows.
+    Mirror,
+}
+
+impl Wrap {
+    /// Coordinate `u` over an image `n` texels wide, brought to where the
+    /// repeating lookup reads what this mode shows: for clamp and mirror,
+    /// within the outer texels' centres, so the 2 × 2 block of a bilinear
+    /// lookup never reaches across the edge to the other side.
+    #[inline]
+    fn apply(self, u: f32, n: u32) -> f32 {
+        let half = 0.5 / n.max(1) as f32;
+        match self {
+            Wrap::Repeat => u,
+            Wrap::Clamp => u.clamp(half, 1.0 - half),
+            Wrap::Mirror => {
+                let m = u.rem_euclid(2.0);
+                (if m > 1.0 { 2.0 - m } else { m }).clamp(half, 1.0 - half)
+            }
+        }
+    }
 }
 
 impl ImageLookup {
@@ -142,6 +176,7 @@ impl ImageLookup {
             offset: 0.0,
             rows_down: false,
             uv: UvTransform::default(),
+            wrap: [Wrap::Repeat; 2],
         }
     }
 }
@@ -204,7 +239,10 @@ impl<T: TexValue> Tex<T> {
             Tex::Const(c) => *c,
             Tex::Image(l) => match textures.get(l.index as usize) {
                 Some(t) => {
-                    let uv = l.uv.apply(uv);
+                    let mut uv = l.uv.apply(uv);
+                    if l.wrap != [Wrap::Repeat; 2] {
+                        uv = Vec2::new(l.wrap[0].apply(uv.x, t.width), l.wrap[1].apply(uv.y, t.height));
+                    }
                     let v = if l.channel == Channel::All {
                         T::from_texel(t.bilinear_rows(uv, l.rows_down), 1.0, Channel::All)
                     } else {
@@ -390,6 +428,43 @@ impl Texture {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Past the edge, clamp repeats the edge texel, mirror reads the image
+    /// backwards, repeat tiles; inside it the three agree. A 4 × 1 image
+    /// of values 1, 2, 3, 4 (texel centres at u = ⅛, ⅜, ⅝, ⅞).
+    #[test]
+    fn wrap_modes_read_past_the_edge_as_named() {
+        let t = Texture {
+            width: 4,
+            height: 1,
+            texels: (1..=4).map(|k| Rgb::splat(k as f32)).collect(),
+            alpha: Vec::new(),
+        };
+        let at = |wrap: Wrap, u: f32| -> f32 {
+            let tex: ColorTex = Tex::Image(ImageLookup {
+                wrap: [wrap, Wrap::Repeat],
+                ..ImageLookup::plain(0)
+            });
+            tex.eval(Vec2::new(u, 0.5), std::slice::from_ref(&t)).x
+        };
+        for u in [0.2f32, 0.5, 0.8] {
+            assert_eq!(at(Wrap::Clamp, u), at(Wrap::Repeat, u));
+            assert_eq!(at(Wrap::Mirror, u), at(Wrap::Repeat, u));
+        }
+        // Clamp: the edge texels, however far out.
+        assert_eq!(at(Wrap::Clamp, 1.3), 4.0);
+        assert_eq!(at(Wrap::Clamp, 0.95), 4.0);
+        assert_eq!(at(Wrap::Clamp, -7.0), 1.0);
+        // Mirror: 1.3 reads 0.7, −0.2 reads 0.2, 2.3 reads 0.3 again.
+        let near = |a: f32, b: f32| assert!((a - b).abs() < 1e-5, "{a} against {b}");
+        near(at(Wrap::Mirror, 1.3), at(Wrap::Repeat, 0.7));
+        near(at(Wrap::Mirror, -0.2), at(Wrap::Repeat, 0.2));
+        near(at(Wrap::Mirror, 2.3), at(Wrap::Repeat, 0.3));
+        // Across the seam, mirror holds the edge texel where repeat blends
+        // the last texel with the first.
+        assert_eq!(at(Wrap::Mirror, 1.0), 4.0);
+        assert!(at(Wrap::Repeat, 1.0) < 3.0);
+    }
 
     /// The block wrapped once gives, bit for bit, what wrapping each of the
     /// four texels on its own gives, inside the image, across its edges and

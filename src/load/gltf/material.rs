@@ -144,12 +144,8 @@ pub(crate) fn map(
             normal_mapped = true;
             surface.normal = Some(Perturb::NormalMap {
                 map: Tex::Image(ImageLookup {
-                    index,
-                    channel: Channel::All,
-                    scale: 1.0,
-                    offset: 0.0,
-                    rows_down: false,
-                    uv: UvTransform::default(),
+                    wrap: wrap_of(&n.texture()),
+                    ..ImageLookup::plain(index)
                 }),
                 strength: n.scale(),
                 flip_green: false,
@@ -375,7 +371,22 @@ fn lookup(index: u32, channel: Channel, scale: f32, info: &gltf::texture::Info) 
         uv: info.texture_transform().map_or(UvTransform::default(), |t| {
             uv_transform(t.offset(), t.rotation(), t.scale())
         }),
+        wrap: wrap_of(&info.texture()),
     }
+}
+
+/// The texture's sampler's `wrapS` and `wrapT` (u, then v: the importer's
+/// flip of v leaves a mode as it is).
+fn wrap_of(t: &gltf::Texture) -> [crate::materials::Wrap; 2] {
+    use crate::materials::Wrap;
+    use gltf::texture::WrappingMode;
+    let one = |m: WrappingMode| match m {
+        WrappingMode::Repeat => Wrap::Repeat,
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+    };
+    let s = t.sampler();
+    [one(s.wrap_s()), one(s.wrap_t())]
 }
 
 /// `KHR_texture_transform` in ronray's v-up UVs. In glTF's own UVs it is
@@ -409,17 +420,6 @@ fn texture(
     factor: Option<Rgb>,
     note: &mut dyn FnMut(String),
 ) -> Option<(u32, bool)> {
-    let sampler = t.sampler();
-    if sampler.wrap_s() != gltf::texture::WrappingMode::Repeat
-        || sampler.wrap_t() != gltf::texture::WrappingMode::Repeat
-    {
-        note(format!(
-            "textures[{}]: wrap modes {:?}/{:?} read as repeat",
-            t.index(),
-            sampler.wrap_s(),
-            sampler.wrap_t()
-        ));
-    }
     let image = t.source();
     let key = (image.index(), srgb);
     let cached = match images.cache.get(&key) {
