@@ -599,6 +599,43 @@ fn gltf_texture_transform_moves_the_lookup() {
         &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
     )
     .unwrap_or_else(|e| panic!("loads: {e}"));
+    // The normal map's transform too (the `gltf` crate hands its JSON
+    // over unread: it was dropped, and the normal map kept its tiling while
+    // the colour moved).
+    let transform =
+        json!({"KHR_texture_transform": {"offset": [0, 1], "rotation": 1.5707964, "scale": [0.5, 0.5]}});
+    let m = json!({"normalTexture": {"index": 0, "texCoord": 1, "extensions": transform},
+        "pbrMetallicRoughness": {"baseColorTexture": {"index": 1, "texCoord": 1, "extensions": transform}}});
+    let mut doc: Value = serde_json::from_str(&quad_asset(m, true, false)).expect("json");
+    doc["extensionsUsed"] = json!(["KHR_texture_transform"]);
+    let loaded = load(
+        &[("a.gltf", doc.to_string().as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    use ronray::materials::{Material, Perturb, Tex};
+    let scene = &loaded.scene;
+    let (k, colour) = scene
+        .materials
+        .iter()
+        .enumerate()
+        .find_map(|(k, m)| match m {
+            Material::MetalPlastic(p) => match &p.base_color {
+                Tex::Image(l) => Some((k, l.uv)),
+                _ => None,
+            },
+            _ => None,
+        })
+        .expect("the asset's material");
+    let Some(Perturb::NormalMap {
+        map: Tex::Image(normal),
+        ..
+    }) = &scene.surfaces[k].normal
+    else {
+        panic!("no normal map on the asset's material");
+    };
+    assert!(colour.0.is_some(), "the colour's transform");
+    assert_eq!(normal.uv, colour, "the normal map moves with the colour");
 }
 
 fn render(loaded: &ronray::load::Loaded) -> Vec<[u32; 3]> {

@@ -139,12 +139,14 @@ pub(crate) fn map(
     let mut surface = Surface::default();
     let mut normal_mapped = false;
     if let Some(n) = m.normal_texture() {
-        uv_sets.push(n.tex_coord());
+        let (uv, set) = normal_transform(&n);
+        uv_sets.push(set);
         if let Some((index, _)) = texture(asset, images, sink.mtl, &n.texture(), false, None, &mut note) {
             normal_mapped = true;
             surface.normal = Some(Perturb::NormalMap {
                 map: Tex::Image(ImageLookup {
                     wrap: wrap_of(&n.texture()),
+                    uv,
                     ..ImageLookup::plain(index)
                 }),
                 strength: n.scale(),
@@ -351,6 +353,39 @@ fn transmissive(
             })
         }
     })
+}
+
+/// A normal texture's `KHR_texture_transform` and UV set: the `gltf` crate
+/// reads the extension on every texture reference but the normal map's,
+/// whose JSON it hands over as is (a tiled floor's normal map tiled as its
+/// colour is). A field that is not what the extension says is its default.
+fn normal_transform(n: &gltf::material::NormalTexture) -> (UvTransform, u32) {
+    let Some(t) = n.extension_value("KHR_texture_transform") else {
+        return (UvTransform::default(), n.tex_coord());
+    };
+    let pair = |key: &str, default: [f32; 2]| -> [f32; 2] {
+        match t.get(key).and_then(|v| v.as_array()).map(|a| a.as_slice()) {
+            Some([x, y]) => match (x.as_f64(), y.as_f64()) {
+                (Some(x), Some(y)) if x.is_finite() && y.is_finite() => [x as f32, y as f32],
+                _ => default,
+            },
+            _ => default,
+        }
+    };
+    let rotation = t
+        .get("rotation")
+        .and_then(|v| v.as_f64())
+        .filter(|r| r.is_finite())
+        .unwrap_or(0.0) as f32;
+    let set = t
+        .get("texCoord")
+        .and_then(|v| v.as_u64())
+        .and_then(|s| u32::try_from(s).ok())
+        .unwrap_or_else(|| n.tex_coord());
+    (
+        uv_transform(pair("offset", [0.0, 0.0]), rotation, pair("scale", [1.0, 1.0])),
+        set,
+    )
 }
 
 /// The UV set a texture reads (`KHR_texture_transform` may override it).
