@@ -333,7 +333,8 @@ fn transmissive(
         0.0
     };
     Some(match volume {
-        Some(_) if rough > 0.05 => Material::RoughGlass(RoughGlassMaterial {
+        // Rough glass refracts through microfacets, which needs η ≠ 1.
+        Some(_) if rough > 0.05 && (ior - 1.0).abs() > 1e-3 => Material::RoughGlass(RoughGlassMaterial {
             distribution: Distribution::Ggx,
             roughness: Roughness::perceptual(rough),
             ior: crate::materials::Tex::Const(ior),
