@@ -111,6 +111,7 @@ impl Checker {
                     _ => None,
                 })
                 .collect();
+            files.sort_unstable();
             files.dedup();
             let (what, help) = if matching == 0 {
                 (

@@ -131,6 +131,27 @@ fn a_gltf_camera_is_placed_by_its_nodes_and_the_object() {
     );
 }
 
+/// A camera far from the origin keeps its view direction: its target is
+/// not one f32 step away from its eye (at 10⁷ a unit is one step).
+#[test]
+fn a_gltf_camera_far_out_keeps_its_direction() {
+    let turn = Quat::from_rotation_y(0.3) * Quat::from_rotation_x(-0.2);
+    let doc = asset(
+        json!([perspective(0.5)]),
+        json!([{"mesh": 0}, {"camera": 0, "translation": [1.0e7, 3.0e6, -2.0e7], "rotation": turn.to_array()}]),
+        json!([0, 1]),
+        json!({}),
+    );
+    let loaded = load(
+        &[("a.gltf", doc.as_bytes())],
+        &scene(r#"gltf: (file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+    let want = turn * -Vec3::Z;
+    let got = Vec3::from(loaded.view.camera.forward);
+    assert!(got.angle_between(want) < 1e-4, "forward {got} against {want}");
+}
+
 /// `camera` picks by node name, camera name or `#index`; the first placed
 /// is the default; an orthographic camera's `ymag` is half the view
 /// height.

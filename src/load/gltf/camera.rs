@@ -161,8 +161,13 @@ pub(crate) fn resolve(
         ));
     }
     // Focus (a lens with an aperture needs `focus_distance`, checked)
-    // lies at `focus_distance`; a pinhole has none, and looks one unit on.
-    let reach = out.focus_distance.unwrap_or(1.0);
+    // lies at `focus_distance`. A pinhole has none: its target is a unit
+    // on, or a 64th of the eye's distance from the origin when that is
+    // more, so that `target − eye` keeps the view direction in f32 for a
+    // camera far out (at 10⁷ a unit is one f32 step).
+    let reach = out
+        .focus_distance
+        .unwrap_or_else(|| (first.eye.abs().max_element() / 64.0).max(1.0));
     let look = |p: &Pose| {
         (
             p.eye.to_array(),
