@@ -83,15 +83,11 @@ impl Checker {
             ("projection", c.projection != ProjectionDesc::Perspective),
             ("keys", !c.keys.is_empty()),
         ];
-        for (field, set) in given {
-            if set {
-                self.push(
-                    &format!("camera.{field}"),
-                    format!("`{field}` is given by the glTF camera `gltf` takes"),
-                    "remove it, or remove `gltf` and describe the camera here",
-                );
-            }
-        }
+        self.fields_not_wanted(
+            &given,
+            |field| format!("`{field}` is given by the glTF camera `gltf` takes"),
+            "remove it, or remove `gltf` and describe the camera here",
+        );
         if c.aperture_radius > 0.0 && c.focus_distance.is_none() {
             self.push(
                 "camera.aperture_radius",
@@ -138,6 +134,15 @@ impl Checker {
         }
     }
 
+    /// A problem at `camera.<field>` for each `(field, written)` written.
+    fn fields_not_wanted(&mut self, fields: &[(&str, bool)], why: impl Fn(&str) -> String, help: &str) {
+        for &(field, written) in fields {
+            if written {
+                self.push(&format!("camera.{field}"), why(field), help);
+            }
+        }
+    }
+
     /// The projection and the fields that belong to it: a perspective camera
     /// needs `fov_y_degrees`; the others take none of the lens fields.
     fn projection(&mut self, c: &CameraDesc) {
@@ -176,15 +181,11 @@ impl Checker {
                 ("aperture_radius", c.aperture_radius != 0.0),
                 ("focus_distance", c.focus_distance.is_some()),
             ];
-            for (field, set) in lens {
-                if set {
-                    self.push(
-                        &format!("camera.{field}"),
-                        format!("`{field}` does nothing for {name} camera"),
-                        "remove it; field of view and depth of field belong to `Perspective`",
-                    );
-                }
-            }
+            self.fields_not_wanted(
+                &lens,
+                |field| format!("`{field}` does nothing for {name} camera"),
+                "remove it; field of view and depth of field belong to `Perspective`",
+            );
         }
     }
 }

@@ -279,36 +279,31 @@ fn a_wrong_gltf_camera_is_a_located_error() {
         assert!(e.contains(want), "{camera}: wanted `{want}` in\n{e}");
         assert!(e.contains("scene.ron:"), "{camera}: not located\n{e}");
     }
-    // An asset without a camera, and one whose camera's node is scaled to
-    // nothing.
-    let none = asset(json!([]), json!([{"mesh": 0}]), json!([0]), json!({}));
-    let e = error(
-        &[("a.gltf", none.as_bytes())],
-        &scene(r#"gltf: (file: "a.gltf")"#, ""),
-    );
-    assert!(e.contains("has no camera"), "{e}");
-    let flat = asset(
-        json!([perspective(0.5)]),
-        json!([{"mesh": 0}, {"camera": 0, "scale": [0, 0, 0]}]),
-        json!([0, 1]),
-        json!({}),
-    );
-    let e = error(
-        &[("a.gltf", flat.as_bytes())],
-        &scene(r#"gltf: (file: "a.gltf")"#, ""),
-    );
-    assert!(e.contains("no view direction"), "{e}");
-    let wide = asset(
-        json!([perspective(3.5)]),
-        json!([{"mesh": 0}, {"camera": 0}]),
-        json!([0, 1]),
-        json!({}),
-    );
-    let e = error(
-        &[("a.gltf", wide.as_bytes())],
-        &scene(r#"gltf: (file: "a.gltf")"#, ""),
-    );
-    assert!(e.contains("yfov 3.5"), "{e}");
+    // An asset without a camera, one whose camera's node is scaled to
+    // nothing, and one whose field of view is no angle.
+    let broken = [
+        (json!([]), json!([{"mesh": 0}]), json!([0]), "has no camera"),
+        (
+            json!([perspective(0.5)]),
+            json!([{"mesh": 0}, {"camera": 0, "scale": [0, 0, 0]}]),
+            json!([0, 1]),
+            "no view direction",
+        ),
+        (
+            json!([perspective(3.5)]),
+            json!([{"mesh": 0}, {"camera": 0}]),
+            json!([0, 1]),
+            "yfov 3.5",
+        ),
+    ];
+    for (cameras, nodes, roots, want) in broken {
+        let doc = asset(cameras, nodes, roots, json!({}));
+        let e = error(
+            &[("a.gltf", doc.as_bytes())],
+            &scene(r#"gltf: (file: "a.gltf")"#, ""),
+        );
+        assert!(e.contains(want), "wanted `{want}` in\n{e}");
+    }
     // A camera whose type's object is missing (the `gltf` crate unwraps
     // it unchecked): an error at the object's file, whatever the camera.
     let mismatched = asset(
