@@ -263,12 +263,24 @@ impl Scene {
         let mut shape;
         (*hit, shape) = self.resolve(ray, nearest, t);
         let (mut r, mut traveled) = (*ray, 0.0);
+        let mut blend_u: Option<f32> = None;
         for _ in 0..64 {
             let Some(s) = self.surfaces.get(hit.material as usize) else {
                 break;
             };
+            if let Some(b) = &s.blend {
+                // One of the two shades this hit; its own cut-out, normal
+                // map or blend comes next (the same ray, the same hit).
+                let u = blend_u.get_or_insert_with(|| surface_number(&r, hit.t, shape, BLEND_SALT));
+                (hit.material, *u) = b.pick(hit.uv, &self.textures, *u);
+                continue;
+            }
             if let Some(c) = &s.cutout
-                && !c.present(hit.uv, &self.textures, cutout_number(&r, hit.t, shape))
+                && !c.present(
+                    hit.uv,
+                    &self.textures,
+                    surface_number(&r, hit.t, shape, CUTOUT_SALT),
+                )
             {
                 // Go on from just beyond the surface, along the same line.
                 traveled += hit.t;
@@ -276,6 +288,7 @@ impl Scene {
                 let t;
                 (nearest, t) = self.nearest(&r, t_max - traveled)?;
                 (*hit, shape) = self.resolve(&r, nearest, t);
+                blend_u = None;
                 continue;
             }
             if shading && let Some(p) = &s.normal {
@@ -546,11 +559,18 @@ impl Scene {
     }
 }
 
+/// [`surface_number`]'s salt for a stochastic cut-out.
+const CUTOUT_SALT: u32 = 0;
+/// [`surface_number`]'s salt for a blend's choice (independent of the
+/// cut-out's number at the same hit).
+const BLEND_SALT: u32 = 0x6a09_e667;
+
 /// The uniform number in [0, 1) a stochastic cut-out compares its opacity
-/// with: a hash of the ray and the hit, so it is the same for the same ray
-/// whatever thread traces it, and independent between rays and surfaces.
-fn cutout_number(r: &Ray, t: f32, shape: u32) -> f32 {
-    let mut h: u32 = shape.wrapping_mul(0x9e37_79b9);
+/// with, or a blend its weight: a hash of the ray and the hit, so it is the
+/// same for the same ray whatever thread traces it, and independent between
+/// rays, surfaces and salts.
+fn surface_number(r: &Ray, t: f32, shape: u32, salt: u32) -> f32 {
+    let mut h: u32 = (shape ^ salt).wrapping_mul(0x9e37_79b9);
     for x in [r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, t] {
         h = (h ^ x.to_bits()).wrapping_mul(0x85eb_ca6b);
         h ^= h >> 15;

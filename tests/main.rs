@@ -22,6 +22,7 @@ mod aov;
 mod architecture;
 mod bad_values;
 mod baked_patterns;
+mod blend;
 mod bvh_bunny;
 mod cameras;
 mod caustic_family;

@@ -2,7 +2,7 @@
 //!
 //! Colour parameters accept constants or textures (see [`ColorDesc`]), and so do
 //! number parameters ([`ScalarDesc`]); `NormalMap`, `Bump` and `Cutout` wrap
-//! any material.
+//! any material, and `Blend` mixes two.
 
 use super::color::ColorDesc;
 use super::texture::ScalarDesc;
@@ -203,6 +203,21 @@ pub enum MaterialDesc {
         /// The material where the surface is present.
         material: Box<MaterialDesc>,
     },
+    /// A mix of two materials (pbrt-v4's `MixMaterial`, Mitsuba's
+    /// `blendbsdf`): where `weight` is w the surface reflects as
+    /// (1 − w)·`a` plus w·`b`. Each ray's hit is shaded by one of the two,
+    /// `b` with probability w, so both may be any material, wrappers and
+    /// blends included; a `NormalMap`, `Bump` or `Cutout` around the blend
+    /// applies to both.
+    Blend {
+        /// The share of `b` in [0, 1]: a number, or a greyscale texture
+        /// (a dirt or wear mask).
+        weight: ScalarDesc,
+        /// The material where `weight` is 0.
+        a: Box<MaterialDesc>,
+        /// The material where `weight` is 1.
+        b: Box<MaterialDesc>,
+    },
 }
 
 fn one() -> f32 {
@@ -328,6 +343,11 @@ impl MaterialDesc {
             MaterialDesc::Bump { material, .. } | MaterialDesc::Cutout { material, .. } => {
                 material.color_params_mut()
             }
+            MaterialDesc::Blend { a, b, .. } => {
+                let mut v = a.color_params_mut();
+                v.extend(b.color_params_mut());
+                v
+            }
         }
     }
 
@@ -360,6 +380,12 @@ impl MaterialDesc {
             } => {
                 let mut v = vec![opacity];
                 v.extend(material.scalar_params_mut());
+                v
+            }
+            MaterialDesc::Blend { weight, a, b } => {
+                let mut v = vec![weight];
+                v.extend(a.scalar_params_mut());
+                v.extend(b.scalar_params_mut());
                 v
             }
         }

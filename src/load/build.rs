@@ -261,7 +261,11 @@ pub fn build_in(
         .iter()
         .map(|m| m.bsdf(glam::Vec2::ZERO, &textures).is_delta())
         .collect();
-    let is_delta = |m: u32| delta.get(m as usize).copied().unwrap_or(false);
+    let is_delta = |m: u32| {
+        through_blends(&surfaces, m, 0, &|m| {
+            delta.get(m as usize).copied().unwrap_or(false)
+        })
+    };
     let targets = caustic::specular_targets(&shapes, &objects, &ctx.geometry, |s| {
         any_material(s, &ctx.geometry, is_delta)
     });
@@ -271,7 +275,11 @@ pub fn build_in(
         surfaces.clear();
     }
     // Which shapes a shadow ray may pass through; none in most scenes.
-    let has_cutout = |m: u32| surfaces.get(m as usize).is_some_and(|s| s.cutout.is_some());
+    let has_cutout = |m: u32| {
+        through_blends(&surfaces, m, 0, &|m| {
+            surfaces.get(m as usize).is_some_and(|s| s.cutout.is_some())
+        })
+    };
     let cut: Vec<bool> = if surfaces.iter().any(|s| s.cutout.is_some()) {
         shapes
             .iter()
@@ -349,6 +357,23 @@ fn check_extent(ctx: &mut BuildContext, i: usize, shapes: usize, unbounded: usiz
             )
             .help("scene coordinates are 32-bit floats; scale the object or the scene down"),
         );
+    }
+}
+
+/// Whether `pred` holds for material `m` or, if it is a blend, for either
+/// material a hit on it may be shaded with (blends nest at most
+/// `MAX_BLEND_DEPTH` deep; deeper is refused at load).
+fn through_blends(
+    surfaces: &[crate::materials::Surface],
+    m: u32,
+    depth: u32,
+    pred: &impl Fn(u32) -> bool,
+) -> bool {
+    match surfaces.get(m as usize).and_then(|s| s.blend.as_ref()) {
+        Some(b) if depth <= super::material::MAX_BLEND_DEPTH => {
+            through_blends(surfaces, b.a, depth + 1, pred) || through_blends(surfaces, b.b, depth + 1, pred)
+        }
+        _ => pred(m),
     }
 }
 

@@ -11,13 +11,13 @@ use crate::desc::{
 };
 use crate::diagnostic::Problem;
 use crate::materials::{
+    Blend, Channel, ColorTex, Cutout, DielectricFresnel, Distribution, Fresnel, ImageLookup, Material, Metal,
+    Pattern, Perturb, Roughness, ScalarTex, Surface, Tex, Texture, UvTransform, Wrap,
+};
+use crate::materials::{
     BlinnPhongMaterial, CookTorranceMaterial, GlassMaterial, LambertMaterial, MetalPlasticMaterial,
     Microfacet, MirrorMaterial, OrenNayarMaterial, PhongMaterial, RoughCoat, RoughGlassMaterial,
     RoughPlasticMaterial,
-};
-use crate::materials::{
-    Channel, ColorTex, Cutout, DielectricFresnel, Distribution, Fresnel, ImageLookup, Material, Metal,
-    Pattern, Perturb, Roughness, ScalarTex, Surface, Tex, Texture, UvTransform, Wrap,
 };
 use crate::math::Rgb;
 use std::collections::{BTreeMap, HashMap};
@@ -306,7 +306,7 @@ impl Checker {
                         "the surface is kept where opacity ≥ the cut-off: 0.5 is usual",
                     );
                 }
-                if matches!(**material, MaterialDesc::Cutout { .. }) {
+                if has_cutout(material, 0) {
                     self.push(
                         &p("material"),
                         "a cut-out inside a cut-out",
@@ -314,6 +314,26 @@ impl Checker {
                     );
                 }
                 self.material(&p("material"), material);
+            }
+            MaterialDesc::Blend { weight, a, b } => {
+                self.scalar_param(
+                    &p("weight"),
+                    weight,
+                    (0.0, 1.0),
+                    "weight",
+                    "0 is all `a`, 1 is all `b`",
+                );
+                if blend_depth(m, 0) > MAX_BLEND_DEPTH {
+                    self.push(
+                        path,
+                        format!("blends nested more than {MAX_BLEND_DEPTH} deep"),
+                        "a blend of blends this deep is a texture's job: mix the colours in one image \
+                         (MAX_BLEND_DEPTH in src/load/material.rs is the limit)",
+                    );
+                } else {
+                    self.material(&p("a"), a);
+                    self.material(&p("b"), b);
+                }
             }
         }
     }
@@ -486,6 +506,8 @@ pub fn build_materials(
         problems: Vec::new(),
         notes: Vec::new(),
         coats: Vec::new(),
+        first_component: descs.len() as u32,
+        components: Vec::new(),
     };
     let mut materials = Vec::new();
     let mut surfaces = Vec::new();
@@ -496,6 +518,10 @@ pub fn build_materials(
         let mat = build_material(&mut b, &format!("materials.{name}"), m, &mut surface);
         materials.push(mat);
         surfaces.push(surface);
+    }
+    for (m, s) in std::mem::take(&mut b.components) {
+        materials.push(m);
+        surfaces.push(s);
     }
     let emissions = emissions
         .iter()
@@ -518,8 +544,63 @@ pub fn build_materials(
     })
 }
 
+/// How deep blends may nest (`Blend(a: Blend(a: …))`): each level is one
+/// more step of the scene's per-hit surface loop, which gives up after 64.
+pub const MAX_BLEND_DEPTH: u32 = 16;
+
+/// Blends on the deepest path through `m`'s wrappers and blends, from
+/// `depth` (stops counting past the limit, so a hostile file's depth costs
+/// no more than the limit's).
+fn blend_depth(m: &MaterialDesc, depth: u32) -> u32 {
+    if depth > MAX_BLEND_DEPTH {
+        return depth;
+    }
+    match m {
+        MaterialDesc::NormalMap { material, .. }
+        | MaterialDesc::Bump { material, .. }
+        | MaterialDesc::Cutout { material, .. } => blend_depth(material, depth),
+        MaterialDesc::Blend { a, b, .. } => blend_depth(a, depth + 1).max(blend_depth(b, depth + 1)),
+        MaterialDesc::Lambert { .. }
+        | MaterialDesc::OrenNayar { .. }
+        | MaterialDesc::Phong { .. }
+        | MaterialDesc::BlinnPhong { .. }
+        | MaterialDesc::CookTorrance { .. }
+        | MaterialDesc::MetalPlastic { .. }
+        | MaterialDesc::Mirror { .. }
+        | MaterialDesc::Glass { .. }
+        | MaterialDesc::RoughPlastic { .. }
+        | MaterialDesc::RoughGlass { .. } => depth,
+    }
+}
+
+/// Whether `m` has a cut-out anywhere inside (through wrappers and blends).
+fn has_cutout(m: &MaterialDesc, depth: u32) -> bool {
+    match m {
+        MaterialDesc::Cutout { .. } => true,
+        MaterialDesc::NormalMap { material, .. } | MaterialDesc::Bump { material, .. } => {
+            has_cutout(material, depth)
+        }
+        MaterialDesc::Blend { a, b, .. } => {
+            depth <= MAX_BLEND_DEPTH && (has_cutout(a, depth + 1) || has_cutout(b, depth + 1))
+        }
+        MaterialDesc::Lambert { .. }
+        | MaterialDesc::OrenNayar { .. }
+        | MaterialDesc::Phong { .. }
+        | MaterialDesc::BlinnPhong { .. }
+        | MaterialDesc::CookTorrance { .. }
+        | MaterialDesc::MetalPlastic { .. }
+        | MaterialDesc::Mirror { .. }
+        | MaterialDesc::Glass { .. }
+        | MaterialDesc::RoughPlastic { .. }
+        | MaterialDesc::RoughGlass { .. } => false,
+    }
+}
+
 /// The runtime material at scene path `path`; its textures are read through
-/// `b`, and wrappers (`NormalMap`, `Bump`, `Cutout`) fill `surface`.
+/// `b`, and wrappers (`NormalMap`, `Bump`, `Cutout`) fill `surface`. A
+/// `Blend`'s two materials go to the end of the table (`b.components`),
+/// each with the surface effects of the wrappers around the blend; the
+/// blend's own entry only picks between them and is never shaded.
 fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut Surface) -> Material {
     let p = |field: &str| format!("{path}.{field}");
     match m {
@@ -669,6 +750,18 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
             });
             build_material(b, &p("material"), material, surface)
         }
+        MaterialDesc::Blend { weight, a, b: second } => {
+            let outer = std::mem::take(surface);
+            let a = b.component(&p("a"), a, &outer);
+            let second = b.component(&p("b"), second, &outer);
+            surface.blend = Some(Blend {
+                weight: b.scalar(weight, &p("weight")),
+                a,
+                b: second,
+            });
+            // Never shaded: the scene hands every hit on to `a` or `b`.
+            Material::Emitter(crate::materials::Emitter)
+        }
     }
 }
 
@@ -708,9 +801,25 @@ struct Builder<'a> {
     /// Rough-plastic coats built so far: their tables cost ~0.1 s each, and
     /// materials differing only in colour share one.
     coats: Vec<Arc<RoughCoat>>,
+    /// Where blends' components start in the material table (after the
+    /// named materials).
+    first_component: u32,
+    /// Blends' components, in table order from `first_component`.
+    components: Vec<(Material, Surface)>,
 }
 
 impl Builder<'_> {
+    /// A blend's component: built with a copy of the surface effects of
+    /// the wrappers around the blend (its own wrappers replace them) and
+    /// added to the table; its index.
+    fn component(&mut self, path: &str, m: &MaterialDesc, outer: &Surface) -> u32 {
+        let mut surface = outer.clone();
+        let material = build_material(self, path, m, &mut surface);
+        self.components.push((material, surface));
+        self.first_component
+            .saturating_add(self.components.len() as u32 - 1)
+    }
+
     /// The coat of `microfacet` and `eta`, integrated once per load.
     fn coat(&mut self, microfacet: Microfacet, eta: f32) -> Arc<RoughCoat> {
         let same = |c: &&Arc<RoughCoat>| {

@@ -331,6 +331,7 @@ impl MtlMaterials {
                     opacity,
                     threshold: None,
                 }),
+                blend: None,
             };
         }
         *self.names.last_mut().expect("just pushed") = Some(m.name.clone());

@@ -201,6 +201,8 @@ pub fn specular_kind(m: &MaterialDesc) -> Option<&'static str> {
         MaterialDesc::NormalMap { material, .. }
         | MaterialDesc::Bump { material, .. }
         | MaterialDesc::Cutout { material, .. } => specular_kind(material),
+        // Specular only if both are: either's smooth lobe is lit.
+        MaterialDesc::Blend { a, b, .. } => specular_kind(a).and(specular_kind(b)),
         // Listed, not `_`: a new material must say whether it is specular.
         MaterialDesc::CookTorrance { .. }
         | MaterialDesc::MetalPlastic { .. }

@@ -71,7 +71,7 @@ pub use phong::{Phong, PhongMaterial};
 pub use rough_coat::RoughCoat;
 pub use rough_glass::{RoughGlass, RoughGlassMaterial};
 pub use rough_plastic::{RoughPlastic, RoughPlasticMaterial};
-pub use surface::{Cutout, Perturb, Surface};
+pub use surface::{Blend, Cutout, Perturb, Surface};
 pub use texture::{Channel, ColorTex, ImageLookup, ScalarTex, Tex, Texture, UvTransform, Wrap};
 
 use crate::math::Rgb;

@@ -1,5 +1,6 @@
 //! What a material does to the surface itself rather than to light: a
-//! shading normal from a normal or bump map, and alpha cut-outs. The scene
+//! shading normal from a normal or bump map, alpha cut-outs, and which of a
+//! blend's two materials a hit is shaded with. The scene
 //! applies these at intersection time (`Scene::intersect`), so every
 //! integrator, shadow ray and AOV sees the same surface; the BSDFs never
 //! know.
@@ -16,6 +17,17 @@
 //! `∂p'/∂u ≈ ∂p/∂u + (∂h/∂u)·n`, likewise for v, and
 //! `n' = normalize(∂p'/∂u × ∂p'/∂v)` on `n`'s side. Derivatives are central
 //! differences over 1/1024 of a UV unit.
+//!
+//! # Blends (pbrt-v4's `MixMaterial`)
+//! A blend of `a` and `b` with weight w reflects (1 − w)·f_a + w·f_b. As
+//! pbrt-v4 does, each hit picks one of the two, `b` with probability w, by
+//! a hash of the ray and the hit (the same whatever the thread or tiling),
+//! and everything after — light sampling, the BSDF's sample and its MIS
+//! weights — is that material's: the estimate's expectation over the pick
+//! is the mix, without a BSDF that knows of two lobes' pdfs (a blend of
+//! glass and plaster would need a delta and a smooth pdf in one sum). Each
+//! component is a material of its own in the scene's table, with its own
+//! surface effects; the choice is made before them.
 //!
 //! # Light leaks
 //! A perturbed normal can face away from a viewer who sees the front of the
@@ -37,7 +49,40 @@ pub struct Surface {
     pub normal: Option<Perturb>,
     /// Removes the surface where it is transparent.
     pub cutout: Option<Cutout>,
+    /// Hands the hit to one of two materials.
+    pub blend: Option<Blend>,
 }
+
+/// A blend: the hit is shaded by material `b` with probability `weight`,
+/// by `a` otherwise (indices in the scene's material table).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Blend {
+    /// The share of `b`, clamped to [0, 1].
+    pub weight: ScalarTex,
+    /// The material where the weight is 0.
+    pub a: u32,
+    /// The material where the weight is 1.
+    pub b: u32,
+}
+
+impl Blend {
+    /// The material a hit at `uv` is shaded with, for its uniform number
+    /// `u` ∈ [0, 1), and `u` stretched back over [0, 1) for the choice the
+    /// chosen material may make in turn (a blend inside a blend).
+    #[inline]
+    pub fn pick(&self, uv: Vec2, textures: &[Texture], u: f32) -> (u32, f32) {
+        let w = self.weight.eval(uv, textures);
+        let w = if w.is_nan() { 0.0 } else { w.clamp(0.0, 1.0) };
+        if u < w {
+            (self.b, (u / w).min(ONE_MINUS_EPSILON))
+        } else {
+            (self.a, ((u - w) / (1.0 - w)).clamp(0.0, ONE_MINUS_EPSILON))
+        }
+    }
+}
+
+/// The largest `f32` below 1.
+const ONE_MINUS_EPSILON: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// How a shading normal is perturbed.
 #[derive(Clone, Debug, PartialEq)]
@@ -75,7 +120,7 @@ pub struct Cutout {
 impl Surface {
     /// True when the material leaves the surface as it is.
     pub fn is_plain(&self) -> bool {
-        self.normal.is_none() && self.cutout.is_none()
+        self.normal.is_none() && self.cutout.is_none() && self.blend.is_none()
     }
 }
 
@@ -177,6 +222,39 @@ mod tests {
     use super::*;
     use crate::materials::Tex;
     use crate::math::Rgb;
+
+    /// `b` with probability w, and the number handed on is uniform again
+    /// on either side (a nested blend's pick is independent of this one).
+    #[test]
+    fn blend_picks_b_with_probability_weight_and_hands_on_a_uniform_number() {
+        for w in [0.0, 0.3, 1.0, 1.7, f32::NAN] {
+            let blend = Blend {
+                weight: Tex::Const(w),
+                a: 4,
+                b: 9,
+            };
+            let n = 10_000;
+            let (mut picked_b, mut below_half) = ([0u32; 2], [0u32; 2]);
+            for k in 0..n {
+                let u = (k as f32 + 0.5) / n as f32;
+                let (m, rest) = blend.pick(Vec2::ZERO, &[], u);
+                assert!((0.0..1.0).contains(&rest), "w {w}, u {u}: handed on {rest}");
+                let side = usize::from(m == 9);
+                assert!(m == 4 || m == 9);
+                picked_b[side] += 1;
+                below_half[side] += u32::from(rest < 0.5);
+            }
+            let share = picked_b[1] as f32 / n as f32;
+            let want = if w.is_nan() { 0.0 } else { w.clamp(0.0, 1.0) };
+            assert!((share - want).abs() < 1e-3, "w {w}: b picked {share}");
+            for side in 0..2 {
+                if picked_b[side] > 0 {
+                    let half = below_half[side] as f32 / picked_b[side] as f32;
+                    assert!((half - 0.5).abs() < 2e-3, "w {w}, side {side}: {half} below ½");
+                }
+            }
+        }
+    }
 
     #[test]
     fn flat_normal_map_keeps_the_normal_bit_for_bit() {
