@@ -1624,8 +1624,8 @@ fn malformed_punctual_lights_are_located_errors() {
 /// `KHR_materials_transmission` becomes glass: a thin sheet without
 /// `KHR_materials_volume` (the extension's thin-walled default), a solid's
 /// boundary with one (rough above 0.05), tinted by the base colour, at
-/// `KHR_materials_ior`; under half transmissive (metallic counts against
-/// it) stays opaque, with a note.
+/// `KHR_materials_ior`; partly transmissive (metallic counts against it),
+/// a blend of glass and the metallic–roughness model.
 #[test]
 fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
     use ronray::materials::Bsdf;
@@ -1710,17 +1710,33 @@ fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
         Bsdf::RoughGlass(g) => assert!(g.ior == 1.5 && g.tint == tint, "{g:?}"),
         b => panic!("a rough volume: rough glass, not {b:?}"),
     }
-    for k in [3, 4] {
+    // Partly transmissive: a blend, glass on transmission × (1 − metallic)
+    // of the hits (each ray's pick is its own: rays from 4,000 points).
+    for (k, want) in [(3, 0.3), (4, 0.2)] {
+        let (mut glass, n) = (0, 4_000);
+        for i in 0..n {
+            let o = Vec3A::new(
+                3.0 * k as f32 + 0.05 + 0.4 * (i % 64) as f32 / 64.0,
+                0.05 + 0.4 * (i / 64) as f32 / 64.0,
+                5.0,
+            );
+            let hit = scene
+                .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, -1.0)), f32::INFINITY)
+                .unwrap_or_else(|| panic!("part {k} is hit"));
+            match scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures) {
+                Bsdf::Glass(g) => {
+                    assert!(g.thin && g.tint == tint, "{g:?}");
+                    glass += 1;
+                }
+                Bsdf::MetalPlastic(_) => {}
+                b => panic!("case {k}: glass or the metallic–roughness model, not {b:?}"),
+            }
+        }
+        let share = glass as f32 / n as f32;
+        // 4σ of a binomial share at n = 4,000 is under 0.03.
         assert!(
-            matches!(bsdf_of(k), Bsdf::MetalPlastic(_)),
-            "case {k}: under half transmissive, opaque"
-        );
-    }
-    let notes = notes_of(&loaded);
-    for want in ["0.3 × (1 − metallic 0) = 0.30", "(1 − metallic 0.8) = 0.20"] {
-        assert!(
-            notes.iter().any(|n| n.contains(want) && n.contains("opaque")),
-            "no note with {want:?}: {notes:?}"
+            (share - want).abs() < 0.03,
+            "case {k}: glass on {share} of the hits, expected {want}"
         );
     }
 }
@@ -1828,6 +1844,57 @@ fn gltf_emissive_texture_varies_the_light_over_the_surface() {
         (total.x - want).abs() < 0.05 * want && total.y.abs() < 1e-2,
         "the quad's power {total:?} against {want} in red"
     );
+}
+
+/// A `transmissionTexture` weighs the blend per point: the left half of
+/// the quad (red 255 × factor 0.8) is glass on 80% of its hits, the right
+/// half (red 0) never.
+#[test]
+fn gltf_transmission_texture_weighs_the_glass_per_point() {
+    use ronray::materials::Bsdf;
+    let mut bytes = Vec::new();
+    // Eight texels: the bilinear lookup is flat over each half's middle.
+    let img = image::RgbaImage::from_fn(8, 1, |x, _| image::Rgba([if x < 4 { 255 } else { 0 }, 0, 0, 255]));
+    img.write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .expect("encode png");
+    let m = json!({"extensions": {"KHR_materials_transmission":
+            {"transmissionFactor": 0.8, "transmissionTexture": {"index": 1, "texCoord": 1}}},
+        "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.9, 1], "metallicFactor": 0}});
+    let mut gltf: Value = serde_json::from_str(&quad_asset(m, false, false)).expect("JSON");
+    gltf["images"][1] = json!({"uri": format!("data:image/png;base64,{}", b64(&bytes))});
+    gltf["extensionsUsed"] = json!(["KHR_materials_transmission"]);
+    let loaded = load(
+        &[("a.gltf", gltf.to_string().as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {}", explain(e)));
+    let scene = &loaded.scene;
+    let glass_share = |x0: f32| {
+        let (mut glass, n) = (0, 4_000);
+        for i in 0..n {
+            let o = Vec3A::new(
+                x0 + 0.5 * (i % 64) as f32 / 64.0,
+                -0.25 + 0.5 * (i / 64) as f32 / 64.0,
+                3.0,
+            );
+            let hit = scene
+                .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, -1.0)), f32::INFINITY)
+                .expect("the quad is hit");
+            if matches!(
+                scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures),
+                Bsdf::Glass(_)
+            ) {
+                glass += 1;
+            }
+        }
+        glass as f32 / n as f32
+    };
+    let (left, right) = (glass_share(-0.75), glass_share(0.25));
+    assert!(
+        (left - 0.8).abs() < 0.03,
+        "left half: glass on {left} of the hits"
+    );
+    assert!(right == 0.0, "right half: glass on {right} of the hits");
 }
 
 /// A texture's sampler `wrapS`/`wrapT` reach the lookup (they were read as

@@ -162,13 +162,6 @@ impl MtlMaterials {
         Some(self.push_texture(copy))
     }
 
-    /// The mean colour of texture `i` (one of these).
-    pub fn texture_mean(&self, i: u32) -> Option<Rgb> {
-        let t = self.textures.get(i.checked_sub(self.first_texture)? as usize)?;
-        let n = t.texels.len().max(1) as f32;
-        Some(t.texels.iter().fold(Rgb::ZERO, |a, &b| a + b) / n)
-    }
-
     /// The `Ke` of scene material `i`, if it came from an MTL file that gives a
     /// positive one.
     pub fn emission(&self, i: u32) -> Option<&Emission> {

@@ -13,7 +13,7 @@
 //! | `emissiveFactor` × `KHR_materials_emissive_strength` × `emissiveTexture` (sRGB) | the primitive's light, as an emissive mesh group, the texture sampled as an MTL's `map_Ke` |
 //! | `KHR_texture_transform` | the lookup's UV transform (its `texCoord` override included) |
 //! | `KHR_materials_ior` | a note when ≠ 1.5: `MetalPlastic`'s F0 is 0.04; the glass's ior |
-//! | `KHR_materials_transmission` (× `transmissionTexture`'s mean) × (1 − metallic) ≥ ½ | `Glass(thin: true)` tinted by the base colour; with `KHR_materials_volume` (`thicknessFactor` > 0) a solid: `Glass`, or `RoughGlass` (GGX) above roughness 0.05; below ½ opaque, with a note |
+//! | `KHR_materials_transmission` (× `transmissionTexture`) × (1 − metallic) | a `Blend` of the metallic–roughness model and glass by that weight (glass alone at 1): `Glass(thin: true)` tinted by the base colour; with `KHR_materials_volume` (`thicknessFactor` > 0) a solid: `Glass`, or `RoughGlass` (GGX) above roughness 0.05 |
 //! | `occlusionTexture` | ignored with a note: a path tracer computes occlusion |
 //! | `doubleSided: false` | a note: ronray materials shade both sides |
 //!
@@ -205,6 +205,9 @@ pub(crate) fn map(
         emission_map = texture(asset, images, sink.mtl, &info.texture(), true, None, &mut note)
             .map(|(i, _)| lookup(i, Channel::All, 1.0, &info));
     }
+    if let Some(info) = m.transmission().and_then(|t| t.transmission_texture()) {
+        uv_sets.push(set_of(&info));
+    }
     uv_sets.dedup();
     if uv_sets.len() > 1 {
         note(format!(
@@ -225,15 +228,33 @@ pub(crate) fn map(
         },
         metalness,
     });
-    let material = transmissive(asset, images, sink.mtl, &m, see_through, &mut note).unwrap_or_else(|| {
-        if let Some(ior) = m.ior().filter(|&i| (i - 1.5).abs() > 1e-3) {
-            note(format!(
-                "KHR_materials_ior {ior} not used: MetalPlastic's dielectric F0 is 0.04 (ior 1.5)"
-            ));
+    let index = match transmissive(asset, images, sink.mtl, &m, see_through, &mut note) {
+        Some((glass, Tex::Const(w))) if w >= 1.0 => sink.mtl.push_with_surface(glass, surface),
+        Some((glass, weight)) => {
+            // Partly transmissive (the specification's mix of the
+            // dielectric BRDF and the BTDF, and of both with the metal):
+            // each hit is the opaque model or the glass, as a scene's
+            // `Blend`, both with the surface's normal map and alpha.
+            let a = sink.mtl.push_with_surface(opaque, surface.clone());
+            let b = sink.mtl.push_with_surface(glass, surface);
+            let blend = crate::materials::Blend { weight, a, b };
+            sink.mtl.push_with_surface(
+                Material::Emitter(crate::materials::Emitter),
+                Surface {
+                    blend: Some(blend),
+                    ..Surface::default()
+                },
+            )
         }
-        opaque
-    });
-    let index = sink.mtl.push_with_surface(material, surface);
+        None => {
+            if let Some(ior) = m.ior().filter(|&i| (i - 1.5).abs() > 1e-3) {
+                note(format!(
+                    "KHR_materials_ior {ior} not used: MetalPlastic's dielectric F0 is 0.04 (ior 1.5)"
+                ));
+            }
+            sink.mtl.push_with_surface(opaque, surface)
+        }
+    };
     Mapped {
         index,
         uv_set: uv_sets.first().copied().unwrap_or(0),
@@ -255,10 +276,9 @@ struct Transmissive {
 }
 
 /// `KHR_materials_transmission` (with `KHR_materials_volume`, `KHR_materials_ior`)
-/// as ronray glass, when at least half of the surface transmits
-/// (transmission × (1 − metallic) ≥ ½; ronray has no blend of the two, so
-/// a surface is glass or opaque, with a note when it is partly either):
-/// without a volume (`thicknessFactor` 0, the extension's default) the
+/// as ronray glass and its share of the surface, transmission (× the red
+/// channel of `transmissionTexture`) × (1 − metallic); `None` where nothing
+/// transmits. Without a volume (`thicknessFactor` 0, the extension's default) the
 /// surface is thin-walled, as the extension defines it — a thin `Glass`
 /// sheet; with one, the boundary of a solid — `Glass`, or `RoughGlass`
 /// (GGX) when `roughnessFactor` > 0.05. The base colour tints each
@@ -270,18 +290,10 @@ fn transmissive(
     m: &gltf::Material,
     t: Transmissive,
     note: &mut dyn FnMut(String),
-) -> Option<Material> {
+) -> Option<(Material, crate::materials::ScalarTex)> {
     use crate::materials::{DielectricFresnel, Distribution, GlassMaterial, RoughGlassMaterial};
     let ext = m.transmission()?;
-    let mut share = ext.transmission_factor();
-    if let Some(info) = ext.transmission_texture() {
-        let mean = texture(asset, images, mtl, &info.texture(), false, None, note)
-            .and_then(|(i, _)| mtl.texture_mean(i));
-        if let Some(mean) = mean {
-            share *= mean.x;
-            note("transmissionTexture approximated by its mean (red channel)".into());
-        }
-    }
+    let share = ext.transmission_factor();
     let share = if share.is_finite() {
         share.clamp(0.0, 1.0)
     } else {
@@ -296,17 +308,13 @@ fn transmissive(
     if glass <= 0.0 {
         return None;
     }
-    if glass < 0.5 {
-        note(format!(
-            "KHR_materials_transmission {share} × (1 − metallic {metal}) = {glass:.2}: under one half, rendered opaque"
-        ));
-        return None;
-    }
-    if glass < 1.0 {
-        note(format!(
-            "KHR_materials_transmission {share} × (1 − metallic {metal}) = {glass:.2}: rendered as all glass"
-        ));
-    }
+    let weight = match ext.transmission_texture() {
+        Some(info) => match texture(asset, images, mtl, &info.texture(), false, None, note) {
+            Some((i, _)) => Tex::Image(lookup(i, Channel::R, glass, &info)),
+            None => Tex::Const(glass),
+        },
+        None => Tex::Const(glass),
+    };
     let ior = match m.ior() {
         None => 1.5,
         Some(i) if (1.0..=10.0).contains(&i) => i,
@@ -332,7 +340,7 @@ fn transmissive(
     } else {
         0.0
     };
-    Some(match volume {
+    let material = match volume {
         // Rough glass refracts through microfacets, which needs η ≠ 1.
         Some(_) if rough > 0.05 && (ior - 1.0).abs() > 1e-3 => Material::RoughGlass(RoughGlassMaterial {
             distribution: Distribution::Ggx,
@@ -353,7 +361,8 @@ fn transmissive(
                 thin: solid.is_none(),
             })
         }
-    })
+    };
+    Some((material, weight))
 }
 
 /// A normal texture's `KHR_texture_transform` and UV set: the `gltf` crate
