@@ -48,6 +48,7 @@ mod low_angle;
 mod lsp;
 mod media;
 mod migrate;
+mod mtl_maps;
 mod mtl_values;
 mod nesting;
 mod newcomer;

@@ -255,7 +255,7 @@ fn load(ctx: &mut BuildContext, file: &str, smooth: bool, at: &str) -> Option<Ob
             if smooth {
                 data.mesh.compute_smooth_normals();
             }
-            if ctx.normal_maps {
+            if ctx.normal_maps || data.materials.iter().any(super::mtl::wants_tangents) {
                 crate::geometry::tangents::generate(&mut data.mesh);
             }
             Some(data)

@@ -14,8 +14,10 @@
 //! `Pr`/`map_Pr` and `Pm`/`map_Pm` (the PBR extension, linear) make the
 //! material `MetalPlastic(base_color: Kd, roughness, metalness)`; `map_d`
 //! (linear; the alpha channel when the image has one) makes it a stochastic
-//! `Cutout`. `map_Bump`/`bump`/`norm` are not used yet — mesh hits carry no
-//! tangent frame from their UVs — and each gives a note naming the statement.
+//! `Cutout`. `norm` is a tangent-space normal map (MikkTSpace tangents, as
+//! glTF's); `map_Bump`/`bump` too when its image looks like one (Blender
+//! writes normal maps there), else a height map (`Bump`, [`BUMP_SCALE`]
+//! scene units per unit at `-bm 1`, with a note).
 //!
 //! Colours are clamped to [0, 1]. `Ke` (emitted radiance, W/(m²·sr), at
 //! most [`MAX_RADIANCE`], the scene's own limit; NaN, infinite and negative channels of any
@@ -29,8 +31,8 @@ use super::validate::MAX_RADIANCE;
 use crate::lights::Emission;
 use crate::materials::{
     Channel, ColorTex, Cutout, DielectricFresnel, GlassMaterial, ImageLookup, LambertMaterial, Material,
-    MetalPlasticMaterial, MirrorMaterial, PhongMaterial, Roughness, ScalarTex, Surface, Tex, Texture,
-    UvTransform,
+    MetalPlasticMaterial, MirrorMaterial, Perturb, PhongMaterial, Roughness, ScalarTex, Surface, Tex,
+    Texture, UvTransform,
 };
 use crate::math::Rgb;
 use std::collections::HashMap;
@@ -102,6 +104,39 @@ fn repaired(name: &str, key: &str, c: [f32; 3], max: f32, notes: &mut Vec<String
         ));
     }
     out
+}
+
+/// Scene units per unit of an MTL height map (`map_Bump` of a grey image)
+/// at `-bm 1`. MTL gives bump maps no unit: on a mesh whose UVs span a
+/// metre, heights up to 2 mm, the relief of a brick wall or a plaster.
+pub const BUMP_SCALE: f32 = 0.002;
+
+/// The number after option `name` in an MTL map statement (`-bm 1.5
+/// bump.png`), if any.
+fn option_value(spec: &str, name: &str) -> Option<f32> {
+    let mut words = spec.split_whitespace();
+    words.by_ref().find(|w| *w == name)?;
+    words.next()?.parse().ok()
+}
+
+/// Whether linear texels look like a tangent-space normal map: colour (not
+/// grey), and their mean, read as 2c − 1, within 45° of +z.
+fn looks_like_normal_map(t: &Texture) -> bool {
+    let n = t.texels.len().max(1) as f32;
+    let mean = t.texels.iter().fold(Rgb::ZERO, |a, &c| a + c) / n;
+    let grey = t
+        .texels
+        .iter()
+        .all(|c| (c.x - c.y).abs() < 1e-3 && (c.y - c.z).abs() < 1e-3);
+    let v = 2.0 * mean - Rgb::ONE;
+    let len = (v.x * v.x + v.y * v.y + v.z * v.z).sqrt();
+    !grey && len > 0.0 && v.z / len > std::f32::consts::FRAC_1_SQRT_2
+}
+
+/// Whether MTL material `m` names a normal or bump map (its mesh then
+/// needs tangents).
+pub fn wants_tangents(m: &tobj::Material) -> bool {
+    m.normal_texture.is_some() || m.unknown_param.contains_key("norm")
 }
 
 impl MtlMaterials {
@@ -259,17 +294,7 @@ impl MtlMaterials {
             .and_then(crate::geometry::obj::texture_file)
             .and_then(|f| self.texture(&dir.join(f), notes))
             .map(ColorTex::image);
-        for (key, value) in [
-            ("map_Bump", m.normal_texture.as_deref()),
-            ("norm", m.unknown_param.get("norm").map(String::as_str)),
-        ] {
-            if let Some(v) = value {
-                notes.push(format!(
-                    "MTL material `{}`: `{key} {v}` not used: mesh hits have no tangent frame from their UVs yet (docs/textures.md)",
-                    m.name
-                ));
-            }
-        }
+        let normal = self.normal_or_bump(m, dir, notes);
         let material = if matches!(illum, 4 | 6 | 7) || transparent {
             let tint = m
                 .unknown_param
@@ -316,20 +341,64 @@ impl MtlMaterials {
         } else {
             Material::Lambert(LambertMaterial { albedo })
         };
-        let i = self.push(material);
-        if let Some(opacity) = opacity {
-            *self.surfaces.last_mut().expect("just pushed") = Surface {
-                normal: None,
-                cutout: Some(Cutout {
+        let i = self.push_with_surface(
+            material,
+            Surface {
+                normal,
+                cutout: opacity.map(|opacity| Cutout {
                     opacity,
                     threshold: None,
                 }),
                 blend: None,
-            };
-        }
+            },
+        );
         *self.names.last_mut().expect("just pushed") = Some(m.name.clone());
         *self.emission.last_mut().expect("just pushed") = ke;
         i
+    }
+
+    /// The shading normal of MTL material `m`: `norm` is a tangent-space
+    /// normal map; `map_Bump` (or `bump`) is one too when its image looks
+    /// like one (colour texels averaging a normal tilted less than 45° from
+    /// +z: Blender's exporter writes its normal maps there), and otherwise
+    /// a height map (its red or grey channel). `-bm s` is a normal map's
+    /// strength, or scales a height map's [`BUMP_SCALE`].
+    fn normal_or_bump(&mut self, m: &tobj::Material, dir: &Path, notes: &mut Vec<String>) -> Option<Perturb> {
+        let bump = m.normal_texture.as_deref().map(|v| ("map_Bump", v));
+        let (key, spec) = m
+            .unknown_param
+            .get("norm")
+            .map(|v| ("norm", v.as_str()))
+            .or(bump)?;
+        let file = crate::geometry::obj::texture_file(spec)?;
+        let (index, channels) = self.linear_texture(&dir.join(file), notes)?;
+        let bm = option_value(spec, "-bm").filter(|b| b.is_finite() && (0.0..=100.0).contains(b));
+        let texture = index
+            .checked_sub(self.first_texture)
+            .and_then(|k| self.textures.get(k as usize));
+        let normal_map = key == "norm" || (channels >= 3 && texture.is_some_and(looks_like_normal_map));
+        let look = |channel| ImageLookup {
+            channel,
+            ..ImageLookup::plain(index)
+        };
+        if normal_map {
+            return Some(Perturb::NormalMap {
+                map: Tex::Image(look(Channel::All)),
+                strength: bm.unwrap_or(1.0),
+                flip_green: false,
+                frame: crate::geometry::TangentFrame::Vertex,
+            });
+        }
+        let scale = bm.unwrap_or(1.0) * BUMP_SCALE;
+        notes.push(format!(
+            "MTL material `{name}`: `{key} {spec}` read as a height map, {scale} scene units per unit of height \
+             (`-bm` scales it; `materials: {{\"material:{name}\": …}}` on the mesh replaces it)",
+            name = m.name
+        ));
+        Some(Perturb::Bump {
+            height: Tex::Image(look(Channel::R)),
+            scale,
+        })
     }
 
     /// The emission of image `t` (a scene texture index) times `ke`.
