@@ -119,6 +119,62 @@ fn directional_light_on_lambert_plane_matches_closed_form() {
     }
 }
 
+/// A sun with a size (`angle_degrees`: a disk of angular radius θ at the
+/// zenith) over a floor, half of it shaded by a large roof 1 above it that
+/// ends at x = 0: the floor sees the share of the disk the roof's edge
+/// leaves, (acos t − t√(1 − t²))/π with t = −x/(h tan θ) — half under the
+/// edge, all past the penumbra, none before it. Away from the roof it
+/// receives E, as a hard sun gives; Direct and Path agree.
+#[test]
+fn a_sun_with_a_size_casts_the_penumbra_of_its_disk() {
+    let text = |integrator: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (3, 2, 3), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: {integrator},
+            materials: {{ "grey": Lambert(albedo: (0.5, 0.5, 0.5)) }},
+            lights: [Directional(direction: (0, -1, 0), irradiance: (2, 2, 2), angle_degrees: 10)],
+            objects: [
+                Plane(point: (0, 0, 0), normal: (0, 1, 0), material: "grey"),
+                // The roof: x ∈ [−40, 0] at height 1.
+                Rect(center: (-20, 1, 0), half_u: (20, 0, 0), half_v: (0, 0, -40), material: "grey"),
+            ],
+        )"#
+        )
+    };
+    // An angle that is no angle is a located error.
+    for bad in ["200", "-1", "NaN"] {
+        let t = text("Path()").replace("angle_degrees: 10", &format!("angle_degrees: {bad}"));
+        match load_str(Path::new("scenes/sun.ron"), &t, &Overrides::default()) {
+            Ok(_) => panic!("angle_degrees {bad} loaded"),
+            Err(e) => assert!(
+                format!("{e:?}").contains("lights[0].angle_degrees"),
+                "angle_degrees {bad}: {e:?}"
+            ),
+        }
+    }
+    let r = 5f32.to_radians().tan();
+    let share = |x: f32| {
+        let t = (-x / r).clamp(-1.0, 1.0);
+        (t.acos() - t * (1.0 - t * t).sqrt()) / PI
+    };
+    for integrator in ["Direct(light_samples: 1)", "Path(max_depth: 2)"] {
+        let s = scene(&text(integrator));
+        for x in [-1.2 * r, -0.5 * r, 0.0, 0.5 * r, 1.2 * r, 3.0] {
+            let at = Vec3A::new(x, 0.0, 0.5);
+            // From the lit side, above the floor and past the roof's edge.
+            let from = Vec3A::new(x + 0.6, 0.5, 1.5);
+            let got = mean_li(&s, Ray::new(from, (at - from).normalize()), 20_000).x;
+            let want = 2.0 * share(x) * 0.5 / PI;
+            assert!(
+                (got - want).abs() <= 0.02 * (2.0 * 0.5 / PI),
+                "{integrator}, x = {x}: {got}, expected {want} (share {})",
+                share(x)
+            );
+        }
+    }
+}
+
 /// Irradiance from a uniform, one-sided Lambertian polygon emitter of radiance
 /// `l` at point `x` with normal `n` (Lambert's formula: E = L/2 Σ βᵢ n·γᵢ).
 fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {

@@ -78,6 +78,11 @@ pub enum LightDesc {
         direction: V3,
         /// Irradiance on a surface facing the light, in W/m² per channel.
         irradiance: Color,
+        /// The sun's angular diameter in degrees, in [0, 180] (default 0: a
+        /// hard sun, parallel light; the real sun is about 0.53, Blender's
+        /// sun `Angle`): a disk of that size gives soft shadow edges.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        angle_degrees: f32,
     },
     /// Parallelogram `corner + s·edge_u + t·edge_v`, s,t ∈ `[0, 1]`, emitting
     /// `radiance` (W/(m²·sr)) from the side its normal `normalize(edge_u ×

@@ -166,7 +166,7 @@ pub(super) fn trace_from(
     }
     if let Some(sun) = light.as_directional() {
         // From a directional light: its parallel beam through a target's disk.
-        let (o, d, flux) = em.sun_start(sun, pmf, u_cone, u_point)?;
+        let (o, d, flux) = em.sun_start(sun, pmf, u_cone, u_point, u_dir)?;
         return to_y(Ray::new(o, d), flux, sampler, counters);
     }
     if let Some(p) = light.point_source() {

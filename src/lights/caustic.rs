@@ -199,17 +199,21 @@ impl CausticEmitters {
 
     /// The start of a light path from the directional light `sun` (picked
     /// with probability `pmf`; module docs), as [`Self::sky_start`]'s.
+    /// `u_dir` picks the beam's direction in a sun's disk (unused by a hard
+    /// sun).
     pub fn sun_start(
         &self,
         sun: &DirectionalLight,
         pmf: f32,
         u_pick: f32,
         u_disk: Vec2,
+        u_dir: Vec2,
     ) -> Option<(Vec3A, Vec3A, Rgb)> {
         if sun.irradiance == Rgb::ZERO {
             return None;
         }
-        self.beam_start(-sun.direction, sun.irradiance / pmf, u_pick, u_disk)
+        let (toward, weight) = sun.toward(u_dir);
+        self.beam_start(toward, weight / pmf, u_pick, u_disk)
     }
 
     /// A ray of the parallel beam arriving from unit direction `w` (toward

@@ -192,7 +192,7 @@ impl Light {
         match self {
             Light::Point(l) => l.sample(p),
             Light::Spot(l) => l.sample(p),
-            Light::Directional(l) => l.sample(p),
+            Light::Directional(l) => l.sample(p, u),
             Light::Quad(l) => l.sample(p, u),
             Light::Sphere(l) => l.sample(p, u),
             Light::Mesh(l) => l.sample(p, u),

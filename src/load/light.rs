@@ -63,9 +63,18 @@ impl Checker {
             LightDesc::Directional {
                 direction,
                 irradiance,
+                angle_degrees,
             } => {
                 self.nonzero(&p("direction"), direction, "`direction`");
                 self.emitted(&p("irradiance"), irradiance, "irradiance");
+                self.range(
+                    &p("angle_degrees"),
+                    *angle_degrees,
+                    0.0,
+                    180.0,
+                    "angular diameter",
+                    "the sun's disk in degrees: 0 is a hard sun, the real sun is about 0.53",
+                );
             }
             LightDesc::Quad {
                 corner,
@@ -230,10 +239,10 @@ pub(super) fn build_light(ctx: &mut BuildContext, i: usize, l: &LightDesc) {
         LightDesc::Directional {
             direction,
             irradiance,
-        } => ctx.lights.push(Light::Directional(DirectionalLight::new(
-            (*direction).into(),
-            (*irradiance).into(),
-        ))),
+            angle_degrees,
+        } => ctx.lights.push(Light::Directional(
+            DirectionalLight::new((*direction).into(), (*irradiance).into()).with_angle(*angle_degrees),
+        )),
         LightDesc::Quad {
             corner,
             edge_u,

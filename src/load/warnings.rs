@@ -271,7 +271,9 @@ fn suns_from_below(desc: &SceneDesc) -> Vec<Problem> {
         .iter()
         .enumerate()
         .filter_map(|(i, l)| match l {
-            LightDesc::Directional { direction, irradiance } if irradiance.iter().any(|&e| e > 0.0) => {
+            LightDesc::Directional {
+                direction, irradiance, ..
+            } if irradiance.iter().any(|&e| e > 0.0) => {
                 let d = glam::Vec3::from(*direction).normalize_or_zero();
                 let sin_elevation = d.dot(up);
                 (sin_elevation > 5f32.to_radians().sin()).then(|| {
