@@ -107,6 +107,55 @@ fn a_blend_in_a_furnace_reflects_the_mixed_albedo() {
     }
 }
 
+/// A generated family: random blend trees (a blend at the top, up to three
+/// levels, random weights, albedos in [0.05, 0.85], some under a flat
+/// normal map) in the furnace, each against 1/(1 − ρ) with ρ the tree's
+/// mixed albedo.
+#[test]
+fn random_blend_trees_in_a_furnace_reflect_their_mixed_albedo() {
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    // A tree as RON and its mixed albedo.
+    fn tree(depth: u32, next: &mut dyn FnMut() -> f32) -> (String, f32) {
+        if depth == 0 || (depth < 3 && next() < 0.3) {
+            let rho = 0.05 + 0.8 * next();
+            return (format!("Lambert(albedo: {rho})"), rho);
+        }
+        let w = (next() * 100.0).round() / 100.0;
+        let (a, ra) = tree(depth - 1, next);
+        let (b, rb) = tree(depth - 1, next);
+        let blend = format!("Blend(weight: {w}, a: {a}, b: {b})");
+        let wrapped = if next() < 0.3 {
+            format!("NormalMap(map: (0.5, 0.5, 1), material: {blend})")
+        } else {
+            blend
+        };
+        (wrapped, (1.0 - w) * ra + w * rb)
+    }
+    for _ in 0..6 {
+        let (material, rho) = tree(3, &mut next);
+        let s = load_text(&furnace(&material));
+        let want = 1.0 / (1.0 - rho);
+        let got = mean_li_around(
+            &s,
+            Vec3A::new(0.1, 0.0, 0.2),
+            Vec3A::new(0.3, 0.2, -1.0),
+            0.3,
+            60_000,
+        );
+        assert!(
+            (got.x - want).abs() < 0.02 * want,
+            "{material}: expected 1/(1 − {rho}) = {want}, got {}",
+            got.x
+        );
+    }
+}
+
 /// A textured weight picks per point: a floor under a sun, blended by a
 /// checker between albedos 0.2 (weight 0) and 0.8 (weight 1), is ρE/π with
 /// the square's own ρ, and 0.5 × (0.2 + 0.8)·E/π where a second checker
