@@ -175,6 +175,48 @@ fn a_sun_with_a_size_casts_the_penumbra_of_its_disk() {
     }
 }
 
+/// A generated family of suns and roofs: for every angular diameter (from
+/// the real sun's to 120°) and roof height, the floor under the roof's edge
+/// gets exactly half the irradiance (the disk and the cosine are symmetric
+/// about the edge's plane), past the penumbra all of it, before it none.
+#[test]
+fn suns_of_every_size_shade_half_under_a_roof_edge() {
+    for degrees in [0.53f32, 3.0, 10.0, 40.0, 120.0] {
+        for h in [0.3f32, 1.0, 4.0] {
+            let text = format!(
+                r#"Scene(
+                camera: (eye: (3, 2, 3), target: (0, 0, 0), fov_y_degrees: 40),
+                integrator: Direct(light_samples: 1),
+                materials: {{ "grey": Lambert(albedo: (0.5, 0.5, 0.5)) }},
+                lights: [Directional(direction: (0, -1, 0), irradiance: (2, 2, 2), angle_degrees: {degrees})],
+                objects: [
+                    Plane(point: (0, 0, 0), normal: (0, 1, 0), material: "grey"),
+                    Rect(center: (-50, {h}, 0), half_u: (50, 0, 0), half_v: (0, 0, -100), material: "grey"),
+                ],
+            )"#
+            );
+            let s = scene(&text);
+            let reach = h * (0.5 * degrees).to_radians().tan();
+            let lit = 2.0 * 0.5 / PI;
+            for (x, share) in [
+                (0.0, 0.5),
+                (1.05 * reach + 0.01, 1.0),
+                (-1.05 * reach - 0.01, 0.0),
+            ] {
+                let at = Vec3A::new(x, 0.0, 0.5);
+                // From just above the floor, beside the point: under the roof.
+                let from = at + Vec3A::new(0.05, 0.02, 0.05);
+                let got = mean_li(&s, Ray::new(from, (at - from).normalize()), 20_000).x;
+                assert!(
+                    (got - share * lit).abs() <= 0.02 * lit,
+                    "{degrees}°, roof at {h}, x = {x}: {got}, expected {} of {lit}",
+                    share
+                );
+            }
+        }
+    }
+}
+
 /// Irradiance from a uniform, one-sided Lambertian polygon emitter of radiance
 /// `l` at point `x` with normal `n` (Lambert's formula: E = L/2 Σ βᵢ n·γᵢ).
 fn polygon_irradiance(x: Vec3A, n: Vec3A, verts: &[Vec3A], l: f32) -> f32 {
