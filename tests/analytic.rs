@@ -303,30 +303,7 @@ fn closed_sphere_direct_and_path_match_closed_forms() {
 /// reflect with albedo ρ = 0.5, radiance is Le/(1 − ρ) = 2 everywhere.
 #[test]
 fn furnace_emitting_enclosure_gives_le_over_one_minus_rho() {
-    // Six inward-facing walls of the cube [-1, 1]³ (half_u × half_v points in).
-    let walls = [
-        ("(0, -1, 0)", "(0, 0, 1)", "(1, 0, 0)"),
-        ("(0, 1, 0)", "(1, 0, 0)", "(0, 0, 1)"),
-        ("(-1, 0, 0)", "(0, 1, 0)", "(0, 0, 1)"),
-        ("(1, 0, 0)", "(0, 0, 1)", "(0, 1, 0)"),
-        ("(0, 0, -1)", "(1, 0, 0)", "(0, 1, 0)"),
-        ("(0, 0, 1)", "(0, 1, 0)", "(1, 0, 0)"),
-    ];
-    let lights: Vec<String> = walls
-        .iter()
-        .map(|(c, u, v)| {
-            format!(r#"Rect(center: {c}, half_u: {u}, half_v: {v}, radiance: (1, 1, 1), material: "half")"#)
-        })
-        .collect();
-    let s = scene(&format!(
-        r#"Scene(
-        camera: (eye: (0, 0, 0), target: (0, 0, -1), fov_y_degrees: 60),
-        integrator: Path(max_depth: -1, rr_depth: 5),
-        materials: {{ "half": Lambert(albedo: (0.5, 0.5, 0.5)) }},
-        lights: [{}],
-    )"#,
-        lights.join(", ")
-    ));
+    let s = scene(&common::furnace("Lambert(albedo: (0.5, 0.5, 0.5))"));
     for d in [Vec3A::new(0.1, 0.2, -1.0), Vec3A::new(0.9, -0.7, 0.2)] {
         let got = mean_li(&s, Ray::new(Vec3A::new(0.1, 0.0, 0.2), d.normalize()), 100_000);
         assert!((got.x - 2.0).abs() < 0.02, "expected 2.0, got {}", got.x);

@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::{load_text, mean_li, root};
+use common::{furnace, load_text, mean_li, root};
 use glam::Vec3A;
 use ronray::frame::render_whole;
 use ronray::imageio::Image;
@@ -17,19 +17,24 @@ use ronray::math::SampleRng;
 use ronray::sampler::Sampler;
 use std::f32::consts::PI;
 
+/// Uniform numbers in [0, 1) from a xorshift generator seeded `state`.
+fn xorshift(mut state: u64) -> impl FnMut() -> f32 {
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
 /// [`mean_li`] over `n` rays from `from` within `spread` (radians, about)
 /// of `d`: a blend picks by a hash of the ray and the hit, as a cut-out
 /// does, so one ray repeated always picks the same material at its first
 /// hit (a render's camera rays differ from sample to sample).
 fn mean_li_around(l: &Loaded, from: Vec3A, d: Vec3A, spread: f32, n: u32) -> Vec3A {
     let mut sum = Vec3A::ZERO;
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-    };
+    let mut uniform = xorshift(0x2545_f491_4f6c_dd1d);
+    let mut next = || uniform() - 0.5;
     let mut c = Counters::default();
     for i in 0..n {
         let jitter = Vec3A::new(next(), next(), next()) * spread;
@@ -38,34 +43,6 @@ fn mean_li_around(l: &Loaded, from: Vec3A, d: Vec3A, spread: f32, n: u32) -> Vec
         sum += l.view.integrator.li(&l.scene, &ray, &mut sampler, &mut c);
     }
     sum / n as f32
-}
-
-/// An enclosure whose six walls all emit radiance 1 and reflect with
-/// `material`: radiance 1/(1 − ρ) everywhere for a diffuse albedo ρ.
-fn furnace(material: &str) -> String {
-    let walls = [
-        ("(0, -1, 0)", "(0, 0, 1)", "(1, 0, 0)"),
-        ("(0, 1, 0)", "(1, 0, 0)", "(0, 0, 1)"),
-        ("(-1, 0, 0)", "(0, 1, 0)", "(0, 0, 1)"),
-        ("(1, 0, 0)", "(0, 0, 1)", "(0, 1, 0)"),
-        ("(0, 0, -1)", "(1, 0, 0)", "(0, 1, 0)"),
-        ("(0, 0, 1)", "(0, 1, 0)", "(1, 0, 0)"),
-    ];
-    let lights: Vec<String> = walls
-        .iter()
-        .map(|(c, u, v)| {
-            format!(r#"Rect(center: {c}, half_u: {u}, half_v: {v}, radiance: (1, 1, 1), material: "wall")"#)
-        })
-        .collect();
-    format!(
-        r#"Scene(
-        camera: (eye: (0, 0, 0), target: (0, 0, -1), fov_y_degrees: 60),
-        integrator: Path(max_depth: -1, rr_depth: 5),
-        materials: {{ "wall": {material} }},
-        lights: [{}],
-    )"#,
-        lights.join(", ")
-    )
 }
 
 /// A blend of albedos 0.2 and 0.8 at weight 0.25 reflects as albedo 0.35:
@@ -113,13 +90,7 @@ fn a_blend_in_a_furnace_reflects_the_mixed_albedo() {
 /// mixed albedo.
 #[test]
 fn random_blend_trees_in_a_furnace_reflect_their_mixed_albedo() {
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut next = xorshift(0x9e37_79b9_7f4a_7c15);
     // A tree as RON and its mixed albedo.
     fn tree(depth: u32, next: &mut dyn FnMut() -> f32) -> (String, f32) {
         if depth == 0 || (depth < 3 && next() < 0.3) {

@@ -39,15 +39,6 @@ fn shading_normal(l: &Loaded, x: f32, z: f32) -> Vec3A {
         .ns
 }
 
-fn notes(l: &Loaded) -> String {
-    l.warnings
-        .diagnostics
-        .iter()
-        .map(|d| d.message.clone())
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
 #[test]
 fn mtl_normal_maps_tilt_the_shading_normal_along_u() {
     // Texel (0.75, 0.5, 0.933): a normal tilted 30° toward the tangent
@@ -83,9 +74,9 @@ fn a_grey_mtl_bump_map_is_a_height_map_scaled_by_bm() {
     let tilt = |map: &str| {
         let l = floor_with(map, ramp.clone());
         assert!(
-            notes(&l).contains("read as a height map"),
+            common::notes_text(&l).contains("read as a height map"),
             "{map}: no note: {}",
-            notes(&l)
+            common::notes_text(&l)
         );
         let n = shading_normal(&l, 0.1, 0.0);
         assert!(n.y > 0.0 && n.z.abs() < 1e-3, "{map}: {n}");

@@ -25,15 +25,6 @@ fn load_with_glow(glow: &str) -> Loaded {
     common::load_in(dir.path(), scene, &Overrides::default())
 }
 
-fn notes(l: &Loaded) -> String {
-    l.warnings
-        .diagnostics
-        .iter()
-        .map(|d| d.message.clone())
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
 #[test]
 fn mtl_ke_that_is_no_radiance_is_repaired_with_a_note_saying_which() {
     for (ke, what) in [
@@ -43,7 +34,7 @@ fn mtl_ke_that_is_no_radiance_is_repaired_with_a_note_saying_which() {
         ("Ke 1e38 1e38 1e38", "above the largest value read"),
     ] {
         let l = load_with_glow(ke);
-        let n = notes(&l);
+        let n = common::notes_text(&l);
         assert!(
             n.contains("objects[0]") && n.contains("m.obj") && n.contains("MTL material `glow`"),
             "{ke}: the note does not say where: {n}"
@@ -72,7 +63,7 @@ fn mtl_ke_that_is_no_radiance_is_repaired_with_a_note_saying_which() {
 fn mtl_kd_that_is_no_colour_is_repaired_with_a_note() {
     for kd in ["Kd nan 0.5 0.5", "Kd -1 0.5 0.5", "Kd inf 0.5 0.5"] {
         let l = load_with_glow(&format!("{kd}\nKe 1 1 1"));
-        let n = notes(&l);
+        let n = common::notes_text(&l);
         assert!(
             n.contains("`Kd") && n.contains("MTL material `glow`"),
             "{kd}: {n}"

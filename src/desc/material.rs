@@ -315,7 +315,39 @@ pub enum MetalDesc {
     Aluminium,
 }
 
+/// What a material description holds inside it.
+#[derive(Clone, Copy, Debug)]
+pub enum MaterialInner<'a> {
+    /// A reflection model: nothing.
+    Model,
+    /// A wrapper's (`NormalMap`, `Bump`, `Cutout`) material.
+    Wrapped(&'a MaterialDesc),
+    /// A `Blend`'s two materials.
+    Blend(&'a MaterialDesc, &'a MaterialDesc),
+}
+
 impl MaterialDesc {
+    /// The materials inside this one, for checks that walk the tree
+    /// without a match of their own over every model.
+    pub fn inner(&self) -> MaterialInner<'_> {
+        match self {
+            MaterialDesc::NormalMap { material, .. }
+            | MaterialDesc::Bump { material, .. }
+            | MaterialDesc::Cutout { material, .. } => MaterialInner::Wrapped(material),
+            MaterialDesc::Blend { a, b, .. } => MaterialInner::Blend(a, b),
+            MaterialDesc::Lambert { .. }
+            | MaterialDesc::OrenNayar { .. }
+            | MaterialDesc::Phong { .. }
+            | MaterialDesc::BlinnPhong { .. }
+            | MaterialDesc::CookTorrance { .. }
+            | MaterialDesc::MetalPlastic { .. }
+            | MaterialDesc::Mirror { .. }
+            | MaterialDesc::Glass { .. }
+            | MaterialDesc::RoughPlastic { .. }
+            | MaterialDesc::RoughGlass { .. } => MaterialInner::Model,
+        }
+    }
+
     /// Every colour parameter, so that code which rewrites texture paths
     /// (includes resolve them against their own folder) does not need a
     /// match over the models: a new material lists its parameters here.

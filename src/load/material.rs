@@ -6,8 +6,8 @@
 use super::validate::{Checker, MAX_RADIANCE, RADIANCE_HELP};
 use crate::desc::{
     ChannelDesc, ColorDesc, ColorspaceDesc, CutoutModeDesc, DielectricFresnelDesc, DistributionDesc,
-    FresnelDesc, ImageDesc, MaterialDesc, MetalDesc, OriginDesc, PatternDesc, RoughnessUnitDesc, ScalarDesc,
-    TexDesc, WrapDesc,
+    FresnelDesc, ImageDesc, MaterialDesc, MaterialInner, MetalDesc, OriginDesc, PatternDesc,
+    RoughnessUnitDesc, ScalarDesc, TexDesc, WrapDesc,
 };
 use crate::diagnostic::Problem;
 use crate::materials::{
@@ -555,45 +555,23 @@ fn blend_depth(m: &MaterialDesc, depth: u32) -> u32 {
     if depth > MAX_BLEND_DEPTH {
         return depth;
     }
-    match m {
-        MaterialDesc::NormalMap { material, .. }
-        | MaterialDesc::Bump { material, .. }
-        | MaterialDesc::Cutout { material, .. } => blend_depth(material, depth),
-        MaterialDesc::Blend { a, b, .. } => blend_depth(a, depth + 1).max(blend_depth(b, depth + 1)),
-        MaterialDesc::Lambert { .. }
-        | MaterialDesc::OrenNayar { .. }
-        | MaterialDesc::Phong { .. }
-        | MaterialDesc::BlinnPhong { .. }
-        | MaterialDesc::CookTorrance { .. }
-        | MaterialDesc::MetalPlastic { .. }
-        | MaterialDesc::Mirror { .. }
-        | MaterialDesc::Glass { .. }
-        | MaterialDesc::RoughPlastic { .. }
-        | MaterialDesc::RoughGlass { .. } => depth,
+    match m.inner() {
+        MaterialInner::Model => depth,
+        MaterialInner::Wrapped(inner) => blend_depth(inner, depth),
+        MaterialInner::Blend(a, b) => blend_depth(a, depth + 1).max(blend_depth(b, depth + 1)),
     }
 }
 
 /// Whether `m` has a cut-out anywhere inside (through wrappers and blends).
 fn has_cutout(m: &MaterialDesc, depth: u32) -> bool {
-    match m {
-        MaterialDesc::Cutout { .. } => true,
-        MaterialDesc::NormalMap { material, .. } | MaterialDesc::Bump { material, .. } => {
-            has_cutout(material, depth)
+    matches!(m, MaterialDesc::Cutout { .. })
+        || match m.inner() {
+            MaterialInner::Model => false,
+            MaterialInner::Wrapped(inner) => has_cutout(inner, depth),
+            MaterialInner::Blend(a, b) => {
+                depth <= MAX_BLEND_DEPTH && (has_cutout(a, depth + 1) || has_cutout(b, depth + 1))
+            }
         }
-        MaterialDesc::Blend { a, b, .. } => {
-            depth <= MAX_BLEND_DEPTH && (has_cutout(a, depth + 1) || has_cutout(b, depth + 1))
-        }
-        MaterialDesc::Lambert { .. }
-        | MaterialDesc::OrenNayar { .. }
-        | MaterialDesc::Phong { .. }
-        | MaterialDesc::BlinnPhong { .. }
-        | MaterialDesc::CookTorrance { .. }
-        | MaterialDesc::MetalPlastic { .. }
-        | MaterialDesc::Mirror { .. }
-        | MaterialDesc::Glass { .. }
-        | MaterialDesc::RoughPlastic { .. }
-        | MaterialDesc::RoughGlass { .. } => false,
-    }
 }
 
 /// The runtime material at scene path `path`; its textures are read through

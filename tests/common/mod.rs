@@ -117,6 +117,46 @@ pub fn load_text(text: &str) -> Loaded {
     load_in(&root(), text, &Overrides::default())
 }
 
+/// An enclosure (the cube [−1, 1]³) whose six walls all emit radiance 1
+/// and reflect with `material`, seen from inside: radiance 1/(1 − ρ)
+/// everywhere for a diffuse albedo ρ.
+pub fn furnace(material: &str) -> String {
+    // Inward-facing walls: half_u × half_v points in.
+    let walls = [
+        ("(0, -1, 0)", "(0, 0, 1)", "(1, 0, 0)"),
+        ("(0, 1, 0)", "(1, 0, 0)", "(0, 0, 1)"),
+        ("(-1, 0, 0)", "(0, 1, 0)", "(0, 0, 1)"),
+        ("(1, 0, 0)", "(0, 0, 1)", "(0, 1, 0)"),
+        ("(0, 0, -1)", "(1, 0, 0)", "(0, 1, 0)"),
+        ("(0, 0, 1)", "(0, 1, 0)", "(1, 0, 0)"),
+    ];
+    let lights: Vec<String> = walls
+        .iter()
+        .map(|(c, u, v)| {
+            format!(r#"Rect(center: {c}, half_u: {u}, half_v: {v}, radiance: (1, 1, 1), material: "wall")"#)
+        })
+        .collect();
+    format!(
+        r#"Scene(
+        camera: (eye: (0, 0, 0), target: (0, 0, -1), fov_y_degrees: 60),
+        integrator: Path(max_depth: -1, rr_depth: 5),
+        materials: {{ "wall": {material} }},
+        lights: [{}],
+    )"#,
+        lights.join(", ")
+    )
+}
+
+/// A loaded scene's warnings and notes, one message a line.
+pub fn notes_text(l: &Loaded) -> String {
+    l.warnings
+        .diagnostics
+        .iter()
+        .map(|d| d.message.clone())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// Renders a loaded scene with default options; every pixel must be finite.
 pub fn render_loaded(l: &Loaded) -> Image {
     let img = render_whole(&l.scene, &l.view, &RenderOptions::default()).0;
