@@ -1639,13 +1639,16 @@ fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
         ),
         (
             json!({"KHR_materials_transmission": {"transmissionFactor": 1.0},
-                   "KHR_materials_volume": {"thicknessFactor": 0.5}, "KHR_materials_ior": {"ior": 1.33}}),
+                   "KHR_materials_volume": {"thicknessFactor": 0.5, "attenuationColor": [0.5, 0.25, 1.0],
+                                            "attenuationDistance": 2.0},
+                   "KHR_materials_ior": {"ior": 1.33}}),
             0.0,
             0.0,
         ),
         (
             json!({"KHR_materials_transmission": {"transmissionFactor": 1.0},
-                   "KHR_materials_volume": {"thicknessFactor": 0.5}}),
+                   "KHR_materials_volume": {"thicknessFactor": 0.5, "attenuationColor": [0.5, 0.5, 0.5],
+                                            "attenuationDistance": 0.0}}),
             0.5,
             0.0,
         ),
@@ -1698,6 +1701,43 @@ fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
         scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures)
     };
     let tint = ronray::math::Rgb::new(0.9, 0.6, 0.3);
+    // KHR_materials_volume's attenuation: σ = −ln(colour)/distance inside
+    // the solid; none without a volume, none (and a note) for a distance
+    // of 0, which is no length.
+    let absorption_of = |k: usize| {
+        let o = Vec3A::new(3.0 * k as f32 + 0.25, 0.25, 5.0);
+        let hit = scene
+            .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, -1.0)), f32::INFINITY)
+            .unwrap_or_else(|| panic!("part {k} is hit"));
+        scene
+            .absorption
+            .get(hit.material as usize)
+            .copied()
+            .unwrap_or_default()
+    };
+    let sigma = absorption_of(1);
+    let want = [2f32.ln() / 2.0, 4f32.ln() / 2.0, 0.0];
+    assert!(
+        (0..3).all(|c| (sigma[c] - want[c]).abs() < 1e-5),
+        "absorption {sigma} against {want:?}"
+    );
+    assert_eq!(
+        absorption_of(0),
+        ronray::math::Rgb::ZERO,
+        "a thin sheet absorbs nothing"
+    );
+    assert_eq!(absorption_of(2), ronray::math::Rgb::ZERO);
+    let notes = loaded
+        .warnings
+        .diagnostics
+        .iter()
+        .map(|d| d.message.clone())
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert!(
+        notes.contains("attenuationDistance 0 is no absorption"),
+        "the unusable attenuation is noted: {notes}"
+    );
     match bsdf_of(0) {
         Bsdf::Glass(g) => assert!(g.thin && g.ior == 1.5 && g.tint == tint, "{g:?}"),
         b => panic!("no volume: a thin sheet, not {b:?}"),

@@ -30,6 +30,7 @@ mod caustics;
 mod check;
 mod claims;
 mod cli;
+mod coloured_glass;
 mod commands;
 mod denormals;
 mod diagnostics;

@@ -110,6 +110,12 @@ pub enum MaterialDesc {
         /// adds up (Mitsuba's `thindielectric`). Default false.
         #[serde(default, skip_serializing_if = "std::ops::Not::not")]
         thin: bool,
+        /// Coloured glass: what light keeps of each channel after `distance`
+        /// inside (Beer–Lambert absorption in the solid; glTF's
+        /// `KHR_materials_volume`). None (the default) is clear. Needs a
+        /// closed surface, and not `thin`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        attenuation: Option<AttenuationDesc>,
     },
     /// Mitsuba 3's `roughplastic` (`nonlinear: false`): a `diffuse` base under
     /// a rough dielectric coat of index `ior` (η coat / η outside), whose
@@ -160,6 +166,10 @@ pub enum MaterialDesc {
         /// the distribution's α itself, Mitsuba's `alpha`).
         #[serde(default, skip_serializing_if = "RoughnessUnitDesc::is_perceptual")]
         roughness_unit: RoughnessUnitDesc,
+        /// Coloured glass: what light keeps of each channel after `distance`
+        /// inside (as `Glass`'s). None (the default) is clear.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        attenuation: Option<AttenuationDesc>,
     },
     /// A tangent-space normal map over `material`: the map's texels (linear
     /// unless `colorspace` says otherwise) give the shading normal
@@ -268,6 +278,28 @@ pub enum DistributionDesc {
     Ggx,
     /// Beckmann: shorter tails, a tighter halo around highlights.
     Beckmann,
+}
+
+/// Absorption inside a dielectric solid (Beer–Lambert): light that travels
+/// `distance` scene units inside keeps `color` of each channel, twice that
+/// distance `color²` (glTF's `attenuationColor` and `attenuationDistance`).
+/// The absorption coefficient is σ = −ln(color)/distance per channel.
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AttenuationDesc {
+    /// The fraction of each channel left after `distance`, in (0, 1]
+    /// (1: that channel is not absorbed).
+    pub color: [f32; 3],
+    /// Scene units over which `color` is reached, > 0.
+    pub distance: f32,
+}
+
+impl AttenuationDesc {
+    /// The absorption coefficient per channel, in 1/scene units (0 for a
+    /// channel of colour 1). The caller has checked the ranges.
+    pub fn sigma(&self) -> [f32; 3] {
+        self.color.map(|c| (-c.ln() / self.distance).max(0.0))
+    }
 }
 
 /// Fresnel formula of a `Glass` surface.

@@ -47,8 +47,8 @@ pub use film::{AllocationDesc, FilmDesc, SamplerDesc};
 pub use integrator::{CausticsDesc, IntegratorDesc, LightSelectionDesc};
 pub use light::LightDesc;
 pub use material::{
-    CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc, MaterialInner,
-    MetalDesc, RoughnessUnitDesc, TangentFrameDesc,
+    AttenuationDesc, CutoutModeDesc, DielectricFresnelDesc, DistributionDesc, FresnelDesc, MaterialDesc,
+    MaterialInner, MetalDesc, RoughnessUnitDesc, TangentFrameDesc,
 };
 pub use medium::MediumDesc;
 pub use object::{MeshDesc, ObjectDesc, SphereUvDesc};

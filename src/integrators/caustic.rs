@@ -73,6 +73,7 @@
 //! pbrt-v4's and Mitsuba 3's path tracers). Caustics of other lights
 //! (meshes, SDFs, a constant sky) stay with the path tracer, as before.
 
+use super::interior::Interior;
 use super::{Counters, light_point_error, offset_origin, spawn};
 use crate::camera::Camera;
 use crate::geometry::Hit;
@@ -116,6 +117,8 @@ pub struct LightVertex {
     /// Whether the light is a point, spot or directional light: the path
     /// goes on past y ([`bounce`]).
     from_delta: bool,
+    /// The absorbing solid (coloured glass) the path reached y in.
+    inside: Interior,
 }
 
 /// Most segments a light path from a delta light takes (Russian roulette
@@ -217,16 +220,25 @@ fn follow(
     sampler: &mut Sampler,
     counters: &mut Counters,
 ) -> Option<LightVertex> {
-    follow_from(scene, &mut ray, &mut flux, (1, max_chain), 0, sampler, counters)
+    let mut inside = Interior::OUTSIDE;
+    follow_from(
+        scene,
+        (&mut ray, &mut inside),
+        &mut flux,
+        (1, max_chain),
+        0,
+        sampler,
+        counters,
+    )
 }
 
 /// The next surface that is not perfectly specular along `ray`, when
 /// `chain.0` to `chain.1` specular surfaces lead to it, for a path that has
-/// `segments` segments where `ray` leaves; `ray` and `flux` are carried
-/// through the chain.
+/// `segments` segments where `ray` leaves; `ray`, the absorbing solid it
+/// travels in and `flux` are carried through the chain.
 fn follow_from(
     scene: &Scene,
-    ray: &mut Ray,
+    (ray, inside): (&mut Ray, &mut Interior),
     flux: &mut Rgb,
     (min_chain, max_chain): (u32, u32),
     segments: u32,
@@ -240,6 +252,10 @@ fn follow_from(
     loop {
         counters.rays += 1;
         let hit = scene.intersect(ray, f32::INFINITY)?;
+        *flux *= inside.to_hit(scene, &hit, ray.d);
+        if *flux == Rgb::ZERO {
+            return None;
+        }
         let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
         if !bsdf.is_delta() {
             return (chain >= min_chain).then_some(LightVertex {
@@ -249,6 +265,7 @@ fn follow_from(
                 chain,
                 segments: segments + chain + 1,
                 from_delta: false,
+                inside: *inside,
             });
         }
         chain += 1;
@@ -264,6 +281,7 @@ fn follow_from(
             return None;
         }
         *ray = spawn(&hit, frame.to_world(bs.wi));
+        *inside = inside.beyond(scene, &hit, ray.d);
     }
 }
 
@@ -308,10 +326,11 @@ pub fn bounce(
     }
     let mut flux = v.flux * (scale / q);
     let mut ray = spawn(&v.hit, d);
+    let mut inside = v.inside.beyond(scene, &v.hit, d);
     // A specular chain after this bounce takes what depth is left.
     let mut next = follow_from(
         scene,
-        &mut ray,
+        (&mut ray, &mut inside),
         &mut flux,
         (0, room - 1),
         v.segments,
@@ -363,6 +382,8 @@ pub fn splat(
     if !(len > 0.0 && len.is_finite()) {
         return None;
     }
+    // Absorbed on the way when y and the eye are inside coloured glass.
+    let c = c * y.inside.beyond(scene, &y.hit, to_eye).over(len);
     counters.rays += 1;
     if scene.occluded(&Ray::new(o, seg / len), len * (1.0 - 1e-4)) {
         return None;

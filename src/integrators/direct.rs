@@ -6,6 +6,7 @@
 //! and a small light by light sampling. Point and spot lights (deltas) are
 //! found by light sampling alone.
 
+use super::interior::Interior;
 use super::{Counters, emitted, escaped, shadow_ray, spawn};
 use crate::geometry::{Hit, NO_LIGHT};
 use crate::materials::{Bsdf, Bxdf};
@@ -34,17 +35,21 @@ impl Direct {
         };
         let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
         let frame = Frame::from_normal(hit.ns);
-        let l = emitted(scene, &hit, ray.d)
-            + all_lights(
-                scene,
-                &hit,
-                &bsdf,
-                &frame,
-                frame.to_local(-ray.d),
-                self.light_samples,
-                sampler,
-                counters,
-            );
+        // A camera inside coloured glass (`super::interior`).
+        let kept = Interior::OUTSIDE.to_hit(scene, &hit, ray.d);
+        let l = kept
+            * (emitted(scene, &hit, ray.d)
+                + all_lights(
+                    scene,
+                    &hit,
+                    Interior::OUTSIDE,
+                    &bsdf,
+                    &frame,
+                    frame.to_local(-ray.d),
+                    self.light_samples,
+                    sampler,
+                    counters,
+                ));
         debug_assert!(l.is_finite(), "non-finite radiance {l}");
         l
     }
@@ -53,11 +58,13 @@ impl Direct {
 /// Reflected radiance from every light (N shadow rays per area light and for
 /// the environment, one per point or spot light, and N BSDF samples that
 /// count where they reach an area light or the sky, weighed by MIS), the
-/// shading step shared by `Direct` and `Whitted`.
+/// shading step shared by `Direct` and `Whitted`. `inside`: the absorbing
+/// solid the ray that reached `hit` was in (`super::interior`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn all_lights(
     scene: &Scene,
     hit: &Hit,
+    inside: Interior,
     bsdf: &Bsdf,
     frame: &Frame,
     wo: glam::Vec3A,
@@ -94,7 +101,8 @@ pub(crate) fn all_lights(
                 } else {
                     power_heuristic(ls.pdf, bsdf.pdf(wo, wi))
                 };
-                sum += f * ls.li * (wi.z.abs() * w / ls.pdf);
+                let kept = inside.beyond(scene, hit, ls.wi).over(ls.dist);
+                sum += f * ls.li * kept * (wi.z.abs() * w / ls.pdf);
             }
         }
         l += sum / n as f32;
@@ -110,14 +118,21 @@ pub(crate) fn all_lights(
             }
             let ray = spawn(hit, frame.to_world(bs.wi));
             counters.rays += 1;
+            let beyond = inside.beyond(scene, hit, ray.d);
             let (le, light_pdf) = match scene.intersect(&ray, f32::INFINITY) {
                 Some(h) if h.light != NO_LIGHT => {
                     let light = &scene.lights[h.light as usize];
-                    (emitted(scene, &h, ray.d), light.pdf(hit.p, ray.d, &h))
+                    (
+                        emitted(scene, &h, ray.d) * beyond.to_hit(scene, &h, ray.d),
+                        light.pdf(hit.p, ray.d, &h),
+                    )
                 }
                 Some(_) => continue,
                 None => match scene.environment() {
-                    Some((_, env)) => env.le_and_pdf(ray.d, side),
+                    Some((_, env)) => {
+                        let (le, pdf) = env.le_and_pdf(ray.d, side);
+                        (le * beyond.over(f32::INFINITY), pdf)
+                    }
                     None => continue,
                 },
             };

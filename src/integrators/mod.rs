@@ -4,6 +4,7 @@
 pub mod caustic;
 pub mod caustic_reach;
 pub mod direct;
+mod interior;
 pub mod path;
 pub mod sky_visibility;
 #[cfg(test)]

@@ -29,6 +29,7 @@
 //! directly (`docs/integrators.md`), so one path is the default.
 
 use super::caustic::max_chain;
+use super::interior::Interior;
 use super::{Counters, emitted, escaped, shadow_ray, spawn};
 use crate::geometry::{Hit, NO_LIGHT};
 use crate::lights::LightPicker;
@@ -89,6 +90,8 @@ struct State {
     /// sample), and the perfect-specular vertices since.
     traced: bool,
     chain: u32,
+    /// The absorbing solid `ray` travels in (coloured glass), if any.
+    inside: Interior,
 }
 
 impl Path {
@@ -140,6 +143,7 @@ impl Path {
             segments: 0,
             traced: false,
             chain: 0,
+            inside: Interior::OUTSIDE,
         };
         let l = self.trace(scene, start, self.splits, None, first, sampler, counters);
         debug_assert!(l.is_finite(), "non-finite radiance {l}");
@@ -172,6 +176,9 @@ impl Path {
         let mut l = Rgb::ZERO;
         let split = self.split_caustics && scene.caustics.is_some();
         let max_chain = max_chain(self.max_depth);
+        // Whether any material absorbs inside (coloured glass): only then
+        // does the path track the solid it is in.
+        let absorbing = !scene.absorption.is_empty();
         let mut hit = Hit::default();
         // Whether the next ray hits, when the previous vertex found it
         // already (see the end of the loop).
@@ -189,6 +196,10 @@ impl Path {
                 (None, None) => scene.intersect_into(&st.ray, f32::INFINITY, &mut hit),
             };
             if !found {
+                if absorbing {
+                    // Out of the scene from inside a solid: an open mesh.
+                    st.beta *= st.inside.over(f32::INFINITY);
+                }
                 // The environment, reached by the previous BSDF sample.
                 // After a non-delta vertex (never the camera ray) the radiance
                 // and the MIS density share one mapping of the direction.
@@ -215,6 +226,9 @@ impl Path {
                 break;
             }
             st.segments += 1;
+            if absorbing {
+                st.beta *= st.inside.to_hit(scene, &hit, st.ray.d);
+            }
 
             // Emission reached by the previous BSDF sample.
             if hit.light != NO_LIGHT {
@@ -279,9 +293,14 @@ impl Path {
                     let f = bsdf.eval(wo, wi) * wi.z.abs();
                     if f != Rgb::ZERO {
                         counters.rays += 1;
+                        let kept = if absorbing {
+                            st.inside.beyond(scene, &hit, ls.wi).over(ls.dist)
+                        } else {
+                            Rgb::ONE
+                        };
                         shadow = Some((
                             shadow_ray(&hit, &ls),
-                            st.beta * f * ls.li,
+                            st.beta * f * ls.li * kept,
                             pmf * ls.pdf,
                             ls.delta,
                             wi,
@@ -318,6 +337,9 @@ impl Path {
                     if let Some(bs) = bs
                         && self.advance(&mut next, &bs, &hit, &frame, (delta, side), split, sampler)
                     {
+                        if absorbing {
+                            next.inside = next.inside.beyond(scene, &hit, next.ray.d);
+                        }
                         sum += self.trace(scene, next, 1, top, None, sampler, counters);
                     }
                 }
@@ -332,6 +354,9 @@ impl Path {
                 None => false,
             };
             if go_on {
+                if absorbing {
+                    st.inside = st.inside.beyond(scene, &hit, st.ray.d);
+                }
                 found_ahead = Some(scene.intersect_into(&st.ray, f32::INFINITY, &mut hit));
             }
             light_sample(&mut l);

@@ -36,6 +36,7 @@
 //! media each camera sample traces one path (the loader drops the
 //! caustic emitters).
 
+use super::interior::Interior;
 use super::{Counters, Path, emitted, escaped, light_point_error, offset_origin};
 use crate::geometry::{Hit, NO_LIGHT};
 use crate::lights::{LightPicker, LightSample};
@@ -76,6 +77,9 @@ pub(super) fn li(
     let picker: &LightPicker = &scene.light_picker;
     let (mut ray, mut beta, mut l) = (*ray, Rgb::ONE, Rgb::ZERO);
     let mut medium = media.camera;
+    // The absorbing solid the ray is in (coloured glass, `super::interior`),
+    // on top of the medium.
+    let mut inside = Interior::OUTSIDE;
     let mut prev = Prev {
         pdf: 0.0,
         delta: true,
@@ -118,6 +122,7 @@ pub(super) fn li(
                 break;
             }
             if let Some(t) = c.t {
+                beta *= inside.over(t);
                 segments += 1;
                 if segments >= path.max_depth {
                     break;
@@ -133,7 +138,8 @@ pub(super) fn li(
                     let f = phase.eval(ray.d, ls.wi);
                     if f > 0.0 {
                         let (shadow, extent) = shadow_from_point(p, &ls);
-                        let tr = transmittance(scene, media, medium, shadow, extent, sampler, counters);
+                        let tr = transmittance(scene, media, medium, shadow, extent, sampler, counters)
+                            * inside.over(ls.dist);
                         if tr != Rgb::ZERO {
                             let light_pdf = pmf * ls.pdf;
                             let w = if ls.delta {
@@ -162,6 +168,7 @@ pub(super) fn li(
         }
 
         let Some(object) = found else {
+            beta *= inside.over(f32::INFINITY);
             // Out of the scene: the environment, as in `path.rs`.
             match scene.environment() {
                 Some((i, env)) if !prev.delta => {
@@ -175,6 +182,7 @@ pub(super) fn li(
             }
             break;
         };
+        beta *= inside.to_hit(scene, &hit, ray.d);
         let boundary = media.boundary(object);
         if let Some(b) = boundary
             && b.null
@@ -235,7 +243,8 @@ pub(super) fn li(
             let f = bsdf.eval(wo, wi) * wi.z.abs();
             if f != Rgb::ZERO {
                 let (shadow, extent) = super::shadow_ray(&hit, &ls);
-                let tr = transmittance(scene, media, beyond(ls.wi), shadow, extent, sampler, counters);
+                let tr = transmittance(scene, media, beyond(ls.wi), shadow, extent, sampler, counters)
+                    * inside.beyond(scene, &hit, ls.wi).over(ls.dist);
                 if tr != Rgb::ZERO {
                     let light_pdf = pmf * ls.pdf;
                     let w = if ls.delta {
@@ -265,6 +274,7 @@ pub(super) fn li(
             side,
         };
         medium = beyond(wi);
+        inside = inside.beyond(scene, &hit, wi);
         ray = super::spawn(&hit, wi);
         if !roulette(path, segments, &mut beta, eta_scale, sampler) {
             break;

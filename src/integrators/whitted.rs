@@ -7,6 +7,7 @@
 //! both: the same expected image, a path instead of a tree.
 
 use super::direct::all_lights;
+use super::interior::Interior;
 use super::{Counters, emitted, escaped, spawn};
 use crate::materials::Bxdf;
 use crate::math::{Frame, Ray, Rgb};
@@ -31,14 +32,17 @@ impl Whitted {
         let mut l = Rgb::ZERO;
         let mut beta = Rgb::ONE;
         let mut ray = *ray;
+        // The absorbing solid the ray is in (coloured glass).
+        let mut inside = Interior::OUTSIDE;
         for depth in 0..=self.max_depth {
             counters.rays += 1;
             let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
                 // Past a mirror or glass the environment counts fully: light
                 // sampling cannot reach it through a delta bounce.
-                l += beta * escaped(scene, ray.d, depth == 0);
+                l += beta * inside.over(f32::INFINITY) * escaped(scene, ray.d, depth == 0);
                 break;
             };
+            beta *= inside.to_hit(scene, &hit, ray.d);
             let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
             let frame = Frame::from_normal(hit.ns);
             let wo = frame.to_local(-ray.d);
@@ -48,6 +52,7 @@ impl Whitted {
                     * all_lights(
                         scene,
                         &hit,
+                        inside,
                         &bsdf,
                         &frame,
                         wo,
@@ -65,6 +70,7 @@ impl Whitted {
             };
             beta *= bs.weight;
             ray = spawn(&hit, frame.to_world(bs.wi));
+            inside = inside.beyond(scene, &hit, ray.d);
         }
         l
     }

@@ -289,7 +289,14 @@ pub fn build_in(
         Vec::new()
     };
     let lanes = ShapeLanes::new(&shapes[..bounded as usize]);
+    let absorption: Vec<crate::math::Rgb> =
+        if materials.iter().any(|m| m.absorption() != crate::math::Rgb::ZERO) {
+            materials.iter().map(Material::absorption).collect()
+        } else {
+            Vec::new()
+        };
     let mut scene = Scene {
+        absorption,
         caustics,
         light_picker: LightPicker::new(&ctx.lights, selection),
         materials,

@@ -217,9 +217,25 @@ impl Checker {
                 );
             }
             MaterialDesc::Mirror { tint } => self.color_param(&p("tint"), tint, Some(1.0)),
-            MaterialDesc::Glass { ior, tint, .. } => {
+            MaterialDesc::Glass {
+                ior,
+                tint,
+                thin,
+                attenuation,
+                ..
+            } => {
                 self.color_param(&p("tint"), tint, Some(1.0));
                 self.coat_ior(&p("ior"), ior, "glass is about 1.5, water 1.33, diamond 2.42");
+                if let Some(a) = attenuation {
+                    self.attenuation(&p("attenuation"), a);
+                    if *thin {
+                        self.push(
+                            &p("attenuation"),
+                            "a thin sheet has no inside to absorb in",
+                            "drop `thin: true` for a solid of coloured glass, or `attenuation` and colour the sheet with `tint`",
+                        );
+                    }
+                }
             }
             MaterialDesc::RoughPlastic {
                 diffuse,
@@ -234,8 +250,14 @@ impl Checker {
                 tint,
                 roughness,
                 roughness_unit,
+                attenuation,
                 ..
-            } => self.rough_glass(path, ior, tint, (roughness, *roughness_unit)),
+            } => {
+                self.rough_glass(path, ior, tint, (roughness, *roughness_unit));
+                if let Some(a) = attenuation {
+                    self.attenuation(&p("attenuation"), a);
+                }
+            }
             MaterialDesc::NormalMap {
                 map,
                 strength,
@@ -421,6 +443,25 @@ impl Checker {
             ScalarDesc::Texture(_) => {
                 self.scalar_param(path, ior, (f32::MIN_POSITIVE, 10.0), "index of refraction", help)
             }
+        }
+    }
+
+    /// A glass's `attenuation`: colour channels in (0, 1] (0 would absorb
+    /// everything in no distance), a distance > 0.
+    fn attenuation(&mut self, path: &str, a: &crate::desc::AttenuationDesc) {
+        if !a.color.iter().all(|c| *c > 0.0 && *c <= 1.0) {
+            self.push(
+                &format!("{path}.color"),
+                format!("attenuation colour {:?} has a channel outside (0, 1]", a.color),
+                "the fraction of each channel left after `distance` inside: (0.9, 0.6, 0.3) is amber, 1 leaves a channel unabsorbed",
+            );
+        }
+        if !(a.distance > 0.0 && a.distance.is_finite()) {
+            self.push(
+                &format!("{path}.distance"),
+                format!("attenuation distance {} is not a length > 0", a.distance),
+                "scene units inside the glass after which `color` is left: about the object's thickness for a visible tint",
+            );
         }
     }
 
@@ -642,6 +683,7 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
             tint,
             fresnel,
             thin,
+            attenuation,
         } => Material::Glass(GlassMaterial {
             ior: b.scalar(ior, &p("ior")),
             tint: b.color(tint, &p("tint"), true),
@@ -650,6 +692,7 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
                 DielectricFresnelDesc::Schlick => DielectricFresnel::Schlick,
             },
             thin: *thin,
+            absorption: absorption_of(attenuation.as_ref()),
         }),
         MaterialDesc::RoughPlastic {
             diffuse,
@@ -679,11 +722,13 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
             distribution,
             roughness,
             roughness_unit,
+            attenuation,
         } => Material::RoughGlass(RoughGlassMaterial {
             distribution: distribution_of(*distribution),
             roughness: b.roughness(roughness, *roughness_unit, &p("roughness")),
             ior: b.scalar(ior, &p("ior")),
             tint: b.color(tint, &p("tint"), true),
+            absorption: absorption_of(attenuation.as_ref()),
         }),
         MaterialDesc::NormalMap {
             map,
@@ -741,6 +786,15 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
             Material::Emitter(crate::materials::Emitter)
         }
     }
+}
+
+/// The absorption coefficient of a glass's `attenuation` (zero: clear), as
+/// checked (a channel out of range reads as unabsorbed).
+fn absorption_of(a: Option<&crate::desc::AttenuationDesc>) -> Rgb {
+    a.map_or(Rgb::ZERO, |a| {
+        let s = a.sigma().map(|x| if x.is_finite() { x } else { 0.0 });
+        Rgb::new(s[0], s[1], s[2])
+    })
 }
 
 fn distribution_of(d: DistributionDesc) -> Distribution {

@@ -313,6 +313,7 @@ impl MtlMaterials {
                 tint: ColorTex::Const(tint),
                 fresnel: DielectricFresnel::Exact,
                 thin: false,
+                absorption: Rgb::ZERO,
             })
         } else if illum == 3 {
             let tint = if ks.max_element() > 0.0 {

@@ -124,6 +124,9 @@ pub struct GlassMaterial {
     pub fresnel: DielectricFresnel,
     /// A thin sheet rather than a solid's boundary.
     pub thin: bool,
+    /// Absorption coefficient inside the solid, per channel, in 1/scene
+    /// units (zero: clear glass); see [`super::Material::absorption`].
+    pub absorption: Rgb,
 }
 
 impl MaterialModel for GlassMaterial {

@@ -398,6 +398,27 @@ impl Material {
         }
     }
 
+    /// The absorption coefficient inside the solid this material bounds,
+    /// per channel in 1/scene units: zero but for coloured `Glass` and
+    /// `RoughGlass` (their `attenuation`). Integrators multiply a path by
+    /// exp(−σ·t) over each length `t` it travels inside
+    /// (`integrators::Interior`).
+    pub fn absorption(&self) -> Rgb {
+        match self {
+            Material::Glass(m) => m.absorption,
+            Material::RoughGlass(m) => m.absorption,
+            Material::Lambert(_)
+            | Material::OrenNayar(_)
+            | Material::Phong(_)
+            | Material::BlinnPhong(_)
+            | Material::CookTorrance(_)
+            | Material::MetalPlastic(_)
+            | Material::Mirror(_)
+            | Material::Emitter(_)
+            | Material::RoughPlastic(_) => Rgb::ZERO,
+        }
+    }
+
     /// Whether any parameter is a texture (so shading needs `uv`).
     pub fn is_textured(&self) -> bool {
         forward_material!(self, m => m.is_textured())
@@ -530,6 +551,7 @@ mod material_tests {
                 tint: checker,
                 fresnel: DielectricFresnel::Exact,
                 thin: false,
+                absorption: Rgb::ZERO,
             })
             .is_textured()
         );
@@ -585,6 +607,7 @@ mod material_tests {
                 tint: checker,
                 fresnel: DielectricFresnel::Exact,
                 thin: false,
+                absorption: Rgb::ZERO,
             }),
             Material::Emitter(Emitter),
         ];

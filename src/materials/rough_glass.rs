@@ -172,6 +172,9 @@ pub struct RoughGlassMaterial {
     pub ior: ScalarTex,
     /// Colour of transmitted light, applied once per refraction.
     pub tint: ColorTex,
+    /// Absorption coefficient inside the solid, per channel, in 1/scene
+    /// units (zero: clear glass); see [`super::Material::absorption`].
+    pub absorption: Rgb,
 }
 
 impl MaterialModel for RoughGlassMaterial {

@@ -14,6 +14,7 @@
 //! | `KHR_texture_transform` | the lookup's UV transform (its `texCoord` override included) |
 //! | `KHR_materials_ior` | a note when ≠ 1.5: `MetalPlastic`'s F0 is 0.04; the glass's ior |
 //! | `KHR_materials_transmission` (× `transmissionTexture`) × (1 − metallic) | a `Blend` of the metallic–roughness model and glass by that weight (glass alone at 1): `Glass(thin: true)` tinted by the base colour; with `KHR_materials_volume` (`thicknessFactor` > 0) a solid: `Glass`, or `RoughGlass` (GGX) above roughness 0.05 |
+//! | `KHR_materials_volume` `attenuationColor` / `attenuationDistance` | the solid glass's `attenuation` (absorption −ln(colour)/distance inside) |
 //! | `occlusionTexture` | ignored with a note: a path tracer computes occlusion |
 //! | `doubleSided: false` | a note: ronray materials shade both sides |
 //!
@@ -282,7 +283,8 @@ struct Transmissive {
 /// surface is thin-walled, as the extension defines it — a thin `Glass`
 /// sheet; with one, the boundary of a solid — `Glass`, or `RoughGlass`
 /// (GGX) when `roughnessFactor` > 0.05. The base colour tints each
-/// crossing; `attenuationColor` is named in a note, not applied.
+/// crossing; `attenuationColor` after `attenuationDistance` is the solid's
+/// absorption (the glass's `attenuation`).
 fn transmissive(
     asset: &mut Source,
     images: &mut Images,
@@ -326,15 +328,29 @@ fn transmissive(
         }
     };
     let volume = m.volume().filter(|v| v.thickness_factor() > 0.0);
-    if let Some(v) = &volume {
-        let c = v.attenuation_color();
-        if v.attenuation_distance().is_finite() && c != [1.0; 3] {
-            note(format!(
-                "KHR_materials_volume attenuationColor {c:?} over {} not applied (the base colour tints each crossing)",
-                v.attenuation_distance()
-            ));
+    // Beer–Lambert absorption inside the solid: `attenuationColor` left
+    // after `attenuationDistance` (infinite, the default: clear).
+    let absorption = match &volume {
+        Some(v) => {
+            let (c, d) = (v.attenuation_color(), v.attenuation_distance());
+            let usable = c.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x));
+            if d.is_finite() && d > 0.0 && usable {
+                // A channel of 0 absorbs everything: read as 10⁻⁶, so the
+                // coefficient stays finite.
+                let sigma = c.map(|x| -x.max(1e-6).ln() / d);
+                Rgb::new(sigma[0], sigma[1], sigma[2])
+            } else {
+                if !(d.is_infinite() && d > 0.0 && usable) {
+                    note(format!(
+                        "KHR_materials_volume attenuationColor {c:?} over attenuationDistance {d} is no \
+                         absorption (colour channels in [0, 1], a distance > 0): clear glass"
+                    ));
+                }
+                Rgb::ZERO
+            }
         }
-    }
+        None => Rgb::ZERO,
+    };
     let rough = if t.roughness.is_finite() {
         t.roughness.clamp(0.0, 1.0)
     } else {
@@ -347,6 +363,7 @@ fn transmissive(
             roughness: Roughness::perceptual(rough),
             ior: crate::materials::Tex::Const(ior),
             tint: t.tint,
+            absorption,
         }),
         solid => {
             if solid.is_none() && rough > 0.05 {
@@ -359,6 +376,7 @@ fn transmissive(
                 tint: t.tint,
                 fresnel: DielectricFresnel::Exact,
                 thin: solid.is_none(),
+                absorption,
             })
         }
     };
