@@ -62,9 +62,10 @@ pub struct Scene {
     /// perfect-specular surfaces for them to matter.
     pub caustics: Option<CausticEmitters>,
     /// Each material's absorption coefficient inside the solid it bounds
-    /// (`Material::absorption`), indexed like `materials`; empty when no
-    /// material absorbs, so clear scenes skip the bookkeeping.
-    pub absorption: Vec<crate::math::Rgb>,
+    /// (`Material::interior`: `None` for surfaces light does not enter),
+    /// indexed like `materials`; empty when no material absorbs, so clear
+    /// scenes skip the bookkeeping.
+    pub absorption: Vec<Option<crate::math::Rgb>>,
     /// Participating media, when the scene declares any: the path tracer
     /// takes its volumetric branch only then (`integrators::vol_path`).
     pub media: Option<Box<Media>>,

@@ -310,44 +310,7 @@ fn hostile_numbers_in_blends_never_panic_and_render_finite() {
         l.scene.surfaces.iter().any(|s| s.blend.is_some()),
         "the seed has blends"
     );
-    // Each number token's byte range.
-    let bytes = seed.as_bytes();
-    let mut numbers = Vec::new();
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i].is_ascii_digit() && (i == 0 || !bytes[i - 1].is_ascii_alphanumeric()) {
-            let start = if i > 0 && bytes[i - 1] == b'-' { i - 1 } else { i };
-            let mut end = i;
-            while end < bytes.len() && (bytes[end].is_ascii_digit() || bytes[end] == b'.') {
-                end += 1;
-            }
-            numbers.push((start, end));
-            i = end;
-        } else {
-            i += 1;
-        }
-    }
-    assert!(numbers.len() > 40, "{} numbers", numbers.len());
-    let (mut loaded, mut refused) = (0, 0);
-    for (k, &(start, end)) in numbers.iter().enumerate() {
-        let hostile = ["-1", "0", "1e30", "-0.0", "1e-30", "2", "inf", "NaN"][k % 8];
-        let text = format!("{}{hostile}{}", &seed[..start], &seed[end..]);
-        let o = Overrides {
-            spp: Some(2),
-            size: Some((8, 8)),
-            ..Default::default()
-        };
-        match load_str(&root().join("scenes/test.ron"), &text, &o) {
-            Ok(l) => {
-                loaded += 1;
-                let img = render_whole(&l.scene, &l.view, &Default::default()).0;
-                assert!(
-                    img.pixels.iter().all(|p| p.is_finite()),
-                    "{hostile} at byte {start}: non-finite pixels"
-                );
-            }
-            Err(_) => refused += 1,
-        }
-    }
+    let (numbers, loaded, refused) = common::hostile_number_sweep(&seed);
+    assert!(numbers > 40, "{numbers} numbers");
     assert!(loaded > 0 && refused > 0, "{loaded} loaded, {refused} refused");
 }

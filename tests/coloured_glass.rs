@@ -297,3 +297,137 @@ fn wrong_attenuations_are_located_errors() {
         assert!(e.contains(want), "missing `{want}` in:\n{e}");
     }
 }
+
+/// Every number of the fuzz seed `fuzz/corpus/scene/coloured_glass.ron`
+/// replaced in turn by a hostile one: each variant loads or is refused, and
+/// each that loads renders finite pixels.
+#[test]
+fn hostile_numbers_in_coloured_glass_never_panic_and_render_finite() {
+    let seed = std::fs::read_to_string(common::root().join("fuzz/corpus/scene/coloured_glass.ron"))
+        .expect("the fuzz seed");
+    assert!(!scene(&seed).scene.absorption.is_empty(), "the seed absorbs");
+    let (numbers, loaded, refused) = common::hostile_number_sweep(&seed);
+    assert!(numbers > 40, "{numbers} numbers");
+    assert!(loaded > 0 && refused > 0, "{loaded} loaded, {refused} refused");
+}
+
+/// A generated family: 1 to 5 disjoint index-matched solids (balls, and
+/// axis-aligned boxes traced as SDFs), each with its own colour and
+/// distance, some holding a clear ball (ice in a drink), under a white sky,
+/// seen along random rays — some from inside a solid. Whatever the mix, a
+/// ray keeps exp(−Σ σᵢ·(chordᵢ − iceᵢ)), chordᵢ the length of the ray
+/// inside solid i from its origin on and iceᵢ the length inside its ice.
+#[test]
+fn random_index_matched_solids_absorb_along_their_chords() {
+    let mut state = 0x9E37_79B9_7F4A_7C15u64;
+    let mut rand = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut checked = 0;
+    for family in 0..12 {
+        // Solids on a row along x, 3 apart, so they never overlap.
+        let count = 1 + family % 5;
+        let mut solids = Vec::new();
+        let (mut materials, mut objects) = (String::from(r#""ice": Glass(ior: 1),"#), String::new());
+        for i in 0..count {
+            let centre = Vec3A::new(3.0 * i as f32 - 6.0, rand() - 0.5, rand() - 0.5);
+            let colour = [0.2 + 0.8 * rand(), 0.2 + 0.8 * rand(), 0.2 + 0.8 * rand()];
+            let distance = 0.3 + 2.0 * rand();
+            let sigma = Vec3A::from_array(colour.map(|c| -c.ln() / distance));
+            materials += &format!(
+                r#""m{i}": Glass(ior: 1, attenuation: (color: ({}, {}, {}), distance: {distance})),"#,
+                colour[0], colour[1], colour[2]
+            );
+            let size = 0.4 + 0.8 * rand();
+            let is_box = rand() < 0.5;
+            if is_box {
+                let h = Vec3A::new(size, 0.5 + 0.5 * rand(), 0.3 + 0.7 * rand());
+                objects += &format!(
+                    r#"Sdf(shape: Box(half_extents: ({}, {}, {})), material: "m{i}", transform: [Translate(({}, {}, {}))]),"#,
+                    h.x, h.y, h.z, centre.x, centre.y, centre.z
+                );
+                solids.push((centre, Some(h), size, sigma, h.min_element()));
+            } else {
+                objects += &format!(
+                    r#"Sphere(center: ({}, {}, {}), radius: {size}, material: "m{i}"),"#,
+                    centre.x, centre.y, centre.z
+                );
+                solids.push((centre, None, size, sigma, size));
+            }
+            // Ice: a clear ball inside, half the solid's smallest extent.
+            let ice = if rand() < 0.5 { 0.5 * solids[i].4 } else { 0.0 };
+            solids[i].4 = ice;
+            if ice > 0.0 {
+                objects += &format!(
+                    r#"Sphere(center: ({}, {}, {}), radius: {ice}, material: "ice"),"#,
+                    centre.x, centre.y, centre.z
+                );
+            }
+        }
+        // The length of ray o + t·d (t ≥ 0) inside each solid.
+        type Solid = (Vec3A, Option<Vec3A>, f32, Vec3A, f32);
+        let chord = |o: Vec3A, d: Vec3A, (c, half, r, ..): &Solid| -> f32 {
+            let (t0, t1) = match half {
+                Some(h) => {
+                    let (mut lo, mut hi) = (f32::NEG_INFINITY, f32::INFINITY);
+                    for a in 0..3 {
+                        let (a0, a1) = ((c[a] - h[a] - o[a]) / d[a], (c[a] + h[a] - o[a]) / d[a]);
+                        lo = lo.max(a0.min(a1));
+                        hi = hi.min(a0.max(a1));
+                    }
+                    (lo, hi)
+                }
+                None => {
+                    let oc = o - *c;
+                    let b = oc.dot(d);
+                    let disc = b * b - (oc.length_squared() - r * r);
+                    if disc <= 0.0 {
+                        return 0.0;
+                    }
+                    (-b - disc.sqrt(), -b + disc.sqrt())
+                }
+            };
+            (t1.min(f32::INFINITY) - t0.max(0.0)).max(0.0)
+        };
+        // No Russian roulette: a ray through several solids and their ice
+        // has more segments than `rr_depth`'s default.
+        for integrator in [
+            "Path(max_depth: 64, rr_depth: 64, caustics: PathOnly)",
+            "Whitted(max_depth: 64)",
+        ] {
+            let l = scene(&format!(
+                r#"Scene(
+                camera: (eye: (0, 0, 9), target: (0, 0, 0), fov_y_degrees: 40),
+                integrator: {integrator},
+                materials: {{ {materials} }},
+                lights: [Environment(radiance: (1, 1, 1))],
+                objects: [{objects}],
+            )"#
+            ));
+            for k in 0..6 {
+                // From afar along a random direction through the row, or
+                // from a point inside one of the solids.
+                let target = solids[k % count].0 + 0.3 * Vec3A::new(rand() - 0.5, rand() - 0.5, rand() - 0.5);
+                let d = Vec3A::new(rand() - 0.5, rand() - 0.5, rand() - 0.5).normalize();
+                let o = if k % 3 == 2 { target } else { target - 20.0 * d };
+                let want = solids.iter().fold(Vec3A::ONE, |acc, s| {
+                    let ice = (s.0, None, s.4, Vec3A::ZERO, 0.0);
+                    let t = chord(o, d, s) - if s.4 > 0.0 { chord(o, d, &ice) } else { 0.0 };
+                    acc * Vec3A::new((-s.3.x * t).exp(), (-s.3.y * t).exp(), (-s.3.z * t).exp())
+                });
+                let got = mean_li(&l, Ray::new(o, d), 4);
+                for c in 0..3 {
+                    assert!(
+                        (got[c] - want[c]).abs() <= 2e-3 + 2e-3 * want[c],
+                        "family {family} ({integrator}), ray {k} from {o} along {d}, channel {c}: {got} against {want}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 144);
+}

@@ -1713,6 +1713,7 @@ fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
             .absorption
             .get(hit.material as usize)
             .copied()
+            .flatten()
             .unwrap_or_default()
     };
     let sigma = absorption_of(1);

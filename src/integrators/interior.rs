@@ -8,22 +8,24 @@
 //! sampling, with an albedo of 0, ends paths at random instead).
 //!
 //! A path knows which solid it is in by the crossings it made: a
-//! transmission into an absorbing material's surface (against its outward
-//! geometric normal) enters σ, a transmission out of it leaves it for the
-//! clear outside. So a ray between two objects inside the solid (a straw in
-//! tea) is absorbed like the rest. What the path cannot know is where it
-//! started: a camera or a light inside a solid starts as outside, and the
-//! first surface it reaches from the inside of an absorbing material
-//! (along its outward normal) tells it — that segment is absorbed with that
-//! material's σ. So a camera under water sees the water's colour on the
-//! segment to the surface it looks at; what it sees of an object inside the
-//! water before that surface is not absorbed on the way (stated in
-//! `docs/materials.md`).
+//! transmission into a solid's surface (`Glass` but a thin sheet,
+//! `RoughGlass`; against its outward geometric normal) enters its σ (zero
+//! for clear glass), a transmission out of it leaves it for the clear
+//! outside; other surfaces (a straw in tea) leave the path where it was, so
+//! a ray between two objects inside the solid is absorbed like the rest.
+//! What the path cannot know is where it started, or what is around a solid
+//! it leaves: a path that is not known to be in coloured glass and reaches
+//! the inside of a coloured glass surface (along its outward normal) was in
+//! it, and that segment is absorbed with that material's σ. So a camera
+//! under water sees the water's colour on the segment to the surface it
+//! looks at, and a path leaving an ice cube in a drink is absorbed by the
+//! drink up to the glass; what lies on the way (an object inside the water
+//! seen before any such surface, or between the ice and the glass) is not
+//! absorbed on that segment (stated in `docs/materials.md`).
 //!
 //! Meshes must be closed and wound outward (`KHR_materials_volume` asks the
-//! same); solids must not overlap (a single absorbing solid at a time:
-//! a path entering an absorbing solid from inside another takes the new
-//! one's σ, and leaving it takes the clear outside).
+//! same), and solids must not overlap: the path keeps one solid, not a
+//! stack of nested ones.
 
 use crate::geometry::Hit;
 use crate::math::Rgb;
@@ -51,7 +53,7 @@ impl Interior {
         let sigma = if self.0 != Rgb::ZERO {
             self.0
         } else if d.dot(hit.ng) > 0.0 {
-            absorption_of(scene, hit)
+            interior_of(scene, hit).unwrap_or(Rgb::ZERO)
         } else {
             return Rgb::ONE;
         };
@@ -69,31 +71,24 @@ impl Interior {
         }
     }
 
-    /// The solid a ray leaving `hit` along `w` is in: an absorbing
-    /// surface's inside behind its outward normal, the clear outside in
+    /// The solid a ray leaving `hit` along `w` is in: a solid's inside
+    /// behind its outward normal (clear or coloured), the clear outside in
     /// front of it; past any other surface, the same as before.
     #[inline]
     pub fn beyond(self, scene: &Scene, hit: &Hit, w: Vec3A) -> Interior {
-        let sigma = absorption_of(scene, hit);
-        if sigma == Rgb::ZERO {
-            self
-        } else if w.dot(hit.ng) < 0.0 {
-            Interior(sigma)
-        } else {
-            Interior::OUTSIDE
+        match interior_of(scene, hit) {
+            None => self,
+            Some(sigma) if w.dot(hit.ng) < 0.0 => Interior(sigma),
+            Some(_) => Interior::OUTSIDE,
         }
     }
 }
 
-/// The absorption coefficient of the material at `hit` (zero when the
-/// scene has none).
+/// The absorption inside the solid the surface at `hit` bounds; `None`
+/// when it bounds none (or the scene has no coloured glass).
 #[inline]
-fn absorption_of(scene: &Scene, hit: &Hit) -> Rgb {
-    scene
-        .absorption
-        .get(hit.material as usize)
-        .copied()
-        .unwrap_or(Rgb::ZERO)
+fn interior_of(scene: &Scene, hit: &Hit) -> Option<Rgb> {
+    scene.absorption.get(hit.material as usize).copied().flatten()
 }
 
 /// exp(−σt) per channel; a channel with σ = 0 keeps 1 even at t = ∞, and

@@ -289,12 +289,14 @@ pub fn build_in(
         Vec::new()
     };
     let lanes = ShapeLanes::new(&shapes[..bounded as usize]);
-    let absorption: Vec<crate::math::Rgb> =
-        if materials.iter().any(|m| m.absorption() != crate::math::Rgb::ZERO) {
-            materials.iter().map(Material::absorption).collect()
-        } else {
-            Vec::new()
-        };
+    let absorption: Vec<Option<crate::math::Rgb>> = if materials
+        .iter()
+        .any(|m| m.interior().is_some_and(|s| s != crate::math::Rgb::ZERO))
+    {
+        materials.iter().map(Material::interior).collect()
+    } else {
+        Vec::new()
+    };
     let mut scene = Scene {
         absorption,
         caustics,

@@ -125,7 +125,7 @@ pub struct GlassMaterial {
     /// A thin sheet rather than a solid's boundary.
     pub thin: bool,
     /// Absorption coefficient inside the solid, per channel, in 1/scene
-    /// units (zero: clear glass); see [`super::Material::absorption`].
+    /// units (zero: clear glass); see [`super::Material::interior`].
     pub absorption: Rgb,
 }
 

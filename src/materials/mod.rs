@@ -399,14 +399,15 @@ impl Material {
     }
 
     /// The absorption coefficient inside the solid this material bounds,
-    /// per channel in 1/scene units: zero but for coloured `Glass` and
-    /// `RoughGlass` (their `attenuation`). Integrators multiply a path by
-    /// exp(−σ·t) over each length `t` it travels inside
-    /// (`integrators::Interior`).
-    pub fn absorption(&self) -> Rgb {
+    /// per channel in 1/scene units, for the materials that bound a solid
+    /// (`Glass` but a thin sheet, `RoughGlass`): zero for clear glass, the
+    /// `attenuation`'s for coloured glass; `None` for surfaces light does
+    /// not enter. Integrators multiply a path by exp(−σ·t) over each length
+    /// `t` it travels inside (`integrators::interior`).
+    pub fn interior(&self) -> Option<Rgb> {
         match self {
-            Material::Glass(m) => m.absorption,
-            Material::RoughGlass(m) => m.absorption,
+            Material::Glass(m) => (!m.thin).then_some(m.absorption),
+            Material::RoughGlass(m) => Some(m.absorption),
             Material::Lambert(_)
             | Material::OrenNayar(_)
             | Material::Phong(_)
@@ -415,7 +416,7 @@ impl Material {
             | Material::MetalPlastic(_)
             | Material::Mirror(_)
             | Material::Emitter(_)
-            | Material::RoughPlastic(_) => Rgb::ZERO,
+            | Material::RoughPlastic(_) => None,
         }
     }
 

@@ -173,7 +173,7 @@ pub struct RoughGlassMaterial {
     /// Colour of transmitted light, applied once per refraction.
     pub tint: ColorTex,
     /// Absorption coefficient inside the solid, per channel, in 1/scene
-    /// units (zero: clear glass); see [`super::Material::absorption`].
+    /// units (zero: clear glass); see [`super::Material::interior`].
     pub absorption: Rgb,
 }
 

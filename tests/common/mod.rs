@@ -379,3 +379,50 @@ pub fn masked_blocks_off(
     }
     bad
 }
+
+/// Each number of scene text `seed` replaced in turn by one of −1, 0,
+/// 1e30, −0.0, 1e-30, 2, inf or NaN: every variant must load or be refused
+/// without a panic, and every one that loads must render finite pixels
+/// (8 × 8, 2 spp). Returns how many numbers, and how many variants loaded
+/// and were refused.
+pub fn hostile_number_sweep(seed: &str) -> (usize, usize, usize) {
+    // Each number token's byte range.
+    let bytes = seed.as_bytes();
+    let mut numbers = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i].is_ascii_digit() && (i == 0 || !bytes[i - 1].is_ascii_alphanumeric()) {
+            let start = if i > 0 && bytes[i - 1] == b'-' { i - 1 } else { i };
+            let mut end = i;
+            while end < bytes.len() && (bytes[end].is_ascii_digit() || bytes[end] == b'.') {
+                end += 1;
+            }
+            numbers.push((start, end));
+            i = end;
+        } else {
+            i += 1;
+        }
+    }
+    let (mut loaded, mut refused) = (0, 0);
+    for (k, &(start, end)) in numbers.iter().enumerate() {
+        let hostile = ["-1", "0", "1e30", "-0.0", "1e-30", "2", "inf", "NaN"][k % 8];
+        let text = format!("{}{hostile}{}", &seed[..start], &seed[end..]);
+        let o = Overrides {
+            spp: Some(2),
+            size: Some((8, 8)),
+            ..Default::default()
+        };
+        match load_str(&root().join("scenes/test.ron"), &text, &o) {
+            Ok(l) => {
+                loaded += 1;
+                let img = render_whole(&l.scene, &l.view, &Default::default()).0;
+                assert!(
+                    img.pixels.iter().all(|p| p.is_finite()),
+                    "{hostile} at byte {start}: non-finite pixels"
+                );
+            }
+            Err(_) => refused += 1,
+        }
+    }
+    (numbers.len(), loaded, refused)
+}
