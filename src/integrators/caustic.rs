@@ -383,7 +383,7 @@ pub fn splat(
         return None;
     }
     // Absorbed on the way when y and the eye are inside coloured glass.
-    let c = c * y.inside.beyond(scene, &y.hit, to_eye).over(len);
+    let c = c * y.inside.beyond(scene, &y.hit, to_eye).over(scene, len);
     counters.rays += 1;
     if scene.occluded(&Ray::new(o, seg / len), len * (1.0 - 1e-4)) {
         return None;

@@ -101,7 +101,7 @@ pub(crate) fn all_lights(
                 } else {
                     power_heuristic(ls.pdf, bsdf.pdf(wo, wi))
                 };
-                let kept = inside.beyond(scene, hit, ls.wi).over(ls.dist);
+                let kept = inside.beyond(scene, hit, ls.wi).over(scene, ls.dist);
                 sum += f * ls.li * kept * (wi.z.abs() * w / ls.pdf);
             }
         }
@@ -131,7 +131,7 @@ pub(crate) fn all_lights(
                 None => match scene.environment() {
                     Some((_, env)) => {
                         let (le, pdf) = env.le_and_pdf(ray.d, side);
-                        (le * beyond.over(f32::INFINITY), pdf)
+                        (le * beyond.over(scene, f32::INFINITY), pdf)
                     }
                     None => continue,
                 },

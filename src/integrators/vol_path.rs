@@ -122,7 +122,7 @@ pub(super) fn li(
                 break;
             }
             if let Some(t) = c.t {
-                beta *= inside.over(t);
+                beta *= inside.over(scene, t);
                 segments += 1;
                 if segments >= path.max_depth {
                     break;
@@ -139,7 +139,7 @@ pub(super) fn li(
                     if f > 0.0 {
                         let (shadow, extent) = shadow_from_point(p, &ls);
                         let tr = transmittance(scene, media, medium, shadow, extent, sampler, counters)
-                            * inside.over(ls.dist);
+                            * inside.over(scene, ls.dist);
                         if tr != Rgb::ZERO {
                             let light_pdf = pmf * ls.pdf;
                             let w = if ls.delta {
@@ -168,7 +168,7 @@ pub(super) fn li(
         }
 
         let Some(object) = found else {
-            beta *= inside.over(f32::INFINITY);
+            beta *= inside.over(scene, f32::INFINITY);
             // Out of the scene: the environment, as in `path.rs`.
             match scene.environment() {
                 Some((i, env)) if !prev.delta => {
@@ -244,7 +244,7 @@ pub(super) fn li(
             if f != Rgb::ZERO {
                 let (shadow, extent) = super::shadow_ray(&hit, &ls);
                 let tr = transmittance(scene, media, beyond(ls.wi), shadow, extent, sampler, counters)
-                    * inside.beyond(scene, &hit, ls.wi).over(ls.dist);
+                    * inside.beyond(scene, &hit, ls.wi).over(scene, ls.dist);
                 if tr != Rgb::ZERO {
                     let light_pdf = pmf * ls.pdf;
                     let w = if ls.delta {

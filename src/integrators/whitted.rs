@@ -39,7 +39,7 @@ impl Whitted {
             let Some(hit) = scene.intersect(&ray, f32::INFINITY) else {
                 // Past a mirror or glass the environment counts fully: light
                 // sampling cannot reach it through a delta bounce.
-                l += beta * inside.over(f32::INFINITY) * escaped(scene, ray.d, depth == 0);
+                l += beta * inside.over(scene, f32::INFINITY) * escaped(scene, ray.d, depth == 0);
                 break;
             };
             beta *= inside.to_hit(scene, &hit, ray.d);

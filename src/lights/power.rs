@@ -113,8 +113,9 @@ impl LightPicker {
         self.tree.as_ref().map(|t| t.top(p, n))
     }
 
-    /// [`Self::pick`] with `top` = [`Self::top`]`(p, n)`.
-    #[inline]
+    /// [`Self::pick`] with `top` = [`Self::top`]`(p, n)`. Always inlined:
+    /// a dispatch on the selection, the tree's walk out of line.
+    #[inline(always)]
     pub fn pick_from(&self, top: Option<&Top>, p: Vec3A, n: Vec3A, u: f32) -> Option<(usize, f32)> {
         match (&self.tree, top) {
             (Some(t), Some(top)) => t.pick_from(top, p, n, u),
