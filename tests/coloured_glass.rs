@@ -431,3 +431,40 @@ fn random_index_matched_solids_absorb_along_their_chords() {
     }
     assert_eq!(checked, 144);
 }
+
+/// Coloured glass so thick for its `distance` that it keeps under 1/1000
+/// of every channel warns, at the distance, with the object's thickness;
+/// a reasonable distance, or one channel that gets through, does not.
+#[test]
+fn coloured_glass_too_dark_to_see_through_warns() {
+    let text = |material: &str| {
+        format!(
+            r#"Scene(
+            camera: (eye: (0, 0, 5), target: (0, 0, 0), fov_y_degrees: 40),
+            integrator: Path(max_depth: 8),
+            materials: {{ "g": {material} }},
+            lights: [Environment(radiance: (1, 1, 1))],
+            objects: [Sphere(center: (0, 0, 0), radius: 1, material: "g")],
+        )"#
+        )
+    };
+    // Written in centimetres in a scene of metres: 2 units across, 0.01 per
+    // halving: 2^-200.
+    let dark = r#"Glass(attenuation: (color: (0.5, 0.5, 0.5), distance: 0.01))"#;
+    let wrapped = format!(r#"NormalMap(map: (0.5, 0.5, 1), material: {dark})"#);
+    for m in [dark, wrapped.as_str()] {
+        let notes = common::notes_text(&scene(&text(m)));
+        assert!(
+            notes.contains("objects[0]") && notes.contains("will look black") && notes.contains("2.000"),
+            "{m}: {notes}"
+        );
+    }
+    for m in [
+        r#"Glass(attenuation: (color: (0.5, 0.5, 0.5), distance: 1))"#,
+        // Blue gets through: a deep blue ball, not a black one.
+        r#"RoughGlass(roughness: 0.2, attenuation: (color: (0.01, 0.01, 0.9), distance: 0.1))"#,
+    ] {
+        let notes = common::notes_text(&scene(&text(m)));
+        assert!(!notes.contains("will look black"), "{m}: {notes}");
+    }
+}

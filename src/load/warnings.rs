@@ -25,6 +25,11 @@
 //!   gizmo); the ground is then lit from beneath.
 //! - **Field of view under 5°.** `fov_y_degrees` written in radians by habit
 //!   (`0.7`) still validates and zooms in about 57 times.
+//! - **Coloured glass too dark to see through.** An object of coloured glass
+//!   (`attenuation`) so thick for its `distance` that light crossing its
+//!   thinnest side keeps under 1/1000 of every channel: it renders black
+//!   (a `distance` written in centimetres in a scene of metres). Judged by
+//!   the object's bounds once built ([`warnings_built`]).
 //!
 //! Reflectances written on a 0–255 scale are not here: any reflectance
 //! channel above 1 is already an error (`validate::Checker::color`), whose
@@ -71,6 +76,7 @@ pub fn warnings_built(
     out.extend(facing::lights_facing_away(desc, built));
     out.extend(suns_from_below(desc));
     out.extend(narrow_fov(&desc.camera));
+    out.extend(dark_coloured_glass(desc, built));
     out
 }
 
@@ -261,8 +267,72 @@ fn specular_under_direct(desc: &SceneDesc) -> Vec<Problem> {
         .collect()
 }
 
-/// A field of view under [`MIN_FOV_DEGREES`]; the help offers the radian
-/// reading when it would be a valid angle.
+/// Least share of a channel that light crossing a coloured glass object's
+/// thinnest side may keep, in every channel, before the object is
+/// reported as rendering black.
+pub const DARK_GLASS_KEEPS: f32 = 1e-3;
+
+/// The `attenuation` of `m` or of any material inside it (through
+/// wrappers and both sides of blends): colour and distance.
+fn attenuation_in(m: &MaterialDesc) -> Option<crate::desc::AttenuationDesc> {
+    match m.inner() {
+        crate::desc::MaterialInner::Wrapped(inner) => attenuation_in(inner),
+        crate::desc::MaterialInner::Blend(a, b) => attenuation_in(a).or_else(|| attenuation_in(b)),
+        crate::desc::MaterialInner::Model => {
+            if let MaterialDesc::Glass { attenuation, .. } | MaterialDesc::RoughGlass { attenuation, .. } = m
+            {
+                *attenuation
+            } else {
+                None
+            }
+        }
+    }
+}
+
+/// One warning per object of coloured glass that keeps under
+/// [`DARK_GLASS_KEEPS`] of every channel across its thinnest side (its
+/// bounds as built; objects whose bounds are not known are not judged).
+fn dark_coloured_glass(desc: &SceneDesc, built: &[Option<crate::accel::Aabb>]) -> Vec<Problem> {
+    let mut out = Vec::new();
+    for (i, o) in desc.objects.iter().enumerate() {
+        let Some(name) = o.material() else { continue };
+        let Some(a) = desc.materials.get(name).and_then(attenuation_in) else {
+            continue;
+        };
+        let Some(Some(b)) = built.get(i) else { continue };
+        let size = b.max - b.min;
+        let thinnest = size.min_element();
+        if !(thinnest > 0.0 && thinnest.is_finite() && a.distance > 0.0) {
+            continue;
+        }
+        // log₁₀ of the most any channel keeps (in logs: the share itself
+        // leaves f32 for thick objects).
+        let keeps = a
+            .color
+            .iter()
+            .map(|c| c.log10() * thinnest / a.distance)
+            .fold(f32::NEG_INFINITY, f32::max);
+        if keeps < DARK_GLASS_KEEPS.log10() {
+            out.push(
+                Problem::new(
+                    format!("materials.{name}.attenuation.distance"),
+                    format!(
+                        "object `objects[{i}]` is {thinnest:.3} scene units across its thinnest side, and its \
+                         coloured glass keeps `color` every {} units: light crossing it keeps at most 1e{keeps:.0} \
+                         of any channel, so it will look black",
+                        a.distance
+                    ),
+                )
+                .help(format!(
+                    "`distance` is in scene units: about the object's thickness ({thinnest:.3}) gives it `color` \
+                     across"
+                )),
+            );
+        }
+    }
+    out
+}
+
 /// One warning per directional light of positive irradiance that travels
 /// upward, more than 5° above the camera's horizon (module docs).
 fn suns_from_below(desc: &SceneDesc) -> Vec<Problem> {
@@ -301,6 +371,8 @@ fn suns_from_below(desc: &SceneDesc) -> Vec<Problem> {
         .collect()
 }
 
+/// A field of view under [`MIN_FOV_DEGREES`]; the help offers the radian
+/// reading when it would be a valid angle.
 fn narrow_fov(camera: &CameraDesc) -> Option<Problem> {
     let f = camera.fov_y_degrees?;
     if f >= MIN_FOV_DEGREES {
