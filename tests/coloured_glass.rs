@@ -468,3 +468,31 @@ fn coloured_glass_too_dark_to_see_through_warns() {
         assert!(!notes.contains("will look black"), "{m}: {notes}");
     }
 }
+
+/// An absorption coefficient past f32 (a tiny colour over a tiny distance)
+/// absorbs everything — not read as clear, and no NaN where a path starts
+/// on the surface (length 0).
+#[test]
+fn an_absorption_past_f32_absorbs_everything() {
+    let text = ball(1.0, "Path(max_depth: 64, caustics: PathOnly)", "", "").replace(
+        "(color: (0.5, 0.25, 1.0), distance: 1)",
+        "(color: (1e-38, 0.5, 1), distance: 1e-38)",
+    );
+    let l = scene(&text);
+    let sigma = l
+        .scene
+        .absorption
+        .iter()
+        .flatten()
+        .next()
+        .copied()
+        .unwrap_or_default();
+    assert_eq!(sigma.x, f32::MAX, "{sigma}");
+    let got = mean_li(
+        &l,
+        Ray::new(Vec3A::new(0.2, 0.0, 5.0), Vec3A::new(0.0, 0.0, -1.0)),
+        16,
+    );
+    assert!(got.is_finite() && got.x == 0.0 && got.z == 1.0, "{got}");
+    assert!(common::render_loaded(&l).pixels.iter().all(|p| p.is_finite()));
+}

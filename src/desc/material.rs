@@ -296,9 +296,14 @@ pub struct AttenuationDesc {
 
 impl AttenuationDesc {
     /// The absorption coefficient per channel, in 1/scene units (0 for a
-    /// channel of colour 1). The caller has checked the ranges.
+    /// channel of colour 1), finite: a coefficient past f32 (a tiny colour
+    /// over a tiny distance) is the largest f32, which absorbs everything
+    /// in any length, not infinity (∞·0 is no number) and not 0 (clear).
     pub fn sigma(&self) -> [f32; 3] {
-        self.color.map(|c| (-c.ln() / self.distance).max(0.0))
+        self.color.map(|c| {
+            let s = -c.ln() / self.distance;
+            if s > 0.0 { s.min(f32::MAX) } else { 0.0 }
+        })
     }
 }
 

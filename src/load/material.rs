@@ -788,13 +788,9 @@ fn build_material(b: &mut Builder, path: &str, m: &MaterialDesc, surface: &mut S
     }
 }
 
-/// The absorption coefficient of a glass's `attenuation` (zero: clear), as
-/// checked (a channel out of range reads as unabsorbed).
+/// The absorption coefficient of a glass's `attenuation` (zero: clear).
 fn absorption_of(a: Option<&crate::desc::AttenuationDesc>) -> Rgb {
-    a.map_or(Rgb::ZERO, |a| {
-        let s = a.sigma().map(|x| if x.is_finite() { x } else { 0.0 });
-        Rgb::new(s[0], s[1], s[2])
-    })
+    a.map_or(Rgb::ZERO, |a| Rgb::from_array(a.sigma()))
 }
 
 fn distribution_of(d: DistributionDesc) -> Distribution {

@@ -335,9 +335,9 @@ fn transmissive(
             let (c, d) = (v.attenuation_color(), v.attenuation_distance());
             let usable = c.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x));
             if d.is_finite() && d > 0.0 && usable {
-                // A channel of 0 absorbs everything: read as 10⁻⁶, so the
-                // coefficient stays finite.
-                let sigma = c.map(|x| -x.max(1e-6).ln() / d);
+                // A channel of 0 absorbs everything: read as 10⁻⁶, and the
+                // coefficient kept finite (a tiny distance overflows it).
+                let sigma = c.map(|x| (-x.max(1e-6).ln() / d).min(f32::MAX));
                 Rgb::new(sigma[0], sigma[1], sigma[2])
             } else {
                 if !(d.is_infinite() && d > 0.0 && usable) {
