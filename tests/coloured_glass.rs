@@ -140,8 +140,9 @@ fn cameras_and_lights_inside_the_glass_are_absorbed_on_the_way() {
 
 /// The same rough-glass ball holding a lamp, over a floor, once with
 /// `attenuation` and once clear but filled with a purely absorbing medium
-/// of the same σ (the volumetric path tracer's free-flight sampling): the
-/// two estimators share no absorption code, and must agree ray by ray —
+/// of the same σ (the volumetric path tracer, which finds the medium by
+/// the object's `interior`): the two share no absorption code, and must
+/// agree ray by ray —
 /// through the glass onto the lamp, onto the floor it lights, and on the
 /// ball's rough surface lit from inside (next-event estimation through the
 /// inside).

@@ -1,11 +1,13 @@
 //! Absorption inside coloured glass (`Glass`/`RoughGlass` `attenuation`):
 //! Beer–Lambert's exp(−σ·t) over every length `t` a path travels inside a
 //! solid whose surface has an absorption coefficient σ
-//! (`Material::absorption`). It is what Mitsuba 3 and pbrt-v4 render with a
-//! dielectric holding a purely absorbing homogeneous medium, but applied in
-//! closed form along each segment: no distance is sampled, so the
-//! absorption adds no noise (a volumetric path tracer's free-flight
-//! sampling, with an albedo of 0, ends paths at random instead).
+//! (`Material::interior`). It is what Mitsuba 3 and pbrt-v4 render with a
+//! dielectric holding a purely absorbing homogeneous medium, applied in
+//! closed form along each segment (no distance is sampled: no noise), but
+//! as a property of the material: it needs no `interior` on the object (a
+//! glTF asset is one object with many materials), and a scene keeps the
+//! surface path tracer and its light-traced caustics, which a scene with
+//! media gives up (`vol_path`).
 //!
 //! A path knows which solid it is in by the crossings it made: a
 //! transmission into a solid's surface (`Glass` but a thin sheet,
