@@ -146,8 +146,9 @@ impl Path {
             inside: Interior::OUTSIDE,
         };
         // Two copies of the loop: scenes without coloured glass run one
-        // with no absorption bookkeeping at all (it cost clear scenes 1.5–2%
-        // of their instructions as run-time tests).
+        // with no absorption bookkeeping at all, the loop they ran before
+        // (one loop with run-time tests cost `cornell` 1.5% more
+        // instructions, by changing what LLVM inlined: docs/benchmarks.md).
         let l = if scene.absorption.is_empty() {
             self.trace::<false>(scene, start, self.splits, None, first, sampler, counters)
         } else {
