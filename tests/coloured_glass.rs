@@ -18,8 +18,13 @@ fn sigma() -> Vec3A {
 }
 
 /// exp(−σ·t) per channel.
+fn beer(sigma: Vec3A, t: f32) -> Vec3A {
+    Vec3A::new((-sigma.x * t).exp(), (-sigma.y * t).exp(), (-sigma.z * t).exp())
+}
+
+/// What [`sigma`]'s glass keeps over `t`.
 fn kept(t: f32) -> Vec3A {
-    Vec3A::new((-sigma().x * t).exp(), (-sigma().y * t).exp(), 1.0)
+    beer(sigma(), t)
 }
 
 /// A unit ball of coloured glass of index `ior` at the origin under a white
@@ -417,7 +422,7 @@ fn random_index_matched_solids_absorb_along_their_chords() {
                 let want = solids.iter().fold(Vec3A::ONE, |acc, s| {
                     let ice = (s.0, None, s.4, Vec3A::ZERO, 0.0);
                     let t = chord(o, d, s) - if s.4 > 0.0 { chord(o, d, &ice) } else { 0.0 };
-                    acc * Vec3A::new((-s.3.x * t).exp(), (-s.3.y * t).exp(), (-s.3.z * t).exp())
+                    acc * beer(s.3, t)
                 });
                 let got = mean_li(&l, Ray::new(o, d), 4);
                 for c in 0..3 {

@@ -168,7 +168,9 @@ impl Path {
     /// continuation along its own BSDF sample (its numbers from
     /// [`Sampler::split`]) with weight 1/`splits`; continuations do not
     /// split again. `first`: the camera ray's first hit when the caller
-    /// found it ([`Path::li_first_found`]).
+    /// found it ([`Path::li_first_found`]). `ABSORBING`: whether any
+    /// material absorbs inside (coloured glass); only then does the path
+    /// track the solid it is in.
     #[allow(clippy::too_many_arguments)] // each is a different piece of the path's state
     fn trace<const ABSORBING: bool>(
         &self,
@@ -184,9 +186,6 @@ impl Path {
         let mut l = Rgb::ZERO;
         let split = self.split_caustics && scene.caustics.is_some();
         let max_chain = max_chain(self.max_depth);
-        // Whether any material absorbs inside (coloured glass): only then
-        // does the path track the solid it is in.
-        let absorbing = ABSORBING;
         let mut hit = Hit::default();
         // Whether the next ray hits, when the previous vertex found it
         // already (see the end of the loop).
@@ -204,7 +203,7 @@ impl Path {
                 (None, None) => scene.intersect_into(&st.ray, f32::INFINITY, &mut hit),
             };
             if !found {
-                if absorbing {
+                if ABSORBING {
                     // Out of the scene from inside a solid: an open mesh.
                     st.beta *= st.inside.over(scene, f32::INFINITY);
                 }
@@ -234,7 +233,7 @@ impl Path {
                 break;
             }
             st.segments += 1;
-            if absorbing {
+            if ABSORBING {
                 st.beta *= st.inside.to_hit(scene, &hit, st.ray.d);
             }
 
@@ -302,7 +301,7 @@ impl Path {
                     if f != Rgb::ZERO {
                         counters.rays += 1;
                         let mut contribution = st.beta * f * ls.li;
-                        if absorbing {
+                        if ABSORBING {
                             contribution *= st.inside.beyond(scene, &hit, ls.wi).over(scene, ls.dist);
                         }
                         shadow = Some((shadow_ray(&hit, &ls), contribution, pmf * ls.pdf, ls.delta, wi));
@@ -338,7 +337,7 @@ impl Path {
                     if let Some(bs) = bs
                         && self.advance(&mut next, &bs, &hit, &frame, (delta, side), split, sampler)
                     {
-                        if absorbing {
+                        if ABSORBING {
                             next.inside = next.inside.beyond(scene, &hit, next.ray.d);
                         }
                         sum += self.trace::<ABSORBING>(scene, next, 1, top, None, sampler, counters);
@@ -355,7 +354,7 @@ impl Path {
                 None => false,
             };
             if go_on {
-                if absorbing {
+                if ABSORBING {
                     st.inside = st.inside.beyond(scene, &hit, st.ray.d);
                 }
                 found_ahead = Some(scene.intersect_into(&st.ray, f32::INFINITY, &mut hit));
