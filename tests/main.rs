@@ -62,6 +62,7 @@ mod readme;
 mod reference;
 mod scenes_as_code;
 mod sdf;
+mod self_hits;
 mod textures;
 mod unasked_writes;
 mod watch;
