@@ -269,20 +269,25 @@ impl Scene {
         (*hit, shape) = self.resolve(ray, nearest, t);
         let (mut r, mut traveled) = (*ray, 0.0);
         let mut blend_u: Option<f32> = None;
+        let mut colored = false;
         for _ in 0..64 {
             let Some(s) = self.surfaces.get(hit.material as usize) else {
                 break;
             };
+            if s.vertex_color && !colored {
+                hit.color = self.vertex_color(nearest);
+                colored = true;
+            }
             if let Some(b) = &s.blend {
                 // One of the two shades this hit; its own cut-out, normal
                 // map or blend comes next (the same ray, the same hit).
                 let u = blend_u.get_or_insert_with(|| surface_number(&r, hit.t, shape, BLEND_SALT));
-                (hit.material, *u) = b.pick(hit.uv, &self.textures, *u);
+                (hit.material, *u) = b.pick(&crate::materials::TexPoint::at(hit), &self.textures, *u);
                 continue;
             }
             if let Some(c) = &s.cutout
                 && !c.present(
-                    hit.uv,
+                    &crate::materials::TexPoint::at(hit),
                     &self.textures,
                     surface_number(&r, hit.t, shape, CUTOUT_SALT),
                 )
@@ -294,11 +299,19 @@ impl Scene {
                 (nearest, t) = self.nearest(&r, t_max - traveled)?;
                 (*hit, shape) = self.resolve(&r, nearest, t);
                 blend_u = None;
+                colored = false;
                 continue;
             }
             if shading && let Some(p) = &s.normal {
                 let (dpdu, dpdv, sign) = self.derivatives(hit, shape, nearest, p);
-                let ns = p.normal(hit.ns, dpdu, dpdv, sign, hit.uv, &self.textures);
+                let ns = p.normal(
+                    hit.ns,
+                    dpdu,
+                    dpdv,
+                    sign,
+                    &crate::materials::TexPoint::at(hit),
+                    &self.textures,
+                );
                 if !surface::valid_for(ray.d, hit.ns, ns) {
                     hit.material = self.black;
                 }
@@ -521,6 +534,20 @@ impl Scene {
             },
             Nearest::Shape(_) | Nearest::Quad(..) => None,
         }
+    }
+
+    /// The vertex colour at a mesh hit, white elsewhere and on meshes
+    /// without colours.
+    fn vertex_color(&self, nearest: Nearest) -> crate::math::Rgb {
+        self.mesh_triangle(nearest)
+            .and_then(|(k, h)| {
+                let instance = self.geometry.instances.get(k as usize)?;
+                self.geometry
+                    .meshes
+                    .get(instance.mesh as usize)?
+                    .color(h.tri, h.bc)
+            })
+            .unwrap_or(crate::math::Rgb::ONE)
     }
 
     /// Whether anything blocks `ray` before `t_max` (shadow rays). Cut-outs

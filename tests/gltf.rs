@@ -317,7 +317,8 @@ fn gltf_parts_placed_together_share_one_mesh_and_keep_their_materials() {
             .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, d)), f32::INFINITY)
             .unwrap_or_else(|| panic!("the ray onto part {k} at z = {z} hits"));
         assert!((hit.t - 5.0).abs() < 1e-5, "part {k}: t = {}", hit.t);
-        let albedo = scene.materials[hit.material as usize].albedo(hit.uv, &scene.textures);
+        let albedo = scene.materials[hit.material as usize]
+            .albedo(&ronray::materials::TexPoint::at(&hit), &scene.textures);
         assert!(
             (albedo.x - (0.1 + 0.2 * k as f32)).abs() < 1e-6,
             "part {k} at z = {z} keeps its material: albedo {albedo}"
@@ -1698,7 +1699,7 @@ fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
         let hit = scene
             .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, -1.0)), f32::INFINITY)
             .unwrap_or_else(|| panic!("part {k} is hit"));
-        scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures)
+        scene.materials[hit.material as usize].bsdf(&ronray::materials::TexPoint::at(&hit), &scene.textures)
     };
     let tint = ronray::math::Rgb::new(0.9, 0.6, 0.3);
     // KHR_materials_volume's attenuation: σ = −ln(colour)/distance inside
@@ -1764,7 +1765,9 @@ fn gltf_transmission_is_glass_thin_unless_it_has_a_volume() {
             let hit = scene
                 .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, -1.0)), f32::INFINITY)
                 .unwrap_or_else(|| panic!("part {k} is hit"));
-            match scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures) {
+            match scene.materials[hit.material as usize]
+                .bsdf(&ronray::materials::TexPoint::at(&hit), &scene.textures)
+            {
                 Bsdf::Glass(g) => {
                     assert!(g.thin && g.tint == tint, "{g:?}");
                     glass += 1;
@@ -1922,7 +1925,8 @@ fn gltf_transmission_texture_weighs_the_glass_per_point() {
                 .intersect(&Ray::new(o, Vec3A::new(0.0, 0.0, -1.0)), f32::INFINITY)
                 .expect("the quad is hit");
             if matches!(
-                scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures),
+                scene.materials[hit.material as usize]
+                    .bsdf(&ronray::materials::TexPoint::at(&hit), &scene.textures),
                 Bsdf::Glass(_)
             ) {
                 glass += 1;

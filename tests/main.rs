@@ -65,5 +65,6 @@ mod sdf;
 mod self_hits;
 mod textures;
 mod unasked_writes;
+mod vertex_colors;
 mod watch;
 mod watch_serve;

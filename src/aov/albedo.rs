@@ -6,14 +6,14 @@
 //! absorption tint for dielectrics, the base of layered surfaces (a clear
 //! coat is ignored). Values are clamped to [0, 1].
 
+use crate::materials::TexPoint;
 use crate::materials::{Material, Texture};
 use crate::math::Rgb;
-use glam::Vec2;
 
 /// The albedo of `material` at surface coordinates `uv`, in [0, 1].
-pub fn first_hit_albedo(material: &Material, uv: Vec2, textures: &[Texture]) -> Rgb {
+pub fn first_hit_albedo(material: &Material, at: &TexPoint, textures: &[Texture]) -> Rgb {
     // Each model says what its albedo is (`MaterialModel::albedo`).
-    material.albedo(uv, textures).clamp(Rgb::ZERO, Rgb::ONE)
+    material.albedo(at, textures).clamp(Rgb::ZERO, Rgb::ONE)
 }
 
 #[cfg(test)]
@@ -27,15 +27,18 @@ mod tests {
         let m = Material::Lambert(LambertMaterial {
             albedo: ColorTex::Const(c),
         });
-        assert_eq!(first_hit_albedo(&m, Vec2::ZERO, &[]), c);
+        assert_eq!(first_hit_albedo(&m, &TexPoint::uv(glam::Vec2::ZERO), &[]), c);
         let p = Material::Phong(PhongMaterial {
             kd: ColorTex::Const(Rgb::splat(0.7)),
             ks: ColorTex::Const(Rgb::splat(0.6)),
             exponent: crate::materials::Tex::Const(10.0),
         });
-        assert_eq!(first_hit_albedo(&p, Vec2::ZERO, &[]), Rgb::ONE);
         assert_eq!(
-            first_hit_albedo(&Material::Emitter(Emitter), Vec2::ZERO, &[]),
+            first_hit_albedo(&p, &TexPoint::uv(glam::Vec2::ZERO), &[]),
+            Rgb::ONE
+        );
+        assert_eq!(
+            first_hit_albedo(&Material::Emitter(Emitter), &TexPoint::uv(glam::Vec2::ZERO), &[]),
             Rgb::ZERO
         );
     }

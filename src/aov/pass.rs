@@ -86,7 +86,8 @@ fn pixel(scene: &Scene, view: &View, samples: &mut PixelSampler, x: u32, y: u32)
         let (material, object) = match hit {
             Some((hit, object)) => {
                 let m = &scene.materials[hit.material as usize];
-                albedo += first_hit_albedo(m, hit.uv, &scene.textures).as_dvec3();
+                albedo +=
+                    first_hit_albedo(m, &crate::materials::TexPoint::at(&hit), &scene.textures).as_dvec3();
                 // Facing the camera, so both sides of a sheet read alike.
                 let n = if hit.ns.dot(ray.d) > 0.0 { -hit.ns } else { hit.ns };
                 normal += n.as_dvec3();

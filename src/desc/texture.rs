@@ -8,10 +8,15 @@
 //! | `Image(file: "…", channel: R, colorspace: Linear, scale: 1, offset: 0, origin: BottomLeft, uv: (…), wrap: Repeat)` | `texel·scale + offset` |
 //! | `Checker(a: …, b: …, scale: 4, uv: (…))` | squares of `a` and `b`, `scale` per UV unit |
 //! | `Pattern(pattern: Fbm(octaves: 5), a: …, b: …, seed: 0, uv: (…))` | `a + (b − a)·pattern(uv)` |
+//! | `VertexColor(factor: …, channel: G)` | the mesh's vertex colours × `factor` |
+//!
+//! An image with `times_vertex_color: true` is multiplied by the vertex
+//! colours (glTF's `COLOR_0` × base colour texture).
 //!
 //! RON hands a named struct to self-describing deserialisers without its
 //! name, so the kind is recognised by its fields: `file` is an image, a
-//! `pattern` a procedural pattern, `a` and `b` alone a checker.
+//! `pattern` a procedural pattern, `a` and `b` alone a checker, `factor` the
+//! vertex colours.
 //!
 //! ```
 //! #[derive(serde::Deserialize)]
@@ -56,6 +61,16 @@ pub enum TexDesc<V> {
         /// 8 noise cells per UV unit).
         uv: UvDesc,
     },
+    /// The mesh's vertex colours (OBJ `v x y z r g b`, glTF `COLOR_0`),
+    /// linear RGB interpolated over each triangle, times `factor`; white on
+    /// shapes and meshes without colours.
+    Vertex {
+        /// Which channel a number reads (`R`, `G` or `B`; required for a
+        /// number, not allowed for a colour).
+        channel: Option<ChannelDesc>,
+        /// Factor on the colour.
+        factor: V,
+    },
 }
 
 /// An image texture and how its texels become a value.
@@ -80,6 +95,10 @@ pub struct ImageDesc {
     pub uv: UvDesc,
     /// What lies past the image's edges (default `Repeat`).
     pub wrap: WrapDesc,
+    /// Multiply by the mesh's vertex colours (read through the same
+    /// `channel`), as glTF multiplies `COLOR_0` into the base colour
+    /// (default false).
+    pub times_vertex_color: bool,
 }
 
 /// What an image shows past its edges.
@@ -106,6 +125,7 @@ impl ImageDesc {
             origin: OriginDesc::BottomLeft,
             uv: UvDesc::default(),
             wrap: WrapDesc::Repeat,
+            times_vertex_color: false,
         }
     }
 
@@ -235,13 +255,13 @@ impl<V> TexDesc<V> {
     pub fn file_mut(&mut self) -> Option<&mut String> {
         match self {
             TexDesc::Image(i) => Some(&mut i.file),
-            TexDesc::Checker { .. } | TexDesc::Pattern { .. } => None,
+            TexDesc::Checker { .. } | TexDesc::Pattern { .. } | TexDesc::Vertex { .. } => None,
         }
     }
 }
 
 /// What the texture forms expect, for parse errors.
-pub(super) const EXPECTED_TEX: &str = "an image `\"file.png\"`, `Image(file: \"…\")`, `Checker(a: …, b: …, scale: …)` or `Pattern(pattern: Fbm(octaves: 5), a: …, b: …)`";
+pub(super) const EXPECTED_TEX: &str = "an image `\"file.png\"`, `Image(file: \"…\")`, `Checker(a: …, b: …, scale: …)`, `Pattern(pattern: Fbm(octaves: 5), a: …, b: …)` or `VertexColor(factor: …)`";
 
 /// Reads the fields of a texture written as a struct (`Image(…)`,
 /// `Checker(…)`, `Pattern(…)`), by hand: RON gives no struct name.
@@ -261,12 +281,15 @@ pub(super) fn visit_tex_map<'de, V: DeserializeOwned, A: MapAccess<'de>>(
         "b",
         "pattern",
         "seed",
+        "factor",
+        "times_vertex_color",
     ];
     let mut file = None;
     let mut image = ImageDesc::plain(String::new());
     let (mut a, mut b, mut scale, mut pattern, mut seed) = (None, None, None, None, None);
     let (mut offset, mut uv) = (None, UvDesc::default());
     let mut image_only = Vec::new();
+    let mut factor = None;
     while let Some(key) = m.next_key::<String>()? {
         match key.as_str() {
             "file" => file = Some(m.next_value::<String>()?),
@@ -293,6 +316,11 @@ pub(super) fn visit_tex_map<'de, V: DeserializeOwned, A: MapAccess<'de>>(
             "b" => b = Some(m.next_value::<V>()?),
             "pattern" => pattern = Some(m.next_value::<PatternDesc>()?),
             "seed" => seed = Some(m.next_value::<u32>()?),
+            "factor" => factor = Some(m.next_value::<V>()?),
+            "times_vertex_color" => {
+                image.times_vertex_color = m.next_value()?;
+                image_only.push("times_vertex_color");
+            }
             other => return Err(de::Error::unknown_field(other, FIELDS)),
         }
     }
@@ -302,6 +330,28 @@ pub(super) fn visit_tex_map<'de, V: DeserializeOwned, A: MapAccess<'de>>(
             fields.join("`, `")
         ))
     };
+    if factor.is_some() && (file.is_some() || a.is_some() || b.is_some() || pattern.is_some()) {
+        return Err(de::Error::custom(
+            "`factor` belongs to `VertexColor(factor: …)`; an image scales with `scale`",
+        ));
+    }
+    if let Some(factor) = factor {
+        let channel = image.channel;
+        image_only.retain(|f| *f != "channel");
+        image_only.extend(offset.map(|_| "offset"));
+        image_only.extend(scale.map(|_| "scale"));
+        image_only.extend(seed.map(|_| "seed"));
+        if !image_only.is_empty() || !uv.is_identity() {
+            if !uv.is_identity() {
+                image_only.push("uv");
+            }
+            return Err(de::Error::custom(format!(
+                "`VertexColor` takes `factor` and `channel` only, not `{}`",
+                image_only.join("`, `")
+            )));
+        }
+        return Ok(TexDesc::Vertex { channel, factor });
+    }
     match (file, a, b, pattern) {
         (Some(file), None, None, None) => {
             if seed.is_some() {
@@ -355,7 +405,7 @@ impl<V: Serialize + PartialEq> TexDesc<V> {
         match self {
             TexDesc::Image(i) if i.is_plain() => i.file.serialize(s),
             TexDesc::Image(i) => {
-                let mut st = s.serialize_struct("Image", 7)?;
+                let mut st = s.serialize_struct("Image", 8)?;
                 st.serialize_field("file", &i.file)?;
                 if let Some(c) = i.channel {
                     st.serialize_field("channel", &c)?;
@@ -377,6 +427,17 @@ impl<V: Serialize + PartialEq> TexDesc<V> {
                 }
                 if !i.uv.is_identity() {
                     st.serialize_field("uv", &i.uv)?;
+                }
+                if i.times_vertex_color {
+                    st.serialize_field("times_vertex_color", &true)?;
+                }
+                st.end()
+            }
+            TexDesc::Vertex { channel, factor } => {
+                let mut st = s.serialize_struct("VertexColor", 2)?;
+                st.serialize_field("factor", factor)?;
+                if let Some(c) = channel {
+                    st.serialize_field("channel", c)?;
                 }
                 st.end()
             }
@@ -502,10 +563,11 @@ pub(super) fn tex_schemas(
         schemars::json_schema!({ "type": "string", "description": "image file, relative to the scene file" }),
         schemars::json_schema!({
             "title": "Image", "type": "object", "additionalProperties": false, "required": ["file"],
-            "description": "Image(file, channel, colorspace, scale, offset, origin, uv, wrap)",
+            "description": "Image(file, channel, colorspace, scale, offset, origin, uv, wrap, times_vertex_color)",
             "properties": {
                 "file": { "type": "string" }, "channel": channel, "colorspace": colorspace,
-                "scale": { "type": "number" }, "offset": { "type": "number" }, "origin": origin, "uv": uv, "wrap": wrap
+                "scale": { "type": "number" }, "offset": { "type": "number" }, "origin": origin, "uv": uv, "wrap": wrap,
+                "times_vertex_color": { "type": "boolean" }
             }
         }),
         schemars::json_schema!({
@@ -517,6 +579,11 @@ pub(super) fn tex_schemas(
             "title": "Pattern", "type": "object", "additionalProperties": false, "required": ["pattern", "a", "b"],
             "description": "Pattern(pattern, a, b, seed, uv): a + (b − a)·pattern(uv)",
             "properties": { "pattern": pattern, "a": value, "b": value, "seed": { "type": "integer", "minimum": 0 }, "uv": uv }
+        }),
+        schemars::json_schema!({
+            "title": "VertexColor", "type": "object", "additionalProperties": false, "required": ["factor"],
+            "description": "VertexColor(factor, channel): the mesh's vertex colours × factor (white where it has none)",
+            "properties": { "factor": value, "channel": channel }
         }),
     ]
 }

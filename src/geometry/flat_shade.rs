@@ -63,6 +63,7 @@ impl FlatShade {
             uv: bc,
             material: self.material,
             light: self.light,
+            color: glam::Vec3A::ONE,
         }
     }
 }

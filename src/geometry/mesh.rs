@@ -35,6 +35,9 @@ pub struct Mesh {
     /// glTF `TANGENT` convention). Stored by the asset or made by
     /// [`super::tangents::generate`] (MikkTSpace); empty when neither.
     pub tangents: Vec<Vec4>,
+    /// Per-vertex colours (linear RGB, same indexing as `positions`), or
+    /// empty: OBJ `v x y z r g b`, glTF `COLOR_0`.
+    pub colors: Vec<Vec3A>,
     /// Per-triangle material slot (an OBJ object/group), or empty for one
     /// slot. An instance maps slots to scene materials.
     pub slots: Vec<u32>,
@@ -237,6 +240,7 @@ impl Mesh {
             uv,
             material: 0,
             light: NO_LIGHT,
+            color: glam::Vec3A::ONE,
         }
     }
 
@@ -279,6 +283,14 @@ impl Mesh {
         }
     }
 
+    /// The vertex colour at barycentrics `bc` of triangle `tri`; `None`
+    /// on a mesh without colours.
+    pub fn color(&self, tri: u32, bc: Vec2) -> Option<Vec3A> {
+        let [ia, ib, ic] = self.indices.get(tri as usize)?.map(|i| i as usize);
+        let (a, b, c) = (self.colors.get(ia)?, self.colors.get(ib)?, self.colors.get(ic)?);
+        Some(*a * (1.0 - bc.x - bc.y) + *b * bc.x + *c * bc.y)
+    }
+
     /// Per-axis error bound of the point [`Mesh::hit`] reports, for an
     /// instance to carry through its transform.
     pub fn point_error(&self, tri: u32, bc: Vec2) -> Vec3A {
@@ -287,14 +299,16 @@ impl Mesh {
         gamma_offset(7) * ((a * w.x).abs() + (b * w.y).abs() + (c * w.z).abs())
     }
 
-    /// Which vertex attributes the mesh carries: normals, UVs, tangents.
+    /// Which vertex attributes the mesh carries: normals, UVs, tangents,
+    /// colours.
     /// [`Mesh::append`] joins only meshes with the same, so that it invents
     /// none.
-    pub fn attributes(&self) -> [bool; 3] {
+    pub fn attributes(&self) -> [bool; 4] {
         [
             !self.normals.is_empty(),
             !self.uvs.is_empty(),
             !self.tangents.is_empty(),
+            !self.colors.is_empty(),
         ]
     }
 
@@ -328,6 +342,7 @@ impl Mesh {
         self.normals.extend(other.normals);
         self.uvs.extend(other.uvs);
         self.tangents.extend(other.tangents);
+        self.colors.extend(other.colors);
     }
 
     /// Material slot of triangle `tri`.
@@ -376,6 +391,7 @@ impl Mesh {
             + std::mem::size_of_val(self.normals.as_slice())
             + std::mem::size_of_val(self.uvs.as_slice())
             + std::mem::size_of_val(self.tangents.as_slice())
+            + std::mem::size_of_val(self.colors.as_slice())
             + std::mem::size_of_val(self.slots.as_slice())
     }
 

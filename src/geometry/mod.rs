@@ -102,6 +102,10 @@ pub struct Hit {
     pub material: u32,
     /// Index of the area light this surface is, or [`NO_LIGHT`].
     pub light: u32,
+    /// The mesh's vertex colour at the hit (linear RGB), white where it has
+    /// none: filled by `Scene::intersect` only for materials that read it
+    /// (a `Vertex` texture), left as it was otherwise.
+    pub color: crate::math::Rgb,
 }
 
 impl Shape {

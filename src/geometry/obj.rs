@@ -205,6 +205,11 @@ pub fn parse_obj_data(
     .map_err(|_| format!("invalid OBJ file {}: the OBJ parser gave up", path.display()))?;
     let (models, mtl) = loaded.map_err(|e| match e {
         tobj::LoadError::ReadError => format!("cannot read OBJ file {}", path.display()),
+        tobj::LoadError::FaceColorOutOfBounds => format!(
+            "invalid OBJ file {}: some vertices have a colour (`v x y z r g b`) and others not; \
+             give every vertex a colour, or none",
+            path.display()
+        ),
         other => format!("invalid OBJ file {}: {other}", path.display()),
     })?;
     if let Some(why) = mtl_errors.borrow().iter().find(|e| e.contains(OUTSIDE_ROOT)) {
@@ -259,6 +264,36 @@ pub fn parse_obj_data(
                 ));
             }
             mesh.normals.resize(mesh.positions.len(), Vec3A::ZERO);
+        }
+        // Vertex colours (`v x y z r g b`, MeshLab's and ZBrush's
+        // extension): display colours, so sRGB-encoded like `Kd` in
+        // practice, decoded to linear; out of range clamped to [0, 1] and
+        // non-finite read as white, with a warning.
+        if mm.vertex_color.len() == mm.positions.len() && nv > 0 {
+            if mesh.colors.is_empty() {
+                mesh.colors.resize(base as usize, Vec3A::ONE);
+            }
+            let mut repaired = false;
+            mesh.colors.extend(mm.vertex_color.chunks_exact(3).map(|c| {
+                let ok = c.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x));
+                repaired |= !ok;
+                Vec3A::from_array(std::array::from_fn(|i| {
+                    let x = if c[i].is_finite() {
+                        c[i].clamp(0.0, 1.0)
+                    } else {
+                        1.0
+                    };
+                    crate::imageio::srgb_decode(x)
+                }))
+            }));
+            if repaired {
+                warnings.push(format!(
+                    "{}: object `{name}` has vertex colours outside [0, 1] or not finite; clamped (non-finite read as white)",
+                    path.display()
+                ));
+            }
+        } else if !mesh.colors.is_empty() {
+            mesh.colors.resize(mesh.positions.len(), Vec3A::ONE);
         }
         if mm.texcoords.len() == 2 * nv && mm.texcoords.iter().all(|x| x.is_finite()) {
             any_uvs = true;

@@ -56,6 +56,7 @@ impl Plane {
             uv,
             material: self.material,
             light: NO_LIGHT,
+            color: glam::Vec3A::ONE,
         }
     }
 }

@@ -112,6 +112,7 @@ impl Quad {
             uv,
             material: self.material,
             light: self.light,
+            color: glam::Vec3A::ONE,
         }
     }
 

@@ -134,6 +134,7 @@ impl SdfObject {
             uv: Vec2::new(u, 1.0 - v),
             material: self.material,
             light: self.light,
+            color: glam::Vec3A::ONE,
         }
     }
 }

@@ -95,6 +95,7 @@ impl Sphere {
             uv: Vec2::ZERO,
             material: self.material,
             light: self.light,
+            color: glam::Vec3A::ONE,
         }
     }
 

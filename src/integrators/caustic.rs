@@ -256,7 +256,8 @@ fn follow_from(
         if *flux == Rgb::ZERO {
             return None;
         }
-        let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
+        let bsdf = scene.materials[hit.material as usize]
+            .bsdf(&crate::materials::TexPoint::at(&hit), &scene.textures);
         if !bsdf.is_delta() {
             return (chain >= min_chain).then_some(LightVertex {
                 hit,
@@ -304,7 +305,8 @@ pub fn bounce(
     if !v.from_delta || room == 0 {
         return None;
     }
-    let bsdf = scene.materials[v.hit.material as usize].bsdf(v.hit.uv, &scene.textures);
+    let bsdf = scene.materials[v.hit.material as usize]
+        .bsdf(&crate::materials::TexPoint::at(&v.hit), &scene.textures);
     let frame = Frame::from_normal(v.hit.ns);
     let wo = frame.to_local(v.wi);
     let bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2())?;
@@ -358,7 +360,8 @@ pub fn splat(
     let to_eye = v / d2.sqrt();
     let th = camera.tan_half_fov;
     let aspect = w as f32 / h as f32;
-    let bsdf = scene.materials[y.hit.material as usize].bsdf(y.hit.uv, &scene.textures);
+    let bsdf = scene.materials[y.hit.material as usize]
+        .bsdf(&crate::materials::TexPoint::at(&y.hit), &scene.textures);
     let frame = Frame::from_normal(y.hit.ns);
     let wi = frame.to_local(y.wi);
     let cos_chain = y.hit.ng.dot(y.wi).abs();

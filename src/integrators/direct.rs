@@ -33,7 +33,8 @@ impl Direct {
         let Some(hit) = scene.intersect(ray, f32::INFINITY) else {
             return escaped(scene, ray.d, true);
         };
-        let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
+        let bsdf = scene.materials[hit.material as usize]
+            .bsdf(&crate::materials::TexPoint::at(&hit), &scene.textures);
         let frame = Frame::from_normal(hit.ns);
         // A camera inside coloured glass (`super::interior`).
         let kept = Interior::OUTSIDE.to_hit(scene, &hit, ray.d);

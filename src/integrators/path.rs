@@ -261,7 +261,8 @@ impl Path {
                 break;
             }
 
-            let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
+            let bsdf = scene.materials[hit.material as usize]
+                .bsdf(&crate::materials::TexPoint::at(&hit), &scene.textures);
             let frame = Frame::from_normal(hit.ns);
             let wo = frame.to_local(-st.ray.d);
 

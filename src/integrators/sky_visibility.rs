@@ -58,7 +58,7 @@ pub fn sky_visibility(scene: &Scene, camera: &Camera, aspect: f32) -> f32 {
             let Some(material) = scene.materials.get(hit.material as usize) else {
                 continue;
             };
-            let bsdf = material.bsdf(hit.uv, &scene.textures);
+            let bsdf = material.bsdf(&crate::materials::TexPoint::at(&hit), &scene.textures);
             if bsdf.is_delta() {
                 continue;
             }

@@ -217,7 +217,8 @@ pub(super) fn li(
             break;
         }
 
-        let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
+        let bsdf = scene.materials[hit.material as usize]
+            .bsdf(&crate::materials::TexPoint::at(&hit), &scene.textures);
         let frame = Frame::from_normal(hit.ns);
         let wo = frame.to_local(-ray.d);
         let delta = bsdf.is_delta();

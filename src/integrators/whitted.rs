@@ -43,7 +43,8 @@ impl Whitted {
                 break;
             };
             beta *= inside.to_hit(scene, &hit, ray.d);
-            let bsdf = scene.materials[hit.material as usize].bsdf(hit.uv, &scene.textures);
+            let bsdf = scene.materials[hit.material as usize]
+                .bsdf(&crate::materials::TexPoint::at(&hit), &scene.textures);
             let frame = Frame::from_normal(hit.ns);
             let wo = frame.to_local(-ray.d);
             l += beta * emitted(scene, &hit, ray.d);

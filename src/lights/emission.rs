@@ -59,7 +59,11 @@ impl EmissionTexture {
     /// Radiance at texture coordinates `uv`.
     #[inline]
     pub fn eval(&self, uv: Vec2) -> Rgb {
-        self.factor * self.tex.eval(uv, &self.image).max(Rgb::ZERO)
+        self.factor
+            * self
+                .tex
+                .eval(&crate::materials::TexPoint::uv(uv), &self.image)
+                .max(Rgb::ZERO)
     }
 
     /// The average over the unit uv square on a [`GRID`]² grid of cell
@@ -106,7 +110,7 @@ impl Emission {
     /// `tex` over the scene's `textures`: a constant stays one.
     pub fn new(tex: &ColorTex, textures: &[Texture]) -> Self {
         match EmissionTexture::new(tex, textures) {
-            None => Self::constant(tex.eval(Vec2::ZERO, textures)),
+            None => Self::constant(tex.eval(&crate::materials::TexPoint::uv(Vec2::ZERO), textures)),
             Some(t) => Self {
                 radiance: t.average(),
                 texture: Some(t),

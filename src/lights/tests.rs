@@ -20,6 +20,7 @@ fn hit_of(ls: &LightSample) -> Hit {
         uv: Vec2::ZERO,
         material: 0,
         light: NO_LIGHT,
+        color: Vec3A::ONE,
     }
 }
 

@@ -259,7 +259,10 @@ pub fn build_in(
     // textures).
     let delta: Vec<bool> = materials
         .iter()
-        .map(|m| m.bsdf(glam::Vec2::ZERO, &textures).is_delta())
+        .map(|m| {
+            m.bsdf(&crate::materials::TexPoint::uv(glam::Vec2::ZERO), &textures)
+                .is_delta()
+        })
         .collect();
     let is_delta = |m: u32| {
         through_blends(&surfaces, m, 0, &|m| {
@@ -270,7 +273,15 @@ pub fn build_in(
         any_material(s, &ctx.geometry, is_delta)
     });
     let caustics = CausticEmitters::new(&ctx.lights, targets, bvh.bounds());
-    // Only scenes with a normal map, bump map or cut-out pay for them.
+    // A hit fills in its vertex colour only for the materials that read it:
+    // each surface says so for itself (a blend for its weight, each of its
+    // two materials for their own parameters, met after the pick).
+    debug_assert_eq!(surfaces.len(), materials.len());
+    for (s, m) in surfaces.iter_mut().zip(&materials) {
+        s.vertex_color = m.reads_vertex_color() || s.reads_vertex_color();
+    }
+    // Only scenes with a normal map, bump map, cut-out, blend or vertex
+    // colours pay for them.
     if surfaces.iter().all(crate::materials::Surface::is_plain) {
         surfaces.clear();
     }

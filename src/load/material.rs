@@ -43,6 +43,18 @@ impl Checker {
         match c {
             ColorDesc::Rgb(c) => self.emitted(path, c, "radiance"),
             ColorDesc::Texture(t) => {
+                let vertex = match t {
+                    TexDesc::Vertex { .. } => true,
+                    TexDesc::Image(i) => i.times_vertex_color,
+                    TexDesc::Checker { .. } | TexDesc::Pattern { .. } => false,
+                };
+                if vertex {
+                    self.push(
+                        path,
+                        "emission does not read vertex colours",
+                        "give the radiance as a colour or an image; vertex colours tint materials (`albedo`, `base_color`, …)",
+                    );
+                }
                 if let TexDesc::Image(i) = t {
                     for (field, v) in [("scale", i.scale), ("offset", i.offset)] {
                         if v.is_finite() && v.abs() > MAX_RADIANCE {
@@ -107,6 +119,10 @@ impl Checker {
                 value(self, &format!("{path}.b"), b);
                 self.pattern(&format!("{path}.pattern"), pattern);
                 uv
+            }
+            TexDesc::Vertex { factor, .. } => {
+                value(self, &format!("{path}.factor"), factor);
+                return;
             }
         };
         if !(uv.scale.iter().chain(&uv.offset).all(|x| x.is_finite()) && uv.rotation_degrees.is_finite()) {
@@ -932,6 +948,30 @@ impl Builder<'_> {
                 b: value(b),
                 uv: uv(u),
             },
+            TexDesc::Vertex { channel, factor } => {
+                if scalar && channel.is_none() {
+                    self.problems.push(
+                        Problem::new(path, "a number reads one channel of the vertex colours")
+                            .help("say which, e.g. `VertexColor(factor: 1, channel: G)`"),
+                    );
+                }
+                if *channel == Some(ChannelDesc::A) {
+                    self.problems.push(
+                        Problem::new(format!("{path}.channel"), "vertex colours have no alpha channel")
+                            .help("read `R`, `G` or `B` (the alpha of glTF's COLOR_0 is not kept)"),
+                    );
+                }
+                Tex::Vertex {
+                    channel: match channel {
+                        None => Channel::All,
+                        Some(ChannelDesc::R) => Channel::R,
+                        Some(ChannelDesc::G) => Channel::G,
+                        Some(ChannelDesc::B) => Channel::B,
+                        Some(ChannelDesc::A) => Channel::A,
+                    },
+                    factor: value(factor),
+                }
+            }
             TexDesc::Image(i) => {
                 let srgb = match i.colorspace {
                     Some(ColorspaceDesc::Srgb) => true,
@@ -947,6 +987,7 @@ impl Builder<'_> {
                         rows_down: false,
                         uv: UvTransform::default(),
                         wrap: [Wrap::Repeat; 2],
+                        times_vertex: false,
                     });
                 };
                 let channel = match i.channel {
@@ -993,6 +1034,7 @@ impl Builder<'_> {
                         WrapDesc::Clamp => Wrap::Clamp,
                         WrapDesc::Mirror => Wrap::Mirror,
                     }; 2],
+                    times_vertex: i.times_vertex_color,
                 })
             }
         }

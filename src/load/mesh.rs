@@ -280,10 +280,11 @@ fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> Loa
     let dir = obj.parent().unwrap_or(ctx.base);
     // The MTL's notes say which object's OBJ they come from.
     let mut notes = Vec::new();
+    let painted = !data.mesh.colors.is_empty();
     let mtl = data
         .materials
         .iter()
-        .map(|m| ctx.mtl.add(m, dir, &mut notes))
+        .map(|m| ctx.mtl.add(m, dir, painted, &mut notes))
         .collect();
     ctx.notes
         .extend(notes.into_iter().map(|n| format!("{at} ({file}): {n}")));
@@ -299,6 +300,7 @@ fn push_mesh(ctx: &mut BuildContext, data: ObjData, file: &str, at: &str) -> Loa
         mesh: ctx.geometry.meshes.len() as u32 - 1,
         groups: data.groups,
         mtl,
+        painted,
     }
 }
 
@@ -345,14 +347,29 @@ fn resolve(
             if let Some(m) = g.material {
                 return l.mtl[m];
             }
-            grey(ctx, path, &g.name, null)
+            grey(ctx, path, &g.name, null, l.painted)
         })
         .collect()
 }
 
 /// The grey default for a group that has no material from anywhere, with
-/// a note the first time a shaded (not `null`) group takes it.
-fn grey(ctx: &mut BuildContext, path: &str, group: &str, null: bool) -> u32 {
+/// a note the first time a shaded (not `null`) group takes it; on a mesh
+/// with vertex colours, a Lambert of those colours (a scan or a painted
+/// model shows as it was painted), without a note.
+fn grey(ctx: &mut BuildContext, path: &str, group: &str, null: bool, painted: bool) -> u32 {
+    if painted {
+        if let Some(g) = ctx.mesh_state.painted {
+            return g;
+        }
+        let g = ctx.mtl.push(Material::Lambert(LambertMaterial {
+            albedo: ColorTex::Vertex {
+                channel: crate::materials::Channel::All,
+                factor: Rgb::ONE,
+            },
+        }));
+        ctx.mesh_state.painted = Some(g);
+        return g;
+    }
     if !null && !ctx.mesh_state.grey_noted {
         ctx.mesh_state.grey_noted = true;
         ctx.notes.push(format!(

@@ -12,6 +12,8 @@ pub(super) struct LoadedMesh {
     pub groups: Vec<ObjGroup>,
     /// Scene material of each MTL material of the file.
     pub mtl: Vec<u32>,
+    /// Whether the mesh has vertex colours.
+    pub painted: bool,
 }
 
 /// What the mesh build step keeps from one object to the next.
@@ -21,6 +23,9 @@ pub(super) struct MeshState {
     pub shared: HashMap<String, Option<LoadedMesh>>,
     /// The grey default material, created on first use.
     pub grey: Option<u32>,
+    /// The default material of a mesh with vertex colours (a Lambert of
+    /// them), created on first use.
+    pub painted: Option<u32>,
     /// Whether the note about the grey default was given (once per scene,
     /// and never for index-matched boundaries, which are never shaded).
     pub grey_noted: bool,

@@ -209,7 +209,57 @@ impl MtlMaterials {
     }
 
     /// Maps one MTL material (textures relative to `dir`).
-    pub fn add(&mut self, m: &tobj::Material, dir: &Path, notes: &mut Vec<String>) -> u32 {
+    /// Multiplies material `i`'s base colour (`base_color`, `albedo`,
+    /// `kd`, a glass's `tint`; both materials of a blend) by the hit's
+    /// vertex colour: glTF's rule for a primitive with `COLOR_0`. A
+    /// material already painted is left as it is.
+    pub fn paint(&mut self, i: u32) {
+        self.paint_at(i, 0);
+    }
+
+    fn paint_at(&mut self, i: u32, depth: u32) {
+        let Some(k) = (i as usize).checked_sub(self.first as usize) else {
+            return;
+        };
+        if let Some(b) = self.surfaces.get(k).and_then(|s| s.blend.clone()) {
+            if depth < 8 {
+                self.paint_at(b.a, depth + 1);
+                self.paint_at(b.b, depth + 1);
+            }
+            return;
+        }
+        let Some(m) = self.materials.get_mut(k) else {
+            return;
+        };
+        let color = match m {
+            Material::MetalPlastic(x) => &mut x.base_color,
+            Material::Lambert(x) => &mut x.albedo,
+            Material::Glass(x) => &mut x.tint,
+            Material::RoughGlass(x) => &mut x.tint,
+            Material::Phong(x) => &mut x.kd,
+            Material::BlinnPhong(x) => &mut x.kd,
+            Material::OrenNayar(x) => &mut x.albedo,
+            Material::RoughPlastic(x) => &mut x.diffuse,
+            Material::Mirror(x) => &mut x.tint,
+            Material::CookTorrance(_) | Material::Emitter(_) => return,
+        };
+        *color = match std::mem::replace(color, Tex::Const(Rgb::ONE)) {
+            Tex::Const(c) => Tex::Vertex {
+                channel: Channel::All,
+                factor: c,
+            },
+            Tex::Image(look) => Tex::Image(ImageLookup {
+                times_vertex: true,
+                ..look
+            }),
+            other => other,
+        };
+    }
+
+    /// The scene material of MTL material `m`; on an OBJ with vertex
+    /// colours (`painted`) its diffuse colour (`Kd`, `map_Kd`) is multiplied
+    /// by them, as MeshLab and Blender show such a file.
+    pub fn add(&mut self, m: &tobj::Material, dir: &Path, painted: bool, notes: &mut Vec<String>) -> u32 {
         let colour = |key: &str, c: Option<[f32; 3]>, notes: &mut Vec<String>| {
             c.map(|c| repaired(&m.name, key, c, 1.0, notes))
         };
@@ -247,6 +297,17 @@ impl MtlMaterials {
             },
             None => ColorTex::Const(kd),
         };
+        let albedo = match albedo {
+            Tex::Const(kd) if painted => Tex::Vertex {
+                channel: Channel::All,
+                factor: kd,
+            },
+            Tex::Image(look) if painted => Tex::Image(ImageLookup {
+                times_vertex: true,
+                ..look
+            }),
+            other => other,
+        };
         // The scalar maps: a linear image, times the statement's number.
         let mut scalar =
             |this: &mut Self, file: Option<&str>, times: f32, alpha: bool| -> Option<ScalarTex> {
@@ -264,6 +325,7 @@ impl MtlMaterials {
                     rows_down: false,
                     uv: UvTransform::default(),
                     wrap: [crate::materials::Wrap::Repeat; 2],
+                    times_vertex: false,
                 }))
             };
         let param = |k: &str| {
@@ -351,6 +413,7 @@ impl MtlMaterials {
                     threshold: None,
                 }),
                 blend: None,
+                vertex_color: false,
             },
         );
         *self.names.last_mut().expect("just pushed") = Some(m.name.clone());

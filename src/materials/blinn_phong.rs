@@ -23,6 +23,7 @@
 
 use super::phong::{conserve, lobe_pdf, sample_lobe};
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, ScalarTex, Texture, reflect};
+use super::{TexPoint, TexProbe};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -113,19 +114,19 @@ pub struct BlinnPhongMaterial {
 
 impl MaterialModel for BlinnPhongMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::BlinnPhong(BlinnPhong::new(
-            self.kd.eval(uv, textures),
-            self.ks.eval(uv, textures),
-            self.exponent.eval(uv, textures),
+            self.kd.eval(at, textures),
+            self.ks.eval(at, textures),
+            self.exponent.eval(at, textures),
         ))
     }
     /// Both lobes reflect: their sum (the AOV clamps it as the model caps it).
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.kd.eval(uv, textures) + self.ks.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.kd.eval(at, textures) + self.ks.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.kd.is_textured() || self.ks.is_textured() || self.exponent.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.kd) || f(&self.ks) || f(&self.exponent)
     }
 }
 

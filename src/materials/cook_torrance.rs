@@ -11,6 +11,7 @@ use super::{
     Bsdf, BsdfSample, Bxdf, Distribution, Fresnel, MaterialModel, Microfacet, Roughness, Texture, flip_up,
     reflect,
 };
+use super::{TexPoint, TexProbe};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -98,18 +99,18 @@ pub struct CookTorranceMaterial {
 
 impl MaterialModel for CookTorranceMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::CookTorrance(CookTorrance {
-            distribution: self.roughness.microfacet(self.distribution, uv, textures),
+            distribution: self.roughness.microfacet(self.distribution, at, textures),
             fresnel: self.fresnel,
         })
     }
     /// The conductor's colour lives in its Fresnel term; OIDN allows 1.
-    fn albedo(&self, _uv: Vec2, _textures: &[Texture]) -> Rgb {
+    fn albedo(&self, _at: &TexPoint, _textures: &[Texture]) -> Rgb {
         Rgb::ONE
     }
-    fn is_textured(&self) -> bool {
-        self.roughness.tex.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.roughness.tex)
     }
 }
 

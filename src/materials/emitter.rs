@@ -4,8 +4,8 @@
 //! (`lights/`), not the material's.
 
 use super::{Bsdf, Lambert, MaterialModel, Texture};
+use super::{TexPoint, TexProbe};
 use crate::math::Rgb;
-use glam::Vec2;
 
 /// The material of an emitting surface: reflects nothing.
 #[derive(Clone, Copy, Debug, Default)]
@@ -15,14 +15,15 @@ impl MaterialModel for Emitter {
     /// A black diffuse lobe: light sampling and BSDF sampling both give
     /// zero, the same arithmetic as any other Lambert surface.
     #[inline]
-    fn bsdf(&self, _uv: Vec2, _textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, _at: &TexPoint, _textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::Lambert(Lambert { albedo: Rgb::ZERO })
     }
     /// Light sources reflect nothing.
-    fn albedo(&self, _uv: Vec2, _textures: &[Texture]) -> Rgb {
+    fn albedo(&self, _at: &TexPoint, _textures: &[Texture]) -> Rgb {
         Rgb::ZERO
     }
-    fn is_textured(&self) -> bool {
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        let _ = f;
         false
     }
 }

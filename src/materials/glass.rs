@@ -24,6 +24,7 @@
 //!   = 2F / (1 + F), T = 1 − R. The same from either side.
 
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, DielectricFresnel, MaterialModel, ScalarTex, Texture};
+use super::{TexPoint, TexProbe};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -131,20 +132,20 @@ pub struct GlassMaterial {
 
 impl MaterialModel for GlassMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::Glass(Glass {
-            ior: self.ior.eval(uv, textures),
-            tint: self.tint.eval(uv, textures),
+            ior: self.ior.eval(at, textures),
+            tint: self.tint.eval(at, textures),
             fresnel: self.fresnel,
             thin: self.thin,
         })
     }
     /// 1 times the absorption tint, as OIDN asks of dielectrics.
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.tint.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.tint.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.tint.is_textured() || self.ior.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.tint) || f(&self.ior)
     }
 }
 

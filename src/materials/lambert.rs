@@ -2,6 +2,7 @@
 //! (so the sample weight is exactly the albedo).
 
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, Texture};
+use super::{TexPoint, TexProbe};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -54,16 +55,16 @@ pub struct LambertMaterial {
 impl MaterialModel for LambertMaterial {
     // Inline: the material dispatch inlines this one (see `Material::bsdf`).
     #[inline(always)]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::Lambert(Lambert {
-            albedo: self.albedo.eval(uv, textures),
+            albedo: self.albedo.eval(at, textures),
         })
     }
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.albedo.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.albedo.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.albedo.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.albedo)
     }
 }
 

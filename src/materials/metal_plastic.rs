@@ -27,6 +27,7 @@ use super::{
     Bsdf, BsdfSample, Bxdf, ColorTex, Distribution, MaterialModel, Microfacet, Roughness, ScalarTex, Texture,
     fresnel, reflect,
 };
+use super::{TexPoint, TexProbe};
 use crate::math::{Rgb, luminance, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -132,19 +133,19 @@ pub struct MetalPlasticMaterial {
 
 impl MaterialModel for MetalPlasticMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::MetalPlastic(MetalPlastic::new(
-            self.base_color.eval(uv, textures),
-            self.roughness.perceptual_at(uv, textures),
-            self.metalness.eval(uv, textures),
+            self.base_color.eval(at, textures),
+            self.roughness.perceptual_at(at, textures),
+            self.metalness.eval(at, textures),
         ))
     }
     /// Diffuse colour for plastic, reflectance at normal incidence for metal.
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.base_color.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.base_color.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.base_color.is_textured() || self.roughness.tex.is_textured() || self.metalness.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.base_color) || f(&self.roughness.tex) || f(&self.metalness)
     }
 }
 

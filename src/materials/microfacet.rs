@@ -230,10 +230,10 @@ impl Roughness {
     pub fn microfacet(
         &self,
         distribution: Distribution,
-        uv: glam::Vec2,
+        at: &super::TexPoint,
         textures: &[super::Texture],
     ) -> Microfacet {
-        let r = self.tex.eval(uv, textures);
+        let r = self.tex.eval(at, textures);
         if self.is_alpha {
             Microfacet::from_alpha(distribution, r)
         } else {
@@ -243,8 +243,8 @@ impl Roughness {
 
     /// The perceptual roughness at `uv` (√α when the value is α).
     #[inline]
-    pub fn perceptual_at(&self, uv: glam::Vec2, textures: &[super::Texture]) -> f32 {
-        let r = self.tex.eval(uv, textures);
+    pub fn perceptual_at(&self, at: &super::TexPoint, textures: &[super::Texture]) -> f32 {
+        let r = self.tex.eval(at, textures);
         if self.is_alpha { r.max(0.0).sqrt() } else { r }
     }
 }

@@ -4,6 +4,7 @@
 //! For a coloured metal with physical Fresnel use a smooth `CookTorrance`.
 
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, Texture};
+use super::{TexPoint, TexProbe};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -46,16 +47,16 @@ pub struct MirrorMaterial {
 
 impl MaterialModel for MirrorMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::Mirror(Mirror {
-            tint: self.tint.eval(uv, textures),
+            tint: self.tint.eval(at, textures),
         })
     }
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.tint.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.tint.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.tint.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.tint)
     }
 }
 

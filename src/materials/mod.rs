@@ -72,7 +72,9 @@ pub use rough_coat::RoughCoat;
 pub use rough_glass::{RoughGlass, RoughGlassMaterial};
 pub use rough_plastic::{RoughPlastic, RoughPlasticMaterial};
 pub use surface::{Blend, Cutout, Perturb, Surface};
-pub use texture::{Channel, ColorTex, ImageLookup, ScalarTex, Tex, Texture, UvTransform, Wrap};
+pub use texture::{
+    Channel, ColorTex, ImageLookup, ScalarTex, Tex, TexPoint, TexProbe, Texture, UvTransform, Wrap,
+};
 
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
@@ -318,12 +320,13 @@ impl Bsdf<'_> {
 /// and one in [`forward_material`].
 pub trait MaterialModel {
     /// The lobe at surface coordinates `uv`, every texture resolved.
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_>;
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_>;
     /// The albedo a first hit shows (the denoiser's `albedo` input, see
     /// `aov/albedo.rs`), before clamping to [0, 1].
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb;
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb;
     /// Whether any parameter is a texture (so shading needs `uv`).
-    fn is_textured(&self) -> bool;
+    /// Whether `f` holds for any of the parameters.
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool;
 }
 
 /// A material as the scene describes it, with textured parameters; each
@@ -422,29 +425,35 @@ impl Material {
 
     /// Whether any parameter is a texture (so shading needs `uv`).
     pub fn is_textured(&self) -> bool {
-        forward_material!(self, m => m.is_textured())
+        forward_material!(self, m => m.any_tex(&|t| t.is_textured()))
+    }
+
+    /// Whether any parameter reads the hit's vertex colour (so
+    /// `Scene::intersect` fills it in).
+    pub fn reads_vertex_color(&self) -> bool {
+        forward_material!(self, m => m.any_tex(&|t| t.reads_vertex_color()))
     }
 
     /// The albedo a first hit shows, unclamped (see [`MaterialModel::albedo`]).
-    pub fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        forward_material!(self, m => m.albedo(uv, textures))
+    pub fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        forward_material!(self, m => m.albedo(at, textures))
     }
 
     /// Resolves textures at surface coordinates `uv`. Inline for the
     /// diffuse material (see [`Bsdf`]'s dispatch), a call for the others.
     #[inline(always)]
-    pub fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    pub fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         match self.inline_material() {
-            Some(m) => m.bsdf(uv, textures),
-            None => self.bsdf_other(uv, textures),
+            Some(m) => m.bsdf(at, textures),
+            None => self.bsdf_other(at, textures),
         }
     }
 
     /// [`Material::bsdf`] for every material but the inline one (which it
     /// also handles, for the exhaustive match).
     #[inline(never)]
-    fn bsdf_other(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
-        forward_material!(self, m => m.bsdf(uv, textures))
+    fn bsdf_other(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
+        forward_material!(self, m => m.bsdf(at, textures))
     }
 }
 
@@ -614,7 +623,7 @@ mod material_tests {
         ];
         let (wo, wi) = (Vec3A::new(0.6, 0.0, 0.8), Vec3A::new(-0.6, 0.0, 0.8));
         for m in &materials {
-            let b = m.bsdf(Vec2::new(0.25, 0.25), &textures);
+            let b = m.bsdf(&TexPoint::uv(Vec2::new(0.25, 0.25)), &textures);
             let f = b.eval(wo, wi);
             assert!(f.is_finite() && f.min_element() >= 0.0, "{m:?}: f = {f}");
             assert_eq!(
@@ -623,13 +632,13 @@ mod material_tests {
             );
         }
         // The checker's `a` square at uv (0.25, 0.25) is white; (0.75, 0.25) black.
-        let lambert = |uv| match materials[0].bsdf(uv, &textures) {
+        let lambert = |uv: Vec2| match materials[0].bsdf(&TexPoint::uv(uv), &textures) {
             Bsdf::Lambert(l) => l.albedo,
             other => panic!("Lambert resolved to {other:?}"),
         };
         assert_eq!(lambert(Vec2::new(0.25, 0.25)), Rgb::ONE);
         assert_eq!(lambert(Vec2::new(0.75, 0.25)), Rgb::ZERO);
-        let mirror = materials[6].bsdf(Vec2::ZERO, &textures);
+        let mirror = materials[6].bsdf(&TexPoint::uv(Vec2::ZERO), &textures);
         let s = mirror.sample(wo, 0.5, Vec2::splat(0.5)).unwrap();
         assert_eq!(
             s.weight,
@@ -637,7 +646,9 @@ mod material_tests {
             "image texture must reach the mirror tint"
         );
         assert_eq!(
-            Material::Emitter(Emitter).bsdf(Vec2::ZERO, &[]).eval(wo, wi),
+            Material::Emitter(Emitter)
+                .bsdf(&TexPoint::uv(Vec2::ZERO), &[])
+                .eval(wo, wi),
             Rgb::ZERO
         );
     }

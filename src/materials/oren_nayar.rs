@@ -23,6 +23,7 @@
 //! Cosine-sampled: the lobe is close to cosine, so the weight stays near R.
 
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, ScalarTex, Texture, flip_up};
+use super::{TexPoint, TexProbe};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::PI;
@@ -89,17 +90,17 @@ pub struct OrenNayarMaterial {
 
 impl MaterialModel for OrenNayarMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::OrenNayar(OrenNayar::new(
-            self.albedo.eval(uv, textures),
-            self.sigma.eval(uv, textures),
+            self.albedo.eval(at, textures),
+            self.sigma.eval(at, textures),
         ))
     }
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.albedo.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.albedo.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.albedo.is_textured() || self.sigma.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.albedo) || f(&self.sigma)
     }
 }
 

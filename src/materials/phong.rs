@@ -18,6 +18,7 @@
 //!   below the horizon are rejected (`None`), so the pdf integrates to < 1.
 
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, ScalarTex, Texture};
+use super::{TexPoint, TexProbe};
 use crate::math::{Frame, Rgb, luminance, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::{FRAC_1_PI, PI};
@@ -129,19 +130,19 @@ pub struct PhongMaterial {
 
 impl MaterialModel for PhongMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::Phong(Phong::new(
-            self.kd.eval(uv, textures),
-            self.ks.eval(uv, textures),
-            self.exponent.eval(uv, textures),
+            self.kd.eval(at, textures),
+            self.ks.eval(at, textures),
+            self.exponent.eval(at, textures),
         ))
     }
     /// Both lobes reflect: their sum (the AOV clamps it as the model caps it).
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.kd.eval(uv, textures) + self.ks.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.kd.eval(at, textures) + self.ks.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.kd.is_textured() || self.ks.is_textured() || self.exponent.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.kd) || f(&self.ks) || f(&self.exponent)
     }
 }
 

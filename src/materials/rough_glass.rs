@@ -34,6 +34,7 @@ use super::{
     Bsdf, BsdfSample, Bxdf, ColorTex, Distribution, MaterialModel, Microfacet, Roughness, ScalarTex, Texture,
     fresnel, reflect,
 };
+use super::{TexPoint, TexProbe};
 use crate::math::Rgb;
 use glam::{Vec2, Vec3A};
 
@@ -179,19 +180,19 @@ pub struct RoughGlassMaterial {
 
 impl MaterialModel for RoughGlassMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::RoughGlass(RoughGlass {
-            microfacet: self.roughness.microfacet(self.distribution, uv, textures),
-            ior: self.ior.eval(uv, textures),
-            tint: self.tint.eval(uv, textures),
+            microfacet: self.roughness.microfacet(self.distribution, at, textures),
+            ior: self.ior.eval(at, textures),
+            tint: self.tint.eval(at, textures),
         })
     }
     /// 1 times the absorption tint, as OIDN asks of dielectrics.
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.tint.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.tint.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.tint.is_textured() || self.roughness.tex.is_textured() || self.ior.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.tint) || f(&self.roughness.tex) || f(&self.ior)
     }
 }
 

@@ -28,6 +28,7 @@
 //! are this hit's colours (Mitsuba averages a texture over its whole image).
 
 use super::{Bsdf, BsdfSample, Bxdf, ColorTex, MaterialModel, RoughCoat, Texture, flip_up, fresnel, reflect};
+use super::{TexPoint, TexProbe};
 use crate::math::{Rgb, sampling};
 use glam::{Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -146,19 +147,19 @@ pub struct RoughPlasticMaterial {
 
 impl MaterialModel for RoughPlasticMaterial {
     #[inline]
-    fn bsdf(&self, uv: Vec2, textures: &[Texture]) -> Bsdf<'_> {
+    fn bsdf(&self, at: &TexPoint, textures: &[Texture]) -> Bsdf<'_> {
         Bsdf::RoughPlastic(RoughPlastic {
-            diffuse: self.diffuse.eval(uv, textures),
-            specular: self.specular.eval(uv, textures),
+            diffuse: self.diffuse.eval(at, textures),
+            specular: self.specular.eval(at, textures),
             coat: &self.coat,
         })
     }
     /// The base of the layered surface (OIDN ignores a clear coat).
-    fn albedo(&self, uv: Vec2, textures: &[Texture]) -> Rgb {
-        self.diffuse.eval(uv, textures)
+    fn albedo(&self, at: &TexPoint, textures: &[Texture]) -> Rgb {
+        self.diffuse.eval(at, textures)
     }
-    fn is_textured(&self) -> bool {
-        self.diffuse.is_textured() || self.specular.is_textured()
+    fn any_tex(&self, f: &dyn Fn(&dyn TexProbe) -> bool) -> bool {
+        f(&self.diffuse) || f(&self.specular)
     }
 }
 

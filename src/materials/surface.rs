@@ -38,6 +38,7 @@
 //! reflected, as in Mitsuba; transmission through opaque models cannot
 //! happen because their BSDFs are zero across the perturbed surface.
 
+use super::TexPoint;
 use super::{ColorTex, ScalarTex, Texture};
 use crate::geometry::TangentFrame;
 use glam::{Vec2, Vec3A};
@@ -51,6 +52,9 @@ pub struct Surface {
     pub cutout: Option<Cutout>,
     /// Hands the hit to one of two materials.
     pub blend: Option<Blend>,
+    /// The material, its surface or a blend's pick reads the vertex colour:
+    /// the scene interpolates it at the hit.
+    pub vertex_color: bool,
 }
 
 /// A blend: the hit is shaded by material `b` with probability `weight`,
@@ -70,8 +74,8 @@ impl Blend {
     /// `u` ∈ [0, 1), and `u` stretched back over [0, 1) for the choice the
     /// chosen material may make in turn (a blend inside a blend).
     #[inline]
-    pub fn pick(&self, uv: Vec2, textures: &[Texture], u: f32) -> (u32, f32) {
-        let w = self.weight.eval(uv, textures);
+    pub fn pick(&self, at: &TexPoint, textures: &[Texture], u: f32) -> (u32, f32) {
+        let w = self.weight.eval(at, textures);
         let w = if w.is_nan() { 0.0 } else { w.clamp(0.0, 1.0) };
         if u < w {
             (self.b, (u / w).min(ONE_MINUS_EPSILON))
@@ -120,7 +124,23 @@ pub struct Cutout {
 impl Surface {
     /// True when the material leaves the surface as it is.
     pub fn is_plain(&self) -> bool {
-        self.normal.is_none() && self.cutout.is_none() && self.blend.is_none()
+        self.normal.is_none() && self.cutout.is_none() && self.blend.is_none() && !self.vertex_color
+    }
+
+    /// Whether a map, cut-out or blend weight of this surface reads the
+    /// vertex colour.
+    pub fn reads_vertex_color(&self) -> bool {
+        let normal = match &self.normal {
+            Some(Perturb::NormalMap { map, .. }) => map.reads_vertex_color(),
+            Some(Perturb::Bump { height, .. }) => height.reads_vertex_color(),
+            None => false,
+        };
+        normal
+            || self
+                .cutout
+                .as_ref()
+                .is_some_and(|c| c.opacity.reads_vertex_color())
+            || self.blend.as_ref().is_some_and(|b| b.weight.reads_vertex_color())
     }
 }
 
@@ -128,8 +148,8 @@ impl Cutout {
     /// Whether the surface is there at `uv` for a ray whose own uniform
     /// number is `u` ∈ [0, 1).
     #[inline]
-    pub fn present(&self, uv: Vec2, textures: &[Texture], u: f32) -> bool {
-        let a = self.opacity.eval(uv, textures);
+    pub fn present(&self, at: &TexPoint, textures: &[Texture], u: f32) -> bool {
+        let a = self.opacity.eval(at, textures);
         match self.threshold {
             Some(c) => a >= c,
             None => u < a,
@@ -150,7 +170,7 @@ impl Perturb {
         dpdu: Vec3A,
         dpdv: Vec3A,
         sign: f32,
-        uv: Vec2,
+        at: &TexPoint,
         textures: &[Texture],
     ) -> Vec3A {
         match self {
@@ -160,7 +180,7 @@ impl Perturb {
                 flip_green,
                 ..
             } => {
-                let c = map.eval(uv, textures);
+                let c = map.eval(at, textures);
                 let mut t = 2.0 * c - crate::math::Rgb::ONE;
                 if *flip_green {
                     t.y = -t.y;
@@ -179,7 +199,10 @@ impl Perturb {
             }
             Perturb::Bump { height, scale } => {
                 const DU: f32 = 1.0 / 1024.0;
-                let h = |d: Vec2| height.eval(uv + d, textures) * scale;
+                let h = |d: Vec2| {
+                    let shifted = TexPoint { uv: at.uv + d, ..*at };
+                    height.eval(&shifted, textures) * scale
+                };
                 let dhdu = (h(Vec2::new(DU, 0.0)) - h(Vec2::new(-DU, 0.0))) / (2.0 * DU);
                 let dhdv = (h(Vec2::new(0.0, DU)) - h(Vec2::new(0.0, -DU))) / (2.0 * DU);
                 if dhdu == 0.0 && dhdv == 0.0 {
@@ -237,7 +260,7 @@ mod tests {
             let (mut picked_b, mut below_half) = ([0u32; 2], [0u32; 2]);
             for k in 0..n {
                 let u = (k as f32 + 0.5) / n as f32;
-                let (m, rest) = blend.pick(Vec2::ZERO, &[], u);
+                let (m, rest) = blend.pick(&TexPoint::uv(Vec2::ZERO), &[], u);
                 assert!((0.0..1.0).contains(&rest), "w {w}, u {u}: handed on {rest}");
                 let side = usize::from(m == 9);
                 assert!(m == 4 || m == 9);
@@ -265,7 +288,7 @@ mod tests {
             frame: TangentFrame::Vertex,
         };
         let n = Vec3A::new(0.3, 0.4, 0.5).normalize();
-        let got = flat.normal(n, Vec3A::X, Vec3A::Y, -1.0, Vec2::ZERO, &[]);
+        let got = flat.normal(n, Vec3A::X, Vec3A::Y, -1.0, &TexPoint::uv(Vec2::ZERO), &[]);
         assert_eq!(got.to_array().map(f32::to_bits), n.to_array().map(f32::to_bits));
     }
 
@@ -280,14 +303,17 @@ mod tests {
             flip_green,
             frame: TangentFrame::Vertex,
         };
-        let r = map(Rgb::new(1.0, 0.5, 1.0), false).normal(n, dpdu, dpdv, 1.0, Vec2::ZERO, &[]);
+        let r =
+            map(Rgb::new(1.0, 0.5, 1.0), false).normal(n, dpdu, dpdv, 1.0, &TexPoint::uv(Vec2::ZERO), &[]);
         assert!(r.x > 0.6 && r.y > 0.6, "red tilts to +x: {r}");
-        let g = map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, 1.0, Vec2::ZERO, &[]);
+        let g =
+            map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, 1.0, &TexPoint::uv(Vec2::ZERO), &[]);
         assert!(g.z < -0.6, "green tilts to +v = −z: {g}");
-        let g = map(Rgb::new(0.5, 1.0, 1.0), true).normal(n, dpdu, dpdv, 1.0, Vec2::ZERO, &[]);
+        let g = map(Rgb::new(0.5, 1.0, 1.0), true).normal(n, dpdu, dpdv, 1.0, &TexPoint::uv(Vec2::ZERO), &[]);
         assert!(g.z > 0.6, "flipped green tilts to +z: {g}");
         // A left-handed mesh tangent (mirrored UVs) turns the bitangent.
-        let g = map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, -1.0, Vec2::ZERO, &[]);
+        let g =
+            map(Rgb::new(0.5, 1.0, 1.0), false).normal(n, dpdu, dpdv, -1.0, &TexPoint::uv(Vec2::ZERO), &[]);
         assert!(g.z > 0.6, "green with handedness −1 tilts to +z: {g}");
     }
 
@@ -304,7 +330,14 @@ mod tests {
         };
         let n = Vec3A::Y;
         assert_eq!(
-            bump.normal(n, Vec3A::X, Vec3A::NEG_Z, 1.0, Vec2::splat(0.5), &[]),
+            bump.normal(
+                n,
+                Vec3A::X,
+                Vec3A::NEG_Z,
+                1.0,
+                &TexPoint::uv(Vec2::splat(0.5)),
+                &[]
+            ),
             n
         );
     }
@@ -315,11 +348,14 @@ mod tests {
             opacity: Tex::Const(0.3),
             threshold: Some(0.5),
         };
-        assert!(!c.present(Vec2::ZERO, &[], 0.0));
+        assert!(!c.present(&TexPoint::uv(Vec2::ZERO), &[], 0.0));
         let c = Cutout {
             opacity: Tex::Const(0.3),
             threshold: None,
         };
-        assert!(c.present(Vec2::ZERO, &[], 0.29) && !c.present(Vec2::ZERO, &[], 0.31));
+        assert!(
+            c.present(&TexPoint::uv(Vec2::ZERO), &[], 0.29)
+                && !c.present(&TexPoint::uv(Vec2::ZERO), &[], 0.31)
+        );
     }
 }

@@ -26,6 +26,8 @@ pub trait TexValue: Copy + std::fmt::Debug {
     fn mix(a: Self, b: Self, t: f32) -> Self;
     /// `self·scale + offset`.
     fn scale_offset(self, scale: f32, offset: f32) -> Self;
+    /// The product, channel by channel.
+    fn times(self, other: Self) -> Self;
 }
 
 impl TexValue for Rgb {
@@ -47,6 +49,10 @@ impl TexValue for Rgb {
     fn scale_offset(self, scale: f32, offset: f32) -> Self {
         self * scale + Rgb::splat(offset)
     }
+    #[inline]
+    fn times(self, other: Self) -> Self {
+        self * other
+    }
 }
 
 impl TexValue for f32 {
@@ -67,6 +73,46 @@ impl TexValue for f32 {
     #[inline]
     fn scale_offset(self, scale: f32, offset: f32) -> Self {
         self * scale + offset
+    }
+    #[inline]
+    fn times(self, other: Self) -> Self {
+        self * other
+    }
+}
+
+/// Where a texture is looked up: the surface's texture coordinates and its
+/// vertex colour (linear RGB interpolated over a mesh's triangle; white off
+/// meshes, on meshes without colours, and wherever the scene did not ask
+/// for it: `Scene::intersect` fills it only for materials that read it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TexPoint {
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Vertex colour, linear RGB.
+    pub color: Rgb,
+}
+
+impl TexPoint {
+    /// Where `hit`'s material looks its textures up.
+    #[inline(always)]
+    pub fn at(hit: &crate::geometry::Hit) -> Self {
+        TexPoint {
+            uv: hit.uv,
+            color: hit.color,
+        }
+    }
+
+    /// Coordinates `uv` with a white vertex colour.
+    #[inline]
+    pub fn uv(uv: Vec2) -> Self {
+        TexPoint { uv, color: Rgb::ONE }
+    }
+}
+
+impl From<Vec2> for TexPoint {
+    #[inline]
+    fn from(uv: Vec2) -> Self {
+        TexPoint::uv(uv)
     }
 }
 
@@ -132,6 +178,9 @@ pub struct ImageLookup {
     pub uv: UvTransform,
     /// What lies past the image's edge, along u and along v.
     pub wrap: [Wrap; 2],
+    /// Whether the value is multiplied by the vertex colour read through
+    /// the same `channel` (glTF's `COLOR_0` × base colour texture).
+    pub times_vertex: bool,
 }
 
 /// What an image shows past its edges (Mitsuba's `wrap_mode`, glTF's
@@ -177,6 +226,7 @@ impl ImageLookup {
             rows_down: false,
             uv: UvTransform::default(),
             wrap: [Wrap::Repeat; 2],
+            times_vertex: false,
         }
     }
 }
@@ -212,6 +262,15 @@ pub enum Tex<T> {
         /// Applied to the surface's UVs first.
         uv: UvTransform,
     },
+    /// The mesh's vertex colour read through `channel` (all three for a
+    /// colour; for a number, `R`, `G` or `B`, or the red of a grey), times
+    /// `factor`. White off meshes and on meshes without colours.
+    Vertex {
+        /// The channel read (`A` reads 1: colours are stored without alpha).
+        channel: Channel,
+        /// Factor on the colour.
+        factor: T,
+    },
 }
 
 /// A colour parameter.
@@ -225,16 +284,17 @@ impl<T: TexValue> Tex<T> {
     /// material's BSDF construction paid for the image and pattern code
     /// (4% of the Cornell box's instructions, callgrind).
     #[inline(always)]
-    pub fn eval(&self, uv: Vec2, textures: &[Texture]) -> T {
+    pub fn eval(&self, at: &TexPoint, textures: &[Texture]) -> T {
         match self {
             Tex::Const(c) => *c,
-            _ => self.eval_varying(uv, textures),
+            _ => self.eval_varying(at, textures),
         }
     }
 
     /// [`Tex::eval`] of everything but a constant.
     #[inline(never)]
-    fn eval_varying(&self, uv: Vec2, textures: &[Texture]) -> T {
+    fn eval_varying(&self, at: &TexPoint, textures: &[Texture]) -> T {
+        let uv = at.uv;
         match self {
             Tex::Const(c) => *c,
             Tex::Image(l) => match textures.get(l.index as usize) {
@@ -249,10 +309,15 @@ impl<T: TexValue> Tex<T> {
                         let (rgb, alpha) = t.bilinear_rgba(uv, l.rows_down);
                         T::from_texel(rgb, alpha, l.channel)
                     };
-                    if l.scale == 1.0 && l.offset == 0.0 {
+                    let v = if l.scale == 1.0 && l.offset == 0.0 {
                         v
                     } else {
                         v.scale_offset(l.scale, l.offset)
+                    };
+                    if l.times_vertex {
+                        v.times(T::from_texel(at.color, 1.0, l.channel))
+                    } else {
+                        v
                     }
                 }
                 None => {
@@ -270,12 +335,40 @@ impl<T: TexValue> Tex<T> {
                 b,
                 uv: tr,
             } => T::mix(*a, *b, pattern.eval(tr.apply(uv))),
+            Tex::Vertex { channel, factor } => T::from_texel(at.color, 1.0, *channel).times(*factor),
         }
     }
 
     /// Whether the value varies over the surface (so shading needs `uv`).
     pub fn is_textured(&self) -> bool {
         !matches!(self, Tex::Const(_))
+    }
+
+    /// Whether the value needs the hit's vertex colour.
+    pub fn reads_vertex_color(&self) -> bool {
+        match self {
+            Tex::Vertex { .. } => true,
+            Tex::Image(l) => l.times_vertex,
+            Tex::Const(_) | Tex::Checker { .. } | Tex::Pattern { .. } => false,
+        }
+    }
+}
+
+/// What a material asks of each of its parameters, whatever their value
+/// type ([`MaterialModel::any_tex`](super::MaterialModel::any_tex)).
+pub trait TexProbe {
+    /// [`Tex::is_textured`].
+    fn is_textured(&self) -> bool;
+    /// [`Tex::reads_vertex_color`].
+    fn reads_vertex_color(&self) -> bool;
+}
+
+impl<T: TexValue> TexProbe for Tex<T> {
+    fn is_textured(&self) -> bool {
+        Tex::is_textured(self)
+    }
+    fn reads_vertex_color(&self) -> bool {
+        Tex::reads_vertex_color(self)
     }
 }
 
@@ -445,7 +538,8 @@ mod tests {
                 wrap: [wrap, Wrap::Repeat],
                 ..ImageLookup::plain(0)
             });
-            tex.eval(Vec2::new(u, 0.5), std::slice::from_ref(&t)).x
+            tex.eval(&TexPoint::uv(Vec2::new(u, 0.5)), std::slice::from_ref(&t))
+                .x
         };
         for u in [0.2f32, 0.5, 0.8] {
             assert_eq!(at(Wrap::Clamp, u), at(Wrap::Repeat, u));
@@ -524,7 +618,7 @@ mod tests {
             scale: 4.0,
             uv: UvTransform::default(),
         };
-        let at = |u: f32, v: f32| c.eval(Vec2::new(u, v), &[]).x;
+        let at = |u: f32, v: f32| c.eval(&TexPoint::uv(Vec2::new(u, v)), &[]).x;
         assert_eq!(at(0.1, 0.1), 1.0);
         assert_eq!(at(0.3, 0.1), 0.0);
         assert_eq!(at(0.1, 0.3), 0.0);

@@ -435,6 +435,7 @@ fn lookup(index: u32, channel: Channel, scale: f32, info: &gltf::texture::Info) 
             uv_transform(t.offset(), t.rotation(), t.scale())
         }),
         wrap: wrap_of(&info.texture()),
+        times_vertex: false,
     }
 }
 

@@ -222,6 +222,7 @@ fn import_bounded(
         };
         let mut names = Vec::new();
         let mut mesh_notes = Vec::new();
+        let mut painted = Vec::new();
         let result = {
             let mut map = |m: Option<gltf::Material>| {
                 names.push(m.as_ref().and_then(|m| m.name().map(str::to_string)));
@@ -240,9 +241,13 @@ fn import_bounded(
                 weights.as_deref(),
                 p.skin.is_some(),
                 &mut map,
+                &mut painted,
                 &mut mesh_notes,
             )
         };
+        for m in painted.drain(..) {
+            sink.mtl.paint(m);
+        }
         notes.extend(mesh_notes.into_iter().map(|n| format!("{label}: {n}")));
         let (mut mesh, slots, influences) = result?;
         if let (Some(s), Some(inf)) = (p.skin, influences) {
@@ -307,7 +312,7 @@ fn merge_single_placements(imported: Imported) -> Imported {
     };
     // The open group of each transform (bit for bit) and set of vertex
     // attributes: its mesh's index in `out`.
-    type Key = ([u32; 16], [bool; 3]);
+    type Key = ([u32; 16], [bool; 4]);
     let mut groups: HashMap<Key, usize> = HashMap::new();
     let mut renumbered: HashMap<usize, usize> = HashMap::new();
     for (k, world, keys) in placements {

@@ -4,7 +4,9 @@
 //! `TRIANGLE_FAN`) are read; points and lines are skipped with a note.
 //! Attributes: `POSITION` (required), `NORMAL`, `TANGENT`, the UV set the
 //! material's textures read (`TEXCOORD_0` or `_1`, v flipped to ronray's
-//! v-up), `COLOR_0` (read and checked; not rendered, with a note). Tangents
+//! v-up), `COLOR_0` (linear RGB; its alpha is not read, with a note: the
+//! materials of primitives that have it multiply their base colour by it,
+//! `Tex::Vertex`). Tangents
 //! come from the file, else MikkTSpace when the material has a normal map
 //! (per primitive, before the primitives are merged, so seams between
 //! primitives do not weld).
@@ -26,7 +28,9 @@ pub type Built = (Mesh, Vec<Mapped>, Option<Vec<Influence>>);
 /// scene's. `weights` blends the primitives' morph targets into their
 /// base shape. With `skinned`, each vertex's `JOINTS_0`/`WEIGHTS_0` come
 /// back too (zero weights where a primitive has none). Errors name the
-/// primitive.
+/// primitive. The scene materials of primitives with `COLOR_0` go to
+/// `painted`.
+#[allow(clippy::too_many_arguments)]
 pub fn build(
     doc: &Document,
     buffers: &Buffers,
@@ -34,6 +38,7 @@ pub fn build(
     weights: Option<&[f32]>,
     skinned: bool,
     material: &mut dyn FnMut(Option<gltf::Material>) -> Mapped,
+    painted: &mut Vec<u32>,
     notes: &mut Vec<String>,
 ) -> Result<Built, String> {
     let m = doc
@@ -54,8 +59,11 @@ pub fn build(
         let part =
             read_primitive(doc, buffers, &p, mapped, mode, weights).map_err(|e| format!("{at}: {e}"))?;
         if part.colors {
+            painted.push(mapped.index);
+        }
+        if part.translucent_colors {
             notes.push(format!(
-                "{at}: COLOR_0 read but not rendered (ronray meshes carry no vertex colours)"
+                "{at}: COLOR_0's alpha is below 1 but is not read (only its RGB tints the base colour)"
             ));
         }
         if skinned {
@@ -84,6 +92,7 @@ pub fn build(
 struct Part {
     mesh: Mesh,
     colors: bool,
+    translucent_colors: bool,
 }
 
 fn read_primitive(
@@ -154,17 +163,28 @@ fn read_primitive(
             })
             .collect();
     }
-    let mut colors = false;
+    let (mut colors, mut translucent_colors) = (false, false);
     if let Some(a) = p.get(&Semantic::Colors(0)) {
         let dims = a.dimensions();
         if !matches!(dims, Dimensions::Vec3 | Dimensions::Vec4) {
             return Err(format!("COLOR_0 is {dims:?}, expected Vec3 or Vec4"));
         }
-        let len = match dims {
-            Dimensions::Vec3 => read_f32::<3>(doc, buffers, a.index(), dims, &color_types, "COLOR_0")?.len(),
-            _ => read_f32::<4>(doc, buffers, a.index(), dims, &color_types, "COLOR_0")?.len(),
+        let rgba: Vec<[f32; 4]> = match dims {
+            Dimensions::Vec3 => read_f32::<3>(doc, buffers, a.index(), dims, &color_types, "COLOR_0")?
+                .into_iter()
+                .map(|[r, g, b]| [r, g, b, 1.0])
+                .collect(),
+            _ => read_f32::<4>(doc, buffers, a.index(), dims, &color_types, "COLOR_0")?,
         };
-        same(len, "COLOR_0")?;
+        same(rgba.len(), "COLOR_0")?;
+        // Linear already (glTF 2.0 §3.7.2.1); a float outside [0, 1] or
+        // not finite is clamped, as the normalised integers are by nature.
+        let unit = |x: f32| if x.is_finite() { x.clamp(0.0, 1.0) } else { 1.0 };
+        mesh.colors = rgba
+            .iter()
+            .map(|&[r, g, b, _]| Vec3A::new(unit(r), unit(g), unit(b)))
+            .collect();
+        translucent_colors = rgba.iter().any(|c| c[3] < 1.0);
         colors = true;
     }
     let list: Vec<u32> = match p.indices() {
@@ -181,7 +201,11 @@ fn read_primitive(
     if mapped.normal_mapped && mesh.tangents.is_empty() && !mesh.uvs.is_empty() {
         crate::geometry::tangents::generate(&mut mesh);
     }
-    Ok(Part { mesh, colors })
+    Ok(Part {
+        mesh,
+        colors,
+        translucent_colors,
+    })
 }
 
 /// Adds `weights[i]` times morph target `i`'s displacements to the base
@@ -283,6 +307,7 @@ fn append(mesh: &mut Mesh, part: Mesh, slot: u32) {
         adds,
         Vec4::new(1.0, 0.0, 0.0, 1.0),
     );
+    fill(&mut mesh.colors, part.colors, had, adds, Vec3A::ONE);
     mesh.positions.extend(part.positions);
     mesh.indices
         .extend(part.indices.iter().map(|t| t.map(|v| v + base)));
