@@ -8,6 +8,7 @@
 use crate::common;
 
 mod camera;
+mod vertex_colors;
 
 use glam::{Mat4, Quat, Vec3, Vec3A};
 use ronray::frame::render_whole;

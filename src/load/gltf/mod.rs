@@ -14,7 +14,7 @@
 //! this file places one instance per node and the lights; `camera.rs`
 //! makes one of its cameras the scene's when the scene asks. What the
 //! asset has and ronray does not render (cameras the scene does not take,
-//! vertex colours, an animation not chosen) is reported in notes, never
+//! an animation not chosen) is reported in notes, never
 //! silently dropped; a required extension ronray does not know is an error naming it
 //! (the `gltf` crate's validation).
 
