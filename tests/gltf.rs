@@ -1976,3 +1976,33 @@ fn gltf_sampler_wrap_modes_are_kept() {
         notes_of(&loaded)
     );
 }
+
+/// An extension the asset uses and ronray does not read (here clear coat
+/// and sheen) renders without it, named in one note; the ones it reads are
+/// not named.
+#[test]
+fn extensions_used_but_not_read_are_named_in_a_note() {
+    let mut a = Asset::default();
+    let tri = triangle(&mut a);
+    let gltf = a.gltf(json!({
+        "extensionsUsed": ["KHR_texture_transform", "KHR_materials_clearcoat", "KHR_materials_sheen"],
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [tri],
+        "materials": [{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0}}}],
+    }));
+    let l = load(
+        &[("a.gltf", gltf.as_bytes())],
+        &scene_with(r#"Gltf(file: "a.gltf")"#, ""),
+    )
+    .unwrap_or_else(|e| panic!("loads: {e}"));
+    let notes = notes_of(&l);
+    let named: Vec<&String> = notes.iter().filter(|n| n.contains("not read")).collect();
+    assert_eq!(named.len(), 1, "{notes:?}");
+    assert!(
+        named[0].contains("KHR_materials_clearcoat, KHR_materials_sheen")
+            && !named[0].contains("KHR_texture_transform"),
+        "{}",
+        named[0]
+    );
+}

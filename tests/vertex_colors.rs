@@ -276,19 +276,17 @@ fn wrong_vertex_color_textures_are_located_errors() {
             "Lambert(albedo: VertexColor(factor: (1, 1, 1), channel: A))",
             "vertex colours have no alpha channel",
         ),
-        // Fields of another form: refused where they are written (ron
-        // reports the form, not the deserialiser's own words).
         (
             "Lambert(albedo: VertexColor(factor: (1, 1, 1), scale: 2))",
-            "materials.m.albedo",
+            "`VertexColor` takes `factor` and `channel` only, not `scale`",
         ),
         (
-            "Lambert(albedo: Image(file: \"x.png\", factor: 2))",
-            "materials.m.albedo",
+            "Lambert(albedo: Image(file: \"x.png\", factor: (2, 2, 2)))",
+            "`factor` belongs to `VertexColor(factor: …)`",
         ),
         (
-            "Lambert(albedo: Checker(a: 0, b: 1, times_vertex_color: true))",
-            "materials.m.albedo",
+            "Lambert(albedo: Checker(a: (0, 0, 0), b: (1, 1, 1), times_vertex_color: true))",
+            "`times_vertex_color` belongs to an image texture",
         ),
         ("Lambert(albedo: VertexColor(factor: (-1, 1, 1)))", "factor"),
     ] {

@@ -406,7 +406,36 @@ fn motion_keys(
 
 /// Notes for what the asset carries and ronray does not render, and for
 /// animations left unplayed (`posed`: the scene picked one).
+/// The glTF extensions the importer reads: the `gltf` crate's features
+/// enabled in Cargo.toml, and `KHR_mesh_quantization` (read by
+/// `accessor.rs`). docs/gltf.md says how much of each.
+const READ_EXTENSIONS: &[&str] = &[
+    "KHR_texture_transform",
+    "KHR_materials_ior",
+    "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",
+    "KHR_materials_transmission",
+    "KHR_materials_volume",
+    "KHR_mesh_quantization",
+];
+
 fn report_unrendered(doc: &gltf::Document, label: &str, posed: bool, notes: &mut Vec<String>) {
+    // An extension the asset uses but does not require is one a viewer may
+    // ignore: the asset renders without it, and the note says which (a
+    // clear-coated car paint drawn as plain paint would otherwise be a
+    // silent difference).
+    let unread: Vec<&str> = doc
+        .extensions_used()
+        .filter(|e| !READ_EXTENSIONS.contains(e))
+        .collect();
+    if !unread.is_empty() {
+        notes.push(format!(
+            "{label}: extension{} {} not read: the asset renders without {} (docs/gltf.md lists what is read)",
+            if unread.len() == 1 { "" } else { "s" },
+            unread.join(", "),
+            if unread.len() == 1 { "it" } else { "them" },
+        ));
+    }
     let animations = doc.animations().count();
     if animations > 0 && !posed {
         let first = doc
