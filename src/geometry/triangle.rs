@@ -15,26 +15,31 @@ use crate::math::Ray;
 use crate::math::float_error::gamma;
 use glam::{Vec2, Vec3A, Vec4, Vec4Swizzles};
 
-/// pbrt-v4's bound on the rounding error of the computed hit distance
-/// (`Triangle::Intersect`, "ensure that computed triangle t is
-/// conservatively greater than zero"), in the scaled units of `t·det`:
-/// `max_x`, `max_y`, `max_z` are the largest sheared corner coordinates in
-/// magnitude (`max_z` already scaled by the shear's `sz`), `max_e` the
-/// largest edge value. A hit nearer than this may be the surface the ray
+/// A bound on the rounding error of the computed hit distance `t`:
+/// pbrt-v4's (`Triangle::Intersect`, "ensure that computed triangle t is
+/// conservatively greater than zero"), `3·(2γ₃·E·Z + δ_E·Z)/|det|`, with
+/// the largest edge value E replaced by |det| — inside a triangle the three
+/// edge values share a sign, so E ≤ |det| and the bound is no smaller —
+/// and δ_E expanded: a third fewer operations per hit lane. `max_x`,
+/// `max_y`, `max_z` are the largest sheared corner coordinates in magnitude
+/// (`max_z` scaled by the shear's `sz`), `inv_abs` = 1/|det|. A hit nearer
+/// than this may be the surface the ray
 /// starts on: a ray leaving a mesh's triangle at a grazing angle, from an
 /// origin its error bound does not move (a floor at y = 0 has none along
 /// its normal), met the same triangle at t ≈ 10⁻⁸ half the time and lost
 /// a tenth of a sky's light.
 #[inline(always)]
-fn t_error_scaled<T>(max_x: T, max_y: T, max_z: T, max_e: T) -> T
+fn t_bound<T>(max_x: T, max_y: T, max_z: T, inv_abs: T) -> T
 where
-    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<Output = T> + std::ops::Mul<f32, Output = T>,
+    T: Copy
+        + std::ops::Add<Output = T>
+        + std::ops::Add<f32, Output = T>
+        + std::ops::Mul<Output = T>
+        + std::ops::Mul<f32, Output = T>,
 {
-    let delta_z = max_z * gamma(3);
-    let delta_x = (max_x + max_z) * gamma(5);
-    let delta_y = (max_y + max_z) * gamma(5);
-    let delta_e = (max_x * max_y * gamma(2) + delta_y * max_x + delta_x * max_y) * 2.0;
-    (max_e * max_z * gamma(3) + delta_e * max_z + delta_z * max_e) * 3.0
+    // δ_E/2 = (γ₂ + 2γ₅)·X·Y + γ₅·Z·(X + Y).
+    let half_delta_e = max_x * max_y * (gamma(2) + 2.0 * gamma(5)) + max_z * (max_x + max_y) * gamma(5);
+    max_z * (half_delta_e * inv_abs * 6.0 + 6.0 * gamma(3))
 }
 
 /// The per-ray part of the watertight test: the axis permutation and shear.
@@ -118,12 +123,12 @@ impl WatertightRay {
             return None;
         }
         let m = |p: f32, q: f32, r: f32| p.abs().max(q.abs()).max(r.abs());
-        let bound = t_error_scaled(
+        let bound = t_bound(
             m(ax, bx, cx),
             m(ay, by, cy),
-            m(sz * a[kz], sz * b[kz], sz * c[kz]),
-            m(u, v, w),
-        ) * inv.abs();
+            m(a[kz], b[kz], c[kz]) * sz.abs(),
+            inv.abs(),
+        );
         (t > bound).then(|| (t, Vec2::new(v * inv, w * inv)))
     }
 }
@@ -276,13 +281,12 @@ impl WatertightRay4 {
             // The scalar test's bound, lane by lane (only for the lanes
             // hit: most blocks are missed).
             let m = |p: Vec4, q: Vec4, r: Vec4| p.abs().max(q.abs()).max(r.abs());
-            let sz = self.s[2];
-            let bound = t_error_scaled(
+            let bound = t_bound(
                 m(ax, bx, cx),
                 m(ay, by, cy),
-                m(sz * az, sz * bz, sz * cz),
-                m(u, v, w),
-            ) * inv.abs();
+                m(az, bz, cz) * self.s[2].abs(),
+                inv.abs(),
+            );
             mask &= t.cmpgt(bound).bitmask();
         }
         Some(Lanes {
@@ -351,7 +355,7 @@ impl WatertightRay4 {
             return None;
         }
         let m = |v: Vec4| v.abs().xyz().max_element();
-        let bound = t_error_scaled(m(x), m(y), m(z * sz), m(uvw)) * inv.abs();
+        let bound = t_bound(m(x), m(y), m(z) * sz.abs(), inv.abs());
         (t > bound).then(|| (t, Vec2::new(uvw.y * inv, uvw.z * inv)))
     }
 
