@@ -310,7 +310,7 @@ fn hostile_numbers_in_blends_never_panic_and_render_finite() {
         l.scene.surfaces.iter().any(|s| s.blend.is_some()),
         "the seed has blends"
     );
-    let (numbers, loaded, refused) = common::hostile_number_sweep(&seed);
+    let (numbers, loaded, refused) = common::hostile_number_sweep(&seed, &common::root().join("scenes"));
     assert!(numbers > 40, "{numbers} numbers");
     assert!(loaded > 0 && refused > 0, "{loaded} loaded, {refused} refused");
 }

@@ -312,7 +312,7 @@ fn hostile_numbers_in_coloured_glass_never_panic_and_render_finite() {
     let seed = std::fs::read_to_string(common::root().join("fuzz/corpus/scene/coloured_glass.ron"))
         .expect("the fuzz seed");
     assert!(!scene(&seed).scene.absorption.is_empty(), "the seed absorbs");
-    let (numbers, loaded, refused) = common::hostile_number_sweep(&seed);
+    let (numbers, loaded, refused) = common::hostile_number_sweep(&seed, &common::root().join("scenes"));
     assert!(numbers > 40, "{numbers} numbers");
     assert!(loaded > 0 && refused > 0, "{loaded} loaded, {refused} refused");
 }

@@ -323,3 +323,21 @@ fn hostile_obj_vertex_colours_are_clamped_with_a_warning() {
     let near = seen(&l, -0.98, 0.98);
     assert!(near.x > 0.9 && near.y < 0.1, "clamped corner: {near}");
 }
+
+/// Every number of the fuzz seed `fuzz/corpus/scene/vertex_colors.ron`
+/// replaced in turn by a hostile one: each variant loads or is refused, and
+/// each that loads renders finite pixels.
+#[test]
+fn hostile_numbers_in_vertex_colours_never_panic_and_render_finite() {
+    let seed = std::fs::read_to_string(common::root().join("fuzz/corpus/scene/vertex_colors.ron"))
+        .expect("the fuzz seed");
+    let dir = common::root().join("tests/fixtures/hardening");
+    let l = common::load_in(&dir, &seed, &Overrides::default());
+    assert!(
+        l.scene.geometry.meshes.iter().any(|m| !m.colors.is_empty()),
+        "the seed's mesh is painted"
+    );
+    let (numbers, loaded, refused) = common::hostile_number_sweep(&seed, &dir);
+    assert!(numbers > 40, "{numbers} numbers");
+    assert!(loaded > 0 && refused > 0, "{loaded} loaded, {refused} refused");
+}

@@ -380,12 +380,12 @@ pub fn masked_blocks_off(
     bad
 }
 
-/// Each number of scene text `seed` replaced in turn by one of −1, 0,
-/// 1e30, −0.0, 1e-30, 2, inf or NaN: every variant must load or be refused
-/// without a panic, and every one that loads must render finite pixels
-/// (8 × 8, 2 spp). Returns how many numbers, and how many variants loaded
-/// and were refused.
-pub fn hostile_number_sweep(seed: &str) -> (usize, usize, usize) {
+/// Each number of scene text `seed` (loaded as a file in `dir`) replaced
+/// in turn by one of −1, 0, 1e30, −0.0, 1e-30, 2, inf or NaN: every
+/// variant must load or be refused without a panic, and every one that
+/// loads must render finite pixels (8 × 8, 2 spp). Returns how many
+/// numbers, and how many variants loaded and were refused.
+pub fn hostile_number_sweep(seed: &str, dir: &Path) -> (usize, usize, usize) {
     // Each number token's byte range.
     let bytes = seed.as_bytes();
     let mut numbers = Vec::new();
@@ -412,7 +412,7 @@ pub fn hostile_number_sweep(seed: &str) -> (usize, usize, usize) {
             size: Some((8, 8)),
             ..Default::default()
         };
-        match load_str(&root().join("scenes/test.ron"), &text, &o) {
+        match load_str(&dir.join("test.ron"), &text, &o) {
             Ok(l) => {
                 loaded += 1;
                 let img = render_whole(&l.scene, &l.view, &Default::default()).0;
