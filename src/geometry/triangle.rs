@@ -23,11 +23,11 @@ use glam::{Vec2, Vec3A, Vec4, Vec4Swizzles};
 /// and δ_E expanded: a third fewer operations per hit lane. `max_x`,
 /// `max_y`, `max_z` are the largest sheared corner coordinates in magnitude
 /// (`max_z` scaled by the shear's `sz`), `inv_abs` = 1/|det|. A hit nearer
-/// than this may be the surface the ray
-/// starts on: a ray leaving a mesh's triangle at a grazing angle, from an
-/// origin its error bound does not move (a floor at y = 0 has none along
-/// its normal), met the same triangle at t ≈ 10⁻⁸ half the time and lost
-/// a tenth of a sky's light.
+/// than this may be the surface the ray starts on: without it, a ray
+/// leaving a mesh's triangle at a grazing angle, from an origin its error
+/// bound does not move (a floor at y = 0 has none along its normal), met
+/// the same triangle at t ≈ 10⁻⁸ about half the time, and a floor under a
+/// uniform sky reflected 0.42 of a 0.5 albedo (`tests/self_hits.rs`).
 #[inline(always)]
 fn t_bound<T>(max_x: T, max_y: T, max_z: T, inv_abs: T) -> T
 where
