@@ -109,13 +109,6 @@ impl TexPoint {
     }
 }
 
-impl From<Vec2> for TexPoint {
-    #[inline]
-    fn from(uv: Vec2) -> Self {
-        TexPoint::uv(uv)
-    }
-}
-
 /// Which channel of an image a texture reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Channel {
