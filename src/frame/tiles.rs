@@ -19,7 +19,7 @@ use crate::geometry::Hit;
 use crate::imageio::sample_sums::two_pass_mean;
 use crate::imageio::{PixelRect, SampleSums};
 use crate::integrators::{Counters, Integrator};
-use crate::math::{ExactSum, Rgb};
+use crate::math::{ExactSum, Rgb, SampleSum};
 use crate::sampler::PixelSampler;
 use crate::scene::Scene;
 use crate::view::View;
@@ -455,8 +455,8 @@ impl<'a> Work<'a> {
                                 (a, b.saturating_sub(a))
                             }
                         };
-                        let mut sum = ExactSum::ZERO;
-                        let mut late = ExactSum::ZERO;
+                        let mut sum = SampleSum::ZERO;
+                        let mut late = SampleSum::ZERO;
                         let mut squares = [0.0f64; 3];
                         let mut noise = PixelNoise::default();
                         let mut taken = spp;
@@ -531,8 +531,8 @@ impl<'a> Work<'a> {
                         px.push(finish(&PixelSums {
                             x,
                             y,
-                            sum,
-                            late,
+                            sum: sum.total(),
+                            late: late.total(),
                             taken,
                             squares,
                         }));

@@ -82,6 +82,100 @@ impl ExactSum {
     }
 }
 
+/// A pixel's running [`ExactSum`] while its samples come in, cheaper per
+/// sample: [`SampleSum::total`] is bit for bit the `ExactSum` that
+/// [`ExactSum::add_sample`] would have built from the same samples.
+///
+/// Why: converting each channel to an `i128` took ~100 instructions a
+/// sample, 3% of a textured scene's render (callgrind). Here a sample is
+/// cut into three 32-bit chunks of 2⁻⁶⁴ units, all channels at once in
+/// four `f64` lanes: `c0 = trunc(x)`, `c1 = trunc(frac(x)·2³²)`,
+/// `c2 = trunc(frac(frac(x)·2³²)·2³²)`. Each step is exact in `f64` (x has
+/// 24 significant bits and the integer part taken off is a subset of them)
+/// and truncates toward zero with x's sign, so `c0·2⁶⁴ + c1·2³² + c2` is
+/// `trunc(x·2⁶⁴)`, [`to_fixed`]'s value. Each chunk is an integer below
+/// 2⁵¹ in magnitude, turned into an `i64` by adding 1.5·2⁵² and reading the
+/// bits (exact below 2⁵¹), and summed in `i64` lanes: below 2³² per sample,
+/// so the sums cannot overflow before 2³¹ samples; they are folded into the
+/// `i128` total every [`SampleSum::FOLD`] samples.
+#[derive(Clone, Copy, Debug)]
+pub struct SampleSum {
+    folded: ExactSum,
+    chunks: [wide::i64x4; 3],
+    pending: u32,
+}
+
+impl Default for SampleSum {
+    fn default() -> Self {
+        Self::ZERO
+    }
+}
+
+impl SampleSum {
+    /// No samples yet.
+    pub const ZERO: SampleSum = SampleSum {
+        folded: ExactSum::ZERO,
+        chunks: [wide::i64x4::ZERO; 3],
+        pending: 0,
+    };
+
+    /// Samples summed in the `i64` lanes before they are folded into the
+    /// `i128` total (their chunks stay below 2³² · 2³⁰ = 2⁶²).
+    const FOLD: u32 = 1 << 30;
+
+    /// Adds one sample: [`ExactSum::add_sample`]'s value (a non-finite
+    /// channel adds 0; magnitudes are clamped to 2³⁰).
+    #[inline]
+    pub fn add_sample(&mut self, c: Rgb) {
+        use wide::f64x4;
+        const TWO_32: f64 = 4_294_967_296.0;
+        // 1.5·2⁵²: an integer n with |n| < 2⁵¹ added to it lands in the
+        // low mantissa bits, so bits(n + M) − bits(M) = n.
+        const MAGIC: f64 = 6_755_399_441_055_744.0;
+        let a = c.to_array();
+        let x = f64x4::new([a[0] as f64, a[1] as f64, a[2] as f64, 0.0]);
+        // Infinities and NaN add 0, as in `to_fixed`.
+        let limit = f64x4::splat(LIMIT as f64);
+        let x = x
+            .is_finite()
+            .blend(x.fast_max(-limit).fast_min(limit), f64x4::ZERO);
+        let c0 = x.trunc();
+        let r1 = (x - c0) * TWO_32;
+        let c1 = r1.trunc();
+        let c2 = ((r1 - c1) * TWO_32).trunc();
+        let magic = f64x4::splat(MAGIC);
+        let bits = |v: f64x4| -> wide::i64x4 {
+            bytemuck::cast::<f64x4, wide::i64x4>(v + magic) - bytemuck::cast::<f64x4, wide::i64x4>(magic)
+        };
+        self.chunks[0] += bits(c0);
+        self.chunks[1] += bits(c1);
+        self.chunks[2] += bits(c2);
+        self.pending += 1;
+        if self.pending == Self::FOLD {
+            self.fold();
+        }
+    }
+
+    /// Moves the `i64` lanes into the `i128` total.
+    #[cold]
+    fn fold(&mut self) {
+        self.folded = self.total();
+        self.chunks = [wide::i64x4::ZERO; 3];
+        self.pending = 0;
+    }
+
+    /// The exact sum of every sample added.
+    pub fn total(&self) -> ExactSum {
+        let [c0, c1, c2] = self.chunks.map(|c| c.to_array());
+        let mut s = self.folded;
+        for (ch, acc) in s.0.iter_mut().enumerate() {
+            let v = ((c0[ch] as i128) << 64) + ((c1[ch] as i128) << 32) + c2[ch] as i128;
+            *acc = acc.wrapping_add(v);
+        }
+        s
+    }
+}
+
 /// `x` in units of 2⁻⁶⁴, truncated toward zero; exact for |x| ≥ 2⁻⁴⁰.
 ///
 /// In two `f64` halves rather than by taking the float's bits apart: x·2³²
@@ -132,6 +226,60 @@ mod tests {
             0
         };
         if bits >> 31 == 1 { -magnitude } else { magnitude }
+    }
+
+    /// The running sum is the `ExactSum` of the same samples bit for bit:
+    /// random magnitudes across the whole range, both signs, zeros,
+    /// subnormals, the clamp and non-finite channels, folded midway too.
+    #[test]
+    fn sample_sum_totals_are_exact_sums() {
+        let mut rng = Pcg32::new(5, 9);
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            f32::MIN_POSITIVE,
+            1e-45,
+            -1e-45,
+            1e-30,
+            2e-13,
+            LIMIT,
+            -LIMIT,
+            3e9,
+            -3e9,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            0.1,
+            0.7,
+            123_456.79,
+        ];
+        for round in 0..40 {
+            let mut exact = ExactSum::ZERO;
+            let mut running = SampleSum::ZERO;
+            for k in 0..200 {
+                let mut pick = || {
+                    let u = rng.next_f32();
+                    if u < 0.2 {
+                        special[(rng.next_u32() % special.len() as u32) as usize]
+                    } else {
+                        let e = (rng.next_f32() * 80.0 - 50.0).exp2();
+                        if rng.next_f32() < 0.3 { -u * e } else { u * e }
+                    }
+                };
+                let c = Rgb::new(pick(), pick(), pick());
+                exact.add_sample(c);
+                running.add_sample(c);
+                if round % 3 == 0 && k == 100 {
+                    running.fold();
+                }
+            }
+            assert_eq!(running.total(), exact, "round {round}");
+        }
+        assert_eq!(SampleSum::ZERO.total(), ExactSum::ZERO);
     }
 
     #[test]

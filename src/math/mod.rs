@@ -11,7 +11,7 @@ pub mod rng;
 pub mod sampling;
 pub mod trig;
 
-pub use exact_sum::ExactSum;
+pub use exact_sum::{ExactSum, SampleSum};
 pub use frame::Frame;
 pub use ray::Ray;
 pub use rng::{Pcg32, SampleRng};
