@@ -18,7 +18,8 @@ Mitsuba) on a floor under the sky map, the same under a rectangle light
 and a dim constant sky, under a directional sun, a blue sky and a small
 lamp, the bunny as a mesh light beside a gold sphere,
 100 spheres of three materials, glass and plastic spheres under the sky
-map, and (when `--big OBJ` names the 1M-triangle mesh of
+map, the bunny on a floor made of triangles (a 10 × 10 grid) under the
+rectangle light and dim sky and under the sky map, and (when `--big OBJ` names the 1M-triangle mesh of
 `../shared/tools/gen_big_mesh.py`) that mesh under a rectangle light.
 
 Needs a release build of ronray (or RONRAY=path) and a Python with the
@@ -99,6 +100,13 @@ def scenes(big):
         ],
         lights=[("env", SKY)],
     )
+    # The floor as a triangle mesh (a 10 × 10 grid of quads at y = 0, as an
+    # exported ground plane is): a mesh floor under a sky reflected 0.42 of
+    # its 0.5 albedo before the triangle test's self-hit bound.
+    grid = mesh_floor_obj()
+    mfloor = {"kind": "mesh", "file": grid, "scale": 1.0, "mat": "floor"}
+    out["meshfloor_area"] = dict(camera=cam, mats=mats, objects=[mfloor, bunny], lights=[area, ("const", 0.05)])
+    out["meshfloor_sky"] = dict(camera=cam, mats=mats, objects=[mfloor, bunny], lights=[("env", SKY)])
     if big:
         out["big_mesh"] = dict(
             camera=((0, 0.5, 3.5), (0, 0, 0), 40),
@@ -110,6 +118,27 @@ def scenes(big):
             lights=[("rect", (0.5, 3, 1), (0.8, 0, 0), (0, 0, 0.8), 10.0), ("const", 0.05)],
         )
     return out
+
+
+def mesh_floor_obj():
+    """Writes the 10 × 10 floor grid (−5..5 in x and z, y = 0, normal +y) as
+    an OBJ in the temporary folder; returns its path."""
+    path = os.path.join(tempfile.gettempdir(), "ronray_family_floor.obj")
+    n = 10
+    lines = []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            lines.append("v %r 0 %r" % (-5 + 10 * i / n, -5 + 10 * j / n))
+    for j in range(n):
+        for i in range(n):
+            a = 1 + j * (n + 1) + i
+            b, c, d = a + 1, a + n + 2, a + n + 1
+            # Counter-clockwise seen from above (+y): a, d, c and a, c, b.
+            lines.append("f %d %d %d" % (a, d, c))
+            lines.append("f %d %d %d" % (a, c, b))
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
 
 
 def t3(v):
