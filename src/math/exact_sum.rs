@@ -138,7 +138,7 @@ impl SampleSum {
         let limit = f64x4::splat(LIMIT as f64);
         let x = x
             .is_finite()
-            .blend(x.fast_max(-limit).fast_min(limit), f64x4::ZERO);
+            .bitselect(x.fast_max(-limit).fast_min(limit), f64x4::ZERO);
         let c0 = x.trunc();
         let r1 = (x - c0) * TWO_32;
         let c1 = r1.trunc();
