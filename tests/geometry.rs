@@ -339,3 +339,88 @@ fn shape_lanes_answer_as_the_bvh() {
     }
     assert!(hits > 8000, "the rays reach the shapes: {hits}");
 }
+
+/// A ground plane exported as a grid of triangles: up to 256 triangles
+/// (`FLATTEN_MAX`) a baked mesh goes into the scene BVH triangle by triangle
+/// (a 10 × 10 grid, 200), beyond it the mesh keeps its instance (a 12 × 12
+/// grid, 288); both answer rays as the same grid placed by `Instance`.
+#[test]
+fn grid_floors_are_flattened_up_to_256_triangles_and_match_their_instance() {
+    use ronray::geometry::Shape;
+    use ronray::load::{Overrides, load_str};
+    let dir = tempfile::tempdir().expect("temp dir");
+    for (n, flattened) in [(10usize, true), (12, false)] {
+        let mut obj = String::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                obj.push_str(&format!(
+                    "v {} {} 0\n",
+                    -1.0 + 2.0 * i as f32 / n as f32,
+                    -1.0 + 2.0 * j as f32 / n as f32
+                ));
+            }
+        }
+        for j in 0..n {
+            for i in 0..n {
+                let a = 1 + j * (n + 1) + i;
+                obj.push_str(&format!(
+                    "f {} {} {}\nf {} {} {}\n",
+                    a,
+                    a + 1,
+                    a + n + 2,
+                    a,
+                    a + n + 2,
+                    a + n + 1
+                ));
+            }
+        }
+        std::fs::write(dir.path().join("grid.obj"), obj).expect("obj");
+        let scene = |object: &str| {
+            let text = format!(
+                r#"Scene(
+                    camera: (eye: (0, 0, 3), target: (0, 0, 0), fov_y_degrees: 40),
+                    materials: {{"white": Lambert(albedo: (0.8, 0.8, 0.8))}},
+                    meshes: {{"grid": (file: "grid.obj")}},
+                    lights: [Point(position: (0, 0, 2), intensity: (1, 1, 1))],
+                    objects: [{object}],
+                )"#
+            );
+            load_str(&dir.path().join("grid.ron"), &text, &Overrides::default())
+                .unwrap_or_else(|e| panic!("grid scene: {e}"))
+                .scene
+        };
+        let flat = scene(r#"Mesh(file: "grid.obj", material: "white")"#);
+        let inst = scene(r#"Instance(mesh: "grid", material: "white")"#);
+        let in_top = flat
+            .shapes
+            .iter()
+            .filter(|s| matches!(s, Shape::Triangle(_) | Shape::MeshQuad(_)))
+            .count();
+        assert_eq!(
+            in_top > 0,
+            flattened,
+            "{} triangles: in the scene BVH: {in_top}",
+            2 * n * n
+        );
+        let mut rng = Pcg32::new(9, 1);
+        let mut hits = 0;
+        for i in 0..3000 {
+            let o = Vec3A::new(rng.next_f32() * 2.4 - 1.2, rng.next_f32() * 2.4 - 1.2, 1.0);
+            let ray = Ray::new(
+                o,
+                (Vec3A::new(0.0, 0.0, -1.0) + 0.5 * sampling::uniform_sphere(rng.next_vec2())).normalize(),
+            );
+            let (a, b) = (
+                flat.intersect(&ray, f32::INFINITY),
+                inst.intersect(&ray, f32::INFINITY),
+            );
+            assert_eq!(a.is_some(), b.is_some(), "{n}: ray {i}");
+            if let (Some(a), Some(b)) = (a, b) {
+                assert!((a.t - b.t).abs() <= 1e-5 * a.t, "{n}: ray {i}: t {} {}", a.t, b.t);
+                assert!((a.p - b.p).length() < 1e-6 && a.ng == b.ng && a.material == b.material);
+                hits += 1;
+            }
+        }
+        assert!(hits > 1000, "{n}: the rays reach the grid: {hits}");
+    }
+}

@@ -58,6 +58,7 @@ mod obj_overrides;
 mod open_scenes;
 mod path_splitting;
 mod paths;
+mod ply;
 mod readme;
 mod reference;
 mod scenes_as_code;

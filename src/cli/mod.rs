@@ -250,7 +250,7 @@ pub enum Command {
     /// `--scenes DIR`) render the scenes that have a reference in DIR and
     /// print speed and error against it.
     Bench {
-        /// The Wavefront OBJ mesh to measure.
+        /// The Wavefront OBJ (or `.ply`) mesh to measure.
         #[arg(required_unless_present = "scenes", conflicts_with = "scenes")]
         obj: Option<PathBuf>,
         /// Threads for the multi-threaded figures (default: all cores; at

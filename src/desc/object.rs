@@ -32,7 +32,7 @@ use std::collections::BTreeMap;
 #[derive(Clone, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDesc {
-    /// Wavefront OBJ, relative to the scene file.
+    /// Wavefront OBJ (or Stanford PLY, by a `.ply` name), relative to the scene file.
     pub file: String,
     /// Replace the file's normals by area-weighted vertex normals.
     #[serde(default, skip_serializing_if = "is_false")]
@@ -170,11 +170,12 @@ pub enum ObjectDesc {
         #[serde(default, skip_serializing_if = "Vec::is_empty")]
         transform: Vec<TransformDesc>,
     },
-    /// A Wavefront OBJ triangle mesh; `file` is relative to the scene file.
+    /// A Wavefront OBJ triangle mesh (or a Stanford PLY, by a `.ply` name);
+    /// `file` is relative to the scene file.
     /// Without `material`, each OBJ group keeps its MTL material (grey if it
     /// has none); `materials` replaces some by OBJ group/object or MTL name.
     Mesh {
-        /// Path of the Wavefront OBJ file, relative to the scene file.
+        /// Path of the Wavefront OBJ (or `.ply`) file, relative to the scene file.
         file: String,
         /// One scene material for every group without an entry in `materials`,
         /// replacing the MTL materials.

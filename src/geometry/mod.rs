@@ -16,6 +16,7 @@ pub mod mesh_triangle;
 pub mod moving;
 pub mod obj;
 pub mod plane;
+pub mod ply;
 pub mod quad;
 pub mod ray_sets;
 pub mod sdf;

@@ -66,11 +66,28 @@ pub fn load_obj_data(path: &Path) -> Result<ObjData, String> {
 /// As [`load_obj_data`], refusing an MTL file outside `root` (`--root`).
 /// The OBJ and its MTL files must be regular files below their size limits:
 /// a FIFO would block, `/dev/zero` would never end.
+/// A file whose name ends in `.ply` (any case) is read as a Stanford PLY
+/// mesh ([`super::ply`]), under the same size limit.
 pub fn load_obj_data_in(path: &Path, root: Option<&Path>) -> Result<ObjData, String> {
+    let ply = is_ply(path);
+    let kind = if ply { "PLY" } else { "OBJ" };
     let bytes = crate::files::read_regular(path, MAX_OBJ_FILE_BYTES).map_err(|e| match e.kind() {
-        std::io::ErrorKind::NotFound => format!("cannot open OBJ file {}", path.display()),
-        _ => format!("cannot read OBJ file {}: {e}", path.display()),
+        std::io::ErrorKind::NotFound => format!("cannot open {kind} file {}", path.display()),
+        _ => format!("cannot read {kind} file {}: {e}", path.display()),
     })?;
+    if ply {
+        let (mesh, warnings) = super::ply::parse_ply(path, &bytes)?;
+        return Ok(ObjData {
+            mesh,
+            groups: vec![ObjGroup {
+                name: "unnamed".to_string(),
+                material: None,
+            }],
+            materials: Vec::new(),
+            warnings,
+            mtl_files: Vec::new(),
+        });
+    }
     let dir = path.parent().unwrap_or(Path::new("."));
     let mtl = |name: &Path| -> Result<Vec<u8>, String> {
         let full = dir.join(name);
@@ -80,6 +97,11 @@ pub fn load_obj_data_in(path: &Path, root: Option<&Path>) -> Result<ObjData, Str
         crate::files::read_regular(&full, MAX_MTL_FILE_BYTES).map_err(|e| format!("{}: {e}", full.display()))
     };
     parse_obj_data(path, &bytes, &mtl)
+}
+
+/// Whether `path` names a PLY mesh (by its extension, any case).
+pub fn is_ply(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("ply"))
 }
 
 /// Refuses a face (or line) index tobj 4.0.5 would overflow on: a relative

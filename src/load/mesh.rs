@@ -261,7 +261,10 @@ fn load(ctx: &mut BuildContext, file: &str, smooth: bool, at: &str) -> Option<Ob
             Some(data)
         }
         Err(msg) => {
-            let help = if path.exists() {
+            let help = if path.exists() && crate::geometry::obj::is_ply(&path) {
+                "check that the file is a PLY mesh with a `vertex` element (x, y, z) and a `face` element (vertex_indices)"
+                    .to_string()
+            } else if path.exists() {
                 "check that the file is a Wavefront OBJ with `v` and `f` lines".to_string()
             } else {
                 format!(
