@@ -88,11 +88,27 @@ impl PropertyAccess for Vertex {
     }
 }
 
-/// One `face` element: its corners' vertex indices (`None` for a negative
-/// one, refused later with the face's number).
+/// A vertex index that was negative (refused later with the face's number).
+const NEGATIVE: u32 = u32::MAX;
+
+/// One `face` element: its corners' vertex indices ([`NEGATIVE`] for a
+/// negative one). A triangle's three are kept inline, so a mesh of millions
+/// of triangles holds no allocation per face; longer polygons keep a list.
 #[derive(Debug, Default)]
 struct Face {
-    corners: Vec<Option<u32>>,
+    len: u32,
+    first: [u32; 3],
+    polygon: Vec<u32>,
+}
+
+impl Face {
+    fn corner(&self, i: usize) -> u32 {
+        if self.polygon.is_empty() {
+            self.first[i]
+        } else {
+            self.polygon[i]
+        }
+    }
 }
 
 impl PropertyAccess for Face {
@@ -104,18 +120,25 @@ impl PropertyAccess for Face {
         if key != "vertex_indices" && key != "vertex_index" {
             return PropertyAccessResult::Ignored;
         }
-        fn all<T: Copy>(v: &[T], f: impl Fn(T) -> Option<u32>) -> Vec<Option<u32>> {
-            v.iter().map(|&x| f(x)).collect()
+        fn fill<T: Copy>(face: &mut Face, v: &[T], f: impl Fn(T) -> Option<u32>) {
+            let index = |x: T| f(x).filter(|&i| i != NEGATIVE).unwrap_or(NEGATIVE);
+            face.len = u32::try_from(v.len()).unwrap_or(u32::MAX);
+            face.polygon.clear();
+            if v.len() == 3 {
+                face.first = [index(v[0]), index(v[1]), index(v[2])];
+            } else if v.len() > 3 {
+                face.polygon = v.iter().map(|&x| index(x)).collect();
+            }
         }
-        self.corners = match &property {
-            Property::ListChar(v) => all(v, |x| u32::try_from(x).ok()),
-            Property::ListUChar(v) => all(v, |x| Some(x.into())),
-            Property::ListShort(v) => all(v, |x| u32::try_from(x).ok()),
-            Property::ListUShort(v) => all(v, |x| Some(x.into())),
-            Property::ListInt(v) => all(v, |x| u32::try_from(x).ok()),
-            Property::ListUInt(v) => all(v, Some),
+        match &property {
+            Property::ListChar(v) => fill(self, v, |x| u32::try_from(x).ok()),
+            Property::ListUChar(v) => fill(self, v, |x| Some(x.into())),
+            Property::ListShort(v) => fill(self, v, |x| u32::try_from(x).ok()),
+            Property::ListUShort(v) => fill(self, v, |x| Some(x.into())),
+            Property::ListInt(v) => fill(self, v, |x| u32::try_from(x).ok()),
+            Property::ListUInt(v) => fill(self, v, Some),
             _ => return PropertyAccessResult::UnsupportedType,
-        };
+        }
         PropertyAccessResult::Set
     }
 }
@@ -270,21 +293,21 @@ fn build(
     }
     let mut skipped = 0usize;
     for (k, f) in faces.iter().enumerate() {
-        if f.corners.len() < 3 {
+        if f.len < 3 {
             skipped += 1;
             continue;
         }
         let corner = |i: usize| -> Result<u32, String> {
-            match f.corners[i] {
-                Some(c) if (c as usize) < nv => Ok(c),
-                Some(c) => Err(format!(
+            match f.corner(i) {
+                NEGATIVE => Err(format!("{name}: PLY face {k} uses a negative (or 4294967295) vertex index")),
+                c if (c as usize) < nv => Ok(c),
+                c => Err(format!(
                     "{name}: PLY face {k} uses vertex {c} but the file has {nv} vertices (numbered from 0)"
                 )),
-                None => Err(format!("{name}: PLY face {k} uses a negative vertex index")),
             }
         };
         let first = corner(0)?;
-        for i in 1..f.corners.len() - 1 {
+        for i in 1..f.len as usize - 1 {
             if mesh.indices.len() >= MAX_PLY_TRIANGLES {
                 return Err(format!(
                     "{name}: the PLY has more than {MAX_PLY_TRIANGLES} triangles, the most one mesh may hold"
