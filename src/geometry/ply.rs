@@ -299,7 +299,9 @@ fn build(
         }
         let corner = |i: usize| -> Result<u32, String> {
             match f.corner(i) {
-                NEGATIVE => Err(format!("{name}: PLY face {k} uses a negative (or 4294967295) vertex index")),
+                NEGATIVE => Err(format!(
+                    "{name}: PLY face {k} uses a negative (or 4294967295) vertex index"
+                )),
                 c if (c as usize) < nv => Ok(c),
                 c => Err(format!(
                     "{name}: PLY face {k} uses vertex {c} but the file has {nv} vertices (numbered from 0)"
