@@ -44,6 +44,18 @@ pub fn obj(data: &[u8]) -> bool {
     }
 }
 
+/// PLY import: the bytes as a `.ply` file (ASCII or binary). A PLY that
+/// loads has its BVH built.
+pub fn ply(data: &[u8]) -> bool {
+    match crate::geometry::ply::parse_ply(Path::new("fuzz.ply"), data) {
+        Ok((mut mesh, _)) => {
+            mesh.prepare();
+            true
+        }
+        Err(_) => false,
+    }
+}
+
 /// Image reading: the first byte picks the reader (`0` PNG, `1` EXR, `2`
 /// HDR, `3` PFM as `diff` and `check` read them, anything else a texture
 /// with its format guessed), the rest is the file.

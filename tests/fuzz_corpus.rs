@@ -1,5 +1,5 @@
 //! Every input of the committed fuzz corpora (`fuzz/corpus/<target>/`:
-//! scene, obj, image, gltf, assemble, lsp, envmap),
+//! scene, obj, ply, image, gltf, assemble, lsp, envmap),
 //! and every crash the fuzzers found (`fuzz/regressions/<target>/`), run
 //! through the same library entry points as the `cargo fuzz` targets, on
 //! stable Rust: what the fuzzers fixed stays fixed without nightly. None
@@ -66,6 +66,11 @@ fn scene_corpus_loads_without_panics() {
 #[test]
 fn obj_corpus_imports_without_panics() {
     replay("obj", ronray::fuzzing::obj);
+}
+
+#[test]
+fn ply_corpus_imports_without_panics() {
+    replay("ply", ronray::fuzzing::ply);
 }
 
 #[test]

@@ -160,6 +160,13 @@ fn wrong_ply_files_are_located_errors() {
         ),
         ("truncated.ply", ply(&v, &f, "binary_little_endian")[..5000].to_vec(), "PLY element"),
         (
+            // Counted through 10¹² times before (a hang): fuzz/regressions/ply.
+            "zero_property.ply",
+            std::fs::read(common::root().join("fuzz/regressions/ply/binary_element_without_properties_counted_1e12"))
+                .expect("regression"),
+            "contains no faces",
+        ),
+        (
             "past_the_end.ply",
             ply(&v[..3], &[[0, 1, 7]], "ascii"),
             "uses vertex 7 but the file has 3",

@@ -196,7 +196,14 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<(Mesh, Vec<String>), Strin
     let with_colors = has(vertex_def, &["red", "green", "blue"]);
     let mut vertices: Vec<Vertex> = Vec::new();
     let mut faces: Vec<Face> = Vec::new();
+    let binary = !matches!(header.encoding, ply_rs_bw::ply::Encoding::Ascii);
     for (key, def) in &header.elements {
+        // A binary element with no properties takes no bytes: the crate
+        // would still count through all of them, and a header declaring
+        // 10¹² of them hung the load. Nothing to read past.
+        if binary && def.properties.is_empty() {
+            continue;
+        }
         let at = |e: ply_rs_bw::parser::ParseError| format!("{name}: PLY element `{key}`: {e}");
         match key.as_str() {
             "vertex" => {
