@@ -23,7 +23,7 @@
 use super::Mesh;
 use glam::{Vec2, Vec3A};
 use ply_rs_bw::parser::{Parser, Reader};
-use ply_rs_bw::ply::{ElementDef, Header, Property, PropertyAccess, PropertyAccessResult};
+use ply_rs_bw::ply::{ElementDef, Header, Property, PropertyAccess, PropertyAccessResult, PropertyType};
 use std::path::Path;
 
 /// Most triangles a PLY may give (after polygons are split): the BVH's
@@ -176,9 +176,30 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<(Mesh, Vec<String>), Strin
             "{name}: the PLY `vertex` element has no `x`, `y` and `z` properties"
         ));
     }
+    // Numbers where numbers are expected, a list where a list is: a list
+    // read as a coordinate would leave the vertex at 0 without a word.
+    for (key, p) in &vertex_def.properties {
+        let named = ["x", "y", "z", "nx", "ny", "nz", "red", "green", "blue"].contains(&key.as_str());
+        if named && !matches!(p.data_type, PropertyType::Scalar(_)) {
+            return Err(format!(
+                "{name}: the PLY vertex property `{key}` is a list, not a number"
+            ));
+        }
+    }
     let face_def = header.elements.get("face").ok_or_else(|| {
         format!("{name}: the PLY file has no `face` element (a point cloud is not a surface)")
     })?;
+    let scalar_index = ["vertex_indices", "vertex_index"].iter().any(|k| {
+        face_def
+            .properties
+            .get(*k)
+            .is_some_and(|p| matches!(p.data_type, PropertyType::Scalar(_)))
+    });
+    if scalar_index {
+        return Err(format!(
+            "{name}: the PLY face property `vertex_indices` is a number, not a list"
+        ));
+    }
     if !has(face_def, &["vertex_indices"]) && !has(face_def, &["vertex_index"]) {
         return Err(format!(
             "{name}: the PLY `face` element has no `vertex_indices` (or `vertex_index`) list"
@@ -430,6 +451,19 @@ mod tests {
             ),
             (&QUAD.replace("4 0 1 2 3\n", "4 0 1\n"), "PLY element `face`"),
             (&QUAD.replace("4 0 1 2 3", "2 0 1"), "contains no faces"),
+            (
+                &QUAD
+                    .replace("property float y", "property list uchar float y")
+                    .replace("0 1 0 255", "0 1 1 0 255"),
+                "`y` is a list",
+            ),
+            (
+                &QUAD.replace(
+                    "property list uchar int vertex_indices",
+                    "property int vertex_indices",
+                ),
+                "is a number, not a list",
+            ),
         ];
         for (text, want) in cases {
             let e = parse(text).err().unwrap_or_else(|| panic!("{want}: loaded"));
