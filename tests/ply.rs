@@ -36,14 +36,6 @@ fn ply(v: &[[f32; 3]], f: &[[u32; 3]], format: &str) -> Vec<u8> {
         f.len()
     )
     .into_bytes();
-    let big = format == "binary_big_endian";
-    let mut put = |b: [u8; 4]| {
-        if big {
-            out.extend(b.iter().rev())
-        } else {
-            out.extend(b)
-        }
-    };
     if format == "ascii" {
         let mut text = String::new();
         for p in v {
@@ -55,22 +47,23 @@ fn ply(v: &[[f32; 3]], f: &[[u32; 3]], format: &str) -> Vec<u8> {
         out.extend(text.into_bytes());
         return out;
     }
-    for p in v {
-        p.iter().chain(&[1.0]).for_each(|x| put(x.to_le_bytes()));
-    }
-    let mut faces = Vec::new();
-    for t in f {
-        faces.push(3u8);
-        for &i in t {
-            let b = (i as i32).to_le_bytes();
-            if big {
-                faces.extend(b.iter().rev())
-            } else {
-                faces.extend(b)
-            }
+    let big = format == "binary_big_endian";
+    let put = |out: &mut Vec<u8>, b: [u8; 4]| {
+        if big {
+            out.extend(b.iter().rev())
+        } else {
+            out.extend(b)
         }
+    };
+    for p in v {
+        p.iter()
+            .chain(&[1.0])
+            .for_each(|x| put(&mut out, x.to_le_bytes()));
     }
-    out.extend(faces);
+    for t in f {
+        out.push(3);
+        t.iter().for_each(|&i| put(&mut out, (i as i32).to_le_bytes()));
+    }
     out
 }
 

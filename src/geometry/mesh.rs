@@ -50,6 +50,16 @@ pub struct Mesh {
     blas: Option<WideBvh>,
 }
 
+/// A vertex colour as a mesh file writes it (a display colour, sRGB-encoded:
+/// OBJ's `v x y z r g b`, PLY's `red green blue`) in linear RGB, and whether
+/// it was usable as written: a channel outside [0, 1] is clamped, a
+/// non-finite one read as white.
+pub fn decode_vertex_colour(c: [f32; 3]) -> (Vec3A, bool) {
+    let ok = c.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x));
+    let linear = c.map(|x| crate::imageio::srgb_decode(if x.is_finite() { x.clamp(0.0, 1.0) } else { 1.0 }));
+    (Vec3A::from_array(linear), ok)
+}
+
 /// Where a normal map's tangent frame comes from on a mesh.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TangentFrame {

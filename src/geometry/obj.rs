@@ -297,16 +297,9 @@ pub fn parse_obj_data(
             }
             let mut repaired = false;
             mesh.colors.extend(mm.vertex_color.chunks_exact(3).map(|c| {
-                let ok = c.iter().all(|x| x.is_finite() && (0.0..=1.0).contains(x));
+                let (linear, ok) = super::mesh::decode_vertex_colour([c[0], c[1], c[2]]);
                 repaired |= !ok;
-                Vec3A::from_array(std::array::from_fn(|i| {
-                    let x = if c[i].is_finite() {
-                        c[i].clamp(0.0, 1.0)
-                    } else {
-                        1.0
-                    };
-                    crate::imageio::srgb_decode(x)
-                }))
+                linear
             }));
             if repaired {
                 warnings.push(format!(

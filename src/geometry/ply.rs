@@ -307,11 +307,9 @@ fn build(
         let mut repaired = false;
         mesh.colors.try_reserve_exact(nv).map_err(|_| fail("colours"))?;
         mesh.colors.extend(vertices.iter().map(|v| {
-            Vec3A::from_array(v.color.map(|x| {
-                let ok = x.is_finite() && (0.0..=1.0).contains(&x);
-                repaired |= !ok;
-                crate::imageio::srgb_decode(if x.is_finite() { x.clamp(0.0, 1.0) } else { 1.0 })
-            }))
+            let (linear, ok) = super::mesh::decode_vertex_colour(v.color);
+            repaired |= !ok;
+            linear
         }));
         if repaired {
             warnings.push(format!(
