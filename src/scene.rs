@@ -463,11 +463,11 @@ impl Scene {
         match nearest {
             Nearest::Mesh(_, k, h) => *out = geo.instances[k as usize].hit(ray, h, &geo.meshes),
             Nearest::Triangle(i, bc) => match &shapes[i as usize] {
-                Shape::Triangle(tr) => *out = tr.hit(ray, t_best, bc, geo),
+                Shape::Triangle(tr) => tr.hit_into(ray, t_best, bc, geo, out),
                 s => *out = s.hit(ray, t_best, geo),
             },
             Nearest::MeshQuad(i, k, bc) => match &shapes[i as usize] {
-                Shape::MeshQuad(q) => *out = q.hit(ray, t_best, k, bc, geo),
+                Shape::MeshQuad(q) => q.hit_into(ray, t_best, k, bc, geo, out),
                 s => *out = s.hit(ray, t_best, geo),
             },
             Nearest::Quad(i, uv) => match &shapes[i as usize] {

@@ -118,6 +118,15 @@ impl MeshQuad {
         }
     }
 
+    /// [`MeshQuad::hit`] written into `out` (see [`FlatShade::hit_into`]).
+    #[inline(always)]
+    pub fn hit_into(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry, out: &mut Hit) {
+        match &self.flat {
+            Some(f) => f[k as usize & 1].hit_into(self.mesh_corners(k), t, self.mesh_hit(t, k, bc).bc, out),
+            None => *out = self.hit_through_instance(ray, t, k, bc, geo),
+        }
+    }
+
     #[inline(never)]
     fn hit_through_instance(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry) -> Hit {
         let h = self.mesh_hit(t, k, bc);

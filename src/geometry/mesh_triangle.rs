@@ -91,6 +91,15 @@ impl MeshTriangle {
         }
     }
 
+    /// [`MeshTriangle::hit`] written into `out` (see [`FlatShade::hit_into`]).
+    #[inline(always)]
+    pub fn hit_into(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry, out: &mut Hit) {
+        match &self.flat {
+            Some(f) => f.hit_into(self.corners(), t, bc, out),
+            None => *out = self.hit_through_instance(ray, t, bc, geo),
+        }
+    }
+
     #[inline(never)]
     fn hit_through_instance(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry) -> Hit {
         let h = MeshHit { t, tri: self.tri, bc };

@@ -389,7 +389,13 @@ impl WatertightRay4 {
             2 => 1,
             _ => usize::from(l.t.y < l.t.x),
         };
-        Some((l.t[lane], lane as u32, Vec2::new(l.b1[lane], l.b2[lane])))
+        // The barycentrics as one 8-byte value from a register: extracted
+        // lane by lane they were stored as two floats, and the caller's
+        // packing (`scene.rs`, `pack`) read them back as one 8-byte word
+        // across both stores, which store forwarding cannot serve.
+        let both = Vec4::new(l.b1.x, l.b2.x, l.b1.y, l.b2.y);
+        let bc = if lane == 0 { both.xy() } else { both.zw() };
+        Some((l.t[lane], lane as u32, bc))
     }
 
     /// [`WatertightRay4::pair`] through the scalar test (an edge value of
