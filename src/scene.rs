@@ -384,7 +384,6 @@ impl Scene {
                 nearest = match h {
                     LaneHit::Sphere(i) => Nearest::Shape(i),
                     LaneHit::Quad(i, uv) => Nearest::Quad(i, uv),
-                    LaneHit::MeshQuad(i, k, bc) => Nearest::MeshQuad(i, k, bc),
                 }
                 .encode();
                 t

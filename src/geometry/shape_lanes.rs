@@ -1,7 +1,6 @@
-//! The bounded shapes of a small scene — up to eight spheres and
-//! [`MAX_QUADS`] parallelograms, analytic quads or a baked mesh's triangle
-//! pairs that are exact parallelograms — in SIMD lanes, tested all at once
-//! instead of through the scene BVH.
+//! The bounded shapes of a small analytic scene — up to eight spheres and
+//! eight quads — in SIMD lanes, tested all at once instead of through the
+//! scene BVH.
 //!
 //! Why: with a handful of shapes the BVH buys nothing. A ray paid the slab
 //! setup (three divisions), the root's eight-box test, a sorted push and a
@@ -17,33 +16,14 @@
 //! every `(s, t)` is the scalar one bit for bit (unit test below) and a
 //! scene renders the same with or without lanes, up to which of two shapes
 //! hit at exactly the same distance is reported (lanes: the lower index).
-//!
-//! **Mesh quads.** A room exported as one OBJ (`bench/cornell_mesh`, the
-//! reference Cornell box's blocks in `scenes/cornell.ron`) is rectangles
-//! split into triangle pairs ([`MeshQuad`]). A pair whose corners form a
-//! parallelogram (`v0 + v2 = v1 + v3` to a few ulps) is tested here as the
-//! parallelogram, and the hit's `(s, t)` turned into the pair's triangle
-//! and barycentrics (`pair_hit`), so the hit record is the pair's own.
-//! Eighteen pairs in three groups of lanes cost less than the scene BVH
-//! did for them (its root test, a sorted push and pop per leaf, a
-//! watertight pair test per leaf): `scenes/cornell.ron` 0.90 → 0.79 s,
-//! the OBJ room 1.00 → 0.93 s (256², 64 spp, per-sample settings,
-//! alternating runs). What it gives up is the pair test's watertightness
-//! on the edges between pairs, the analytic quads' own rule; a hit's
-//! distance must exceed 10⁻⁵, as an analytic quad's.
 
-use super::{MeshQuad, Quad, Shape, Sphere};
+use super::{Quad, Shape, Sphere};
 use crate::math::Ray;
 use glam::{Vec2, Vec3A};
 use wide::f32x8;
 
 /// Lanes per kind of shape.
 pub const LANES: usize = 8;
-
-/// Most quads held in lanes, in groups of [`LANES`]: three groups cost
-/// less than the scene BVH on an 18-quad room; past that its culling wins
-/// more often.
-pub const MAX_QUADS: usize = 24;
 
 /// Up to eight spheres, structure of arrays. Unused lanes hold a sphere
 /// of radius −1 at the origin, which the `valid` mask keeps from hitting.
@@ -70,8 +50,7 @@ struct QuadLanes {
     dv: [f32x8; 3],
     valid: f32x8,
     shape: [u32; LANES],
-    /// Lanes holding a [`MeshQuad`] (bit `i` for lane `i`).
-    mesh: u32,
+    len: usize,
 }
 
 /// The closest shape a ray meets in [`ShapeLanes::closest`].
@@ -81,17 +60,13 @@ pub enum LaneHit {
     Sphere(u32),
     /// Index in `shapes` of a quad and the hit's `(s, t)`.
     Quad(u32, Vec2),
-    /// Index in `shapes` of a mesh quad, which of its triangles and the
-    /// hit's barycentrics in the pair's order (as [`MeshQuad::intersect`]
-    /// gives them).
-    MeshQuad(u32, u32, Vec2),
 }
 
 /// See the module docs.
 #[derive(Clone, Debug)]
 pub struct ShapeLanes {
     spheres: SphereLanes,
-    quads: Vec<QuadLanes>,
+    quads: QuadLanes,
 }
 
 /// `x` with every lane set where `mask` is (all-ones lanes) and +∞ elsewhere.
@@ -130,17 +105,15 @@ impl ShapeLanes {
     /// more than eight of either.
     pub fn new(shapes: &[Shape]) -> Option<Self> {
         let mut s: Vec<(u32, Sphere)> = Vec::new();
-        // Each quad with whether it is a mesh's pair.
-        let mut q: Vec<(u32, (Quad, bool))> = Vec::new();
+        let mut q: Vec<(u32, Quad)> = Vec::new();
         for (i, shape) in shapes.iter().enumerate() {
             match shape {
                 Shape::Sphere(sp) => s.push((i as u32, *sp)),
-                Shape::Quad(qd) => q.push((i as u32, (*qd, false))),
-                Shape::MeshQuad(mq) => q.push((i as u32, (parallelogram(mq)?, true))),
+                Shape::Quad(qd) => q.push((i as u32, *qd)),
                 _ => return None,
             }
         }
-        if s.len() > LANES || q.len() > MAX_QUADS || shapes.is_empty() {
+        if s.len() > LANES || q.len() > LANES || shapes.is_empty() {
             return None;
         }
         let spheres = SphereLanes {
@@ -155,31 +128,22 @@ impl ShapeLanes {
             shape: shapes_of(&s),
             len: s.len(),
         };
-        let quads = q
-            .chunks(LANES)
-            .map(|q| {
-                let axes = |f: fn(&Quad) -> Vec3A| {
-                    [
-                        lanes_of(q, 0.0, |(qd, _)| f(qd).x),
-                        lanes_of(q, 0.0, |(qd, _)| f(qd).y),
-                        lanes_of(q, 0.0, |(qd, _)| f(qd).z),
-                    ]
-                };
-                QuadLanes {
-                    corner: axes(|qd| qd.corner),
-                    n: axes(|qd| qd.n),
-                    du: axes(|qd| qd.dual().0),
-                    dv: axes(|qd| qd.dual().1),
-                    valid: lanes_of(q, 0.0, |_| f32::from_bits(u32::MAX)),
-                    shape: shapes_of(q),
-                    mesh: q
-                        .iter()
-                        .enumerate()
-                        .filter(|(_, (_, (_, mesh)))| *mesh)
-                        .fold(0, |m, (lane, _)| m | 1 << lane),
-                }
-            })
-            .collect();
+        let axes = |f: fn(&Quad) -> Vec3A| {
+            [
+                lanes_of(&q, 0.0, |qd| f(qd).x),
+                lanes_of(&q, 0.0, |qd| f(qd).y),
+                lanes_of(&q, 0.0, |qd| f(qd).z),
+            ]
+        };
+        let quads = QuadLanes {
+            corner: axes(|qd| qd.corner),
+            n: axes(|qd| qd.n),
+            du: axes(|qd| qd.dual().0),
+            dv: axes(|qd| qd.dual().1),
+            valid: lanes_of(&q, 0.0, |_| f32::from_bits(u32::MAX)),
+            shape: shapes_of(&q),
+            len: q.len(),
+        };
         Some(Self { spheres, quads })
     }
 
@@ -227,7 +191,8 @@ impl ShapeLanes {
     /// Each quad lane's hit distance in `(1e-5, t_max)` and `(s, t)`, +∞
     /// where none: [`Quad::intersect`]'s operations lane by lane.
     #[inline(always)]
-    fn quad_t(q: &QuadLanes, o: [f32x8; 3], d: [f32x8; 3], t_max: f32x8) -> (f32x8, f32x8, f32x8) {
+    fn quad_t(&self, o: [f32x8; 3], d: [f32x8; 3], t_max: f32x8) -> (f32x8, f32x8, f32x8) {
+        let q = &self.quads;
         let dot = |a: [f32x8; 3], b: [f32x8; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let denom = dot(q.n, d);
         let facing = !denom.abs().simd_lt(f32x8::splat(1e-12)) & q.valid;
@@ -270,21 +235,15 @@ impl ShapeLanes {
                 best = Some((ts[k], LaneHit::Sphere(self.spheres.shape[k])));
             }
         }
-        for q in &self.quads {
+        if self.quads.len > 0 {
             let bound = f32x8::splat(best.map_or(t_max, |b| b.0));
-            let (tq, s, r) = Self::quad_t(q, o, d, tm);
+            let (tq, s, r) = self.quad_t(o, d, tm);
             let m = tq.simd_lt(bound).to_bitmask();
             if m != 0 {
                 let tq = lanes(tq);
                 let k = nearest_lane(&tq, m);
                 let uv = Vec2::new(lanes(s)[k], lanes(r)[k]);
-                let hit = if q.mesh & (1 << k) != 0 {
-                    let (half, bc) = pair_hit(uv);
-                    LaneHit::MeshQuad(q.shape[k], half, bc)
-                } else {
-                    LaneHit::Quad(q.shape[k], uv)
-                };
-                best = Some((tq[k], hit));
+                best = Some((tq[k], LaneHit::Quad(self.quads.shape[k], uv)));
             }
         }
         best
@@ -296,38 +255,7 @@ impl ShapeLanes {
         let (o, d) = Self::splat(ray);
         let tm = f32x8::splat(t_max);
         (self.spheres.len > 0 && self.sphere_t(o, d, tm).simd_lt(tm).to_bitmask() != 0)
-            || self
-                .quads
-                .iter()
-                .any(|q| Self::quad_t(q, o, d, tm).0.simd_lt(tm).to_bitmask() != 0)
-    }
-}
-
-/// The parallelogram a mesh quad's corners `v0…v3` form, or `None` when
-/// `v0 + v2` and `v1 + v3` differ by more than a few ulps of the corners
-/// (a fold, a trapezoid): its triangles `(v0, v1, v2)` and `(v0, v2, v3)`
-/// are then not one parallelogram's halves.
-fn parallelogram(mq: &MeshQuad) -> Option<Quad> {
-    let [v0, v1, v2, v3] = mq.corners();
-    let scale = v0.abs().max(v1.abs()).max(v2.abs()).max(v3.abs()).max_element();
-    let gap = ((v0 + v2) - (v1 + v3)).abs().max_element();
-    let (u, v) = (v1 - v0, v3 - v0);
-    // NaN-safe: a gap or a normal that is not a number refuses.
-    let flat = u.cross(v).length_squared() > 0.0;
-    (gap <= 4.0 * f32::EPSILON * scale && flat).then(|| Quad::new(v0, u, v, 0, 0))
-}
-
-/// A mesh quad's parallelogram coordinates `(s, t)` (along `v1 − v0` and
-/// `v3 − v0`) as the pair's triangle and its barycentrics of the
-/// triangle's second and third corners: `(v0, v1, v2)` where `s ≥ t`,
-/// with `p = v0 + (s − t)(v1 − v0) + t(v2 − v0)`; `(v0, v2, v3)` beyond
-/// the diagonal, with `p = v0 + s(v2 − v0) + (t − s)(v3 − v0)`.
-#[inline(always)]
-fn pair_hit(st: Vec2) -> (u32, Vec2) {
-    if st.x >= st.y {
-        (0, Vec2::new(st.x - st.y, st.y))
-    } else {
-        (1, Vec2::new(st.x, st.y - st.x))
+            || (self.quads.len > 0 && self.quad_t(o, d, tm).0.simd_lt(tm).to_bitmask() != 0)
     }
 }
 
@@ -419,7 +347,6 @@ mod tests {
                     h.map(|(t, k)| match k {
                         LaneHit::Sphere(i) => (t.to_bits(), i, 0, 0),
                         LaneHit::Quad(i, uv) => (t.to_bits(), i, uv.x.to_bits(), uv.y.to_bits()),
-                        LaneHit::MeshQuad(..) => unreachable!("no mesh quads here"),
                     })
                 };
                 assert_eq!(bits(got), bits(want), "scene {scene}, ray {ray:?}, t_max {t_max}");
@@ -481,119 +408,15 @@ mod tests {
         );
     }
 
-    /// Only spheres, quads and parallelogram mesh quads, at most eight
-    /// spheres and [`MAX_QUADS`] quads, get lanes.
+    /// Only spheres and quads, at most eight of each, get lanes.
     #[test]
-    fn lanes_only_for_small_sets() {
+    fn lanes_only_for_small_analytic_sets() {
         let mut rng = Rng::new(1, 1);
         assert!(ShapeLanes::new(&shapes(&mut rng, 8, 8)).is_some());
         assert!(ShapeLanes::new(&shapes(&mut rng, 9, 0)).is_none());
-        let quads = |n: usize| -> Vec<Shape> {
-            (0..n)
-                .map(|i| Shape::Quad(Quad::new(Vec3A::X * i as f32, Vec3A::Y, Vec3A::Z, 0, NO_LIGHT)))
-                .collect()
-        };
-        assert!(ShapeLanes::new(&quads(MAX_QUADS)).is_some());
-        assert!(ShapeLanes::new(&quads(MAX_QUADS + 1)).is_none());
         assert!(ShapeLanes::new(&[]).is_none());
         let mut sh = shapes(&mut rng, 2, 0);
         sh.push(Shape::Sdf(0));
         assert!(ShapeLanes::new(&sh).is_none());
-        // A pair that is not a parallelogram (v2 moved off it) keeps the BVH.
-        let [v0, v1, v3] = [Vec3A::ZERO, Vec3A::X, Vec3A::Y];
-        let fold = MeshQuad::new([v0, v1, v1 + v3 + Vec3A::Z * 1e-3, v3], 0, [0, 1], [0, 0]).expect("pair");
-        assert!(ShapeLanes::new(&[Shape::MeshQuad(fold)]).is_none());
-        let flat = MeshQuad::new([v0, v1, v1 + v3, v3], 0, [0, 1], [0, 0]).expect("pair");
-        assert!(ShapeLanes::new(&[Shape::MeshQuad(flat)]).is_some());
-    }
-
-    /// Mesh quads in lanes answer as their watertight pair test does:
-    /// the same pair, the same triangle of it, the distance and the
-    /// barycentrics to float rounding — over random parallelograms (some
-    /// far from the origin) among analytic quads, rays from everywhere,
-    /// and short `t_max`. Rays whose hit lies within 10⁻⁴ of a triangle's
-    /// edge may differ in which triangle or pair they report (the two
-    /// tests round differently there) and are only counted.
-    #[test]
-    fn mesh_quads_in_lanes_are_their_pairs() {
-        use super::super::triangle::WatertightRay4;
-        let mut rng = Rng::new(9, 4);
-        let pt = |rng: &mut Rng| Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0;
-        let (mut hits, mut near_edges, mut rays) = (0, 0, 0);
-        for scene in 0..60 {
-            let offset = if scene % 3 == 0 {
-                Vec3A::splat(1000.0)
-            } else {
-                Vec3A::ZERO
-            };
-            let mut sh = shapes(&mut rng, 0, scene % 4);
-            for _ in 0..(1 + scene % 20) {
-                let (v0, u, v) = (pt(&mut rng) + offset, pt(&mut rng), pt(&mut rng));
-                if u.cross(v).length() < 1e-2 {
-                    continue;
-                }
-                let q = MeshQuad::new([v0, v0 + u, (v0 + u) + v, v0 + v], 0, [0, 1], [0, 0]).expect("pair");
-                sh.push(Shape::MeshQuad(q));
-            }
-            let Some(lanes) = ShapeLanes::new(&sh) else {
-                continue;
-            };
-            for round in 0..500 {
-                let o = pt(&mut rng) * 3.0 + offset;
-                let ray = Ray::new(o, (pt(&mut rng) + offset - o).normalize_or(Vec3A::X));
-                let t_max = if round % 3 == 0 { 2.0 } else { f32::INFINITY };
-                let wt = WatertightRay4::new(&ray);
-                let mut want: Option<(f32, u32, u32, Vec2)> = None;
-                for (i, s) in sh.iter().enumerate() {
-                    let bound = want.map_or(t_max, |w| w.0);
-                    match s {
-                        Shape::Quad(q) => {
-                            if let Some((t, uv)) = q.intersect(&ray, bound) {
-                                want = Some((t, i as u32, u32::MAX, uv));
-                            }
-                        }
-                        Shape::MeshQuad(q) => {
-                            if let Some((t, k, bc)) = q.intersect(&wt, bound) {
-                                want = Some((t, i as u32, k, bc));
-                            }
-                        }
-                        _ => unreachable!(),
-                    }
-                }
-                let got = lanes.closest(&ray, t_max).map(|(t, h)| match h {
-                    LaneHit::MeshQuad(i, k, bc) => (t, i, k, bc),
-                    LaneHit::Quad(i, uv) => (t, i, u32::MAX, uv),
-                    LaneHit::Sphere(_) => unreachable!(),
-                });
-                rays += 1;
-                let edge = |h: &(f32, u32, u32, Vec2)| {
-                    let b = h.3;
-                    b.x.min(b.y).min(1.0 - b.x - b.y) < 1e-4 || b.x.max(b.y) > 1.0 - 1e-4
-                };
-                if want.as_ref().is_some_and(edge) || got.as_ref().is_some_and(edge) {
-                    near_edges += 1;
-                    continue;
-                }
-                assert_eq!(
-                    got.is_some(),
-                    want.is_some(),
-                    "scene {scene} round {round}: {got:?} vs {want:?}"
-                );
-                assert_eq!(lanes.occluded(&ray, t_max), want.is_some());
-                let (Some(g), Some(w)) = (got, want) else {
-                    continue;
-                };
-                hits += 1;
-                assert_eq!(
-                    (g.1, g.2),
-                    (w.1, w.2),
-                    "scene {scene} round {round}: {g:?} vs {w:?}"
-                );
-                assert!((g.0 - w.0).abs() <= 1e-4 * w.0.max(1.0), "{g:?} vs {w:?}");
-                assert!((g.3 - w.3).abs().max_element() <= 1e-3, "{g:?} vs {w:?}");
-            }
-        }
-        assert!(hits > rays / 5, "{hits} hits of {rays} rays");
-        assert!(near_edges < rays / 50, "{near_edges} of {rays} rays near an edge");
     }
 }
