@@ -78,3 +78,38 @@ impl FlatShade {
         out.color = glam::Vec3A::ONE;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `hit_into` writes every field of the record: over a record full of
+    /// other values it leaves what `hit` returns, bit for bit (a field
+    /// added to `Hit` and forgotten here would keep the old value).
+    #[test]
+    fn hit_into_writes_the_whole_record() {
+        let corners = [
+            Vec3A::new(0.1, 0.2, 0.3),
+            Vec3A::new(1.5, 0.2, 0.3),
+            Vec3A::new(0.1, 1.7, -0.4),
+        ];
+        let f = FlatShade::new(corners, 3, 7);
+        let (t, bc) = (2.5, Vec2::new(0.25, 0.5));
+        let mut out = Hit {
+            t: -1.0,
+            p: Vec3A::splat(9.0),
+            p_error: 9.0,
+            ng: Vec3A::splat(9.0),
+            ns: Vec3A::splat(9.0),
+            uv: Vec2::splat(9.0),
+            material: 99,
+            light: 99,
+            color: Vec3A::splat(9.0),
+        };
+        f.hit_into(corners, t, bc, &mut out);
+        let want = f.hit(corners, t, bc);
+        // Every field, by its bits (a debug print lists them all).
+        assert_eq!(format!("{out:?}"), format!("{want:?}"));
+        assert_eq!((out.material, out.light, out.uv), (3, 7, bc));
+    }
+}
