@@ -110,15 +110,14 @@ impl MeshQuad {
     /// triangle hit on its own.
     #[inline(always)]
     pub fn hit(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry) -> Hit {
-        match &self.flat {
-            // Inline: a record returned from a call is copied out of the
-            // callee's stores by wider loads, a store-forwarding stall.
-            Some(f) => f[k as usize & 1].hit(self.mesh_corners(k), t, self.mesh_hit(t, k, bc).bc),
-            None => self.hit_through_instance(ray, t, k, bc, geo),
-        }
+        let mut out = Hit::default();
+        self.hit_into(ray, t, k, bc, geo, &mut out);
+        out
     }
 
     /// [`MeshQuad::hit`] written into `out` (see [`FlatShade::hit_into`]).
+    /// Inline: a record returned from a call is copied out of the callee's
+    /// stores by wider loads, a store-forwarding stall.
     #[inline(always)]
     pub fn hit_into(&self, ray: &Ray, t: f32, k: u32, bc: Vec2, geo: &Geometry, out: &mut Hit) {
         match &self.flat {

@@ -84,14 +84,13 @@ impl MeshTriangle {
     /// Shading record for a hit found by [`MeshTriangle::intersect`].
     #[inline(always)]
     pub fn hit(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry) -> Hit {
-        match &self.flat {
-            // Inline: see `MeshQuad::hit`.
-            Some(f) => f.hit(self.corners(), t, bc),
-            None => self.hit_through_instance(ray, t, bc, geo),
-        }
+        let mut out = Hit::default();
+        self.hit_into(ray, t, bc, geo, &mut out);
+        out
     }
 
     /// [`MeshTriangle::hit`] written into `out` (see [`FlatShade::hit_into`]).
+    /// Inline: see [`super::MeshQuad::hit_into`].
     #[inline(always)]
     pub fn hit_into(&self, ray: &Ray, t: f32, bc: Vec2, geo: &Geometry, out: &mut Hit) {
         match &self.flat {
