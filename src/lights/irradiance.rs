@@ -149,6 +149,11 @@ impl SkyWeight {
         }
     }
 
+    /// Whether this is a constant sky's weight: zero at every point.
+    pub fn is_flat(&self) -> bool {
+        self.flat
+    }
+
     /// The weight at a surface of normal `n`, lit from either side (the
     /// larger; for `n` zero, a point in a medium, over the whole sphere
     /// against uniform sampling: `∫L − (∫L)³ / (4π ∫L²)`). Never negative
