@@ -389,8 +389,8 @@ impl WatertightRay4 {
         // The triangle hit: the second when only it is (mask 2), the
         // nearer when both are (mask 3; ties to the first). In bit
         // arithmetic, not a `match`: which half of a quad a ray meets is a
-        // coin flip, and the branch was mispredicted on a third of the OBJ
-        // room's pair hits (callgrind's branch model).
+        // coin flip, and the branch was mispredicted 94 k times in the OBJ
+        // room's 65 k samples (callgrind's branch model, 64², 16 spp).
         let lane = ((l.mask >> 1) & (!l.mask & 1 | u32::from(l.t.y < l.t.x))) as usize;
         // The barycentrics as one 8-byte value from a register: extracted
         // lane by lane they were stored as two floats, and the caller's
