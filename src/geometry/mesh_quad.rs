@@ -81,7 +81,9 @@ impl MeshQuad {
         // cost ~20 instructions a hit (2% of the Cornell box as one OBJ,
         // callgrind).
         let [x, y, z]: [&[f32; 4]; 3] = [0, 1, 2].map(|a| self.rows[a].as_ref());
-        MESH_CORNERS[k as usize & 1][r.min(2)].map(|i| Vec3A::new(x[i], y[i], z[i]))
+        // `& 3`: within the rows' four lanes, which the compiler can see
+        // (the table's entries are, but it checked each of them).
+        MESH_CORNERS[k as usize & 1][r.min(2)].map(|i| Vec3A::new(x[i & 3], y[i & 3], z[i & 3]))
     }
 
     /// World-space corners v0…v3.
@@ -159,9 +161,12 @@ fn to_mesh_order(r: u32, bc: Vec2) -> Vec2 {
     // a coin flip from one hit to the next, and a `match` on it was
     // mispredicted 140 k times in the OBJ room's 65 k samples (callgrind's
     // branch model, 64², 16 spp).
-    let b = [1.0 - bc.x - bc.y, bc.x, bc.y];
-    let [i, j] = [[1, 2], [0, 1], [2, 0]][(r as usize).min(2)];
-    Vec2::new(b[i], b[j])
+    // Four weights and `& 3`, so neither read needs a bounds check; the
+    // table a constant, not rebuilt on the stack at every hit.
+    const PICK: [[u8; 2]; 3] = [[1, 2], [0, 1], [2, 0]];
+    let b = [1.0 - bc.x - bc.y, bc.x, bc.y, 0.0];
+    let [i, j] = PICK[(r as usize).min(2)];
+    Vec2::new(b[usize::from(i) & 3], b[usize::from(j) & 3])
 }
 
 /// The pair's corner (0 to 3) that is mesh corner `m` of triangle `k`

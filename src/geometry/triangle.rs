@@ -168,6 +168,17 @@ impl Tri4<'_> {
     }
 }
 
+/// Row `k` of a block's corner rows, `k` one of a setup's axis indices
+/// (`WatertightRay`'s private `k`, made only by [`WatertightRay::new`] as
+/// a permutation of 0, 1, 2). The compiler cannot see that bound: indexed
+/// plainly, every pair test paid three compares and branches for it.
+#[inline(always)]
+fn row(rows: &[Vec4; 3], k: usize) -> Vec4 {
+    debug_assert!(k < 3);
+    // SAFETY: `k` < 3 (above): within the array.
+    unsafe { *rows.get_unchecked(k) }
+}
+
 /// [`WatertightRay`] splatted over four lanes for [`Tri4`] blocks.
 pub struct WatertightRay4 {
     one: WatertightRay,
@@ -330,9 +341,9 @@ impl WatertightRay4 {
     pub fn single(&self, rows: &[Vec4; 3], t_max: f32) -> Option<(f32, Vec2)> {
         let [kx, ky, kz] = self.one.k;
         // Corner coordinates relative to the origin, then sheared: lanes (a, b, c).
-        let z = rows[kz] - self.o[2];
-        let x = (rows[kx] - self.o[0]) - self.s[0] * z;
-        let y = (rows[ky] - self.o[1]) - self.s[1] * z;
+        let z = row(rows, kz) - self.o[2];
+        let x = (row(rows, kx) - self.o[0]) - self.s[0] * z;
+        let y = (row(rows, ky) - self.o[1]) - self.s[1] * z;
         // (u, v, w) = (cx·by − cy·bx, ax·cy − ay·cx, bx·ay − by·ax).
         let uvw = x.zxyw() * y.yzxw() - y.zxyw() * x.yzxw();
         let zero = Vec4::ZERO;
@@ -373,9 +384,9 @@ impl WatertightRay4 {
     pub fn pair(&self, rows: &[Vec4; 3], t_max: f32) -> Option<(f32, u32, Vec2)> {
         let [kx, ky, kz] = self.one.k;
         // Corners relative to the origin, then sheared: lanes (v0, v1, v2, v3).
-        let z = rows[kz] - self.o[2];
-        let x = (rows[kx] - self.o[0]) - self.s[0] * z;
-        let y = (rows[ky] - self.o[1]) - self.s[1] * z;
+        let z = row(rows, kz) - self.o[2];
+        let x = (row(rows, kx) - self.o[0]) - self.s[0] * z;
+        let y = (row(rows, ky) - self.o[1]) - self.s[1] * z;
         // Lane 0 is (a, b, c) = (v0, v1, v2), lane 1 (v0, v2, v3).
         let a = (x.xxxx(), y.xxxx(), z.xxxx());
         let b = (x.yzyz(), y.yzyz(), z.yzyz());
