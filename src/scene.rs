@@ -191,8 +191,16 @@ impl Scene {
     #[inline(always)]
     pub fn intersect_into(&self, ray: &Ray, t_max: f32, out: &mut Hit) -> bool {
         let found = if self.surfaces.is_empty() {
-            self.nearest(ray, t_max)
-                .map(|(nearest, t)| self.resolve_into(ray, nearest, t, out))
+            // The record made right here, not in a closure passed to
+            // `Option::map`: LLVM kept that closure out of line, a call with
+            // six saved registers per hit (2.5% of the OBJ room's
+            // instructions, 3% of `cornell.ron`'s; callgrind). An early
+            // return here instead of `found` cost 0.7% of that back.
+            let found = self.nearest(ray, t_max);
+            if let Some((nearest, t)) = found {
+                self.resolve_into(ray, nearest, t, out);
+            }
+            found.map(|_| ())
         } else {
             self.nearest(ray, t_max)
                 .and_then(|(nearest, t)| self.apply_surface(ray, t_max, nearest, t, true, out))
