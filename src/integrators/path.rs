@@ -285,6 +285,11 @@ impl Path {
             } else {
                 (sampler.next_f32(), sampler.next_vec2_draw())
             };
+            // A sky map's table entry for these numbers is fetched while
+            // the BSDF is sampled (the sky may not be the light picked).
+            if !delta && let Some((_, env)) = scene.environment() {
+                env.prefetch(u_light, draw);
+            }
             let mark = sampler.draws();
             let bs = bsdf.sample(wo, sampler.next_f32(), sampler.next_vec2());
 

@@ -231,6 +231,18 @@ impl EnvironmentLight {
         })
     }
 
+    /// Asks for the memory [`Self::sample`] will read for the numbers `u`
+    /// ([`EnvTable::prefetch`]): only independent draws of a sky map
+    /// sampled by importance read a table entry chosen by a number.
+    #[inline]
+    pub fn prefetch(&self, u: Vec2, draw: Draw) {
+        if let (Some(dist), Some(m), EnvSampling::Importance, Draw::Independent) =
+            (&self.distribution, &self.map, self.sampling, draw)
+        {
+            dist.prefetch(m, u);
+        }
+    }
+
     /// Solid-angle density with which [`Self::sample`] from a surface of
     /// normal `n` draws world direction `d`.
     #[inline]
