@@ -240,9 +240,18 @@ impl WatertightRay4 {
     #[inline(always)]
     fn lanes(&self, block: &Tri4, t_max: f32) -> Lanes {
         let c = block.count as usize;
-        let soa = block.soa;
+        // One bounds check for the block's nine rows (the last starts at
+        // 8c), not two for each: indexed row by row, the checks were 14%
+        // of a mesh instance's closest-hit instructions (callgrind, the
+        // bunny on a grid floor).
+        let soa = &block.soa[..8 * c + 4];
         let [kx, ky, kz] = self.one.k;
-        let load = |k: usize| Vec4::from_slice(&soa[k * c..k * c + 4]);
+        let load = |k: usize| {
+            debug_assert!(k <= 8);
+            // SAFETY: `k` = 3 · vertex (0 to 2) + an axis of the setup (< 3,
+            // see `row`) ≤ 8, so `k·c + 4 ≤ 8c + 4`, the slice's length.
+            Vec4::from_slice(unsafe { soa.get_unchecked(k * c..k * c + 4) })
+        };
         // Vertex `v` relative to the origin and sheared: (x, y, z).
         let vert = |v: usize| {
             let z = load(3 * v + kz) - self.o[2];
