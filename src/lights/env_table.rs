@@ -365,6 +365,24 @@ mod tests {
         }
     }
 
+    /// `prefetch` reads only the rows' table, at the cell the numbers
+    /// start from, for every size of map down to one pixel and numbers at
+    /// the ends of [0, 1): it is called on every independent draw, before
+    /// the light is even picked, so it must never index out of range.
+    #[test]
+    fn prefetch_takes_any_numbers_on_any_map() {
+        let top = 1.0 - f32::EPSILON / 2.0;
+        for (w, h) in [(1, 1), (1, 5), (7, 1), (2, 2), (64, 32)] {
+            let mut m = map(w, h, |i, j| 1.0 + (i * 3 + j) as f32);
+            let t = EnvTable::new(&mut m);
+            for u in [0.0, 0.5, top] {
+                for v in [0.0, 0.5, top] {
+                    t.prefetch(&m, Vec2::new(u, v));
+                }
+            }
+        }
+    }
+
     #[test]
     fn samples_agree_with_the_pdf_and_the_pdf_integrates_to_one() {
         let mut rng = Pcg32::new(3, 9);
