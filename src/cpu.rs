@@ -37,6 +37,22 @@ pub fn missing_features() -> Vec<&'static str> {
     missing
 }
 
+/// Asks the CPU for the cache line holding `p`, ahead of a load that will
+/// need it (the traversal's next nodes, a sky map's table entry). `p` need
+/// not be a valid address: a prefetch never faults, and nothing is read.
+/// A no-op on other architectures.
+#[inline(always)]
+pub(crate) fn prefetch_line(p: *const u8) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        // SAFETY: SSE is part of x86-64; a prefetch never faults.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast()) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = p;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

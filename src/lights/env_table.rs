@@ -56,6 +56,7 @@
 
 use super::alias::{Bin, fill_bins, pick};
 use super::env_map::{EnvMap, Footprint};
+use crate::cpu::prefetch_line;
 use crate::math::piecewise::PiecewiseConstant2d;
 use crate::sampler::Draw;
 use glam::Vec2;
@@ -80,20 +81,6 @@ pub struct EnvTable {
     /// interpolated corner weight times this (0 for a map without light,
     /// which is sampled uniformly).
     inv_mean: f32,
-}
-
-/// A hint to fetch the cache line at `p` (which need not be valid: a
-/// prefetch never faults).
-#[inline(always)]
-fn prefetch_line(p: *const u8) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        // SAFETY: SSE is part of x86-64; a prefetch never faults.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast()) };
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = p;
 }
 
 /// `x` ∈ [0, 1) with density ∝ `(1 − x) a + x b` (pbrt-v4's `SampleLinear`).

@@ -98,19 +98,9 @@ impl SlabRay {
 /// one another. `p` need not be a valid address: a prefetch never faults.
 #[inline(always)]
 fn prefetch_at(p: *const u8) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        let p = p.cast::<i8>();
-        // SAFETY: SSE is part of x86-64; a prefetch never faults.
-        unsafe {
-            for line in 0..size_of::<WideNode>() / 64 {
-                _mm_prefetch::<_MM_HINT_T0>(p.wrapping_add(64 * line));
-            }
-        }
+    for line in 0..size_of::<WideNode>() / 64 {
+        crate::cpu::prefetch_line(p.wrapping_add(64 * line));
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = p;
 }
 
 impl WideBvh {
